@@ -1,0 +1,148 @@
+//! A byte cursor for the BVH header: whitespace-separated tokens with line and column,
+//! braces as tokens of their own, and "rest of the line" names.
+
+/// One token of the header.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Token<'a> {
+    /// The token's bytes.
+    pub text: &'a [u8],
+    /// Byte offset of the token in the file.
+    pub start: usize,
+    /// 1-based line.
+    pub line: u32,
+    /// 1-based byte column.
+    pub column: u32,
+}
+
+impl Token<'_> {
+    /// Case-insensitive keyword comparison.
+    pub fn is(&self, keyword: &str) -> bool {
+        self.text.eq_ignore_ascii_case(keyword.as_bytes())
+    }
+
+    /// The token as text for messages, shortened and with odd bytes escaped.
+    pub fn show(&self) -> String {
+        show_bytes(self.text)
+    }
+}
+
+/// Bytes as text for an error message: at most 40 characters, control bytes escaped.
+pub(crate) fn show_bytes(bytes: &[u8]) -> String {
+    let text = String::from_utf8_lossy(&bytes[..bytes.len().min(40)]);
+    let mut out: String = text.chars().flat_map(|c| c.escape_debug()).collect();
+    if bytes.len() > 40 {
+        out.push('…');
+    }
+    out
+}
+
+/// True for the bytes that separate tokens on one line.
+#[inline]
+pub(crate) fn is_blank(b: u8) -> bool {
+    matches!(b, b' ' | b'\t' | 0x0b | 0x0c)
+}
+
+/// Walks the header, keeping line and column.
+#[derive(Clone)]
+pub(crate) struct Cursor<'a> {
+    src: &'a [u8],
+    pos: usize,
+    line: u32,
+    line_start: usize,
+}
+
+impl<'a> Cursor<'a> {
+    /// Starts at the beginning, skipping a UTF-8 byte-order mark.
+    pub fn new(src: &'a [u8]) -> Cursor<'a> {
+        let pos = if src.starts_with(&[0xEF, 0xBB, 0xBF]) { 3 } else { 0 };
+        Cursor { src, pos, line: 1, line_start: 0 }
+    }
+
+    /// Current line and column (1-based).
+    pub fn position(&self) -> (u32, u32) {
+        (self.line, self.column_at(self.pos))
+    }
+
+    fn column_at(&self, pos: usize) -> u32 {
+        u32::try_from(pos.saturating_sub(self.line_start) + 1).unwrap_or(u32::MAX)
+    }
+
+    fn newline(&mut self) {
+        self.line = self.line.saturating_add(1);
+        self.line_start = self.pos;
+    }
+
+    /// Skips blanks and line breaks (LF, CRLF and lone CR all end a line).
+    pub fn skip_whitespace(&mut self) {
+        while let Some(&b) = self.src.get(self.pos) {
+            match b {
+                b'\n' => {
+                    self.pos += 1;
+                    self.newline();
+                }
+                b'\r' => {
+                    self.pos += 1;
+                    if self.src.get(self.pos) == Some(&b'\n') {
+                        self.pos += 1;
+                    }
+                    self.newline();
+                }
+                b if is_blank(b) => self.pos += 1,
+                _ => break,
+            }
+        }
+    }
+
+    /// The next token, or `None` at the end of the input.
+    pub fn next_token(&mut self) -> Option<Token<'a>> {
+        self.skip_whitespace();
+        let start = self.pos;
+        let first = *self.src.get(start)?;
+        let end = if first == b'{' || first == b'}' {
+            start + 1
+        } else {
+            let mut end = start;
+            while let Some(&b) = self.src.get(end) {
+                if is_blank(b) || b == b'\n' || b == b'\r' || b == b'{' || b == b'}' {
+                    break;
+                }
+                end += 1;
+            }
+            end
+        };
+        self.pos = end;
+        Some(Token { text: &self.src[start..end], start, line: self.line, column: self.column_at(start) })
+    }
+
+    /// The next token without consuming it.
+    pub fn peek_token(&self) -> Option<Token<'a>> {
+        self.clone().next_token()
+    }
+
+    /// The rest of the current line up to a `{` (not consumed) or the line end,
+    /// trimmed; `None` when that is empty. Used for names, which may hold spaces.
+    pub fn rest_of_line(&mut self) -> Option<Token<'a>> {
+        while self.src.get(self.pos).is_some_and(|&b| is_blank(b)) {
+            self.pos += 1;
+        }
+        let start = self.pos;
+        let mut end = start;
+        while let Some(&b) = self.src.get(end) {
+            if b == b'\n' || b == b'\r' || b == b'{' || b == b'}' {
+                break;
+            }
+            end += 1;
+        }
+        self.pos = end;
+        let mut trimmed = end;
+        while trimmed > start && is_blank(self.src[trimmed - 1]) {
+            trimmed -= 1;
+        }
+        (trimmed > start).then(|| Token {
+            text: &self.src[start..trimmed],
+            start,
+            line: self.line,
+            column: self.column_at(start),
+        })
+    }
+}

@@ -1,0 +1,244 @@
+//! The hot path: motion rows to one contiguous f32 matrix.
+//!
+//! Rows are lines; each must hold exactly one value per channel. Big inputs are cut
+//! into chunks at line breaks and parsed on several threads straight into their part
+//! of one buffer, sized by counting non-blank lines first. Nothing is allocated from
+//! a count written in the file: the buffer is at most the number of lines present
+//! times the row width, and that product is checked against the byte length.
+
+use super::cursor::{is_blank, show_bytes};
+use crate::error::ParseError;
+
+/// The parsed rows.
+pub(crate) struct Rows {
+    /// Row-major values.
+    pub data: Vec<f32>,
+    /// Number of rows.
+    pub count: usize,
+    /// Line of the first NaN or infinite value, if any.
+    pub non_finite_line: Option<u32>,
+}
+
+/// Where a chunk starts in the file, for messages.
+#[derive(Clone, Copy)]
+struct Origin {
+    /// Line number of the chunk's first line.
+    line: u32,
+    /// Columns before the chunk's first byte on its first line.
+    column_offset: u32,
+}
+
+/// Inputs smaller than this are parsed on one thread.
+const PARALLEL_MIN_BYTES: usize = 1 << 20;
+
+/// Parses `data` (everything after the MOTION header) into rows of `width` values.
+pub(crate) fn parse_rows(data: &[u8], first_line: u32, first_column: u32, width: usize) -> Result<Rows, ParseError> {
+    let origin = Origin { line: first_line, column_offset: first_column.saturating_sub(1) };
+    let chunks = split_at_lines(data, thread_count(data.len()));
+    let counts: Vec<LineCount> = chunks.iter().map(|c| count_lines(c)).collect();
+    let total_rows: usize = counts.iter().map(|c| c.content).sum();
+    // A valid row of `width` values takes at least 2·width bytes (value + separator).
+    let fits = total_rows.checked_mul(width).is_some_and(|n| n <= data.len());
+    if width == 0 || !fits {
+        // Some line is malformed; find it without allocating a matrix.
+        let mut row = vec![0.0; width.max(1)];
+        parse_chunk(data, origin, width, &mut row, true)?;
+        if total_rows > 0 {
+            return Err(ParseError::new(first_line, first_column, format!("{total_rows} motion rows but the skeleton has no channels")));
+        }
+        return Ok(Rows { data: Vec::new(), count: 0, non_finite_line: None });
+    }
+    let mut matrix = vec![0.0f32; total_rows * width];
+    let mut jobs = Vec::with_capacity(chunks.len());
+    let mut rest = matrix.as_mut_slice();
+    let mut line = first_line;
+    for (i, (chunk, count)) in chunks.iter().zip(&counts).enumerate() {
+        let (mine, tail) = rest.split_at_mut(count.content * width);
+        rest = tail;
+        let origin = Origin { line, column_offset: if i == 0 { origin.column_offset } else { 0 } };
+        jobs.push((*chunk, origin, mine));
+        line = line.saturating_add(count.breaks);
+    }
+    let results = run_jobs(jobs, width);
+    let mut count = 0;
+    let mut non_finite_line = None;
+    for result in results {
+        let (rows, nf) = result?;
+        count += rows;
+        non_finite_line = non_finite_line.or(nf);
+    }
+    matrix.truncate(count * width);
+    Ok(Rows { data: matrix, count, non_finite_line })
+}
+
+type Job<'a, 'b> = (&'a [u8], Origin, &'b mut [f32]);
+type JobResult = Result<(usize, Option<u32>), ParseError>;
+
+#[cfg(not(target_family = "wasm"))]
+fn run_jobs(jobs: Vec<Job<'_, '_>>, width: usize) -> Vec<JobResult> {
+    if jobs.len() <= 1 {
+        return jobs.into_iter().map(|(c, o, out)| parse_chunk(c, o, width, out, false)).collect();
+    }
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = jobs
+            .into_iter()
+            .map(|(c, o, out)| scope.spawn(move || parse_chunk(c, o, width, out, false)))
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|_| Err(ParseError::new(0, 0, "internal error: a parser thread failed"))))
+            .collect()
+    })
+}
+
+#[cfg(target_family = "wasm")]
+fn run_jobs(jobs: Vec<Job<'_, '_>>, width: usize) -> Vec<JobResult> {
+    jobs.into_iter().map(|(c, o, out)| parse_chunk(c, o, width, out, false)).collect()
+}
+
+fn thread_count(len: usize) -> usize {
+    if cfg!(target_family = "wasm") || len < PARALLEL_MIN_BYTES {
+        return 1;
+    }
+    std::thread::available_parallelism().map_or(1, |n| n.get()).min(8)
+}
+
+/// Cuts `data` into about `parts` pieces, each ending just after a line break.
+fn split_at_lines(data: &[u8], parts: usize) -> Vec<&[u8]> {
+    let mut chunks = Vec::with_capacity(parts);
+    let mut start = 0;
+    for k in 1..parts {
+        let target = (data.len() * k / parts).max(start);
+        let Some(rest) = data.get(target..) else { break };
+        let cut = match memchr::memchr(b'\n', rest) {
+            Some(i) => target + i + 1,
+            None => match memchr::memchr(b'\r', rest) {
+                Some(i) => target + i + 1,
+                None => break,
+            },
+        };
+        if cut > start && cut < data.len() {
+            chunks.push(&data[start..cut]);
+            start = cut;
+        }
+    }
+    chunks.push(&data[start..]);
+    chunks
+}
+
+/// Lines in a chunk: how many hold something, and how many line breaks there are.
+struct LineCount {
+    content: usize,
+    breaks: u32,
+}
+
+fn count_lines(chunk: &[u8]) -> LineCount {
+    let mut count = LineCount { content: 0, breaks: 0 };
+    let mut start = 0;
+    let mut ends = memchr::memchr2_iter(b'\n', b'\r', chunk).peekable();
+    while let Some(end) = ends.next() {
+        if chunk.get(start..end).is_some_and(has_content) {
+            count.content += 1;
+        }
+        // CRLF is one break.
+        if chunk.get(end) == Some(&b'\r') && chunk.get(end + 1) == Some(&b'\n') {
+            ends.next();
+            start = end + 2;
+        } else {
+            start = end + 1;
+        }
+        count.breaks = count.breaks.saturating_add(1);
+    }
+    if chunk.get(start..).is_some_and(has_content) {
+        count.content += 1;
+    }
+    count
+}
+
+#[inline]
+fn has_content(line: &[u8]) -> bool {
+    line.iter().any(|&b| !is_blank(b))
+}
+
+/// Byte classes for the row scanner.
+const OTHER: u8 = 0;
+const BLANK: u8 = 1;
+const LF: u8 = 2;
+const CR: u8 = 3;
+
+const CLASS: [u8; 256] = {
+    let mut t = [OTHER; 256];
+    t[b' ' as usize] = BLANK;
+    t[b'\t' as usize] = BLANK;
+    t[0x0b] = BLANK;
+    t[0x0c] = BLANK;
+    t[b'\n' as usize] = LF;
+    t[b'\r' as usize] = CR;
+    t
+};
+
+/// Parses the rows of one chunk into `out` (row after row). With `ring`, every row
+/// is written to the start of `out` instead: used to find an error without storing.
+/// Returns the number of rows and the line of the first non-finite value.
+fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring: bool) -> JobResult {
+    let mut i = 0;
+    let mut line = origin.line;
+    // Column of byte i is i - line_start + 1 (+ offset on the first line).
+    let mut line_start: isize = -(origin.column_offset as isize);
+    let mut rows = 0usize;
+    let mut k = 0usize;
+    let mut base = 0usize;
+    let mut non_finite = None;
+    let column = |i: usize, line_start: isize| u32::try_from(i as isize - line_start + 1).unwrap_or(u32::MAX);
+    let row_error = |line: u32, column: u32, k: usize| {
+        ParseError::new(line, column, format!("motion row has {k} values, expected {width} (one per channel)"))
+    };
+    while let Some(&b) = chunk.get(i) {
+        match CLASS[b as usize] {
+            BLANK => i += 1,
+            LF | CR => {
+                if k != 0 {
+                    if k != width {
+                        return Err(row_error(line, column(i, line_start), k));
+                    }
+                    rows += 1;
+                    k = 0;
+                    base = if ring { 0 } else { base + width };
+                }
+                i += if b == b'\r' && chunk.get(i + 1) == Some(&b'\n') { 2 } else { 1 };
+                line = line.saturating_add(1);
+                line_start = i as isize;
+            }
+            _ => {
+                let col = column(i, line_start);
+                if k == width {
+                    return Err(ParseError::new(line, col, format!("motion row has more than {width} values (one per channel)")));
+                }
+                let rest = chunk.get(i..).unwrap_or(&[]);
+                let (value, used) = match fast_float2::parse_partial::<f32, _>(rest) {
+                    Ok((v, used)) if used > 0 && rest.get(used).is_none_or(|&c| CLASS[c as usize] != OTHER) => (v, used),
+                    _ => {
+                        let end = rest.iter().position(|&c| CLASS[c as usize] != OTHER).unwrap_or(rest.len());
+                        return Err(ParseError::new(line, col, format!("expected a number in motion row, found `{}`", show_bytes(&rest[..end]))));
+                    }
+                };
+                if !value.is_finite() && non_finite.is_none() {
+                    non_finite = Some(line);
+                }
+                match out.get_mut(base + k) {
+                    Some(slot) => *slot = value,
+                    None => return Err(ParseError::new(line, col, "internal error: row buffer too small")),
+                }
+                k += 1;
+                i += used;
+            }
+        }
+    }
+    if k != 0 {
+        if k != width {
+            return Err(row_error(line, column(i, line_start), k));
+        }
+        rows += 1;
+    }
+    Ok((rows, non_finite))
+}

@@ -1,0 +1,111 @@
+//! Writes a clip as standard BVH: tab indentation, LF line endings, one row per
+//! frame, and shortest round-trip float formatting (so parse → write → parse gives
+//! bit-identical f32 values).
+
+use crate::clip::Clip;
+use crate::skeleton::Skeleton;
+use std::fmt::Write as _;
+
+/// Appends a float in its shortest form that reads back to the same bits.
+fn push_f32(out: &mut String, buffer: &mut ryu::Buffer, v: f32) {
+    if v.is_finite() {
+        let s = buffer.format_finite(v);
+        // "1.0" → "1", keep it short and plain; both forms read back identically.
+        out.push_str(s.strip_suffix(".0").unwrap_or(s));
+    } else if v.is_nan() {
+        out.push_str("nan");
+    } else if v > 0.0 {
+        out.push_str("inf");
+    } else {
+        out.push_str("-inf");
+    }
+}
+
+fn indent(out: &mut String, depth: usize) {
+    out.extend(std::iter::repeat_n('\t', depth));
+}
+
+/// Children of each joint, in file order.
+fn children(skeleton: &Skeleton) -> Vec<Vec<usize>> {
+    let mut kids = vec![Vec::new(); skeleton.len()];
+    for (i, j) in skeleton.joints.iter().enumerate() {
+        if let Some(list) = j.parent.and_then(|p| kids.get_mut(p)) {
+            list.push(i);
+        }
+    }
+    kids
+}
+
+/// Channel columns in the order a reader will assign them: joints in file order.
+/// The writer emits rows in that order, which may permute the clip's columns.
+fn column_order(skeleton: &Skeleton) -> Vec<usize> {
+    skeleton
+        .joints
+        .iter()
+        .flat_map(|j| (0..j.channels.len()).map(move |k| j.first_channel + k))
+        .collect()
+}
+
+/// Serialises a clip as BVH text.
+pub fn write(clip: &Clip) -> String {
+    let skeleton = &clip.skeleton;
+    let kids = children(skeleton);
+    let mut out = String::with_capacity(64 * skeleton.len() + clip.motion.data().len() * 10);
+    let mut buffer = ryu::Buffer::new();
+    out.push_str("HIERARCHY\n");
+    // Depth-first, iterative: (joint, depth, closing?)
+    let mut stack: Vec<(usize, usize, bool)> = skeleton.roots().map(|r| (r, 0, false)).collect();
+    stack.reverse();
+    while let Some((j, depth, closing)) = stack.pop() {
+        let Some(joint) = skeleton.joints.get(j) else { continue };
+        if closing {
+            indent(&mut out, depth);
+            out.push_str("}\n");
+            continue;
+        }
+        indent(&mut out, depth);
+        if joint.end_site {
+            out.push_str("End Site\n");
+        } else {
+            out.push_str(if joint.parent.is_none() { "ROOT " } else { "JOINT " });
+            out.push_str(&joint.name.replace(['\n', '\r', '{', '}'], "_"));
+            out.push('\n');
+        }
+        indent(&mut out, depth);
+        out.push_str("{\n");
+        indent(&mut out, depth + 1);
+        out.push_str("OFFSET");
+        for v in joint.offset.to_array() {
+            out.push(' ');
+            push_f32(&mut out, &mut buffer, v);
+        }
+        out.push('\n');
+        if !joint.end_site {
+            indent(&mut out, depth + 1);
+            let _ = write!(out, "CHANNELS {}", joint.channels.len());
+            for c in &joint.channels {
+                out.push(' ');
+                out.push_str(c.name());
+            }
+            out.push('\n');
+        }
+        stack.push((j, depth, true));
+        if let Some(list) = kids.get(j) {
+            stack.extend(list.iter().rev().map(|&c| (c, depth + 1, false)));
+        }
+    }
+    let motion = &clip.motion;
+    let _ = write!(out, "MOTION\nFrames: {}\nFrame Time: {}\n", motion.frame_count(), ryu::Buffer::new().format(motion.frame_time()));
+    let order = column_order(skeleton);
+    for frame in 0..motion.frame_count() {
+        let row = motion.row(frame);
+        for (n, &col) in order.iter().enumerate() {
+            if n > 0 {
+                out.push(' ');
+            }
+            push_f32(&mut out, &mut buffer, row.get(col).copied().unwrap_or(0.0));
+        }
+        out.push('\n');
+    }
+    out
+}

@@ -1,0 +1,217 @@
+//! A clip: skeleton + motion + what the reader warned about, and the queries the
+//! viewer and CLI need (poses, bounds, units).
+
+use std::cell::RefCell;
+
+use crate::error::Warning;
+use crate::fk::{rest_positions, world_transforms, Transform};
+use crate::motion::Motion;
+use crate::sample::{sample_world_transforms, Interpolation};
+use crate::skeleton::Skeleton;
+use glam::Vec3;
+
+/// An axis-aligned bounding box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    /// Smallest corner.
+    pub min: Vec3,
+    /// Largest corner.
+    pub max: Vec3,
+}
+
+impl Aabb {
+    /// An inverted box that any point enlarges.
+    pub const EMPTY: Aabb = Aabb { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) };
+
+    /// Grows the box to hold `p` (non-finite points are ignored).
+    pub fn include(&mut self, p: Vec3) {
+        if p.is_finite() {
+            self.min = self.min.min(p);
+            self.max = self.max.max(p);
+        }
+    }
+
+    /// True when no point was added.
+    pub fn is_empty(&self) -> bool {
+        !(self.min.x <= self.max.x)
+    }
+
+    /// Center, or the origin when empty.
+    pub fn center(&self) -> Vec3 {
+        if self.is_empty() { Vec3::ZERO } else { (self.min + self.max) * 0.5 }
+    }
+
+    /// Edge lengths, or zero when empty.
+    pub fn size(&self) -> Vec3 {
+        if self.is_empty() { Vec3::ZERO } else { self.max - self.min }
+    }
+}
+
+/// A guess of the length unit a file uses, from its skeleton's rest height.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Units {
+    /// Metres (a person is ~1.7 units tall).
+    Meters,
+    /// Centimetres (~170).
+    Centimeters,
+    /// Millimetres (~1700).
+    Millimeters,
+    /// Decimetres (~17; MakeHuman exports).
+    Decimeters,
+    /// Inches, or the CMU "×0.45 inches" scale (~25–90).
+    Inches,
+    /// Nothing plausible; treated as metres.
+    Unknown,
+}
+
+impl Units {
+    /// Guesses the unit from the rest-pose extent of a humanoid.
+    pub fn guess(extent: f32) -> Units {
+        match extent {
+            e if !(e.is_finite()) => Units::Unknown,
+            e if (0.25..4.0).contains(&e) => Units::Meters,
+            e if (10.0..20.0).contains(&e) => Units::Decimeters,
+            e if (20.0..110.0).contains(&e) => Units::Inches,
+            e if (110.0..400.0).contains(&e) => Units::Centimeters,
+            e if (400.0..4000.0).contains(&e) => Units::Millimeters,
+            _ => Units::Unknown,
+        }
+    }
+
+    /// Metres per file unit.
+    pub fn meters_per_unit(self) -> f32 {
+        match self {
+            Units::Meters | Units::Unknown => 1.0,
+            Units::Decimeters => 0.1,
+            Units::Centimeters => 0.01,
+            Units::Millimeters => 0.001,
+            Units::Inches => 0.0254,
+        }
+    }
+
+    /// Short name: "m", "dm", "cm", "mm", "in", "unknown".
+    pub fn name(self) -> &'static str {
+        match self {
+            Units::Meters => "m",
+            Units::Decimeters => "dm",
+            Units::Centimeters => "cm",
+            Units::Millimeters => "mm",
+            Units::Inches => "in",
+            Units::Unknown => "unknown",
+        }
+    }
+}
+
+thread_local! {
+    /// Scratch world transforms for the position-only queries.
+    static SCRATCH: RefCell<Vec<Transform>> = const { RefCell::new(Vec::new()) };
+}
+
+/// A skeleton with its motion, as read from one file.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Clip {
+    /// The joints (several roots allowed).
+    pub skeleton: Skeleton,
+    /// Frame time and channel values.
+    pub motion: Motion,
+    /// Non-fatal problems the reader found.
+    pub warnings: Vec<Warning>,
+}
+
+impl Clip {
+    /// Number of frames.
+    pub fn frame_count(&self) -> usize {
+        self.motion.frame_count()
+    }
+
+    /// Seconds per frame.
+    pub fn frame_time(&self) -> f64 {
+        self.motion.frame_time()
+    }
+
+    /// Frames per second.
+    pub fn fps(&self) -> f64 {
+        1.0 / self.motion.frame_time()
+    }
+
+    /// Time of the last frame: `(frames - 1) × frame_time`, 0 for 0 or 1 frame.
+    pub fn duration(&self) -> f64 {
+        self.frame_count().saturating_sub(1) as f64 * self.frame_time()
+    }
+
+    /// One frame's channel values (empty when out of range).
+    pub fn channel_values(&self, frame: usize) -> &[f32] {
+        self.motion.row(frame)
+    }
+
+    /// World transforms of every joint (End Sites included) at a frame, into `out`.
+    /// A frame past the end gives the rest pose with channels at 0.
+    pub fn world_transforms_into(&self, frame: usize, out: &mut Vec<Transform>) {
+        world_transforms(&self.skeleton, self.motion.row(frame), out);
+    }
+
+    /// World positions of every joint at a frame, into `out` (no allocation once sized).
+    pub fn world_positions_into(&self, frame: usize, out: &mut Vec<Vec3>) {
+        SCRATCH.with_borrow_mut(|scratch| {
+            self.world_transforms_into(frame, scratch);
+            out.clear();
+            out.extend(scratch.iter().map(|t| t.translation));
+        });
+    }
+
+    /// World positions of every joint at a frame.
+    pub fn world_positions(&self, frame: usize) -> Vec<Vec3> {
+        let mut out = Vec::new();
+        self.world_positions_into(frame, &mut out);
+        out
+    }
+
+    /// World transforms at a time in seconds, interpolated or nearest, into `out`.
+    pub fn sample_world_transforms_into(&self, time: f64, interpolation: Interpolation, out: &mut Vec<Transform>) {
+        sample_world_transforms(&self.skeleton, &self.motion, time, interpolation, out);
+    }
+
+    /// World positions at a time in seconds, into `out`.
+    pub fn sample_world_positions_into(&self, time: f64, interpolation: Interpolation, out: &mut Vec<Vec3>) {
+        SCRATCH.with_borrow_mut(|scratch| {
+            self.sample_world_transforms_into(time, interpolation, scratch);
+            out.clear();
+            out.extend(scratch.iter().map(|t| t.translation));
+        });
+    }
+
+    /// Bounding box of all joints over all frames (the rest pose when there are no
+    /// frames). Non-finite positions are skipped.
+    pub fn bounds(&self) -> Aabb {
+        let mut bounds = Aabb::EMPTY;
+        if self.frame_count() == 0 {
+            rest_positions(&self.skeleton).into_iter().for_each(|p| bounds.include(p));
+            return bounds;
+        }
+        let mut world = Vec::with_capacity(self.skeleton.len());
+        for frame in 0..self.frame_count() {
+            self.world_transforms_into(frame, &mut world);
+            for t in &world {
+                bounds.include(t.translation);
+            }
+        }
+        bounds
+    }
+
+    /// Largest edge of the bounding box of the first frame's pose (the rest pose
+    /// when there are no frames): a humanoid's height or arm span.
+    pub fn pose_extent(&self) -> f32 {
+        let mut b = Aabb::EMPTY;
+        if self.frame_count() == 0 {
+            rest_positions(&self.skeleton).into_iter().for_each(|p| b.include(p));
+        } else {
+            self.world_positions(0).into_iter().for_each(|p| b.include(p));
+        }
+        b.size().max_element()
+    }
+
+    /// Guess of the file's length unit from the size of the first pose.
+    pub fn units(&self) -> Units {
+        Units::guess(self.pose_extent())
+    }
+}

@@ -1,0 +1,59 @@
+//! Errors and warnings from the readers.
+
+use std::fmt;
+
+/// A reader error with its position in the file (1-based line and byte column).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{line}:{column}: {message}")]
+pub struct ParseError {
+    /// 1-based line.
+    pub line: u32,
+    /// 1-based column (bytes).
+    pub column: u32,
+    /// What was wrong, and what was expected.
+    pub message: String,
+}
+
+impl ParseError {
+    /// Builds an error at a position.
+    pub fn new(line: u32, column: u32, message: impl Into<String>) -> ParseError {
+        ParseError { line, column, message: message.into() }
+    }
+}
+
+/// A non-fatal problem found while reading; the clip is still usable.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Warning {
+    /// 1-based line the warning refers to, when there is one.
+    pub line: Option<u32>,
+    /// What was odd and what the reader did about it.
+    pub message: String,
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(line) => write!(f, "line {line}: {}", self.message),
+            None => f.write_str(&self.message),
+        }
+    }
+}
+
+/// Failure to load a named file: a parse error or a format we do not read.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum LoadError {
+    /// The file is in a known format but malformed.
+    #[error("{file}:{error}")]
+    Parse {
+        /// The file name as given by the caller.
+        file: String,
+        /// Where and what.
+        error: ParseError,
+    },
+    /// Neither the extension nor the content matches a format we read.
+    #[error("{file}: not a motion file this viewer reads (expected a .bvh file starting with HIERARCHY)")]
+    UnknownFormat {
+        /// The file name as given by the caller.
+        file: String,
+    },
+}
