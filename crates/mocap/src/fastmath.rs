@@ -2,16 +2,14 @@
 //! motion files hold (|x| up to ~1e4 radians). It is about 5× faster than libm's and
 //! is what lets forward kinematics exceed 100 M joint transforms per second.
 
-const FRAC_2_PI: f32 = core::f32::consts::FRAC_2_PI;
-/// π/2 split in two so that `k · π/2` is subtracted without losing bits.
-const PIO2_HI: f32 = 1.570_796_4;
-const PIO2_LO: f32 = -4.371_139e-8;
 
 /// Returns `(sin x, cos x)` for `x` in radians. NaN and infinities give NaN.
 #[inline]
 pub fn sin_cos(x: f32) -> (f32, f32) {
-    let k = (x * FRAC_2_PI).round();
-    let r = (x - k * PIO2_HI) - k * PIO2_LO;
+    // Range reduction in f64 keeps `x - k·π/2` exact enough without FMA.
+    let xd = f64::from(x);
+    let k = (xd * core::f64::consts::FRAC_2_PI).round();
+    let r = (xd - k * core::f64::consts::FRAC_PI_2) as f32;
     let r2 = r * r;
     let s = r + r * r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362_880.0))));
     let c = 1.0

@@ -1,0 +1,91 @@
+//! Every BVH file of ../shared/corpus: parses as its MANIFEST says, FK gives finite
+//! positions, and write → parse is exact. Skips (with a note) when the corpus is absent.
+
+use std::path::{Path, PathBuf};
+
+fn corpus_dir() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
+    dir.join("MANIFEST.tsv").is_file().then_some(dir)
+}
+
+struct Entry {
+    path: String,
+    format: String,
+    frames: String,
+    joints: String,
+    notes: String,
+}
+
+fn manifest(dir: &Path) -> Vec<Entry> {
+    let text = std::fs::read_to_string(dir.join("MANIFEST.tsv")).unwrap();
+    text.lines()
+        .skip(1)
+        .filter_map(|l| {
+            let f: Vec<&str> = l.split('\t').collect();
+            Some(Entry {
+                path: f.first()?.to_string(),
+                format: f.get(1)?.to_string(),
+                frames: f.get(3)?.to_string(),
+                joints: f.get(4)?.to_string(),
+                notes: f.get(8).unwrap_or(&"").to_string(),
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn corpus_bvh_files_parse_as_the_manifest_says() {
+    let Some(dir) = corpus_dir() else {
+        eprintln!("../shared/corpus not found: skipping corpus tests");
+        return;
+    };
+    let entries: Vec<Entry> = manifest(&dir).into_iter().filter(|e| e.format == "bvh").collect();
+    assert!(entries.len() >= 20, "manifest lists {} BVH files", entries.len());
+    for e in &entries {
+        let bytes = std::fs::read(dir.join(&e.path)).unwrap();
+        let result = mocap::load(&e.path, &bytes);
+        if e.notes.contains("MALFORMED") {
+            let err = result.err().unwrap_or_else(|| panic!("{}: malformed file parsed", e.path));
+            let text = err.to_string();
+            assert!(text.starts_with(&format!("{}:", e.path)) && text.matches(':').count() >= 3, "{text}");
+            continue;
+        }
+        let clip = result.unwrap_or_else(|err| panic!("{err}"));
+        // Frames: "N", "" (no motion) or "N declared / M rows".
+        let expected_frames: usize = match e.frames.split_once(" declared / ") {
+            Some((_, rows)) => rows.trim_end_matches(" rows").parse().unwrap(),
+            None => e.frames.parse().unwrap_or(0),
+        };
+        assert_eq!(clip.frame_count(), expected_frames, "{}", e.path);
+        if e.frames.contains("declared") {
+            assert!(clip.warnings.iter().any(|w| w.message.contains("Frames:")), "{}", e.path);
+        }
+        let joints = clip.skeleton.joints.iter().filter(|j| !j.end_site).count();
+        assert_eq!(joints.to_string(), e.joints, "{}", e.path);
+        // FK is finite on every frame.
+        let mut pos = Vec::new();
+        for f in 0..clip.frame_count() {
+            clip.world_positions_into(f, &mut pos);
+            assert!(pos.iter().all(|p| p.is_finite()), "{} frame {f}", e.path);
+        }
+        // Round trip: same hierarchy, bit-identical values.
+        let again = mocap::bvh::parse(mocap::bvh::write(&clip).as_bytes()).unwrap_or_else(|err| panic!("{}: rewritten: {err}", e.path));
+        assert_same(&clip, &again, &e.path);
+    }
+}
+
+/// Same joints (names of real joints, parents, offsets, channels) and identical bits.
+pub fn assert_same(a: &mocap::Clip, b: &mocap::Clip, what: &str) {
+    assert_eq!(a.skeleton.len(), b.skeleton.len(), "{what}");
+    for (ja, jb) in a.skeleton.joints.iter().zip(&b.skeleton.joints) {
+        if !ja.end_site {
+            assert_eq!(ja.name.trim(), jb.name, "{what}");
+        }
+        assert_eq!((ja.parent, ja.end_site, &ja.channels, ja.first_channel), (jb.parent, jb.end_site, &jb.channels, jb.first_channel), "{what}");
+        assert_eq!(ja.offset.to_array().map(f32::to_bits), jb.offset.to_array().map(f32::to_bits), "{what}");
+    }
+    assert_eq!(a.frame_count(), b.frame_count(), "{what}");
+    assert_eq!(a.frame_time(), b.frame_time(), "{what}");
+    let bits = |c: &mocap::Clip| c.motion.data().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert!(bits(a) == bits(b), "{what}: motion values differ after round trip");
+}
