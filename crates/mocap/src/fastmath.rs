@@ -8,7 +8,9 @@
 pub fn sin_cos(x: f32) -> (f32, f32) {
     // Range reduction in f64 keeps `x - k·π/2` exact enough without FMA.
     let xd = f64::from(x);
-    let k = (xd * core::f64::consts::FRAC_2_PI).round();
+    // Round to nearest with the 1.5·2^52 trick: no libm call on baseline x86-64.
+    const ROUND: f64 = 6_755_399_441_055_744.0;
+    let k = (xd * core::f64::consts::FRAC_2_PI + ROUND) - ROUND;
     let r = (xd - k * core::f64::consts::FRAC_PI_2) as f32;
     let r2 = r * r;
     let s = r + r * r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362_880.0))));

@@ -1,7 +1,6 @@
 //! Forward kinematics: channel values to local transforms, local to world in one
 //! linear pass over parent indices (parents always come first).
 
-use crate::channel::Channel;
 use crate::fastmath::sin_cos;
 use crate::skeleton::{Joint, Skeleton};
 use glam::{Quat, Vec3};
@@ -35,12 +34,65 @@ const HALF_RAD_PER_DEG: f32 = core::f32::consts::PI / 360.0;
 /// Quaternion for a rotation of `degrees` about one axis (0 = X, 1 = Y, 2 = Z).
 #[inline]
 pub fn axis_rotation(axis: usize, degrees: f32) -> Quat {
+    Quat::from_array(rotate_about_axis([0.0, 0.0, 0.0, 1.0], axis, degrees))
+}
+
+// The hot path works on plain arrays with scalar math: glam's SIMD types carry a
+// padding lane whose garbage can be a denormal, and denormal assists made FK ~30×
+// slower. Quaternions are [x, y, z, w].
+
+/// `q · axis_rotation(axis, degrees)`, using the zeros of the axis quaternion.
+#[inline]
+fn rotate_about_axis(q: [f32; 4], axis: usize, degrees: f32) -> [f32; 4] {
     let (s, c) = sin_cos(degrees * HALF_RAD_PER_DEG);
+    let [x, y, z, w] = q;
     match axis {
-        0 => Quat::from_xyzw(s, 0.0, 0.0, c),
-        1 => Quat::from_xyzw(0.0, s, 0.0, c),
-        _ => Quat::from_xyzw(0.0, 0.0, s, c),
+        0 => [w * s + x * c, y * c + z * s, z * c - y * s, w * c - x * s],
+        1 => [x * c - z * s, w * s + y * c, z * c + x * s, w * c - y * s],
+        _ => [x * c + y * s, y * c - x * s, w * s + z * c, w * c - z * s],
     }
+}
+
+/// Hamilton product `a · b`.
+#[inline]
+fn quat_mul(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
+    let [ax, ay, az, aw] = a;
+    let [bx, by, bz, bw] = b;
+    [
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+        aw * bw - ax * bx - ay * by - az * bz,
+    ]
+}
+
+/// Rotates `v` by unit quaternion `q`: v + 2w(u×v) + 2u×(u×v).
+#[inline]
+fn quat_rotate(q: [f32; 4], v: [f32; 3]) -> [f32; 3] {
+    let [qx, qy, qz, w] = q;
+    let t = [2.0 * (qy * v[2] - qz * v[1]), 2.0 * (qz * v[0] - qx * v[2]), 2.0 * (qx * v[1] - qy * v[0])];
+    [
+        v[0] + w * t[0] + (qy * t[2] - qz * t[1]),
+        v[1] + w * t[1] + (qz * t[0] - qx * t[2]),
+        v[2] + w * t[2] + (qx * t[1] - qy * t[0]),
+    ]
+}
+
+/// A joint's local rotation and translation as arrays (see [`local_transform`]).
+#[inline]
+fn local_arrays(joint: &Joint, row: &[f32]) -> ([f32; 4], [f32; 3]) {
+    let mut translation = joint.offset.to_array();
+    let mut rotation = [0.0, 0.0, 0.0, 1.0];
+    let values = row.get(joint.first_channel..joint.first_channel + joint.channels.len());
+    for (k, channel) in joint.channels.iter().enumerate() {
+        let value = values.and_then(|v| v.get(k)).copied().unwrap_or(0.0);
+        if channel.is_rotation() {
+            rotation = rotate_about_axis(rotation, channel.axis(), value);
+        } else {
+            translation[channel.axis()] = value;
+        }
+    }
+    (rotation, translation)
 }
 
 /// A joint's local transform for one motion row.
@@ -49,20 +101,8 @@ pub fn axis_rotation(axis: usize, degrees: f32) -> Quat {
 /// multiplied in file order (intrinsic). Values missing from a short row count as 0.
 #[inline]
 pub fn local_transform(joint: &Joint, row: &[f32]) -> Transform {
-    let mut translation = joint.offset;
-    let mut rotation = Quat::IDENTITY;
-    for (k, channel) in joint.channels.iter().enumerate() {
-        let value = row.get(joint.first_channel + k).copied().unwrap_or(0.0);
-        match channel {
-            Channel::Xposition => translation.x = value,
-            Channel::Yposition => translation.y = value,
-            Channel::Zposition => translation.z = value,
-            Channel::Xrotation | Channel::Yrotation | Channel::Zrotation => {
-                rotation *= axis_rotation(channel.axis(), value);
-            }
-        }
-    }
-    Transform { rotation, translation }
+    let (rotation, translation) = local_arrays(joint, row);
+    Transform { rotation: Quat::from_array(rotation), translation: Vec3::from_array(translation) }
 }
 
 /// Fills `out` with every joint's local transform for one motion row.
@@ -89,12 +129,16 @@ pub fn world_transforms(skeleton: &Skeleton, row: &[f32], out: &mut Vec<Transfor
     out.clear();
     out.reserve(skeleton.joints.len());
     for (i, joint) in skeleton.joints.iter().enumerate() {
-        let local = local_transform(joint, row);
-        let world = match joint.parent.filter(|&p| p < i).and_then(|p| out.get(p)) {
-            Some(parent) => parent.compose(&local),
-            None => local,
+        let (rotation, translation) = local_arrays(joint, row);
+        let (rotation, translation) = match joint.parent.filter(|&p| p < i).and_then(|p| out.get(p)) {
+            Some(parent) => {
+                let (pr, pt) = (parent.rotation.to_array(), parent.translation.to_array());
+                let moved = quat_rotate(pr, translation);
+                (quat_mul(pr, rotation), [pt[0] + moved[0], pt[1] + moved[1], pt[2] + moved[2]])
+            }
+            None => (rotation, translation),
         };
-        out.push(world);
+        out.push(Transform { rotation: Quat::from_array(rotation), translation: Vec3::from_array(translation) });
     }
 }
 

@@ -1,0 +1,145 @@
+//! `cargo bench -p mocap`: parse throughput, FK throughput and peak memory on a long
+//! take, with the `bvh_anim` crate and a bare split+parse floor on the same bytes.
+//!
+//! The input is made at run time by repeating the motion rows of
+//! `../shared/corpus/bvh/assimp_cmu/01_01.bvh` to 36,000 frames (~27 MB). Figures are
+//! the best of several runs on one thread and with the default thread count.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::hint::black_box;
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+/// Counts live and peak heap bytes.
+struct Counting;
+static LIVE: AtomicUsize = AtomicUsize::new(0);
+static PEAK: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = unsafe { System.alloc(layout) };
+        if !p.is_null() {
+            let live = LIVE.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
+            PEAK.fetch_max(live, Ordering::Relaxed);
+        }
+        p
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        let p = unsafe { System.alloc_zeroed(layout) };
+        if !p.is_null() {
+            let live = LIVE.fetch_add(layout.size(), Ordering::Relaxed) + layout.size();
+            PEAK.fetch_max(live, Ordering::Relaxed);
+        }
+        p
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) };
+        LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let p = unsafe { System.realloc(ptr, layout, new_size) };
+        if !p.is_null() {
+            LIVE.fetch_sub(layout.size(), Ordering::Relaxed);
+            let live = LIVE.fetch_add(new_size, Ordering::Relaxed) + new_size;
+            PEAK.fetch_max(live, Ordering::Relaxed);
+        }
+        p
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+const FRAMES: usize = 36_000;
+
+/// Header of 01_01.bvh with its rows repeated to `FRAMES` rows.
+fn long_take(src: &[u8]) -> Vec<u8> {
+    let text = std::str::from_utf8(src).expect("utf-8");
+    let start = text.find("Frame Time").expect("Frame Time line");
+    let rows_at = start + text[start..].find('\n').expect("newline") + 1;
+    let rows: Vec<&str> = text[rows_at..].lines().filter(|l| !l.trim().is_empty()).collect();
+    let header = text[..rows_at].replace(&format!("Frames: {}", rows.len()), &format!("Frames: {FRAMES}"));
+    let mut out = header.into_bytes();
+    for i in 0..FRAMES {
+        out.extend_from_slice(rows[i % rows.len()].as_bytes());
+        out.push(b'\n');
+    }
+    out
+}
+
+/// Best time of `runs` calls.
+fn best<T>(runs: usize, mut f: impl FnMut() -> T) -> Duration {
+    (0..runs)
+        .map(|_| {
+            let t = Instant::now();
+            black_box(f());
+            t.elapsed()
+        })
+        .min()
+        .unwrap_or_default()
+}
+
+/// The floor: split on whitespace and parse floats into a preallocated buffer.
+fn bare_floor(rows: &[u8], out: &mut Vec<f32>) -> usize {
+    out.clear();
+    for token in rows.split(|b| b.is_ascii_whitespace()).filter(|t| !t.is_empty()) {
+        if let Ok(v) = fast_float2::parse::<f32, _>(token) {
+            out.push(v);
+        }
+    }
+    out.len()
+}
+
+fn main() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/bvh/assimp_cmu/01_01.bvh");
+    let Ok(src) = std::fs::read(&path) else {
+        println!("skipping: {} not found (the corpus lives in ../shared)", path.display());
+        return;
+    };
+    let input = long_take(&src);
+    let mb = input.len() as f64 / 1e6;
+    println!("input: 01_01.bvh rows repeated to {FRAMES} frames = {mb:.1} MB");
+
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let ours = best(10, || mocap::bvh::parse(&input).expect("parse"));
+    println!("mocap::bvh::parse       {:>8.1} ms  {:>7.0} MB/s  ({threads} threads available)", ours.as_secs_f64() * 1e3, mb / ours.as_secs_f64());
+
+    let rows_at = input.windows(10).position(|w| w == b"Frame Time").unwrap_or(0);
+    let mut buf = Vec::with_capacity(input.len() / 4);
+    let floor = best(10, || bare_floor(&input[rows_at..], &mut buf));
+    println!("bare split+parse floor  {:>8.1} ms  {:>7.0} MB/s  (1 thread)", floor.as_secs_f64() * 1e3, mb / floor.as_secs_f64());
+
+    let anim = best(3, || bvh_anim::from_bytes(&input[..]).expect("bvh_anim parse"));
+    println!("bvh_anim::from_bytes    {:>8.1} ms  {:>7.0} MB/s", anim.as_secs_f64() * 1e3, mb / anim.as_secs_f64());
+
+    // Peak memory of one parse, beyond the input already in memory.
+    let base = LIVE.load(Ordering::Relaxed);
+    PEAK.store(base, Ordering::Relaxed);
+    let clip = mocap::bvh::parse(&input).expect("parse");
+    let peak = PEAK.load(Ordering::Relaxed) - base;
+    let matrix = clip.motion.data().len() * 4;
+    let skeleton: usize = clip.skeleton.joints.iter().map(|j| std::mem::size_of_val(j) + j.name.len() + j.channels.len()).sum();
+    println!(
+        "peak memory of parse    {:>8.1} MB  = {:.2} × (matrix {:.1} MB + skeleton {:.1} KB)",
+        peak as f64 / 1e6,
+        peak as f64 / (matrix + skeleton) as f64,
+        matrix as f64 / 1e6,
+        skeleton as f64 / 1e3
+    );
+
+    // FK: every frame, world transforms of every joint (End Sites included).
+    let mut world = Vec::new();
+    let fk = best(5, || {
+        for f in 0..clip.frame_count() {
+            clip.world_transforms_into(f, &mut world);
+        }
+        world.len()
+    });
+    let transforms = (clip.frame_count() * clip.skeleton.len()) as f64;
+    println!("FK world transforms     {:>8.1} ms  {:>7.1} M joint transforms/s ({} joints × {} frames, 1 thread)", fk.as_secs_f64() * 1e3, transforms / fk.as_secs_f64() / 1e6, clip.skeleton.len(), clip.frame_count());
+
+    // What `mocap info` does: parse, then FK over every frame for the bounding box.
+    let info = best(5, || mocap::bvh::parse(&input).expect("parse").bounds());
+    println!("parse + bounds (info)   {:>8.1} ms", info.as_secs_f64() * 1e3);
+}
