@@ -1,0 +1,130 @@
+//! The `mocap` binary end to end: outputs, exit codes and error format.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn mocap(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mocap")).args(args).output().expect("run mocap")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+const SIMPLE: &str = "HIERARCHY\nROOT Hips\n{\n\tOFFSET 0 0 0\n\tCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n\tJOINT Spine\n\t{\n\t\tOFFSET 0 10 0\n\t\tCHANNELS 3 Zrotation Xrotation Yrotation\n\t\tEnd Site\n\t\t{\n\t\t\tOFFSET 0 5 0\n\t\t}\n\t}\n}\nMOTION\nFrames: 3\nFrame Time: 0.5\n0 90 0 0 0 0 0 0 0\n1 90 0 90 0 0 0 0 0\n2 90 0 0 0 0 0 0 90\n";
+
+fn write_temp(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn pose_json_has_the_documented_shape() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_temp(dir.path(), "s.bvh", SIMPLE);
+    let out = mocap(&["pose", file.to_str().unwrap(), "--frame", "1", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(v["frame"], 1);
+    assert_eq!(v["time"], 0.5);
+    let joints = v["joints"].as_array().unwrap();
+    assert_eq!(joints.len(), 3);
+    assert_eq!(joints[0]["name"], "Hips");
+    assert_eq!(joints[0]["parent"], Value::Null);
+    assert_eq!(joints[0]["end_site"], false);
+    assert_eq!(joints[2]["end_site"], true);
+    assert_eq!(joints[2]["parent"], 1);
+    // Frame 1: root at (1,90,0) turned 90° about Z: the spine (0,10,0) points to -X.
+    let p: Vec<f64> = joints[1]["position"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    assert!((p[0] + 9.0).abs() < 1e-4 && (p[1] - 90.0).abs() < 1e-4 && p[2].abs() < 1e-4, "{p:?}");
+    // Keys in the documented order.
+    let text = stdout(&out);
+    assert!(text.find("\"frame\"").unwrap() < text.find("\"time\"").unwrap());
+}
+
+#[test]
+fn info_json_reports_counts_timing_bounds_units() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_temp(dir.path(), "s.bvh", &SIMPLE.replace("Frames: 3", "Frames: 5"));
+    let out = mocap(&["info", file.to_str().unwrap(), "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(v["skeletons"], 1);
+    assert_eq!(v["joints"], 2);
+    assert_eq!(v["end_sites"], 1);
+    assert_eq!(v["channels"], 9);
+    assert_eq!(v["frames"], 3);
+    assert_eq!(v["fps"], 2.0);
+    assert_eq!(v["duration"], 1.0);
+    assert_eq!(v["bounds"]["max"][1], 105.0);
+    assert!(v["warnings"][0].as_str().unwrap().contains("Frames: says 5"));
+    let text = mocap(&["info", file.to_str().unwrap()]);
+    assert!(stdout(&text).contains("frames:     3"));
+}
+
+#[test]
+fn errors_are_file_line_col_with_failure_status_and_no_backtrace() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_temp(dir.path(), "bad.bvh", &SIMPLE.replace("0 10 0", "0 ten 0"));
+    for args in [vec!["info"], vec!["pose", "--frame", "0"]] {
+        let mut a = args.clone();
+        a.insert(1, file.to_str().unwrap());
+        let out = mocap(&a);
+        assert!(!out.status.success());
+        let err = stderr(&out);
+        assert_eq!(err.trim(), format!("{}:8:12: expected the y value of OFFSET (a number), found `ten`", file.display()));
+        assert!(!err.contains("panicked"));
+    }
+    let out = mocap(&["pose", dir.path().join("missing.bvh").to_str().unwrap()]);
+    assert!(!out.status.success() && stderr(&out).contains("cannot read"));
+}
+
+#[test]
+fn pose_frame_out_of_range_is_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_temp(dir.path(), "s.bvh", SIMPLE);
+    let out = mocap(&["pose", file.to_str().unwrap(), "--frame", "3"]);
+    assert!(!out.status.success());
+    assert!(stderr(&out).contains("out of range"));
+}
+
+#[test]
+fn convert_round_trips() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_temp(dir.path(), "s.bvh", &SIMPLE.replace('\n', "\r\n"));
+    let out_file = dir.path().join("out.bvh");
+    let out = mocap(&["convert", file.to_str().unwrap(), "-o", out_file.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let written = std::fs::read_to_string(&out_file).unwrap();
+    assert!(!written.contains('\r'));
+    let a = mocap::bvh::parse(SIMPLE.as_bytes()).unwrap();
+    let b = mocap::bvh::parse(written.as_bytes()).unwrap();
+    assert_eq!(a.motion, b.motion);
+    assert_eq!(a.skeleton, b.skeleton);
+    let bad = mocap(&["convert", file.to_str().unwrap(), "-o", dir.path().join("x.txt").to_str().unwrap()]);
+    assert!(!bad.status.success());
+}
+
+#[test]
+fn validate_walks_directories_and_fails_on_any_bad_file() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    write_temp(dir.path(), "a.bvh", SIMPLE);
+    write_temp(&dir.path().join("sub"), "b.BVH", SIMPLE);
+    write_temp(dir.path(), "notes.txt", "not motion");
+    let ok = mocap(&["validate", dir.path().to_str().unwrap()]);
+    assert!(ok.status.success(), "{}", stdout(&ok));
+    assert_eq!(stdout(&ok).lines().count(), 2);
+    write_temp(&dir.path().join("sub"), "c.bvh", "HIERARCHY\nROOT A\n{\n");
+    let bad = mocap(&["validate", dir.path().to_str().unwrap()]);
+    assert!(!bad.status.success());
+    let text = stdout(&bad);
+    assert_eq!(text.lines().count(), 3);
+    assert!(text.contains("c.bvh:4:1: unexpected end of file"), "{text}");
+}
