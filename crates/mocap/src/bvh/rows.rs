@@ -177,6 +177,54 @@ const CLASS: [u8; 256] = {
     t
 };
 
+/// Powers of ten exactly representable in f32.
+const POW10: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
+
+/// Fast path for the numbers mocap files are made of: `[+-]digits[.digits]` with at
+/// most 7 digits and no exponent. Then the value is `m / 10^e` with `m < 2^24` and
+/// `10^e` both exact in f32, so one IEEE division gives the correctly rounded result.
+/// Anything else (`None`) goes to the general parser.
+#[inline]
+fn parse_short_decimal(s: &[u8]) -> Option<(f32, usize)> {
+    let mut i = 0;
+    let negative = match s.first() {
+        Some(b'-') => {
+            i = 1;
+            true
+        }
+        Some(b'+') => {
+            i = 1;
+            false
+        }
+        _ => false,
+    };
+    let mut mantissa: u32 = 0;
+    let mut digits = 0;
+    let mut fraction_digits = 0;
+    let mut seen_dot = false;
+    let mut saw_digit = false;
+    while let Some(&b) = s.get(i) {
+        if b.is_ascii_digit() {
+            saw_digit = true;
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(u32::from(b - b'0'));
+            // Leading zeros are not significant digits.
+            digits += usize::from(mantissa != 0);
+            fraction_digits += usize::from(seen_dot);
+        } else if b == b'.' && !seen_dot {
+            seen_dot = true;
+        } else {
+            break;
+        }
+        i += 1;
+    }
+    let ends_cleanly = s.get(i).is_none_or(|&b| CLASS[b as usize] != OTHER);
+    if !saw_digit || digits > 7 || !ends_cleanly {
+        return None;
+    }
+    let magnitude = mantissa as f32 / *POW10.get(fraction_digits)?;
+    Some((if negative { -magnitude } else { magnitude }, i))
+}
+
 /// Parses the rows of one chunk into `out` (row after row). With `ring`, every row
 /// is written to the start of `out` instead: used to find an error without storing.
 /// Returns the number of rows and the line of the first non-finite value.
@@ -215,7 +263,7 @@ fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring
                     return Err(ParseError::new(line, col, format!("motion row has more than {width} values (one per channel)")));
                 }
                 let rest = chunk.get(i..).unwrap_or(&[]);
-                let (value, used) = match fast_float2::parse_partial::<f32, _>(rest) {
+                let (value, used) = match parse_short_decimal(rest).map_or_else(|| fast_float2::parse_partial::<f32, _>(rest), Ok) {
                     Ok((v, used)) if used > 0 && rest.get(used).is_none_or(|&c| CLASS[c as usize] != OTHER) => (v, used),
                     _ => {
                         let end = rest.iter().position(|&c| CLASS[c as usize] != OTHER).unwrap_or(rest.len());
@@ -241,4 +289,35 @@ fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring
         rows += 1;
     }
     Ok((rows, non_finite))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_short_decimal;
+
+    #[test]
+    fn short_decimals_match_the_general_parser_bit_for_bit() {
+        let cases = ["0", "-0", "+1.5", "17.8693", "-17.3198", ".0083333", "5.", "-0.000000", "9999999", "0.1234567", "123.4567", "-.5"];
+        for c in cases {
+            let (v, used) = parse_short_decimal(c.as_bytes()).unwrap_or_else(|| panic!("{c}"));
+            let expected: f32 = c.parse().unwrap();
+            assert_eq!((v.to_bits(), used), (expected.to_bits(), c.len()), "{c}");
+        }
+        // Exhaustive over short patterns: every 4-digit value with each dot position.
+        for n in 0..10_000u32 {
+            for dot in 0..=4 {
+                let digits = format!("{n:04}");
+                let text = format!("{}.{}", &digits[..dot], &digits[dot..]);
+                let (v, _) = parse_short_decimal(text.as_bytes()).unwrap();
+                assert_eq!(v.to_bits(), text.parse::<f32>().unwrap().to_bits(), "{text}");
+            }
+        }
+    }
+
+    #[test]
+    fn long_or_exponent_forms_fall_back() {
+        for c in ["1e5", "12345678", "1.2345678", ".", "-", "1.2.3", "nan", "1x", "0.00000000001"] {
+            assert!(parse_short_decimal(c.as_bytes()).is_none(), "{c}");
+        }
+    }
 }
