@@ -139,6 +139,13 @@ fn main() {
     let transforms = (clip.frame_count() * clip.skeleton.len()) as f64;
     println!("FK world transforms     {:>8.1} ms  {:>7.1} M joint transforms/s ({} joints × {} frames, 1 thread)", fk.as_secs_f64() * 1e3, transforms / fk.as_secs_f64() / 1e6, clip.skeleton.len(), clip.frame_count());
 
+    let batch = best(5, || {
+        let mut sum = 0.0f32;
+        clip.for_each_frame_positions(|_, p| sum += p[p.len() - 1].x);
+        sum
+    });
+    println!("FK batched (8 frames)   {:>8.1} ms  {:>7.1} M joint transforms/s (1 thread)", batch.as_secs_f64() * 1e3, transforms / batch.as_secs_f64() / 1e6);
+
     // What `mocap info` does: parse, then FK over every frame for the bounding box.
     let info = best(5, || mocap::bvh::parse(&input).expect("parse").bounds());
     println!("parse + bounds (info)   {:>8.1} ms", info.as_secs_f64() * 1e3);

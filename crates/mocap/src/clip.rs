@@ -180,6 +180,13 @@ impl Clip {
         });
     }
 
+    /// Calls `visit(frame, positions)` for every frame with the world positions of
+    /// all joints, computing several frames at once (much faster than a loop over
+    /// [`Clip::world_positions_into`]).
+    pub fn for_each_frame_positions(&self, visit: impl FnMut(usize, &[Vec3])) {
+        crate::batch::for_each_frame_positions(&self.skeleton, &self.motion, visit);
+    }
+
     /// Bounding box of all joints over all frames (the rest pose when there are no
     /// frames). Non-finite positions are skipped.
     pub fn bounds(&self) -> Aabb {
@@ -188,13 +195,7 @@ impl Clip {
             rest_positions(&self.skeleton).into_iter().for_each(|p| bounds.include(p));
             return bounds;
         }
-        let mut world = Vec::with_capacity(self.skeleton.len());
-        for frame in 0..self.frame_count() {
-            self.world_transforms_into(frame, &mut world);
-            for t in &world {
-                bounds.include(t.translation);
-            }
-        }
+        self.for_each_frame_positions(|_, positions| positions.iter().for_each(|&p| bounds.include(p)));
         bounds
     }
 

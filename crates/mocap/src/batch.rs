@@ -1,0 +1,140 @@
+//! Forward kinematics for many frames at once: the same skeleton walk as
+//! [`crate::fk::world_transforms`], but each step works on `LANES` frames held
+//! side by side (structure of arrays), so the compiler turns it into SIMD. Used for
+//! whole-clip passes (bounds, exports, statistics).
+
+use crate::fastmath::sin_cos;
+use crate::motion::Motion;
+use crate::skeleton::Skeleton;
+use glam::Vec3;
+
+/// Frames processed together.
+const LANES: usize = 8;
+type Lanes = [f32; LANES];
+
+/// One joint's world rotation (x, y, z, w) and translation for `LANES` frames.
+#[derive(Clone, Copy)]
+struct JointLanes {
+    q: [Lanes; 4],
+    t: [Lanes; 3],
+}
+
+const HALF_RAD_PER_DEG: f32 = core::f32::consts::PI / 360.0;
+
+/// `q · axis-rotation(angle)` lane by lane.
+#[inline(always)]
+fn rotate_about_axis(q: &mut [Lanes; 4], axis: usize, degrees: &Lanes) {
+    let mut s = [0.0; LANES];
+    let mut c = [0.0; LANES];
+    for l in 0..LANES {
+        (s[l], c[l]) = sin_cos(degrees[l] * HALF_RAD_PER_DEG);
+    }
+    let [x, y, z, w] = *q;
+    let (a, b, d) = match axis {
+        0 => (0, 1, 2),
+        1 => (1, 2, 0),
+        _ => (2, 0, 1),
+    };
+    let v = [x, y, z];
+    let mut out = [[0.0; LANES]; 4];
+    for l in 0..LANES {
+        // Rotation about axis `a`, with (a, b, d) a cyclic permutation of (x, y, z).
+        out[a][l] = w[l] * s[l] + v[a][l] * c[l];
+        out[b][l] = v[b][l] * c[l] + v[d][l] * s[l];
+        out[d][l] = v[d][l] * c[l] - v[b][l] * s[l];
+        out[3][l] = w[l] * c[l] - v[a][l] * s[l];
+    }
+    *q = out;
+}
+
+/// `parent ∘ local` lane by lane.
+#[inline(always)]
+fn compose(parent: &JointLanes, local: &JointLanes) -> JointLanes {
+    let [px, py, pz, pw] = parent.q;
+    let [bx, by, bz, bw] = local.q;
+    let [vx, vy, vz] = local.t;
+    let mut out = JointLanes { q: [[0.0; LANES]; 4], t: [[0.0; LANES]; 3] };
+    for l in 0..LANES {
+        out.q[0][l] = pw[l] * bx[l] + px[l] * bw[l] + py[l] * bz[l] - pz[l] * by[l];
+        out.q[1][l] = pw[l] * by[l] - px[l] * bz[l] + py[l] * bw[l] + pz[l] * bx[l];
+        out.q[2][l] = pw[l] * bz[l] + px[l] * by[l] - py[l] * bx[l] + pz[l] * bw[l];
+        out.q[3][l] = pw[l] * bw[l] - px[l] * bx[l] - py[l] * by[l] - pz[l] * bz[l];
+        let tx = 2.0 * (py[l] * vz[l] - pz[l] * vy[l]);
+        let ty = 2.0 * (pz[l] * vx[l] - px[l] * vz[l]);
+        let tz = 2.0 * (px[l] * vy[l] - py[l] * vx[l]);
+        out.t[0][l] = parent.t[0][l] + vx[l] + pw[l] * tx + (py[l] * tz - pz[l] * ty);
+        out.t[1][l] = parent.t[1][l] + vy[l] + pw[l] * ty + (pz[l] * tx - px[l] * tz);
+        out.t[2][l] = parent.t[2][l] + vz[l] + pw[l] * tz + (px[l] * ty - py[l] * tx);
+    }
+    out
+}
+
+/// Calls `visit(frame, positions)` for every frame in order, with the world
+/// position of every joint (End Sites included). `positions` is reused.
+pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, mut visit: impl FnMut(usize, &[Vec3])) {
+    let frames = motion.frame_count();
+    let joints = skeleton.joints.len();
+    let mut world = vec![JointLanes { q: [[0.0; LANES]; 4], t: [[0.0; LANES]; 3] }; joints];
+    let mut positions = vec![Vec3::ZERO; joints];
+    let mut start = 0;
+    while start < frames {
+        let count = (frames - start).min(LANES);
+        // Pad a short last block by repeating its last frame.
+        let rows: [&[f32]; LANES] = std::array::from_fn(|l| motion.row(start + l.min(count - 1)));
+        for (j, joint) in skeleton.joints.iter().enumerate() {
+            let mut local = JointLanes {
+                q: [[0.0; LANES], [0.0; LANES], [0.0; LANES], [1.0; LANES]],
+                t: [[joint.offset.x; LANES], [joint.offset.y; LANES], [joint.offset.z; LANES]],
+            };
+            for (k, channel) in joint.channels.iter().enumerate() {
+                let column = joint.first_channel + k;
+                let values: Lanes = std::array::from_fn(|l| rows[l].get(column).copied().unwrap_or(0.0));
+                if channel.is_rotation() {
+                    rotate_about_axis(&mut local.q, channel.axis(), &values);
+                } else {
+                    local.t[channel.axis()] = values;
+                }
+            }
+            let result = match joint.parent.filter(|&p| p < j).and_then(|p| world.get(p)) {
+                Some(parent) => compose(parent, &local),
+                None => local,
+            };
+            if let Some(slot) = world.get_mut(j) {
+                *slot = result;
+            }
+        }
+        for l in 0..count {
+            for (p, w) in positions.iter_mut().zip(&world) {
+                *p = Vec3::new(w.t[0][l], w.t[1][l], w.t[2][l]);
+            }
+            visit(start + l, &positions);
+        }
+        start += count;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::for_each_frame_positions;
+
+    #[test]
+    fn matches_per_frame_fk() {
+        let src = "HIERARCHY\nROOT R\n{\nOFFSET 1 2 3\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\nJOINT C\n{\nOFFSET 0 1 0\nCHANNELS 4 Yrotation Xposition Xrotation Zrotation\nEnd Site\n{\nOFFSET 1 0.5 0\n}\n}\n}\nMOTION\nFrames: 11\nFrame Time: 0.1\n";
+        let mut text = src.to_string();
+        for f in 0..11 {
+            let a = f as f32 * 37.0 - 180.0;
+            text.push_str(&format!("{f} 1 -2 {a} {} {} {} 0.5 {} {}\n", a * 0.5, -a, a * 2.0, a + 10.0, 3.0 * a));
+        }
+        let clip = crate::bvh::parse(text.as_bytes()).unwrap();
+        let mut seen = 0;
+        for_each_frame_positions(&clip.skeleton, &clip.motion, |frame, positions| {
+            assert_eq!(frame, seen);
+            seen += 1;
+            let reference = clip.world_positions(frame);
+            for (a, b) in positions.iter().zip(&reference) {
+                assert!((*a - *b).abs().max_element() < 1e-4, "frame {frame}: {a} vs {b}");
+            }
+        });
+        assert_eq!(seen, 11);
+    }
+}
