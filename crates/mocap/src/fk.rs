@@ -21,10 +21,8 @@ impl Transform {
     /// `self ∘ child`: the child's transform expressed in `self`'s parent space.
     #[inline]
     pub fn compose(&self, child: &Transform) -> Transform {
-        Transform {
-            rotation: self.rotation * child.rotation,
-            translation: self.translation + self.rotation * child.translation,
-        }
+        let (r, t) = compose_arrays(self.rotation.to_array(), self.translation.to_array(), child.rotation.to_array(), child.translation.to_array());
+        Transform { rotation: Quat::from_array(r), translation: Vec3::from_array(t) }
     }
 }
 
@@ -76,6 +74,13 @@ fn quat_rotate(q: [f32; 4], v: [f32; 3]) -> [f32; 3] {
         v[1] + w * t[1] + (qz * t[0] - qx * t[2]),
         v[2] + w * t[2] + (qx * t[1] - qy * t[0]),
     ]
+}
+
+/// `parent ∘ child` on arrays.
+#[inline]
+fn compose_arrays(pr: [f32; 4], pt: [f32; 3], cr: [f32; 4], ct: [f32; 3]) -> ([f32; 4], [f32; 3]) {
+    let moved = quat_rotate(pr, ct);
+    (quat_mul(pr, cr), [pt[0] + moved[0], pt[1] + moved[1], pt[2] + moved[2]])
 }
 
 /// A joint's local rotation and translation as arrays (see [`local_transform`]).
@@ -131,11 +136,7 @@ pub fn world_transforms(skeleton: &Skeleton, row: &[f32], out: &mut Vec<Transfor
     for (i, joint) in skeleton.joints.iter().enumerate() {
         let (rotation, translation) = local_arrays(joint, row);
         let (rotation, translation) = match joint.parent.filter(|&p| p < i).and_then(|p| out.get(p)) {
-            Some(parent) => {
-                let (pr, pt) = (parent.rotation.to_array(), parent.translation.to_array());
-                let moved = quat_rotate(pr, translation);
-                (quat_mul(pr, rotation), [pt[0] + moved[0], pt[1] + moved[1], pt[2] + moved[2]])
-            }
+            Some(parent) => compose_arrays(parent.rotation.to_array(), parent.translation.to_array(), rotation, translation),
             None => (rotation, translation),
         };
         out.push(Transform { rotation: Quat::from_array(rotation), translation: Vec3::from_array(translation) });
