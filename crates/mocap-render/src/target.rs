@@ -1,0 +1,88 @@
+//! Offscreen colour + depth (+ MSAA) textures the renderer draws into.
+
+/// Where a frame is drawn: a sampleable colour texture (resolved when multisampled)
+/// and the matching depth buffer.
+pub struct RenderTarget {
+    /// Final colour texture (single-sampled; usable as a texture and copy source).
+    pub color: wgpu::Texture,
+    /// View of [`RenderTarget::color`].
+    pub color_view: wgpu::TextureView,
+    msaa_view: Option<wgpu::TextureView>,
+    depth_view: wgpu::TextureView,
+    size: [u32; 2],
+    format: wgpu::TextureFormat,
+    sample_count: u32,
+}
+
+impl RenderTarget {
+    /// Allocates a target of `size` pixels (clamped to at least 1×1).
+    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat, sample_count: u32, size: [u32; 2]) -> RenderTarget {
+        let max = device.limits().max_texture_dimension_2d;
+        let size = [size[0].clamp(1, max), size[1].clamp(1, max)];
+        let extent = wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 };
+        let texture = |label, format, samples, usage| {
+            device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: extent,
+                mip_level_count: 1,
+                sample_count: samples,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats: &[],
+            })
+        };
+        let color = texture(
+            "mocap color",
+            format,
+            1,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        );
+        let msaa_view = (sample_count > 1).then(|| {
+            texture("mocap msaa", format, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT).create_view(&Default::default())
+        });
+        let depth = texture("mocap depth", crate::DEPTH_FORMAT, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT);
+        RenderTarget {
+            color_view: color.create_view(&Default::default()),
+            color,
+            msaa_view,
+            depth_view: depth.create_view(&Default::default()),
+            size,
+            format,
+            sample_count,
+        }
+    }
+
+    /// Size in pixels.
+    pub fn size(&self) -> [u32; 2] {
+        self.size
+    }
+
+    /// Colour format.
+    pub fn format(&self) -> wgpu::TextureFormat {
+        self.format
+    }
+
+    /// Samples per pixel of the attachments.
+    pub fn sample_count(&self) -> u32 {
+        self.sample_count
+    }
+
+    /// Whether this target can be reused for the given parameters.
+    pub fn matches(&self, format: wgpu::TextureFormat, sample_count: u32, size: [u32; 2]) -> bool {
+        self.format == format && self.sample_count == sample_count && self.size == [size[0].max(1), size[1].max(1)]
+    }
+
+    /// The attachment to render into and the texture to resolve to, if any.
+    pub(crate) fn color_attachment(&self) -> (&wgpu::TextureView, Option<&wgpu::TextureView>) {
+        match &self.msaa_view {
+            Some(msaa) => (msaa, Some(&self.color_view)),
+            None => (&self.color_view, None),
+        }
+    }
+
+    /// The depth attachment.
+    pub(crate) fn depth_view(&self) -> &wgpu::TextureView {
+        &self.depth_view
+    }
+}

@@ -1,0 +1,31 @@
+//! The eframe app: runs a shared [`Viewer`] each frame with eframe's wgpu state.
+
+use crate::viewer::Viewer;
+use std::cell::RefCell;
+use std::rc::Rc;
+
+/// An eframe app around a viewer that the host (e.g. JavaScript) can also reach.
+pub struct ViewerApp {
+    viewer: Rc<RefCell<Viewer>>,
+    on_open_requested: Box<dyn FnMut()>,
+}
+
+impl ViewerApp {
+    /// Wraps `viewer`; `on_open_requested` runs when the user presses "Open…".
+    pub fn new(viewer: Rc<RefCell<Viewer>>, on_open_requested: Box<dyn FnMut()>) -> ViewerApp {
+        ViewerApp { viewer, on_open_requested }
+    }
+}
+
+impl eframe::App for ViewerApp {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        let open = {
+            let Ok(mut viewer) = self.viewer.try_borrow_mut() else { return };
+            viewer.ui(ui, frame.wgpu_render_state());
+            std::mem::take(&mut viewer.open_requested)
+        };
+        if open {
+            (self.on_open_requested)();
+        }
+    }
+}

@@ -1,0 +1,48 @@
+//! A loaded clip with what the UI derives from it once.
+
+use mocap::{Clip, Units};
+
+/// A clip, its file name and derived facts (children lists, units, scale).
+pub struct Document {
+    /// File name as given when loading.
+    pub name: String,
+    /// The clip.
+    pub clip: Clip,
+    /// Children of each joint, in file order.
+    pub children: Vec<Vec<usize>>,
+    /// Guessed length unit.
+    pub units: Units,
+    /// Size of the first pose in file units (a humanoid's height), for sizing markers.
+    pub extent: f32,
+}
+
+impl Document {
+    /// Wraps a clip.
+    pub fn new(name: &str, clip: Clip) -> Document {
+        let n = clip.skeleton.joints.len();
+        let mut children = vec![Vec::new(); n];
+        for (i, joint) in clip.skeleton.joints.iter().enumerate() {
+            if let Some(list) = joint.parent.and_then(|p| children.get_mut(p)) {
+                list.push(i);
+            }
+        }
+        let extent = clip.pose_extent();
+        let extent = if extent.is_finite() && extent > 0.0 { extent } else { 1.0 };
+        Document { name: name.to_owned(), units: clip.units(), clip, children, extent }
+    }
+
+    /// Timing facts for playback.
+    pub fn timing(&self) -> crate::playback::Timing {
+        crate::playback::Timing { frames: self.clip.frame_count(), frame_time: self.clip.frame_time() }
+    }
+
+    /// Joints that are not End Sites.
+    pub fn joint_count(&self) -> usize {
+        self.clip.skeleton.joints.iter().filter(|j| !j.end_site).count()
+    }
+
+    /// File units per metre (for the floor grid).
+    pub fn units_per_meter(&self) -> f32 {
+        1.0 / self.units.meters_per_unit()
+    }
+}

@@ -1,0 +1,27 @@
+//! The motion-capture viewer: an egui app with a timeline, a joint hierarchy, an
+//! inspector and a 3D view drawn by `mocap-render`.
+//!
+//! Data flows one way: bytes → [`mocap::Clip`] ([`Document`]) → playhead
+//! ([`Playback`]) → world transforms → scene primitives ([`pose_scene`]) → GPU
+//! ([`viewport`]). [`Viewer`] holds the state; on the web, [`app::ViewerApp`]
+//! runs it inside eframe.
+
+#[cfg(target_arch = "wasm32")]
+pub mod app;
+pub mod camera;
+pub mod document;
+pub mod keys;
+pub mod playback;
+pub mod pose_scene;
+pub mod settings;
+pub mod snapshot;
+pub mod ui;
+pub mod viewer;
+pub mod viewport;
+
+pub use camera::{OrbitCamera, Waypoint};
+pub use document::Document;
+pub use playback::Playback;
+pub use settings::ViewSettings;
+pub use snapshot::{ClipSummary, Snapshot};
+pub use viewer::Viewer;

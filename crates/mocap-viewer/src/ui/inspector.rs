@@ -1,0 +1,60 @@
+//! The selected joint: offset, channels with current values, and a plot of its
+//! channels over the whole clip with the playhead.
+
+use crate::document::Document;
+
+/// Most points per plotted channel (longer clips are decimated for drawing).
+const MAX_PLOT_POINTS: usize = 4000;
+
+/// Shows the inspector section.
+pub fn show(ui: &mut egui::Ui, doc: Option<&Document>, selected: Option<usize>, frame: usize, time: f64) {
+    ui.heading("Joint");
+    let (Some(doc), Some(index)) = (doc, selected) else {
+        ui.label("Click a joint in the hierarchy to inspect it.");
+        return;
+    };
+    let Some(joint) = doc.clip.skeleton.joints.get(index) else { return };
+    let values = doc.clip.channel_values(frame);
+    egui::Grid::new("joint").num_columns(2).striped(true).show(ui, |ui| {
+        ui.label("Name");
+        ui.strong(&joint.name);
+        ui.end_row();
+        ui.label("Parent");
+        let parent = joint.parent.and_then(|p| doc.clip.skeleton.joints.get(p)).map_or("—", |p| p.name.as_str());
+        ui.label(parent);
+        ui.end_row();
+        ui.label("Offset");
+        ui.monospace(format!("{:.3} {:.3} {:.3}", joint.offset.x, joint.offset.y, joint.offset.z));
+        ui.end_row();
+        for (k, channel) in joint.channels.iter().enumerate() {
+            ui.label(channel.to_string());
+            let v = values.get(joint.first_channel + k).copied().unwrap_or(f32::NAN);
+            ui.monospace(format!("{v:10.4}"));
+            ui.end_row();
+        }
+    });
+    if !joint.channels.is_empty() && doc.clip.frame_count() > 0 {
+        plot(ui, doc, joint, time);
+    }
+}
+
+fn plot(ui: &mut egui::Ui, doc: &Document, joint: &mocap::Joint, time: f64) {
+    let clip = &doc.clip;
+    let frames = clip.frame_count();
+    let step = frames.div_ceil(MAX_PLOT_POINTS).max(1);
+    egui_plot::Plot::new("channels")
+        .height(180.0)
+        .legend(egui_plot::Legend::default())
+        .allow_scroll(false)
+        .show(ui, |plot_ui| {
+            for (k, channel) in joint.channels.iter().enumerate() {
+                let c = joint.first_channel + k;
+                let points: Vec<[f64; 2]> = (0..frames)
+                    .step_by(step)
+                    .map(|f| [f as f64 * clip.frame_time(), f64::from(clip.motion.value(f, c))])
+                    .collect();
+                plot_ui.line(egui_plot::Line::new(channel.to_string(), points));
+            }
+            plot_ui.vline(egui_plot::VLine::new("playhead", time).color(egui::Color32::YELLOW));
+        });
+}

@@ -1,0 +1,9 @@
+//! The egui panels, one per file.
+
+pub mod hierarchy;
+pub mod info;
+pub mod inspector;
+pub mod overlay;
+pub mod side;
+pub mod timeline;
+pub mod toolbar;

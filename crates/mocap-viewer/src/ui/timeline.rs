@@ -1,0 +1,61 @@
+//! Bottom panel: transport buttons, scrub bar, loop, speed and loop range.
+
+use crate::keys::Action;
+use crate::playback::SPEED_RANGE;
+use crate::viewer::Viewer;
+
+/// Shows the timeline panel.
+pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
+    egui::Panel::bottom("timeline").show(ui, |ui| {
+        ui.add_space(4.0);
+        let Some(timing) = viewer.document.as_ref().map(|d| d.timing()) else {
+            ui.label("No clip open");
+            return;
+        };
+        let frame = viewer.playback.frame(timing);
+        let play = if viewer.playback.playing { "⏸ Pause" } else { "▶ Play" };
+        ui.horizontal(|ui| {
+            let mut act = |ui: &mut egui::Ui, text: &str, hint: &str, action: Action| {
+                if ui.button(text).on_hover_text(hint).clicked() {
+                    viewer.apply(action);
+                }
+            };
+            act(ui, "⏮", "First frame (Home)", Action::First);
+            act(ui, "⏴", "Step back (←)", Action::Step(-1));
+            act(ui, play, "Play / pause (Space)", Action::TogglePlay);
+            act(ui, "⏵", "Step forward (→)", Action::Step(1));
+            act(ui, "⏭", "Last frame (End)", Action::Last);
+        });
+        ui.horizontal(|ui| {
+            ui.monospace(format!("frame {frame:>5} / {}   {:>8.3} s", timing.last(), viewer.playback.time));
+            ui.separator();
+            ui.checkbox(&mut viewer.playback.looping, "Loop");
+            ui.add(
+                egui::Slider::new(&mut viewer.playback.speed, SPEED_RANGE)
+                    .logarithmic(true)
+                    .text("speed")
+                    .suffix("×")
+                    .max_decimals(2),
+            );
+        });
+        ui.horizontal(|ui| {
+            let mut f = frame;
+            ui.spacing_mut().slider_width = (ui.available_width() - 60.0).max(100.0);
+            let slider = ui.add(egui::Slider::new(&mut f, 0..=timing.last()).show_value(true).trailing_fill(true));
+            if slider.changed() {
+                viewer.playback.seek(f, timing);
+            }
+        });
+        ui.horizontal(|ui| {
+            let mut on = viewer.playback.range.is_some();
+            if ui.checkbox(&mut on, "Loop range").changed() {
+                viewer.playback.range = on.then_some((frame, timing.last()));
+            }
+            if let Some((a, b)) = &mut viewer.playback.range {
+                ui.add(egui::DragValue::new(a).range(0..=timing.last()).prefix("from "));
+                ui.add(egui::DragValue::new(b).range(0..=timing.last()).prefix("to "));
+            }
+        });
+        ui.add_space(2.0);
+    });
+}

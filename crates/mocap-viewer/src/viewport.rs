@@ -1,0 +1,84 @@
+//! The 3D view: renders the scene offscreen with `mocap-render` and shows it as an egui image.
+
+use crate::camera::OrbitCamera;
+use mocap_render::{RenderTarget, Scene, SceneRenderer};
+
+/// Colour format of the offscreen image (egui samples it like its own textures).
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+
+/// GPU resources of the 3D view, created on first use.
+struct Gpu {
+    renderer: SceneRenderer,
+    target: RenderTarget,
+    texture: egui::TextureId,
+}
+
+/// The 3D view widget's non-plain state (GPU objects).
+#[derive(Default)]
+pub struct Viewport {
+    gpu: Option<Gpu>,
+    /// Frames rendered so far (observable progress for tests and benchmarks).
+    pub frames_rendered: u64,
+}
+
+impl Viewport {
+    /// Lays out the view in `rect`, handles camera input and draws `scene`.
+    /// Returns the response so callers can react to clicks.
+    pub fn show(
+        &mut self,
+        ui: &mut egui::Ui,
+        render_state: Option<&egui_wgpu::RenderState>,
+        camera: &mut OrbitCamera,
+        scene: &Scene,
+    ) -> egui::Response {
+        let rect = ui.available_rect_before_wrap();
+        let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
+        handle_camera_input(ui, &response, camera);
+        let Some(rs) = render_state else {
+            ui.painter().text(rect.center(), egui::Align2::CENTER_CENTER, "No GPU renderer", egui::FontId::proportional(16.0), egui::Color32::GRAY);
+            return response;
+        };
+        let ppp = ui.ctx().pixels_per_point();
+        let size = [(rect.width() * ppp).round().max(1.0) as u32, (rect.height() * ppp).round().max(1.0) as u32];
+        let gpu = self.gpu.get_or_insert_with(|| create_gpu(rs, size));
+        if !gpu.target.matches(FORMAT, gpu.renderer.sample_count(), size) {
+            gpu.target = RenderTarget::new(&rs.device, FORMAT, gpu.renderer.sample_count(), size);
+            rs.renderer.write().update_egui_texture_from_wgpu_texture(&rs.device, &gpu.target.color_view, wgpu::FilterMode::Linear, gpu.texture);
+        }
+        gpu.renderer.pixels_per_point = ppp;
+        let cam = camera.to_camera(size[0] as f32 / size[1] as f32);
+        gpu.renderer.render(&rs.device, &rs.queue, &gpu.target, scene, &cam);
+        self.frames_rendered += 1;
+        let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
+        ui.painter().image(gpu.texture, rect, uv, egui::Color32::WHITE);
+        response
+    }
+}
+
+fn create_gpu(rs: &egui_wgpu::RenderState, size: [u32; 2]) -> Gpu {
+    let samples = if rs.adapter.get_texture_format_features(FORMAT).flags.sample_count_supported(4) { 4 } else { 1 };
+    let renderer = SceneRenderer::new(&rs.device, FORMAT, samples);
+    let target = RenderTarget::new(&rs.device, FORMAT, samples, size);
+    let texture = rs.renderer.write().register_native_texture(&rs.device, &target.color_view, wgpu::FilterMode::Linear);
+    Gpu { renderer, target, texture }
+}
+
+/// Orbit (left drag), pan (right/middle drag), zoom (wheel / pinch) when over the view.
+fn handle_camera_input(ui: &egui::Ui, response: &egui::Response, camera: &mut OrbitCamera) {
+    if response.dragged_by(egui::PointerButton::Primary) {
+        let d = response.drag_delta();
+        camera.orbit(d.x, d.y);
+    } else if response.dragged_by(egui::PointerButton::Secondary) || response.dragged_by(egui::PointerButton::Middle) {
+        let d = response.drag_delta();
+        camera.pan(d.x, d.y, response.rect.height());
+    }
+    if response.hovered() {
+        let (scroll, zoom) = ui.input(|i| (i.smooth_scroll_delta().y, i.zoom_delta()));
+        if scroll != 0.0 {
+            camera.zoom((-scroll * 0.002).exp());
+        }
+        if zoom != 1.0 {
+            camera.zoom(1.0 / zoom);
+        }
+    }
+}

@@ -1,0 +1,46 @@
+//! Converts a viewer [`Snapshot`] to a plain JavaScript object.
+
+use js_sys::{Array, Object, Reflect};
+use mocap_viewer::Snapshot;
+use wasm_bindgen::JsValue;
+
+fn set(obj: &Object, key: &str, value: impl Into<JsValue>) {
+    // Setting a property on a fresh plain object cannot fail.
+    let _ = Reflect::set(obj, &JsValue::from_str(key), &value.into());
+}
+
+fn opt(s: &Option<String>) -> JsValue {
+    s.as_deref().map_or(JsValue::NULL, JsValue::from_str)
+}
+
+fn strings(items: &[String]) -> Array {
+    items.iter().map(|s| JsValue::from_str(s)).collect()
+}
+
+/// The snapshot as `{clips, frame, time, playing, speed, selectedJoint, error, ...}`.
+pub fn to_js(s: &Snapshot) -> JsValue {
+    let clips: Array = s
+        .clips
+        .iter()
+        .map(|c| {
+            let o = Object::new();
+            set(&o, "name", c.name.as_str());
+            set(&o, "frames", c.frames as f64);
+            set(&o, "frameTime", c.frame_time);
+            set(&o, "joints", c.joints as f64);
+            set(&o, "jointNames", strings(&c.joint_names));
+            JsValue::from(o)
+        })
+        .collect();
+    let o = Object::new();
+    set(&o, "clips", clips);
+    set(&o, "frame", s.frame as f64);
+    set(&o, "time", s.time);
+    set(&o, "playing", s.playing);
+    set(&o, "speed", f64::from(s.speed));
+    set(&o, "selectedJoint", opt(&s.selected_joint));
+    set(&o, "error", opt(&s.error));
+    set(&o, "treeLabels", strings(&s.tree_labels));
+    set(&o, "framesRendered", s.frames_rendered as f64);
+    o.into()
+}

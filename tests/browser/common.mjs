@@ -1,0 +1,77 @@
+// Shared helpers for the browser tests and the benchmark: launching Chromium in a
+// given GPU mode, waiting on viewer state, dropping files onto the page.
+import { chromium } from 'playwright-core';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+
+const COMMON = [
+  '--no-sandbox', '--disable-background-networking', '--disable-component-update',
+  '--disable-sync', '--no-first-run', '--disable-quic',
+];
+
+/** Chromium flags per mode: WebGL2 on SwiftShader, or WebGPU on SwiftShader Vulkan (WebGL2 off). */
+export const MODES = {
+  webgl2: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+  webgpu: ['--enable-unsafe-webgpu', '--enable-features=Vulkan', '--use-vulkan=swiftshader',
+    '--use-angle=vulkan', '--enable-unsafe-swiftshader', '--use-webgpu-adapter=swiftshader'],
+};
+
+/** Launches headless Chromium with a fresh profile; returns { context, page, close, errors }. */
+export async function launch(executablePath, mode) {
+  const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'mocap-chromium-'));
+  const context = await chromium.launchPersistentContext(userDataDir, {
+    executablePath, headless: true, args: [...COMMON, ...MODES[mode]],
+    viewport: { width: 1280, height: 800 },
+  });
+  const page = context.pages()[0] ?? await context.newPage();
+  const errors = [];
+  page.on('console', (msg) => { if (msg.type() === 'error') errors.push(msg.text()); });
+  page.on('pageerror', (err) => errors.push(String(err)));
+  const close = async () => {
+    await context.close();
+    fs.rmSync(userDataDir, { recursive: true, force: true });
+  };
+  return { context, page, close, errors };
+}
+
+/** Current `window.mocapViewer.state()`. */
+export const state = (page) => page.evaluate(() => window.mocapViewer.state());
+
+/** Waits until `predicate(state)` holds (predicate is serialised to the page). */
+export async function waitState(page, predicate, arg, timeout = 60000) {
+  await page.waitForFunction(
+    ([src, a]) => { const s = window.mocapViewer && window.mocapViewer.state(); return !!s && (0, eval)(src)(s, a); },
+    [predicate.toString(), arg], { timeout, polling: 50 });
+  return state(page);
+}
+
+/** Waits until the viewer has rendered `n` more frames. */
+export async function waitFrames(page, n = 2) {
+  const start = (await state(page)).framesRendered;
+  return waitState(page, (s, a) => s.framesRendered >= a, start + n);
+}
+
+/** Dispatches a real `drop` event carrying `bytes` as a File named `name`; returns the drop time. */
+export async function dropFile(page, name, bytes) {
+  const b64 = Buffer.from(bytes).toString('base64');
+  return page.evaluate(([name, b64]) => {
+    const bin = atob(b64);
+    const data = new Uint8Array(bin.length);
+    for (let i = 0; i < bin.length; i++) data[i] = bin.charCodeAt(i);
+    const dt = new DataTransfer();
+    dt.items.add(new File([data], name));
+    const canvas = document.getElementById('viewer');
+    const t0 = performance.now();
+    window.mocapLastLoad = null;
+    for (const type of ['dragenter', 'dragover', 'drop']) {
+      canvas.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true }));
+    }
+    return t0;
+  }, [name, b64]);
+}
+
+/** Screenshot of the central 3D area (between the side panels). */
+export function view3d(page, file) {
+  return page.screenshot({ path: file, clip: { x: 330, y: 120, width: 520, height: 420 } });
+}

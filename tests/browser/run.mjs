@@ -1,0 +1,101 @@
+// Browser tests for one GPU mode: node run.mjs <url> <webgl2|webgpu> <outDir> <chromium> <expected.json>
+import fs from 'node:fs';
+import path from 'node:path';
+import { launch, state, waitState, waitFrames, dropFile, view3d } from './common.mjs';
+
+const [url, mode, outDir, chromiumPath, expectedPath] = process.argv.slice(2);
+const expected = JSON.parse(fs.readFileSync(expectedPath, 'utf8'));
+const shot = (name) => path.join(outDir, `${mode}-${name}.png`);
+let failures = 0;
+
+function check(cond, what) {
+  console.log(`${cond ? 'ok  ' : 'FAIL'} [${mode}] ${what}`);
+  if (!cond) failures += 1;
+}
+
+async function step(name, fn) {
+  try {
+    await fn();
+  } catch (e) {
+    check(false, `${name}: ${e.message.split('\n')[0]}`);
+  }
+}
+
+const { page, close, errors } = await launch(chromiumPath, mode);
+try {
+  await step('page loads and default clip animates', async () => {
+    await page.goto(url);
+    const s = await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
+    check(s.clips[0].name === 'walk.bvh' && s.playing, `default clip walk.bvh playing (${s.clips[0].frames} frames)`);
+    await page.screenshot({ path: shot('page') });
+    const a = await view3d(page, shot('anim-a'));
+    await page.waitForTimeout(600);
+    await waitFrames(page, 3);
+    const b = await view3d(page, shot('anim-b'));
+    check(!a.equals(b), 'two screenshots of the 3D view differ while playing');
+    const s2 = await state(page);
+    check(s2.frame !== s.frame || s2.time !== s.time, `playhead moves (${s.time.toFixed(3)} -> ${s2.time.toFixed(3)} s)`);
+    check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
+  });
+
+  if (expected.length === 0) console.log(`skip [${mode}] corpus drop tests: ../shared/corpus not found`);
+  for (const [i, file] of expected.entries()) {
+    const name = path.basename(file.path);
+    await step(`drop ${name}`, async () => {
+      const before = await view3d(page, shot(`drop${i}-before`));
+      await dropFile(page, name, fs.readFileSync(file.path));
+      const s = await waitState(page, (s, a) => s.clips.length === 1 && s.clips[0].name === a, name);
+      check(s.clips[0].frames === file.frames, `${name}: ${s.clips[0].frames} frames, mocap info says ${file.frames}`);
+      check(s.error === null && s.frame === 0, `${name}: no error, starts at frame 0`);
+      await waitFrames(page, 3);
+      const after = await view3d(page, shot(`drop${i}-after`));
+      check(!before.equals(after), `${name}: the 3D view changed`);
+      const s2 = await state(page);
+      const names = s2.clips[0].jointNames;
+      check(names.length > 0 && names.every((n) => s2.treeLabels.includes(n)), `${name}: hierarchy shows all ${names.length} joint names`);
+    });
+  }
+
+  await step('scrubbing changes the pose', async () => {
+    await page.evaluate(() => { window.mocapViewer.pause(); window.mocapViewer.seek(0); });
+    await waitFrames(page, 2);
+    const a = await view3d(page, shot('scrub-0'));
+    const frames = (await state(page)).clips[0].frames;
+    const mid = Math.floor(frames / 2);
+    await page.evaluate((f) => window.mocapViewer.seek(f), mid);
+    const s = await waitFrames(page, 2);
+    const b = await view3d(page, shot('scrub-mid'));
+    check(s.frame === mid && !s.playing, `seek(${mid}) lands on frame ${s.frame}, paused`);
+    check(!a.equals(b), 'pose at frame 0 and mid-clip differ');
+  });
+
+  await step('keyboard: space toggles play, arrows step', async () => {
+    await page.mouse.click(600, 400);
+    const s0 = await state(page);
+    await page.keyboard.press('Space');
+    const s1 = await waitState(page, (s, a) => s.playing !== a, s0.playing);
+    check(s1.playing !== s0.playing, `space: playing ${s0.playing} -> ${s1.playing}`);
+    await page.keyboard.press('Space');
+    const s2 = await waitState(page, (s, a) => s.playing === a, s0.playing);
+    check(s2.playing === s0.playing, 'space again toggles back');
+    await page.evaluate(() => { window.mocapViewer.pause(); window.mocapViewer.seek(5); });
+    await waitFrames(page, 1);
+    await page.keyboard.press('ArrowRight');
+    const s3 = await waitState(page, (s) => s.frame !== 5);
+    check(s3.frame === 6, `ArrowRight steps 5 -> ${s3.frame}`);
+  });
+
+  await step('malformed file shows an error and keeps the clip', async () => {
+    const before = await state(page);
+    await dropFile(page, 'broken.bvh', Buffer.from('HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n  CHANNELS 3 Xposition\n'));
+    const s = await waitState(page, (s) => s.error !== null);
+    await waitFrames(page, 2);
+    await page.screenshot({ path: shot('error') });
+    check(/broken\.bvh:\d+:\d+/.test(s.error), `error names file, line and column: ${s.error}`);
+    check(s.clips.length === 1 && s.clips[0].name === before.clips[0].name, `previous clip ${before.clips[0].name} still open`);
+  });
+} finally {
+  await close();
+}
+console.log(failures === 0 ? `[${mode}] all browser tests passed` : `[${mode}] ${failures} failure(s)`);
+process.exit(failures === 0 ? 0 : 1);

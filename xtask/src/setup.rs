@@ -1,0 +1,139 @@
+//! Installs missing tools: Debian Rust-for-wasm packages, wasm-bindgen-cli,
+//! chromium, mesa Vulkan (lavapipe) and npm playwright-core.
+
+use crate::util::{have, output, root, run};
+use std::path::PathBuf;
+use std::process::Command;
+
+/// How the wasm build is done on this machine.
+pub enum WasmToolchain {
+    /// rustup with the wasm32 target installed: plain `cargo build --target`.
+    Rustup,
+    /// Debian's `rustc-web` + std sources: `-Zbuild-std` with the system rustc.
+    Debian,
+}
+
+/// Chooses (and if needed installs) the wasm toolchain.
+pub fn wasm_toolchain() -> Result<WasmToolchain, String> {
+    let installed = output(Command::new("rustup").args(["target", "list", "--installed"])).unwrap_or_default();
+    if installed.lines().any(|l| l.trim() == "wasm32-unknown-unknown") {
+        return Ok(WasmToolchain::Rustup);
+    }
+    if !debian_ready() {
+        apt_install(&["rustc-web", "cargo-web", "rust-web-src", "lld-22"])?;
+    }
+    if debian_ready() {
+        Ok(WasmToolchain::Debian)
+    } else {
+        Err("no wasm32 toolchain: run `rustup target add wasm32-unknown-unknown`, or install Debian's rustc-web cargo-web rust-web-src lld-22".into())
+    }
+}
+
+fn debian_ready() -> bool {
+    have("/usr/bin/rustc") && have("/usr/bin/cargo") && have(WASM_LD) && std_sources().is_some()
+}
+
+/// The wasm linker from the Debian `lld-22` package.
+pub const WASM_LD: &str = "/usr/lib/llvm-22/bin/wasm-ld";
+
+fn std_sources() -> Option<PathBuf> {
+    let sysroot = output(Command::new("/usr/bin/rustc").args(["--print", "sysroot"]))?;
+    let p = PathBuf::from(sysroot.trim()).join("lib/rustlib/src/rust/library");
+    p.is_dir().then_some(p)
+}
+
+/// `apt-get install -y` (after `apt-get update`), with sudo when not root.
+pub fn apt_install(packages: &[&str]) -> Result<(), String> {
+    if !have("apt-get") {
+        return Err(format!("please install {packages:?} (no apt-get here)"));
+    }
+    let root_user = output(Command::new("id").arg("-u")).is_some_and(|u| u.trim() == "0");
+    let apt = |args: &[&str]| {
+        let mut c = if root_user { Command::new("apt-get") } else { Command::new("sudo") };
+        if !root_user {
+            c.arg("apt-get");
+        }
+        c.args(args).env("DEBIAN_FRONTEND", "noninteractive");
+        c
+    };
+    run(&mut apt(&["update"]))?;
+    let mut install = apt(&["install", "-y", "--no-install-recommends"]);
+    install.args(packages);
+    run(&mut install)
+}
+
+/// The wasm-bindgen version pinned in Cargo.lock.
+pub fn locked_wasm_bindgen_version() -> Result<String, String> {
+    let lock = std::fs::read_to_string(root().join("Cargo.lock")).map_err(|e| format!("Cargo.lock: {e}"))?;
+    let mut lines = lock.lines();
+    while let Some(line) = lines.next() {
+        if line.trim() == "name = \"wasm-bindgen\"" {
+            if let Some(v) = lines.next().and_then(|l| l.trim().strip_prefix("version = \"")) {
+                return Ok(v.trim_end_matches('"').to_owned());
+            }
+        }
+    }
+    Err("wasm-bindgen not found in Cargo.lock".into())
+}
+
+/// Path of a wasm-bindgen CLI matching the crate version, installing it if needed.
+pub fn wasm_bindgen_cli() -> Result<String, String> {
+    let version = locked_wasm_bindgen_version()?;
+    let cargo_bin = std::env::var("CARGO_HOME").map(PathBuf::from).unwrap_or_else(|_| home().join(".cargo")).join("bin");
+    let candidates = ["wasm-bindgen".to_owned(), cargo_bin.join("wasm-bindgen").display().to_string()];
+    for c in &candidates {
+        if output(Command::new(c).arg("--version")).is_some_and(|v| v.split_whitespace().nth(1) == Some(version.as_str())) {
+            return Ok(c.clone());
+        }
+    }
+    run(Command::new("cargo").args(["install", "wasm-bindgen-cli", "--version", &version]))?;
+    Ok(candidates[1].clone())
+}
+
+fn home() -> PathBuf {
+    std::env::var_os("HOME").map(PathBuf::from).unwrap_or_else(|| PathBuf::from("/root"))
+}
+
+/// The Chromium binary, installing Debian's package if missing.
+pub fn chromium() -> Result<String, String> {
+    for c in ["/usr/bin/chromium", "/usr/bin/chromium-browser"] {
+        if have(c) {
+            return Ok(c.to_owned());
+        }
+    }
+    apt_install(&["chromium"])?;
+    Ok("/usr/bin/chromium".to_owned())
+}
+
+/// Node.js + playwright-core under `tests/browser/node_modules` (never downloads browsers).
+pub fn playwright() -> Result<(), String> {
+    if !have("node") || !have("npm") {
+        apt_install(&["nodejs", "npm"])?;
+    }
+    let dir = root().join("tests/browser");
+    if !dir.join("node_modules/playwright-core").is_dir() {
+        run(Command::new("npm").args(["install", "--no-audit", "--no-fund"]).current_dir(&dir).env("PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD", "1"))?;
+    }
+    Ok(())
+}
+
+/// `wasm-opt` if present; tries to install binaryen once when missing.
+pub fn wasm_opt() -> Option<&'static str> {
+    if !have("wasm-opt") {
+        let _ = apt_install(&["binaryen"]);
+    }
+    have("wasm-opt").then_some("wasm-opt")
+}
+
+/// Everything at once.
+pub fn setup_all() -> Result<(), String> {
+    wasm_toolchain()?;
+    wasm_bindgen_cli()?;
+    chromium()?;
+    playwright()?;
+    if !have("/usr/share/vulkan/icd.d/lvp_icd.json") && !have("/usr/share/vulkan/icd.d/lvp_icd.x86_64.json") {
+        let _ = apt_install(&["mesa-vulkan-drivers"]);
+    }
+    println!("setup: done");
+    Ok(())
+}
