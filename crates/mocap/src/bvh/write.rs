@@ -21,8 +21,12 @@ fn push_f32(out: &mut String, buffer: &mut ryu::Buffer, v: f32) {
     }
 }
 
+/// Deeper levels are not indented further, so output stays linear in the input
+/// even for absurdly deep hierarchies.
+const MAX_INDENT: usize = 64;
+
 fn indent(out: &mut String, depth: usize) {
-    out.extend(std::iter::repeat_n('\t', depth));
+    out.extend(std::iter::repeat_n('\t', depth.min(MAX_INDENT)));
 }
 
 /// Children of each joint, in file order.
