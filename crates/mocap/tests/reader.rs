@@ -189,6 +189,15 @@ fn non_finite_values_warn() {
 }
 
 #[test]
+fn dos_eof_and_nul_padding_and_float_frame_count() {
+    let mut src = one_joint("CHANNELS 1 Xposition", "1\r\n2\r\n", 2).replace("Frames: 2", "Frames: 2.0").into_bytes();
+    src.extend_from_slice(b"\x1a\0\0");
+    let clip = parse(&src).unwrap();
+    assert_eq!(clip.frame_count(), 2);
+    assert!(clip.warnings.is_empty(), "{:?}", clip.warnings);
+}
+
+#[test]
 fn utf8_bom_and_leading_blank_lines() {
     let src = format!("\u{feff}\n\n{}", one_joint("CHANNELS 1 Xposition", "1\n", 1));
     assert_eq!(parse(src.as_bytes()).unwrap().frame_count(), 1);

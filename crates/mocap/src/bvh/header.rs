@@ -227,7 +227,10 @@ impl<'a> Builder<'a> {
             if lower.starts_with(b"frames") && (lower.len() == 6 || lower[6] == b':') {
                 self.cursor.next_token();
                 let value = self.header_value(&t, &lower[6..], "Frames:")?;
-                let n = std::str::from_utf8(value.text).ok().and_then(|s| s.parse::<u64>().ok());
+                // A whole number; "120.0" (some exporters) is accepted too.
+                let n = std::str::from_utf8(value.text).ok().and_then(|s| {
+                    s.parse::<u64>().ok().or_else(|| s.parse::<f64>().ok().filter(|f| f.fract() == 0.0 && *f >= 0.0 && *f < 1e19).map(|f| f as u64))
+                });
                 let n = n.ok_or_else(|| error_at(&value, format!("expected a whole number of frames after Frames:, found `{}`", value.show())))?;
                 frames = Some((n, t.line));
             } else if lower == b"frame" {

@@ -172,6 +172,8 @@ const CLASS: [u8; 256] = {
     t[b'\t' as usize] = BLANK;
     t[0x0b] = BLANK;
     t[0x0c] = BLANK;
+    t[0x00] = BLANK;
+    t[0x1a] = BLANK;
     t[b'\n' as usize] = LF;
     t[b'\r' as usize] = CR;
     t
