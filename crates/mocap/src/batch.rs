@@ -29,22 +29,26 @@ fn rotate_about_axis(q: &mut [Lanes; 4], axis: usize, degrees: &Lanes) {
     for l in 0..LANES {
         (s[l], c[l]) = sin_cos(degrees[l] * HALF_RAD_PER_DEG);
     }
-    let [x, y, z, w] = *q;
-    let (a, b, d) = match axis {
-        0 => (0, 1, 2),
-        1 => (1, 2, 0),
-        _ => (2, 0, 1),
-    };
-    let v = [x, y, z];
-    let mut out = [[0.0; LANES]; 4];
-    for l in 0..LANES {
-        // Rotation about axis `a`, with (a, b, d) a cyclic permutation of (x, y, z).
-        out[a][l] = w[l] * s[l] + v[a][l] * c[l];
-        out[b][l] = v[b][l] * c[l] + v[d][l] * s[l];
-        out[d][l] = v[d][l] * c[l] - v[b][l] * s[l];
-        out[3][l] = w[l] * c[l] - v[a][l] * s[l];
+    // One fixed loop per axis (constant field indices vectorise; dynamic ones don't).
+    let [x, y, z, w] = q;
+    match axis {
+        0 => rotate_lanes(w, x, y, z, &s, &c),
+        1 => rotate_lanes(w, y, z, x, &s, &c),
+        _ => rotate_lanes(w, z, x, y, &s, &c),
     }
-    *q = out;
+}
+
+/// Rotation about axis `a` where `(a, b, d)` is a cyclic permutation of `(x, y, z)`:
+/// `(a, b, d, w) ← (w·s + a·c, b·c + d·s, d·c − b·s, w·c − a·s)`.
+#[inline(always)]
+fn rotate_lanes(w: &mut Lanes, a: &mut Lanes, b: &mut Lanes, d: &mut Lanes, s: &Lanes, c: &Lanes) {
+    for l in 0..LANES {
+        let (wl, al, bl, dl) = (w[l], a[l], b[l], d[l]);
+        a[l] = wl * s[l] + al * c[l];
+        b[l] = bl * c[l] + dl * s[l];
+        d[l] = dl * c[l] - bl * s[l];
+        w[l] = wl * c[l] - al * s[l];
+    }
 }
 
 /// `parent ∘ local` lane by lane.
@@ -69,6 +73,52 @@ fn compose(parent: &JointLanes, local: &JointLanes) -> JointLanes {
     out
 }
 
+/// World transforms of every joint for `LANES` rows, compiled for the best SIMD
+/// the CPU has (AVX2 when detected at run time; SSE2 otherwise). Both versions run
+/// the same IEEE operations in the same order, so results are identical.
+fn fk_block_dispatch(skeleton: &Skeleton, rows: &[&[f32]; LANES], world: &mut [JointLanes]) {
+    #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2, checked just above.
+        unsafe { fk_block_avx2(skeleton, rows, world) };
+        return;
+    }
+    fk_block(skeleton, rows, world);
+}
+
+#[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+#[target_feature(enable = "avx2")]
+fn fk_block_avx2(skeleton: &Skeleton, rows: &[&[f32]; LANES], world: &mut [JointLanes]) {
+    fk_block(skeleton, rows, world);
+}
+
+/// One block of `LANES` frames: local transforms from the rows, then parent ∘ local.
+#[inline(always)]
+fn fk_block(skeleton: &Skeleton, rows: &[&[f32]; LANES], world: &mut [JointLanes]) {
+    for (j, joint) in skeleton.joints.iter().enumerate() {
+        let mut local = JointLanes {
+            q: [[0.0; LANES], [0.0; LANES], [0.0; LANES], [1.0; LANES]],
+            t: [[joint.offset.x; LANES], [joint.offset.y; LANES], [joint.offset.z; LANES]],
+        };
+        for (k, channel) in joint.channels.iter().enumerate() {
+            let column = joint.first_channel + k;
+            let values: Lanes = std::array::from_fn(|l| rows[l].get(column).copied().unwrap_or(0.0));
+            if channel.is_rotation() {
+                rotate_about_axis(&mut local.q, channel.axis(), &values);
+            } else {
+                local.t[channel.axis()] = values;
+            }
+        }
+        let result = match joint.parent.filter(|&p| p < j).and_then(|p| world.get(p)) {
+            Some(parent) => compose(parent, &local),
+            None => local,
+        };
+        if let Some(slot) = world.get_mut(j) {
+            *slot = result;
+        }
+    }
+}
+
 /// Calls `visit(frame, positions)` for every frame in order, with the world
 /// position of every joint (End Sites included). `positions` is reused.
 pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, mut visit: impl FnMut(usize, &[Vec3])) {
@@ -81,28 +131,7 @@ pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, mut visit:
         let count = (frames - start).min(LANES);
         // Pad a short last block by repeating its last frame.
         let rows: [&[f32]; LANES] = std::array::from_fn(|l| motion.row(start + l.min(count - 1)));
-        for (j, joint) in skeleton.joints.iter().enumerate() {
-            let mut local = JointLanes {
-                q: [[0.0; LANES], [0.0; LANES], [0.0; LANES], [1.0; LANES]],
-                t: [[joint.offset.x; LANES], [joint.offset.y; LANES], [joint.offset.z; LANES]],
-            };
-            for (k, channel) in joint.channels.iter().enumerate() {
-                let column = joint.first_channel + k;
-                let values: Lanes = std::array::from_fn(|l| rows[l].get(column).copied().unwrap_or(0.0));
-                if channel.is_rotation() {
-                    rotate_about_axis(&mut local.q, channel.axis(), &values);
-                } else {
-                    local.t[channel.axis()] = values;
-                }
-            }
-            let result = match joint.parent.filter(|&p| p < j).and_then(|p| world.get(p)) {
-                Some(parent) => compose(parent, &local),
-                None => local,
-            };
-            if let Some(slot) = world.get_mut(j) {
-                *slot = result;
-            }
-        }
+        fk_block_dispatch(skeleton, &rows, &mut world);
         for l in 0..count {
             for (p, w) in positions.iter_mut().zip(&world) {
                 *p = Vec3::new(w.t[0][l], w.t[1][l], w.t[2][l]);

@@ -13,14 +13,17 @@ const PIO2_3: f32 = 7.549_79e-8;
 pub fn sin_cos(x: f32) -> (f32, f32) {
     // Round to nearest with the 1.5·2^23 trick (valid for |x·2/π| < 2^22).
     const ROUND: f32 = 12_582_912.0;
-    let k = (x * core::f32::consts::FRAC_2_PI + ROUND) - ROUND;
+    let shifted = x * core::f32::consts::FRAC_2_PI + ROUND;
+    let k = shifted - ROUND;
     let r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
     let r2 = r * r;
     let s = r + r * r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362_880.0))));
     let c = 1.0
         + r2 * (-0.5 + r2 * (1.0 / 24.0 + r2 * (-1.0 / 720.0 + r2 * (1.0 / 40_320.0 + r2 * (-1.0 / 3_628_800.0)))));
     // Quadrant q = k mod 4: odd quadrants swap sin and cos, then signs flip.
-    let q = (k as i32) as u32;
+    // k sits in the low mantissa bits of `shifted`; its two lowest are k mod 4
+    // (no float-to-int conversion, which would not vectorise).
+    let q = shifted.to_bits();
     let swap = 0u32.wrapping_sub(q & 1);
     let (sb, cb) = (s.to_bits(), c.to_bits());
     let sin = ((sb & !swap) | (cb & swap)) ^ ((q & 2) << 30);
