@@ -183,6 +183,19 @@ fn row_errors_partial_too_long_and_garbage() {
 }
 
 #[test]
+fn msvc_nan_and_decimal_commas_are_read_with_warnings() {
+    let clip = parse(one_joint("CHANNELS 3 Xposition Yposition Zposition", "1.#QNAN0 -1.#IND00 1.#INF00\n0,5 -2,25 3\n", 2).as_bytes()).unwrap();
+    let row0 = clip.channel_values(0);
+    assert!(row0[0].is_nan() && row0[1].is_nan() && row0[2] == f32::INFINITY);
+    assert_eq!(clip.channel_values(1), &[0.5, -2.25, 3.0]);
+    assert!(clip.warnings.iter().any(|w| w.message.contains("decimal comma") && w.line == Some(15)), "{:?}", clip.warnings);
+    assert!(clip.warnings.iter().any(|w| w.message.contains("NaN") && w.line == Some(14)));
+    // Other junk is still an error.
+    assert!(parse(one_joint("CHANNELS 1 Xposition", "1.#WAT\n", 1).as_bytes()).is_err());
+    assert!(parse(one_joint("CHANNELS 1 Xposition", "1,2,3\n", 1).as_bytes()).is_err());
+}
+
+#[test]
 fn non_finite_values_warn() {
     let clip = parse(one_joint("CHANNELS 3 Xposition Yposition Zposition", "1 nan 3\n", 1).as_bytes()).unwrap();
     assert!(clip.warnings.iter().any(|w| w.message.contains("NaN") && w.line == Some(14)));

@@ -35,14 +35,17 @@ pub fn parse(bytes: &[u8]) -> Result<Clip, ParseError> {
     let width = header.skeleton.channel_count();
     let rows = match header.data {
         Some((start, line, column)) => rows::parse_rows(bytes.get(start..).unwrap_or(&[]), line, column, width)?,
-        None => rows::Rows { data: Vec::new(), count: 0, non_finite_line: None },
+        None => rows::Rows { data: Vec::new(), count: 0, notes: rows::RowNotes::default() },
     };
     let mut frame_count = rows.count;
     if width == 0 && header.has_motion {
         // No channels: rows are empty, so the declared count is all there is.
         frame_count = header.declared_frames.map_or(0, |(n, _)| n.min(1) as usize);
     }
-    if let Some(line) = rows.non_finite_line {
+    if let Some(line) = rows.notes.decimal_comma {
+        warnings.push(Warning { line: Some(line), message: "numbers written with a decimal comma (0,5): read as decimals".into() });
+    }
+    if let Some(line) = rows.notes.non_finite {
         warnings.push(Warning { line: Some(line), message: "motion holds NaN or infinite values; those joints are not drawn".into() });
     }
     match header.declared_frames {

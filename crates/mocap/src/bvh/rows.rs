@@ -15,8 +15,23 @@ pub(crate) struct Rows {
     pub data: Vec<f32>,
     /// Number of rows.
     pub count: usize,
-    /// Line of the first NaN or infinite value, if any.
-    pub non_finite_line: Option<u32>,
+    /// Oddities worth a warning.
+    pub notes: RowNotes,
+}
+
+/// Lines of the first oddity of each kind in the rows.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct RowNotes {
+    /// First NaN or infinite value (including MSVC's `1.#QNAN`, `-1.#IND`, `1.#INF`).
+    pub non_finite: Option<u32>,
+    /// First number written with a decimal comma (`0,5`).
+    pub decimal_comma: Option<u32>,
+}
+
+impl RowNotes {
+    fn or(self, other: RowNotes) -> RowNotes {
+        RowNotes { non_finite: self.non_finite.or(other.non_finite), decimal_comma: self.decimal_comma.or(other.decimal_comma) }
+    }
 }
 
 /// Where a chunk starts in the file, for messages.
@@ -46,7 +61,7 @@ pub(crate) fn parse_rows(data: &[u8], first_line: u32, first_column: u32, width:
         if total_rows > 0 {
             return Err(ParseError::new(first_line, first_column, format!("{total_rows} motion rows but the skeleton has no channels")));
         }
-        return Ok(Rows { data: Vec::new(), count: 0, non_finite_line: None });
+        return Ok(Rows { data: Vec::new(), count: 0, notes: RowNotes::default() });
     }
     let mut matrix = vec![0.0f32; total_rows * width];
     let mut jobs = Vec::with_capacity(chunks.len());
@@ -61,18 +76,18 @@ pub(crate) fn parse_rows(data: &[u8], first_line: u32, first_column: u32, width:
     }
     let results = run_jobs(jobs, width);
     let mut count = 0;
-    let mut non_finite_line = None;
+    let mut notes = RowNotes::default();
     for result in results {
-        let (rows, nf) = result?;
+        let (rows, chunk_notes) = result?;
         count += rows;
-        non_finite_line = non_finite_line.or(nf);
+        notes = notes.or(chunk_notes);
     }
     matrix.truncate(count * width);
-    Ok(Rows { data: matrix, count, non_finite_line })
+    Ok(Rows { data: matrix, count, notes })
 }
 
 type Job<'a, 'b> = (&'a [u8], Origin, &'b mut [f32]);
-type JobResult = Result<(usize, Option<u32>), ParseError>;
+type JobResult = Result<(usize, RowNotes), ParseError>;
 
 #[cfg(not(target_family = "wasm"))]
 fn run_jobs(jobs: Vec<Job<'_, '_>>, width: usize) -> Vec<JobResult> {
@@ -227,6 +242,39 @@ fn parse_short_decimal(s: &[u8]) -> Option<(f32, usize)> {
     Some((if negative { -magnitude } else { magnitude }, i))
 }
 
+/// How a number that the standard parsers refuse was read.
+enum Quirk {
+    /// `0,25`: a decimal comma (a locale bug in some exporters).
+    DecimalComma,
+    /// `1.#QNAN`, `-1.#IND00`, `1.#INF`: MSVC's printf of NaN and infinity.
+    MsvcSpecial,
+}
+
+/// Reads the number forms real exporters write by mistake; `None` for anything else.
+fn parse_quirky_number(token: &[u8]) -> Option<(f32, Quirk)> {
+    let negative = token.first() == Some(&b'-');
+    let body = token.strip_prefix(b"-").or_else(|| token.strip_prefix(b"+")).unwrap_or(token);
+    if let Some(at) = body.windows(2).position(|w| w == b".#") {
+        let (digits, kind) = (body.get(..at)?, body.get(at + 2..)?.to_ascii_uppercase());
+        if digits.is_empty() || !digits.iter().all(u8::is_ascii_digit) {
+            return None;
+        }
+        if kind.starts_with(b"INF") {
+            return Some((if negative { f32::NEG_INFINITY } else { f32::INFINITY }, Quirk::MsvcSpecial));
+        }
+        if kind.starts_with(b"IND") || kind.starts_with(b"QNAN") || kind.starts_with(b"SNAN") {
+            return Some((f32::NAN, Quirk::MsvcSpecial));
+        }
+        return None;
+    }
+    if token.iter().filter(|&&b| b == b',').count() == 1 && !token.contains(&b'.') {
+        let fixed: Vec<u8> = token.iter().map(|&b| if b == b',' { b'.' } else { b }).collect();
+        let value = fast_float2::parse::<f32, _>(&fixed).ok()?;
+        return Some((value, Quirk::DecimalComma));
+    }
+    None
+}
+
 /// Parses the rows of one chunk into `out` (row after row). With `ring`, every row
 /// is written to the start of `out` instead: used to find an error without storing.
 /// Returns the number of rows and the line of the first non-finite value.
@@ -238,7 +286,7 @@ fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring
     let mut rows = 0usize;
     let mut k = 0usize;
     let mut base = 0usize;
-    let mut non_finite = None;
+    let mut notes = RowNotes::default();
     let column = |i: usize, line_start: isize| u32::try_from(i as isize - line_start + 1).unwrap_or(u32::MAX);
     let row_error = |line: u32, column: u32, k: usize| {
         ParseError::new(line, column, format!("motion row has {k} values, expected {width} (one per channel)"))
@@ -269,11 +317,21 @@ fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring
                     Ok((v, used)) if used > 0 && rest.get(used).is_none_or(|&c| CLASS[c as usize] != OTHER) => (v, used),
                     _ => {
                         let end = rest.iter().position(|&c| CLASS[c as usize] != OTHER).unwrap_or(rest.len());
-                        return Err(ParseError::new(line, col, format!("expected a number in motion row, found `{}`", show_bytes(&rest[..end]))));
+                        let token = &rest[..end];
+                        match parse_quirky_number(token) {
+                            Some((v, Quirk::DecimalComma)) => {
+                                notes.decimal_comma = notes.decimal_comma.or(Some(line));
+                                (v, end)
+                            }
+                            Some((v, Quirk::MsvcSpecial)) => (v, end),
+                            None => {
+                                return Err(ParseError::new(line, col, format!("expected a number in motion row, found `{}`", show_bytes(token))));
+                            }
+                        }
                     }
                 };
-                if !value.is_finite() && non_finite.is_none() {
-                    non_finite = Some(line);
+                if !value.is_finite() && notes.non_finite.is_none() {
+                    notes.non_finite = Some(line);
                 }
                 match out.get_mut(base + k) {
                     Some(slot) => *slot = value,
@@ -290,7 +348,7 @@ fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring
         }
         rows += 1;
     }
-    Ok((rows, non_finite))
+    Ok((rows, notes))
 }
 
 #[cfg(test)]
