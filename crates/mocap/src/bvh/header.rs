@@ -228,8 +228,13 @@ impl<'a> Builder<'a> {
                 self.cursor.next_token();
                 let value = self.header_value(&t, &lower[6..], "Frames:")?;
                 // A whole number; "120.0" (some exporters) is accepted too.
+                // Too many digits for u64 saturates: only the rows count anyway.
                 let n = std::str::from_utf8(value.text).ok().and_then(|s| {
-                    s.parse::<u64>().ok().or_else(|| s.parse::<f64>().ok().filter(|f| f.fract() == 0.0 && *f >= 0.0 && *f < 1e19).map(|f| f as u64))
+                    let all_digits = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+                    s.parse::<u64>()
+                        .ok()
+                        .or_else(|| all_digits.then_some(u64::MAX))
+                        .or_else(|| s.parse::<f64>().ok().filter(|f| f.fract() == 0.0 && *f >= 0.0 && *f < 1e19).map(|f| f as u64))
                 });
                 let n = n.ok_or_else(|| error_at(&value, format!("expected a whole number of frames after Frames:, found `{}`", value.show())))?;
                 frames = Some((n, t.line));
