@@ -69,6 +69,16 @@ try {
     check(!a.equals(b), 'pose at frame 0 and mid-clip differ');
   });
 
+  await step('selecting a joint highlights it and shows the inspector', async () => {
+    const s0 = await state(page);
+    const joint = s0.clips[0].jointNames[Math.min(2, s0.clips[0].jointNames.length - 1)];
+    const found = await page.evaluate((j) => window.mocapViewer.selectJoint(j), joint);
+    const s = await waitState(page, (s, a) => s.selectedJoint === a, joint);
+    await waitFrames(page, 2);
+    await page.screenshot({ path: shot('selected') });
+    check(found && s.selectedJoint === joint, `selectJoint(${joint}) -> selectedJoint ${s.selectedJoint}`);
+  });
+
   await step('keyboard: space toggles play, arrows step', async () => {
     await page.mouse.click(600, 400);
     const s0 = await state(page);

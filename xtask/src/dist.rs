@@ -33,28 +33,43 @@ pub fn dist(fast: bool) -> Result<PathBuf, String> {
         .arg(&target_dir);
     run(&mut cargo)?;
     let wasm = target_dir.join(TARGET).join(profile).join("mocap_web.wasm");
+    if !fast {
+        optimize(&wasm);
+    }
 
     let dist = root.join("dist");
     let _ = std::fs::remove_dir_all(&dist);
     let pkg = dist.join("pkg");
     std::fs::create_dir_all(&pkg).map_err(|e| format!("{}: {e}", pkg.display()))?;
     let bindgen = setup::wasm_bindgen_cli()?;
-    run(Command::new(bindgen).args(["--target", "web", "--no-typescript", "--out-dir"]).arg(&pkg).arg(&wasm))?;
-    if !fast {
-        optimize(&pkg.join("mocap_web_bg.wasm"));
-    }
+    run(Command::new(bindgen)
+        .args(["--target", "web", "--no-typescript", "--remove-name-section", "--remove-producers-section", "--out-dir"])
+        .arg(&pkg)
+        .arg(&wasm))?;
     copy(&root.join("index.html"), &dist.join("index.html"))?;
     copy_dir(&root.join("web"), &dist.join("web"))?;
     println!("dist: {}", dist.display());
     Ok(dist)
 }
 
-/// Shrinks the wasm with wasm-opt -Os when available; keeps the input on failure.
+/// Oldest wasm-opt trusted with current Rust output: 108 (Debian 12) breaks the
+/// externref table when run after wasm-bindgen and grows the gzipped size before it.
+const MIN_WASM_OPT: u32 = 116;
+
+/// Shrinks the cargo output with `wasm-opt -Os` (before wasm-bindgen) when a recent
+/// enough binaryen is available; keeps the input on any failure.
 fn optimize(wasm: &Path) {
     let Some(wasm_opt) = setup::wasm_opt() else {
         eprintln!("xtask: wasm-opt not found; skipping size optimisation");
         return;
     };
+    let version = crate::util::output(Command::new(wasm_opt).arg("--version"))
+        .and_then(|v| v.split_whitespace().nth(2).and_then(|n| n.parse::<u32>().ok()))
+        .unwrap_or(0);
+    if version < MIN_WASM_OPT {
+        eprintln!("xtask: wasm-opt version {version} is older than {MIN_WASM_OPT}; skipping it");
+        return;
+    }
     let out = wasm.with_extension("opt.wasm");
     let features = [
         "--enable-bulk-memory",

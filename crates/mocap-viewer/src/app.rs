@@ -11,8 +11,9 @@ pub struct ViewerApp {
 }
 
 impl ViewerApp {
-    /// Wraps `viewer`; `on_open_requested` runs when the user presses "Open…".
-    pub fn new(viewer: Rc<RefCell<Viewer>>, on_open_requested: Box<dyn FnMut()>) -> ViewerApp {
+    /// Wraps `viewer` (and picks the dark theme, to match the 3D view); `on_open_requested` runs when the user presses "Open…".
+    pub fn new(ctx: &egui::Context, viewer: Rc<RefCell<Viewer>>, on_open_requested: Box<dyn FnMut()>) -> ViewerApp {
+        ctx.set_theme(egui::ThemePreference::Dark);
         ViewerApp { viewer, on_open_requested }
     }
 }

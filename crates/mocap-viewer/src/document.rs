@@ -1,6 +1,6 @@
 //! A loaded clip with what the UI derives from it once.
 
-use mocap::{Clip, Units};
+use mocap::{Aabb, Clip, Units};
 
 /// A clip, its file name and derived facts (children lists, units, scale).
 pub struct Document {
@@ -12,6 +12,8 @@ pub struct Document {
     pub children: Vec<Vec<usize>>,
     /// Guessed length unit.
     pub units: Units,
+    /// Bounds of all joints over all frames (computed once).
+    pub bounds: Aabb,
     /// Size of the first pose in file units (a humanoid's height), for sizing markers.
     pub extent: f32,
 }
@@ -28,7 +30,7 @@ impl Document {
         }
         let extent = clip.pose_extent();
         let extent = if extent.is_finite() && extent > 0.0 { extent } else { 1.0 };
-        Document { name: name.to_owned(), units: clip.units(), clip, children, extent }
+        Document { name: name.to_owned(), units: clip.units(), bounds: clip.bounds(), clip, children, extent }
     }
 
     /// Timing facts for playback.

@@ -45,7 +45,7 @@ fn push_axes(t: &Transform, length: f32, scene: &mut Scene) {
 /// A floor at the lowest point the motion reaches, with 0.5 m cells (1 m major lines)
 /// in the clip's units, covering the whole motion.
 pub fn floor_grid(doc: &Document) -> Grid {
-    let bounds = doc.clip.bounds();
+    let bounds = doc.bounds;
     let cell = 0.5 * doc.units_per_meter();
     let (center, half) = if bounds.is_empty() || !bounds.size().is_finite() {
         (Vec3::ZERO, 10)

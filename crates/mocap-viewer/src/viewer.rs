@@ -81,7 +81,7 @@ impl Viewer {
     pub fn open(&mut self, doc: Document) {
         self.playback.time = 0.0;
         self.playback.range = None;
-        self.camera.frame(doc.clip.bounds());
+        self.camera.frame(doc.bounds);
         self.selected = None;
         self.error = None;
         self.document = Some(doc);
@@ -196,7 +196,7 @@ impl Viewer {
     pub fn reset_camera(&mut self) {
         self.camera = OrbitCamera::default();
         if let Some(doc) = &self.document {
-            self.camera.frame(doc.clip.bounds());
+            self.camera.frame(doc.bounds);
         }
     }
 

@@ -3,8 +3,9 @@
 use crate::camera::OrbitCamera;
 use mocap_render::{RenderTarget, Scene, SceneRenderer};
 
-/// Colour format of the offscreen image (egui samples it like its own textures).
-const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Colour format of the offscreen image: egui composites in gamma space, so the
+/// scene is drawn with sRGB-encoded colours into a plain unorm texture, like egui's own.
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 /// GPU resources of the 3D view, created on first use.
 struct Gpu {

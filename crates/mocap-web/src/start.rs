@@ -50,7 +50,7 @@ pub async fn start(canvas_id: &str, file_input_id: &str) -> Result<MocapViewer, 
                 if cc.wgpu_render_state.is_none() {
                     return Err("no wgpu renderer".into());
                 }
-                Ok(Box::new(ViewerApp::new(app_viewer, Box::new(open_picker))))
+                Ok(Box::new(ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker))))
             }),
         )
         .await?;

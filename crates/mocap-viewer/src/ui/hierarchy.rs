@@ -4,9 +4,10 @@ use crate::document::Document;
 
 /// Shows the hierarchy panel; records the label of every joint drawn in `labels`.
 pub fn show(ui: &mut egui::Ui, doc: Option<&Document>, selected: &mut Option<usize>, labels: &mut Vec<String>) {
-    egui::Panel::left("hierarchy").resizable(true).default_size(190.0).show(ui, |ui| {
+    egui::Panel::left("hierarchy").resizable(true).default_size(220.0).show(ui, |ui| {
         ui.heading("Hierarchy");
         let Some(doc) = doc else { return };
+        ui.spacing_mut().indent = 10.0;
         egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
             let roots = doc.clip.skeleton.joints.iter().enumerate().filter(|(_, j)| j.parent.is_none());
             for (root, _) in roots {

@@ -24,7 +24,7 @@ pub fn show(ui: &mut egui::Ui, doc: Option<&Document>) {
         row("Units", format!("{} (guessed)", doc.units.name()));
     });
     if !clip.warnings.is_empty() {
-        egui::CollapsingHeader::new(format!("⚠ {} warnings", clip.warnings.len())).id_salt("warnings").show(ui, |ui| {
+        egui::CollapsingHeader::new(format!("{} warnings", clip.warnings.len())).id_salt("warnings").show(ui, |ui| {
             for w in clip.warnings.iter().take(100) {
                 ui.label(w.to_string());
             }

@@ -12,7 +12,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                 ui.set_max_width((rect.width() - 40.0).max(200.0));
                 ui.horizontal(|ui| {
                     ui.colored_label(egui::Color32::WHITE, egui::RichText::new(format!("Could not open file: {error}")).strong());
-                    if ui.button("✖").clicked() {
+                    if ui.button("Close").clicked() {
                         viewer.error = None;
                     }
                 });

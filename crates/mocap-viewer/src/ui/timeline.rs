@@ -13,18 +13,18 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             return;
         };
         let frame = viewer.playback.frame(timing);
-        let play = if viewer.playback.playing { "⏸ Pause" } else { "▶ Play" };
+        let play = if viewer.playback.playing { "Pause" } else { "Play" };
         ui.horizontal(|ui| {
             let mut act = |ui: &mut egui::Ui, text: &str, hint: &str, action: Action| {
                 if ui.button(text).on_hover_text(hint).clicked() {
                     viewer.apply(action);
                 }
             };
-            act(ui, "⏮", "First frame (Home)", Action::First);
-            act(ui, "⏴", "Step back (←)", Action::Step(-1));
+            act(ui, "|<", "First frame (Home)", Action::First);
+            act(ui, "<", "Step back (←)", Action::Step(-1));
             act(ui, play, "Play / pause (Space)", Action::TogglePlay);
-            act(ui, "⏵", "Step forward (→)", Action::Step(1));
-            act(ui, "⏭", "Last frame (End)", Action::Last);
+            act(ui, ">", "Step forward (→)", Action::Step(1));
+            act(ui, ">|", "Last frame (End)", Action::Last);
         });
         ui.horizontal(|ui| {
             ui.monospace(format!("frame {frame:>5} / {}   {:>8.3} s", timing.last(), viewer.playback.time));

@@ -28,7 +28,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             if ui.small_button("Reset view").on_hover_text("r").clicked() {
                 viewer.reset_camera();
             }
-            ui.label("ⓘ").on_hover_text(HELP);
+            ui.label("Keys (?)").on_hover_text(HELP);
         });
     });
 }

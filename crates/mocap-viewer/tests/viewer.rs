@@ -1,0 +1,82 @@
+//! Viewer behaviour without a GPU: loading, errors, playback, selection, primitives.
+
+use mocap_viewer::{Viewer, pose_scene};
+
+const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
+
+fn loaded() -> Viewer {
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).expect("walk.bvh loads");
+    v
+}
+
+#[test]
+fn default_clip_loads_and_plays_from_frame_zero() {
+    let v = loaded();
+    let s = v.snapshot();
+    assert_eq!(s.clips.len(), 1);
+    assert_eq!(s.clips[0].name, "walk.bvh");
+    assert_eq!(s.clips[0].frames, 67);
+    assert_eq!(s.clips[0].joints, 21);
+    assert_eq!(s.frame, 0);
+    assert!(s.playing);
+    assert_eq!(s.error, None);
+}
+
+#[test]
+fn bad_file_keeps_the_open_clip_and_reports_position() {
+    let mut v = loaded();
+    let err = v.load("bad.bvh", b"HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n").unwrap_err();
+    assert!(err.starts_with("bad.bvh:"), "{err}");
+    let s = v.snapshot();
+    assert_eq!(s.clips[0].name, "walk.bvh");
+    assert_eq!(s.error.as_deref(), Some(err.as_str()));
+}
+
+#[test]
+fn new_clip_starts_at_zero_and_keeps_play_state() {
+    let mut v = loaded();
+    v.set_playing(false);
+    v.seek(30);
+    assert_eq!(v.frame(), 30);
+    v.load("again.bvh", WALK).unwrap();
+    assert_eq!(v.frame(), 0);
+    assert!(!v.snapshot().playing);
+}
+
+#[test]
+fn seek_is_clamped_and_frame_exact() {
+    let mut v = loaded();
+    v.set_playing(false);
+    v.seek(1000);
+    assert_eq!(v.frame(), 66);
+    v.seek(7);
+    assert_eq!(v.frame(), 7);
+}
+
+#[test]
+fn selection_by_index_is_validated() {
+    let mut v = loaded();
+    v.select(Some(3));
+    assert_eq!(v.snapshot().selected_joint.as_deref(), Some("Neck"));
+    v.select(Some(10_000));
+    assert_eq!(v.snapshot().selected_joint, None);
+}
+
+#[test]
+fn pose_becomes_bones_joints_and_a_floor_in_file_units() {
+    let v = loaded();
+    let doc = v.document.as_ref().unwrap();
+    let mut transforms = Vec::new();
+    doc.clip.world_transforms_into(0, &mut transforms);
+    let mut scene = mocap_render::Scene::default();
+    pose_scene::build_scene(doc, &transforms, &v.settings, Some(0), &mut scene);
+    let joints = doc.clip.skeleton.joints.len();
+    assert_eq!(scene.lines.len(), joints - 1, "one bone per non-root joint");
+    assert_eq!(scene.spheres.len(), 21);
+    let grid = scene.grid.unwrap();
+    assert!((grid.cell - 50.0).abs() < 1e-3, "0.5 m cells in centimetres: {}", grid.cell);
+    // Y up: the head is above the hips.
+    assert!(transforms[4].translation.y > transforms[0].translation.y);
+    assert!(grid.center.y <= transforms[0].translation.y);
+}
