@@ -64,7 +64,7 @@ pub fn info(path: &Path, as_json: bool) -> Result<ExitCode, String> {
     let _ = writeln!(out, "frame time: {} s ({:.3} fps)", clip.frame_time(), clip.fps());
     let _ = writeln!(out, "duration:   {:.3} s", clip.duration());
     let _ = writeln!(out, "bounds:     min {:?} max {:?}", bounds.min.to_array(), bounds.max.to_array());
-    let _ = writeln!(out, "units:      {} (guessed from a first-pose extent of {:.3})", units.name(), clip.pose_extent());
+    let _ = writeln!(out, "units:      {} (guessed from a first-pose height of {:.3})", units.name(), clip.pose_height());
     for w in &warnings {
         let _ = writeln!(out, "warning:    {w}");
     }
@@ -148,4 +148,95 @@ pub fn validate(paths: &[PathBuf]) -> Result<ExitCode, String> {
     }
     eprintln!("{} files, {} failed", files.len(), failed);
     Ok(if failed > 0 { ExitCode::FAILURE } else { ExitCode::SUCCESS })
+}
+
+/// What `mocap render` produces.
+pub enum Shot {
+    /// One frame (in the first clip's frame time).
+    Frame(usize),
+    /// One time in seconds.
+    Time(f64),
+    /// `a:b:step` frames into a directory.
+    Sequence(String),
+    /// A contact sheet with this many columns.
+    Sheet(u32),
+}
+
+/// Parses `a:b[:step]` (end inclusive).
+fn parse_range(text: &str) -> Result<(usize, usize, usize), String> {
+    let parts: Vec<Option<usize>> = text.split(':').map(|p| p.trim().parse().ok()).collect();
+    let (a, b, step) = match parts.as_slice() {
+        [Some(a), Some(b)] => (*a, *b, 1),
+        [Some(a), Some(b), Some(s)] => (*a, *b, *s),
+        _ => return Err(format!("--frames: expected a:b or a:b:step, found `{text}`")),
+    };
+    if step == 0 || b < a {
+        return Err(format!("--frames {text}: need a <= b and step >= 1"));
+    }
+    Ok((a, b, step))
+}
+
+/// `mocap render`.
+pub fn render(files: &[PathBuf], shot: Shot, out: &Path, size: &str, mode: &str, camera: Option<&str>) -> Result<ExitCode, String> {
+    if mode != "sticks" {
+        return Err(format!("--mode {mode}: only `sticks` is available (capsules are not implemented yet)"));
+    }
+    let size = crate::render::parse_size(size)?;
+    let orbit = camera.map(crate::render::parse_orbit).transpose()?.unwrap_or_default();
+    let clips = files.iter().map(|f| read_clip(f)).collect::<Result<Vec<_>, _>>()?;
+    let stage = crate::render::Stage::new(clips.iter().collect());
+    let gpu = crate::render::Gpu::new()?;
+    let mut scene = mocap_render::Scene::default();
+    let dt = stage.frame_time();
+    match shot {
+        Shot::Frame(_) | Shot::Time(_) => {
+            let time = match shot {
+                Shot::Time(t) if t.is_finite() => t.max(0.0),
+                Shot::Time(_) => return Err("--time must be a number of seconds".into()),
+                Shot::Frame(f) if f < stage.frame_count() => mocap::sample::time_of_frame(f, dt),
+                Shot::Frame(f) => return Err(format!("frame {f} is out of range (the clip has {} frames)", stage.frame_count())),
+                _ => 0.0,
+            };
+            let mut offscreen = crate::render::Offscreen::new(&gpu, size);
+            stage.scene_at(time, &mut scene);
+            let pixels = offscreen.draw(&gpu, &scene, &stage.camera(orbit, offscreen.size()))?;
+            crate::render::write_png(out, offscreen.size(), &pixels)?;
+        }
+        Shot::Sequence(range) => {
+            let (a, b, step) = parse_range(&range)?;
+            let last = stage.frame_count().saturating_sub(1);
+            if a > last {
+                return Err(format!("--frames {range}: the clip has {} frames", stage.frame_count()));
+            }
+            std::fs::create_dir_all(out).map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
+            let mut offscreen = crate::render::Offscreen::new(&gpu, size);
+            let camera = stage.camera(orbit, offscreen.size());
+            for frame in (a..=b.min(last)).step_by(step) {
+                stage.scene_at(mocap::sample::time_of_frame(frame, dt), &mut scene);
+                let pixels = offscreen.draw(&gpu, &scene, &camera)?;
+                crate::render::write_png(&out.join(format!("frame_{frame:05}.png")), offscreen.size(), &pixels)?;
+            }
+        }
+        Shot::Sheet(columns) => {
+            let columns = columns.clamp(1, 16);
+            let tile_w = (size[0] / columns).max(16);
+            let rows = ((size[1] as f32 / (tile_w as f32 * 9.0 / 16.0)).floor() as u32).clamp(1, 16);
+            let tile = [tile_w, (size[1] / rows).max(16)];
+            let mut offscreen = crate::render::Offscreen::new(&gpu, tile);
+            let tile = offscreen.size();
+            let camera = stage.camera(orbit, tile);
+            let count = (columns * rows) as usize;
+            let sheet_size = [tile[0] * columns, tile[1] * rows];
+            let mut sheet = vec![0u8; (sheet_size[0] * sheet_size[1] * 4) as usize];
+            for n in 0..count {
+                let time = if count > 1 { stage.duration() * n as f64 / (count - 1) as f64 } else { 0.0 };
+                stage.scene_at(time, &mut scene);
+                let pixels = offscreen.draw(&gpu, &scene, &camera)?;
+                let (x, y) = ((n as u32 % columns) * tile[0], (n as u32 / columns) * tile[1]);
+                crate::render::blit(&mut sheet, sheet_size[0], &pixels, tile, x, y);
+            }
+            crate::render::write_png(out, sheet_size, &sheet)?;
+        }
+    }
+    Ok(ExitCode::SUCCESS)
 }

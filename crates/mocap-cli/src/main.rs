@@ -3,6 +3,7 @@
 //! Errors go to stderr as `FILE:LINE:COL: message` with a non-zero exit status.
 
 mod commands;
+mod render;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -45,6 +46,39 @@ enum Command {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// Renders clips to PNG headlessly (wgpu on Vulkan; Mesa lavapipe without a GPU).
+    Render {
+        /// One or more motion files, drawn side by side.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Frame to render (in the first file's frame time; default 0).
+        #[arg(long, conflicts_with_all = ["time", "frames", "sheet"])]
+        frame: Option<usize>,
+        /// Time in seconds to render (interpolated).
+        #[arg(long, conflicts_with_all = ["frames", "sheet"])]
+        time: Option<f64>,
+        /// A sequence `a:b:step` (end inclusive, step default 1); --out is a directory.
+        #[arg(long, conflicts_with = "sheet")]
+        frames: Option<String>,
+        /// A contact sheet of evenly spaced frames over the whole clip.
+        #[arg(long)]
+        sheet: bool,
+        /// Columns of the contact sheet (rows follow from the aspect).
+        #[arg(long, default_value_t = 4)]
+        columns: u32,
+        /// Output PNG (or directory for --frames).
+        #[arg(long)]
+        out: PathBuf,
+        /// Image size WIDTHxHEIGHT (the whole sheet for --sheet).
+        #[arg(long, default_value = "1280x720")]
+        size: String,
+        /// Draw mode: sticks (bones and joints). Capsules are not available yet.
+        #[arg(long, default_value = "sticks")]
+        mode: String,
+        /// Camera `yaw,pitch[,distance]` in degrees and metres (default frames the motion).
+        #[arg(long)]
+        camera: Option<String>,
+    },
     /// Checks files or directories (recursively): one line per file.
     Validate {
         /// Files or directories.
@@ -60,6 +94,15 @@ fn main() -> ExitCode {
         Command::Pose { file, frame, json: _ } => commands::pose(&file, frame),
         Command::Convert { input, output } => commands::convert(&input, &output),
         Command::Validate { paths } => commands::validate(&paths),
+        Command::Render { files, frame, time, frames, sheet, columns, out, size, mode, camera } => {
+            let shot = match (frame, time, frames, sheet) {
+                (_, Some(t), _, _) => commands::Shot::Time(t),
+                (_, _, Some(range), _) => commands::Shot::Sequence(range),
+                (_, _, _, true) => commands::Shot::Sheet(columns),
+                (f, ..) => commands::Shot::Frame(f.unwrap_or(0)),
+            };
+            commands::render(&files, shot, &out, &size, &mode, camera.as_deref())
+        }
     };
     match result {
         Ok(code) => code,

@@ -65,7 +65,7 @@ pub enum Units {
 }
 
 impl Units {
-    /// Guesses the unit from the rest-pose extent of a humanoid.
+    /// Guesses the unit from the height of a humanoid in file units.
     pub fn guess(extent: f32) -> Units {
         match extent {
             e if !(e.is_finite()) => Units::Unknown,
@@ -199,20 +199,36 @@ impl Clip {
         bounds
     }
 
-    /// Largest edge of the bounding box of the first frame's pose (the rest pose
-    /// when there are no frames): a humanoid's height or arm span.
-    pub fn pose_extent(&self) -> f32 {
+    /// Bounding box of the first frame's pose (the rest pose when there are no
+    /// frames), without the root joints when there are others: a root is inside the
+    /// body for most skeletons, but some (Bandai-Namco's `joint_Root`) sit on the
+    /// floor far from it and would inflate every size.
+    pub fn first_pose_bounds(&self) -> Aabb {
+        let positions = if self.frame_count() == 0 { rest_positions(&self.skeleton) } else { self.world_positions(0) };
+        let skip_roots = self.skeleton.joints.iter().any(|j| j.parent.is_some());
         let mut b = Aabb::EMPTY;
-        if self.frame_count() == 0 {
-            rest_positions(&self.skeleton).into_iter().for_each(|p| b.include(p));
-        } else {
-            self.world_positions(0).into_iter().for_each(|p| b.include(p));
+        for (joint, p) in self.skeleton.joints.iter().zip(positions) {
+            if !(skip_roots && joint.parent.is_none()) {
+                b.include(p);
+            }
         }
-        b.size().max_element()
+        b
     }
 
-    /// Guess of the file's length unit from the size of the first pose.
+    /// Largest edge of the first pose's bounding box: a humanoid's height or arm span.
+    pub fn pose_extent(&self) -> f32 {
+        self.first_pose_bounds().size().max_element()
+    }
+
+    /// The first pose's height (BVH is Y-up); its largest edge when it is lying down
+    /// or the file is Z-up (height under a quarter of the largest edge).
+    pub fn pose_height(&self) -> f32 {
+        let size = self.first_pose_bounds().size();
+        if size.y >= 0.25 * size.max_element() { size.y } else { size.max_element() }
+    }
+
+    /// Guess of the file's length unit from the height of the first pose.
     pub fn units(&self) -> Units {
-        Units::guess(self.pose_extent())
+        Units::guess(self.pose_height())
     }
 }

@@ -74,6 +74,23 @@ fn corpus_bvh_files_parse_as_the_manifest_says() {
     }
 }
 
+#[test]
+fn unit_guesses_on_known_sources() {
+    let Some(dir) = corpus_dir() else { return };
+    let expect = [
+        ("bvh/assimp_cmu/01_01.bvh", mocap::Units::Inches),
+        ("bvh/bandai_namco/dataset-1_bow_active_001.bvh", mocap::Units::Centimeters),
+        ("bvh/bandai_namco/dataset-2_walk_elderly_004.bvh", mocap::Units::Centimeters),
+        ("bvh/axis_neuron/test.bvh", mocap::Units::Centimeters),
+        ("bvh/mae_depthcam/bk_cut_single_01.bvh", mocap::Units::Millimeters),
+        ("bvh/fairmotion/pfnn_hierarchy.bvh", mocap::Units::Meters),
+    ];
+    for (path, units) in expect {
+        let clip = mocap::bvh::parse(&std::fs::read(dir.join(path)).unwrap()).unwrap();
+        assert_eq!(clip.units(), units, "{path}: height {}", clip.pose_height());
+    }
+}
+
 /// Same joints (names of real joints, parents, offsets, channels) and identical bits.
 pub fn assert_same(a: &mocap::Clip, b: &mocap::Clip, what: &str) {
     assert_eq!(a.skeleton.len(), b.skeleton.len(), "{what}");

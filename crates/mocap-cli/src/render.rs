@@ -1,0 +1,298 @@
+//! `mocap render`: headless rendering of clips to PNG through wgpu (Vulkan; Mesa's
+//! lavapipe on a machine without a GPU), for stills, frame sequences and contact
+//! sheets. The scene is built from world positions; the renderer knows no formats.
+
+use mocap::glam::Vec3;
+use mocap::{Aabb, Clip, Interpolation};
+use mocap_render::{Camera, Grid, Line, RenderTarget, Scene, SceneRenderer, Sphere, wgpu};
+use std::path::Path;
+
+/// Colour format of the offscreen target (sRGB, read back as RGBA8).
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// Multisampling for anti-aliasing.
+const SAMPLES: u32 = 4;
+/// Vertical field of view, radians.
+const FOV_Y: f32 = 0.8;
+
+/// Per-character colours (bones), cycled.
+const PALETTE: [[u8; 4]; 6] =
+    [[215, 220, 230, 255], [240, 160, 80, 255], [120, 200, 130, 255], [110, 170, 240, 255], [225, 120, 190, 255], [230, 210, 100, 255]];
+
+/// Where the camera is: orbit angles in degrees and a distance in file units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Orbit {
+    /// Rotation about the vertical axis, degrees (0 looks along -Z).
+    pub yaw: f32,
+    /// Elevation, degrees (positive looks down).
+    pub pitch: f32,
+    /// Distance from the target in metres; `None` frames the whole motion.
+    pub distance: Option<f32>,
+}
+
+impl Default for Orbit {
+    fn default() -> Orbit {
+        Orbit { yaw: 30.0, pitch: 15.0, distance: None }
+    }
+}
+
+/// Parses `yaw,pitch[,distance]`.
+pub fn parse_orbit(text: &str) -> Result<Orbit, String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let number = |s: &str| s.parse::<f32>().ok().filter(|v| v.is_finite()).ok_or_else(|| format!("--camera: `{s}` is not a number"));
+    match parts.as_slice() {
+        [yaw, pitch] => Ok(Orbit { yaw: number(yaw)?, pitch: number(pitch)?, distance: None }),
+        [yaw, pitch, distance] => {
+            let d = number(distance)?;
+            if d <= 0.0 {
+                return Err("--camera: distance must be positive".into());
+            }
+            Ok(Orbit { yaw: number(yaw)?, pitch: number(pitch)?, distance: Some(d) })
+        }
+        _ => Err("--camera takes yaw,pitch[,distance] (degrees, degrees, metres)".into()),
+    }
+}
+
+/// Parses `WIDTHxHEIGHT`, each 16..=8192.
+pub fn parse_size(text: &str) -> Result<[u32; 2], String> {
+    let (w, h) = text.split_once(['x', 'X']).ok_or_else(|| format!("--size: expected WIDTHxHEIGHT, found `{text}`"))?;
+    let parse = |s: &str| s.trim().parse::<u32>().ok().filter(|v| (16..=8192).contains(v));
+    match (parse(w), parse(h)) {
+        (Some(w), Some(h)) => Ok([w, h]),
+        _ => Err(format!("--size: `{text}`: width and height must be 16 to 8192 pixels")),
+    }
+}
+
+/// A wgpu device for offscreen work.
+pub struct Gpu {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+}
+
+impl Gpu {
+    /// Opens the first native adapter (Vulkan); a software one (lavapipe) is fine.
+    pub fn new() -> Result<Gpu, String> {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+            backends: wgpu::Backends::VULKAN,
+            ..wgpu::InstanceDescriptor::new_without_display_handle()
+        });
+        let options = wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        };
+        let adapter = pollster::block_on(instance.request_adapter(&options)).map_err(|e| {
+            format!("no Vulkan adapter ({e}); on Debian install Mesa's software renderer: apt-get install mesa-vulkan-drivers")
+        })?;
+        let name = adapter.get_info().name;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("mocap render"),
+            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            ..Default::default()
+        }))
+        .map_err(|e| format!("cannot open the Vulkan device {name}: {e}"))?;
+        Ok(Gpu { device, queue })
+    }
+}
+
+/// Draws scenes into an offscreen target and reads the pixels back.
+pub struct Offscreen {
+    renderer: SceneRenderer,
+    target: RenderTarget,
+    readback: wgpu::Buffer,
+    padded_row: u32,
+}
+
+impl Offscreen {
+    /// A target of `size` pixels.
+    pub fn new(gpu: &Gpu, size: [u32; 2]) -> Offscreen {
+        let renderer = SceneRenderer::new(&gpu.device, FORMAT, SAMPLES);
+        let target = RenderTarget::new(&gpu.device, FORMAT, SAMPLES, size);
+        let [w, h] = target.size();
+        let padded_row = (w * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("mocap readback"),
+            size: u64::from(padded_row) * u64::from(h),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        Offscreen { renderer, target, readback, padded_row }
+    }
+
+    /// Size in pixels.
+    pub fn size(&self) -> [u32; 2] {
+        self.target.size()
+    }
+
+    /// Renders and returns tightly packed RGBA8 (sRGB) rows.
+    pub fn draw(&mut self, gpu: &Gpu, scene: &Scene, camera: &Camera) -> Result<Vec<u8>, String> {
+        let [w, h] = self.target.size();
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("mocap render") });
+        self.renderer.encode(&gpu.device, &gpu.queue, &mut encoder, &self.target, scene, camera);
+        encoder.copy_texture_to_buffer(
+            wgpu::TexelCopyTextureInfo { texture: &self.target.color, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+            wgpu::TexelCopyBufferInfo {
+                buffer: &self.readback,
+                layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(self.padded_row), rows_per_image: Some(h) },
+            },
+            wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        );
+        gpu.queue.submit([encoder.finish()]);
+        let slice = self.readback.slice(..);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |result| {
+            let _ = sender.send(result);
+        });
+        gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU wait failed: {e}"))?;
+        receiver.recv().map_err(|e| e.to_string())?.map_err(|e| format!("GPU readback failed: {e}"))?;
+        let mut pixels = Vec::with_capacity((w * h * 4) as usize);
+        {
+            let data = slice.get_mapped_range().map_err(|e| format!("GPU readback failed: {e:?}"))?;
+            for row in data.chunks(self.padded_row as usize).take(h as usize) {
+                pixels.extend_from_slice(row.get(..(w * 4) as usize).unwrap_or(row));
+            }
+        }
+        self.readback.unmap();
+        Ok(pixels)
+    }
+}
+
+/// The clips to draw, in metres (each scaled by its guessed unit, so clips in cm
+/// and inches stand side by side at the same size), placed along X.
+pub struct Stage<'a> {
+    clips: Vec<&'a Clip>,
+    scales: Vec<f32>,
+    offsets: Vec<Vec3>,
+    bounds: Aabb,
+    extent: f32,
+}
+
+impl<'a> Stage<'a> {
+    /// Places `clips` along X, each in its own lane, and measures the whole motion.
+    pub fn new(clips: Vec<&'a Clip>) -> Stage<'a> {
+        let scales: Vec<f32> = clips.iter().map(|c| c.units().meters_per_unit()).collect();
+        let per_clip: Vec<Aabb> = clips
+            .iter()
+            .zip(&scales)
+            .map(|(c, &s)| {
+                let b = c.bounds();
+                if b.is_empty() { b } else { Aabb { min: b.min * s, max: b.max * s } }
+            })
+            .collect();
+        let extent = clips.iter().zip(&scales).map(|(c, &s)| c.pose_extent() * s).fold(0.0f32, f32::max).max(1e-3);
+        let mut offsets = Vec::with_capacity(clips.len());
+        let mut cursor = 0.0f32;
+        let mut bounds = Aabb::EMPTY;
+        for b in &per_clip {
+            let width = if b.is_empty() { extent } else { b.size().x };
+            // Centre each clip's motion in its lane; lanes are a little wider than it.
+            let center_x = if b.is_empty() { 0.0 } else { b.center().x };
+            let offset = Vec3::new(cursor + width * 0.5 - center_x, 0.0, 0.0);
+            if !b.is_empty() {
+                bounds.include(b.min + offset);
+                bounds.include(b.max + offset);
+            }
+            offsets.push(offset);
+            cursor += width + extent * 0.5;
+        }
+        // Centre the whole row on the origin.
+        let shift = Vec3::new(-bounds.center().x, 0.0, 0.0);
+        for o in &mut offsets {
+            *o += shift;
+        }
+        if !bounds.is_empty() {
+            bounds = Aabb { min: bounds.min + shift, max: bounds.max + shift };
+        }
+        Stage { clips, scales, offsets, bounds, extent }
+    }
+
+    /// The longest clip's duration.
+    pub fn duration(&self) -> f64 {
+        self.clips.iter().map(|c| c.duration()).fold(0.0, f64::max)
+    }
+
+    /// Frame time of the first clip (frames on the command line count in it).
+    pub fn frame_time(&self) -> f64 {
+        self.clips.first().map_or(1.0 / 30.0, |c| c.frame_time())
+    }
+
+    /// Frames of the longest clip, in the first clip's frame time.
+    pub fn frame_count(&self) -> usize {
+        (self.duration() / self.frame_time()).round() as usize + 1
+    }
+
+    /// Fills `scene` with the floor and every clip posed at `time` seconds.
+    pub fn scene_at(&self, time: f64, scene: &mut Scene) {
+        scene.clear();
+        scene.background = [38, 40, 46, 255];
+        scene.grid = Some(self.floor());
+        let radius = self.extent * 0.012;
+        let mut positions = Vec::new();
+        for (n, ((clip, offset), &scale)) in self.clips.iter().zip(&self.offsets).zip(&self.scales).enumerate() {
+            clip.sample_world_positions_into(time.min(clip.duration()), Interpolation::Linear, &mut positions);
+            positions.iter_mut().for_each(|p| *p *= scale);
+            let color = PALETTE[n % PALETTE.len()];
+            for (joint, &p) in clip.skeleton.joints.iter().zip(&positions) {
+                if !p.is_finite() {
+                    continue;
+                }
+                if let Some(parent) = joint.parent.and_then(|i| positions.get(i)).filter(|q| q.is_finite()) {
+                    scene.lines.push(Line { a: *parent + *offset, b: p + *offset, color, width_px: 3.0 });
+                }
+                if !joint.end_site {
+                    scene.spheres.push(Sphere { center: p + *offset, radius, color: [90, 160, 235, 255] });
+                }
+            }
+        }
+    }
+
+    /// A floor under the lowest point of the motion, with 0.5 m cells.
+    fn floor(&self) -> Grid {
+        let cell = 0.5;
+        let (center, half) = if self.bounds.is_empty() {
+            (Vec3::ZERO, 10)
+        } else {
+            let size = self.bounds.size();
+            let half = ((size.x.max(size.z) * 0.5 + self.extent) / cell).ceil();
+            (Vec3::new(0.0, self.bounds.min.y, self.bounds.center().z), (half as u32).clamp(4, 400))
+        };
+        Grid { center, cell, half_cells: half, major_every: 2, color: [75, 78, 88, 255], major_color: [110, 114, 126, 255] }
+    }
+
+    /// A camera orbiting the motion's centre; the default distance fits it all.
+    pub fn camera(&self, orbit: Orbit, size: [u32; 2]) -> Camera {
+        let aspect = size[0] as f32 / size[1] as f32;
+        let (target, radius) = if self.bounds.is_empty() {
+            (Vec3::ZERO, self.extent)
+        } else {
+            (self.bounds.center(), (self.bounds.size().length() * 0.5).max(self.extent * 0.5))
+        };
+        let fit = (FOV_Y * 0.5).tan() * aspect.min(1.0);
+        let distance = orbit.distance.unwrap_or(radius / fit * 1.05);
+        let (yaw, pitch) = (orbit.yaw.to_radians(), orbit.pitch.to_radians().clamp(-1.5, 1.5));
+        let direction = Vec3::new(yaw.sin() * pitch.cos(), pitch.sin(), yaw.cos() * pitch.cos());
+        Camera::look_at(target + direction * distance, target, FOV_Y, aspect)
+    }
+}
+
+/// Writes RGBA8 pixels as a PNG.
+pub fn write_png(path: &Path, size: [u32; 2], rgba: &[u8]) -> Result<(), String> {
+    let file = std::fs::File::create(path).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), size[0], size[1]);
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+    let mut writer = encoder.write_header().map_err(|e| format!("{}: {e}", path.display()))?;
+    writer.write_image_data(rgba).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Copies a `size` tile into a sheet `sheet_width` pixels wide at `(x, y)`.
+pub fn blit(sheet: &mut [u8], sheet_width: u32, tile: &[u8], size: [u32; 2], x: u32, y: u32) {
+    let row_bytes = (size[0] * 4) as usize;
+    for (r, row) in tile.chunks(row_bytes).enumerate() {
+        let start = (((y as usize + r) * sheet_width as usize) + x as usize) * 4;
+        if let Some(dst) = sheet.get_mut(start..start + row_bytes) {
+            dst.copy_from_slice(row);
+        }
+    }
+}
