@@ -27,6 +27,8 @@ try {
     await page.goto(url);
     const s = await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
     check(s.clips[0].name === 'walk.bvh' && s.playing, `default clip walk.bvh playing (${s.clips[0].frames} frames)`);
+    const backend = { webgl2: 'Gl', webgpu: 'BrowserWebGpu' }[mode];
+    check(s.backend === backend, `3D view drawn with wgpu backend ${s.backend} (expected ${backend})`);
     await page.screenshot({ path: shot('page') });
     const a = await view3d(page, shot('anim-a'));
     await page.waitForTimeout(600);

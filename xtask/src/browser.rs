@@ -40,6 +40,9 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
             failures.push(format!("{mode}: {e}"));
         }
     }
+    if let Err(e) = run(node("nogpu.mjs").arg(&url).arg(&out).arg(&chromium)) {
+        failures.push(format!("no-gpu message: {e}"));
+    }
     if failures.is_empty() {
         println!("xtask test: all tests passed (screenshots in {})", out.display());
         Ok(())

@@ -36,4 +36,6 @@ pub struct Snapshot {
     pub tree_labels: Vec<String>,
     /// Frames the 3D view has rendered.
     pub frames_rendered: u64,
+    /// The wgpu backend drawing the 3D view ("BrowserWebGpu", "Gl", ...).
+    pub backend: Option<String>,
 }

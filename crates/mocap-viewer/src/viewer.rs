@@ -139,6 +139,7 @@ impl Viewer {
             error: self.error.clone(),
             tree_labels: self.tree_labels.clone(),
             frames_rendered: self.viewport.frames_rendered,
+            backend: self.viewport.backend.clone(),
         }
     }
 

@@ -20,6 +20,8 @@ pub struct Viewport {
     gpu: Option<Gpu>,
     /// Frames rendered so far (observable progress for tests and benchmarks).
     pub frames_rendered: u64,
+    /// The wgpu backend in use ("BrowserWebGpu", "Gl", "Vulkan", ...), once known.
+    pub backend: Option<String>,
 }
 
 impl Viewport {
@@ -41,6 +43,9 @@ impl Viewport {
         };
         let ppp = ui.ctx().pixels_per_point();
         let size = [(rect.width() * ppp).round().max(1.0) as u32, (rect.height() * ppp).round().max(1.0) as u32];
+        if self.backend.is_none() {
+            self.backend = Some(format!("{:?}", rs.adapter.get_info().backend));
+        }
         let gpu = self.gpu.get_or_insert_with(|| create_gpu(rs, size));
         if !gpu.target.matches(FORMAT, gpu.renderer.sample_count(), size) {
             gpu.target = RenderTarget::new(&rs.device, FORMAT, gpu.renderer.sample_count(), size);

@@ -17,7 +17,7 @@ pub struct MocapViewer {
 #[wasm_bindgen]
 impl MocapViewer {
     /// `{clips:[{name, frames, frameTime, joints, jointNames}], frame, time, playing, speed,
-    /// selectedJoint, error, treeLabels, framesRendered}`.
+    /// selectedJoint, error, treeLabels, framesRendered, backend}`.
     pub fn state(&self) -> JsValue {
         match self.viewer.try_borrow() {
             Ok(v) => crate::js_state::to_js(&v.snapshot()),

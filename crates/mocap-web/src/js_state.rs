@@ -42,5 +42,6 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "error", opt(&s.error));
     set(&o, "treeLabels", strings(&s.tree_labels));
     set(&o, "framesRendered", s.frames_rendered as f64);
+    set(&o, "backend", opt(&s.backend));
     o.into()
 }
