@@ -2,9 +2,7 @@
 //!
 //! Errors go to stderr as `FILE:LINE:COL: message` with a non-zero exit status.
 
-mod commands;
-mod render;
-
+use mocap_cli::commands;
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;

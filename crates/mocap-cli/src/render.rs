@@ -66,9 +66,15 @@ pub fn parse_size(text: &str) -> Result<[u32; 2], String> {
 pub struct Gpu {
     device: wgpu::Device,
     queue: wgpu::Queue,
+    adapter: String,
 }
 
 impl Gpu {
+    /// The adapter's name (e.g. "llvmpipe (LLVM 15.0.6, 256 bits)").
+    pub fn adapter_name(&self) -> &str {
+        &self.adapter
+    }
+
     /// Opens the first native adapter (Vulkan); a software one (lavapipe) is fine.
     pub fn new() -> Result<Gpu, String> {
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
@@ -91,7 +97,7 @@ impl Gpu {
             ..Default::default()
         }))
         .map_err(|e| format!("cannot open the Vulkan device {name}: {e}"))?;
-        Ok(Gpu { device, queue })
+        Ok(Gpu { device, queue, adapter: name })
     }
 }
 
