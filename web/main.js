@@ -28,12 +28,12 @@ const NO_GPU = 'This viewer needs WebGPU or WebGL2, and this browser offers neit
 // Lets the browser paint (e.g. the loading message) before blocking work.
 const afterPaint = () => new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
 
-// Resolves once the viewer has drawn a new frame after `since` frames.
+// Resolves with the clip frame shown once the viewer has drawn a frame after `since` frames.
 function nextRenderedFrame(viewer, since) {
   return new Promise((resolve) => {
     const poll = () => {
       const s = viewer.state();
-      if (s && s.framesRendered > since) resolve(); else requestAnimationFrame(poll);
+      if (s && s.framesRendered > since) resolve(s.frame); else requestAnimationFrame(poll);
     };
     requestAnimationFrame(poll);
   });
@@ -52,8 +52,11 @@ async function loadFile(viewer, file, t0) {
   const parseMs = tLoaded - tParse;
   if (big) hideStatus();
   const rendered = viewer.state().framesRendered;
-  await nextRenderedFrame(viewer, rendered);
-  window.mocapLastLoad = { name: file.name, bytes: file.size, error: error ?? null, parseMs, loadMs: tLoaded - t0, dropToFrameMs: performance.now() - t0 };
+  const firstFrame = await nextRenderedFrame(viewer, rendered);
+  window.mocapLastLoad = {
+    name: file.name, bytes: file.size, error: error ?? null, firstFrame,
+    parseMs, loadMs: tLoaded - t0, dropToFrameMs: performance.now() - t0,
+  };
 }
 
 function wireFiles(viewer) {

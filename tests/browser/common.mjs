@@ -52,6 +52,26 @@ export async function waitFrames(page, n = 2) {
   return waitState(page, (s, a) => s.framesRendered >= a, start + n);
 }
 
+/**
+ * Runs `fn(viewer, arg)` in the page and waits until a frame has been rendered after it
+ * (the frame counter is read in the same task, so a quick repaint cannot be missed).
+ */
+export async function changeAndRender(page, fn, arg) {
+  const f0 = await page.evaluate(([src, a]) => {
+    const v = window.mocapViewer;
+    const f = v.state().framesRendered;
+    (0, eval)(src)(v, a);
+    return f;
+  }, [fn.toString(), arg]);
+  return waitState(page, (s, a) => s.framesRendered > a, f0);
+}
+
+/** Waits until the page finished loading a dropped file and rendered a frame with it. */
+export async function waitDropped(page, name) {
+  await page.waitForFunction((n) => window.mocapLastLoad && window.mocapLastLoad.name === n, name, { timeout: 60000 });
+  return state(page);
+}
+
 /** Dispatches a real `drop` event carrying `bytes` as a File named `name`; returns the drop time. */
 export async function dropFile(page, name, bytes) {
   const b64 = Buffer.from(bytes).toString('base64');

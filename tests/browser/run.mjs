@@ -1,7 +1,7 @@
 // Browser tests for one GPU mode: node run.mjs <url> <webgl2|webgpu> <outDir> <chromium> <expected.json>
 import fs from 'node:fs';
 import path from 'node:path';
-import { launch, state, waitState, waitFrames, dropFile, view3d } from './common.mjs';
+import { launch, state, waitState, waitFrames, dropFile, view3d, changeAndRender, waitDropped } from './common.mjs';
 
 const [url, mode, outDir, chromiumPath, expectedPath] = process.argv.slice(2);
 const expected = JSON.parse(fs.readFileSync(expectedPath, 'utf8'));
@@ -46,9 +46,10 @@ try {
     await step(`drop ${name}`, async () => {
       const before = await view3d(page, shot(`drop${i}-before`));
       await dropFile(page, name, fs.readFileSync(file.path));
-      const s = await waitState(page, (s, a) => s.clips.length === 1 && s.clips[0].name === a, name);
+      const s = await waitDropped(page, name);
       check(s.clips[0].frames === file.frames, `${name}: ${s.clips[0].frames} frames, mocap info says ${file.frames}`);
-      check(s.error === null && s.frame === 0, `${name}: no error, starts at frame 0`);
+      const load = await page.evaluate(() => window.mocapLastLoad);
+      check(s.error === null && load.firstFrame === 0, `${name}: no error, first frame shown is frame ${load.firstFrame}`);
       await waitFrames(page, 3);
       const after = await view3d(page, shot(`drop${i}-after`));
       check(!before.equals(after), `${name}: the 3D view changed`);
@@ -59,13 +60,11 @@ try {
   }
 
   await step('scrubbing changes the pose', async () => {
-    await page.evaluate(() => { window.mocapViewer.pause(); window.mocapViewer.seek(0); });
-    await waitFrames(page, 2);
+    await changeAndRender(page, (v) => { v.pause(); v.seek(0); });
     const a = await view3d(page, shot('scrub-0'));
     const frames = (await state(page)).clips[0].frames;
     const mid = Math.floor(frames / 2);
-    await page.evaluate((f) => window.mocapViewer.seek(f), mid);
-    const s = await waitFrames(page, 2);
+    const s = await changeAndRender(page, (v, f) => v.seek(f), mid);
     const b = await view3d(page, shot('scrub-mid'));
     check(s.frame === mid && !s.playing, `seek(${mid}) lands on frame ${s.frame}, paused`);
     check(!a.equals(b), 'pose at frame 0 and mid-clip differ');
@@ -74,11 +73,9 @@ try {
   await step('selecting a joint highlights it and shows the inspector', async () => {
     const s0 = await state(page);
     const joint = s0.clips[0].jointNames[Math.min(2, s0.clips[0].jointNames.length - 1)];
-    const found = await page.evaluate((j) => window.mocapViewer.selectJoint(j), joint);
-    const s = await waitState(page, (s, a) => s.selectedJoint === a, joint);
-    await waitFrames(page, 2);
+    const s = await changeAndRender(page, (v, j) => v.selectJoint(j), joint);
     await page.screenshot({ path: shot('selected') });
-    check(found && s.selectedJoint === joint, `selectJoint(${joint}) -> selectedJoint ${s.selectedJoint}`);
+    check(s.selectedJoint === joint, `selectJoint(${joint}) -> selectedJoint ${s.selectedJoint}`);
   });
 
   await step('keyboard: space toggles play, arrows step', async () => {
@@ -90,8 +87,7 @@ try {
     await page.keyboard.press('Space');
     const s2 = await waitState(page, (s, a) => s.playing === a, s0.playing);
     check(s2.playing === s0.playing, 'space again toggles back');
-    await page.evaluate(() => { window.mocapViewer.pause(); window.mocapViewer.seek(5); });
-    await waitFrames(page, 1);
+    await changeAndRender(page, (v) => { v.pause(); v.seek(5); });
     await page.keyboard.press('ArrowRight');
     const s3 = await waitState(page, (s) => s.frame !== 5);
     check(s3.frame === 6, `ArrowRight steps 5 -> ${s3.frame}`);
@@ -100,8 +96,7 @@ try {
   await step('malformed file shows an error and keeps the clip', async () => {
     const before = await state(page);
     await dropFile(page, 'broken.bvh', Buffer.from('HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n  CHANNELS 3 Xposition\n'));
-    const s = await waitState(page, (s) => s.error !== null);
-    await waitFrames(page, 2);
+    const s = await waitDropped(page, 'broken.bvh');
     await page.screenshot({ path: shot('error') });
     check(/broken\.bvh:\d+:\d+/.test(s.error), `error names file, line and column: ${s.error}`);
     check(s.clips.length === 1 && s.clips[0].name === before.clips[0].name, `previous clip ${before.clips[0].name} still open`);

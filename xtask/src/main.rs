@@ -28,7 +28,7 @@ fn main() -> ExitCode {
         Some("test") => browser::test_all(&args[1..]),
         Some("bench-web") => browser::bench(),
         Some("setup") => setup::setup_all(),
-        _ => Err(format!("usage: cargo xtask <gen-walk | dist [--fast] | serve [--port P] | test | bench-web | setup>")),
+        _ => Err("usage: cargo xtask <gen-walk | dist [--fast] | serve [--port P] | test | bench-web | setup>".to_string()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

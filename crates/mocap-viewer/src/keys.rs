@@ -37,11 +37,10 @@ pub fn read_actions(ctx: &egui::Context, out: &mut Vec<Action>) {
     }
     ctx.input(|input| {
         for event in &input.events {
-            if let egui::Event::Key { key, pressed: true, modifiers, .. } = event {
-                if let Some(action) = action_for(*key, modifiers.shift) {
+            if let egui::Event::Key { key, pressed: true, modifiers, .. } = event
+                && let Some(action) = action_for(*key, modifiers.shift) {
                     out.push(action);
                 }
-            }
         }
     });
 }

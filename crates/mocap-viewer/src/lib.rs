@@ -6,6 +6,8 @@
 //! ([`viewport`]). [`Viewer`] holds the state; on the web, [`app::ViewerApp`]
 //! runs it inside eframe.
 
+#![warn(missing_docs)]
+
 #[cfg(target_arch = "wasm32")]
 pub mod app;
 pub mod camera;

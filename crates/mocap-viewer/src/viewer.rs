@@ -17,6 +17,7 @@ use mocap_render::Scene;
 const MAX_STEP: f64 = 0.5;
 
 /// The whole viewer. Plain state is public; GPU and scratch state is private.
+#[derive(Default)]
 pub struct Viewer {
     /// The open clip, if any.
     pub document: Option<Document>,
@@ -40,25 +41,6 @@ pub struct Viewer {
     tree_labels: Vec<String>,
 }
 
-impl Default for Viewer {
-    fn default() -> Viewer {
-        Viewer {
-            document: None,
-            playback: Playback::default(),
-            camera: OrbitCamera::default(),
-            settings: ViewSettings::default(),
-            selected: None,
-            error: None,
-            open_requested: false,
-            viewport: Viewport::default(),
-            transforms: Vec::new(),
-            scene: Scene::default(),
-            last_time: None,
-            actions: Vec::new(),
-            tree_labels: Vec::new(),
-        }
-    }
-}
 
 impl Viewer {
     /// Parses `bytes` and replaces the open clip. On error the old clip stays and the
@@ -78,8 +60,10 @@ impl Viewer {
     }
 
     /// Opens a document: frame 0, play state kept, camera framed on the motion.
+    /// The first frame drawn afterwards shows frame 0 (the clock restarts).
     pub fn open(&mut self, doc: Document) {
         self.playback.time = 0.0;
+        self.last_time = None;
         self.playback.range = None;
         self.camera.frame(doc.bounds);
         self.selected = None;
@@ -222,12 +206,11 @@ impl Viewer {
         } else {
             doc.clip.world_transforms_into(self.playback.frame(timing), &mut self.transforms);
         }
-        if self.settings.follow_root {
-            if let Some(root) = self.transforms.first() {
+        if self.settings.follow_root
+            && let Some(root) = self.transforms.first() {
                 self.camera.target.x = root.translation.x;
                 self.camera.target.z = root.translation.z;
             }
-        }
         pose_scene::build_scene(doc, &self.transforms, &self.settings, self.selected, &mut self.scene);
     }
 }

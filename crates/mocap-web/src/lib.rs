@@ -3,6 +3,8 @@
 //!
 //! This crate only connects the core and the viewer to JavaScript; it holds no logic.
 
+#![warn(missing_docs)]
+
 #[cfg(target_arch = "wasm32")]
 mod handle;
 #[cfg(target_arch = "wasm32")]
