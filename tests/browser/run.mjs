@@ -59,6 +59,23 @@ try {
     });
   }
 
+  await step('Open… button shows a file picker that loads the file', async () => {
+    const file = new URL('../../data/walk.bvh', import.meta.url).pathname;
+    const chooser = page.waitForEvent('filechooser', { timeout: 30000 });
+    // The egui "Open…" button, top left: hover first and hold the press across
+    // frames, as a person would (the software-rendered frames are slow).
+    await page.mouse.move(37, 12);
+    await page.waitForTimeout(400);
+    await page.mouse.down();
+    await page.waitForTimeout(300);
+    await page.mouse.up();
+    const fc = await chooser;
+    await page.evaluate(() => { window.mocapLastLoad = null; });
+    await fc.setFiles(file);
+    const s = await waitDropped(page, 'walk.bvh');
+    check(s.clips[0].name === 'walk.bvh' && s.clips[0].frames === 67, `picked walk.bvh is open (${s.clips[0].frames} frames)`);
+  });
+
   await step('scrubbing changes the pose', async () => {
     await changeAndRender(page, (v) => { v.pause(); v.seek(0); });
     const a = await view3d(page, shot('scrub-0'));
