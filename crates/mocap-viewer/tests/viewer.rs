@@ -80,3 +80,20 @@ fn pose_becomes_bones_joints_and_a_floor_in_file_units() {
     assert!(transforms[4].translation.y > transforms[0].translation.y);
     assert!(grid.center.y <= transforms[0].translation.y);
 }
+
+#[test]
+fn clip_without_frames_is_shown_without_panicking() {
+    let mut v = Viewer::default();
+    let bvh = b"HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n CHANNELS 3 Xrotation Yrotation Zrotation\n End Site\n {\n  OFFSET 0 1 0\n }\n}\nMOTION\nFrames: 0\nFrame Time: 0.0333\n";
+    if v.load("empty.bvh", bvh).is_err() {
+        return; // the reader may reject it; then there is nothing to show
+    }
+    v.set_playing(true);
+    v.seek(3);
+    let doc = v.document.as_ref().unwrap();
+    let mut transforms = Vec::new();
+    doc.clip.world_transforms_into(0, &mut transforms);
+    let mut scene = mocap_render::Scene::default();
+    pose_scene::build_scene(doc, &transforms, &v.settings, None, &mut scene);
+    assert_eq!(v.frame(), 0);
+}

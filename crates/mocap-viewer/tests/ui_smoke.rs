@@ -1,0 +1,48 @@
+//! Runs the whole egui UI headlessly (no GPU) for a few frames: panels, tree,
+//! inspector plot, error banner and keyboard shortcuts must not panic.
+
+use mocap_viewer::Viewer;
+
+const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
+
+fn frame(ctx: &egui::Context, viewer: &mut Viewer, time: f64, events: Vec<egui::Event>) {
+    let input = egui::RawInput {
+        time: Some(time),
+        screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))),
+        events,
+        ..Default::default()
+    };
+    let mut output = ctx.run_ui(input, |ui| viewer.ui(ui, None));
+    output.textures_delta.clear();
+}
+
+fn key(key: egui::Key) -> egui::Event {
+    egui::Event::Key { key, physical_key: None, pressed: true, repeat: false, modifiers: egui::Modifiers::NONE }
+}
+
+#[test]
+fn ui_runs_plays_and_reacts_to_keys() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::default();
+    frame(&ctx, &mut v, 0.0, vec![]);
+    v.load("walk.bvh", WALK).unwrap();
+    v.select(Some(7));
+    frame(&ctx, &mut v, 0.0, vec![]);
+    frame(&ctx, &mut v, 0.2, vec![]);
+    assert_eq!(v.frame(), 6, "0.2 s at 30 fps");
+    frame(&ctx, &mut v, 0.3, vec![key(egui::Key::Space)]);
+    assert!(!v.playback.playing);
+    let f = v.frame();
+    frame(&ctx, &mut v, 0.4, vec![key(egui::Key::ArrowRight)]);
+    assert_eq!(v.frame(), f + 1);
+    frame(&ctx, &mut v, 0.5, vec![key(egui::Key::End)]);
+    assert_eq!(v.frame(), 66);
+    frame(&ctx, &mut v, 0.6, vec![key(egui::Key::Home), key(egui::Key::A), key(egui::Key::F), key(egui::Key::Num3)]);
+    assert_eq!(v.frame(), 0);
+    assert!(v.settings.show_axes && v.settings.follow_root);
+    let _ = v.load("bad.bvh", b"HIERARCHY\nJOINT");
+    frame(&ctx, &mut v, 0.7, vec![]);
+    let s = v.snapshot();
+    assert!(s.error.is_some());
+    assert!(s.tree_labels.iter().any(|l| l == "LeftForeArm"), "tree drawn: {:?}", s.tree_labels);
+}
