@@ -91,6 +91,15 @@ export async function dropFile(page, name, bytes) {
   }, [name, b64]);
 }
 
+/** A deliberate click: hover, then hold the button across a few (slow) frames, as a person would. */
+export async function slowClick(page, x, y) {
+  await page.mouse.move(x, y);
+  await page.waitForTimeout(400);
+  await page.mouse.down();
+  await page.waitForTimeout(300);
+  await page.mouse.up();
+}
+
 /** Screenshot of the central 3D area (between the side panels). */
 export function view3d(page, file) {
   return page.screenshot({ path: file, clip: { x: 330, y: 120, width: 520, height: 420 } });

@@ -1,7 +1,7 @@
 // Browser tests for one GPU mode: node run.mjs <url> <webgl2|webgpu> <outDir> <chromium> <expected.json>
 import fs from 'node:fs';
 import path from 'node:path';
-import { launch, state, waitState, waitFrames, dropFile, view3d, changeAndRender, waitDropped } from './common.mjs';
+import { launch, state, waitState, waitFrames, dropFile, view3d, changeAndRender, waitDropped, slowClick } from './common.mjs';
 
 const [url, mode, outDir, chromiumPath, expectedPath] = process.argv.slice(2);
 const expected = JSON.parse(fs.readFileSync(expectedPath, 'utf8'));
@@ -40,6 +40,13 @@ try {
     check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
   });
 
+  await step('clicking a joint in the hierarchy selects it', async () => {
+    await slowClick(page, 51, 84); // "Spine", second row of the default clip's tree
+    const s = await waitState(page, (s) => s.selectedJoint !== null, null, 20000);
+    check(s.selectedJoint === 'Spine', `clicked tree row selects ${s.selectedJoint}`);
+    await page.screenshot({ path: shot('tree-click') });
+  });
+
   if (expected.length === 0) console.log(`skip [${mode}] corpus drop tests: ../shared/corpus not found`);
   for (const [i, file] of expected.entries()) {
     const name = path.basename(file.path);
@@ -62,13 +69,7 @@ try {
   await step('Open… button shows a file picker that loads the file', async () => {
     const file = new URL('../../data/walk.bvh', import.meta.url).pathname;
     const chooser = page.waitForEvent('filechooser', { timeout: 30000 });
-    // The egui "Open…" button, top left: hover first and hold the press across
-    // frames, as a person would (the software-rendered frames are slow).
-    await page.mouse.move(37, 12);
-    await page.waitForTimeout(400);
-    await page.mouse.down();
-    await page.waitForTimeout(300);
-    await page.mouse.up();
+    await slowClick(page, 37, 12); // the egui "Open…" button, top left
     const fc = await chooser;
     await page.evaluate(() => { window.mocapLastLoad = null; });
     await fc.setFiles(file);
