@@ -132,3 +132,12 @@ pub fn walk_bvh() -> String {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn committed_default_clip_matches_the_generator() {
+        let committed = std::fs::read_to_string(crate::util::root().join("data/walk.bvh")).unwrap_or_default();
+        assert!(committed == super::walk_bvh(), "data/walk.bvh is stale: run `cargo xtask gen-walk`");
+    }
+}
