@@ -23,6 +23,7 @@ fn corpus_dir() -> Option<PathBuf> {
 pub fn test_all(args: &[String]) -> Result<(), String> {
     let fast = args.iter().any(|a| a == "--fast");
     if !args.iter().any(|a| a == "--browser-only") {
+        setup::vulkan_driver();
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
         run(Command::new(&cargo).current_dir(root()).args(["test", "--workspace"]))?;
     }
