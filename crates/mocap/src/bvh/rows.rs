@@ -197,8 +197,8 @@ const CLASS: [u8; 256] = {
 /// Powers of ten exactly representable in f32.
 const POW10: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
 
-/// Fast path for the numbers mocap files are made of: `[+-]digits[.digits]` with at
-/// most 7 digits and no exponent. Then the value is `m / 10^e` with `m < 2^24` and
+/// Fast path for the numbers mocap files are made of: `[+-]digits[.digits]` with a
+/// digit string below 2^24 and no exponent. Then the value is `m / 10^e` with `m < 2^24` and
 /// `10^e` both exact in f32, so one IEEE division gives the correctly rounded result.
 /// Anything else (`None`) goes to the general parser.
 #[inline]
@@ -215,27 +215,28 @@ fn parse_short_decimal(s: &[u8]) -> Option<(f32, usize)> {
         }
         _ => false,
     };
-    let mut mantissa: u32 = 0;
-    let mut digits = 0;
-    let mut fraction_digits = 0;
-    let mut seen_dot = false;
-    let mut saw_digit = false;
-    while let Some(&b) = s.get(i) {
-        if b.is_ascii_digit() {
-            saw_digit = true;
-            mantissa = mantissa.wrapping_mul(10).wrapping_add(u32::from(b - b'0'));
-            // Leading zeros are not significant digits.
-            digits += usize::from(mantissa != 0);
-            fraction_digits += usize::from(seen_dot);
-        } else if b == b'.' && !seen_dot {
-            seen_dot = true;
-        } else {
-            break;
-        }
+    // Integer digits, then fraction digits, each in a tight loop.
+    let mut mantissa: u64 = 0;
+    let int_start = i;
+    while let Some(d) = s.get(i).map(|b| b.wrapping_sub(b'0')).filter(|&d| d < 10) {
+        mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
         i += 1;
     }
+    let int_digits = i - int_start;
+    let mut fraction_digits = 0;
+    if s.get(i) == Some(&b'.') {
+        i += 1;
+        let fraction_start = i;
+        while let Some(d) = s.get(i).map(|b| b.wrapping_sub(b'0')).filter(|&d| d < 10) {
+            mantissa = mantissa.wrapping_mul(10).wrapping_add(u64::from(d));
+            i += 1;
+        }
+        fraction_digits = i - fraction_start;
+    }
     let ends_cleanly = s.get(i).is_none_or(|&b| CLASS[b as usize] != OTHER);
-    if !saw_digit || digits > 7 || !ends_cleanly {
+    // 19 digits cannot overflow u64; m < 2^24 is exact in f32.
+    let total = int_digits + fraction_digits;
+    if total == 0 || total > 19 || mantissa >= 1 << 24 || !ends_cleanly {
         return None;
     }
     let magnitude = mantissa as f32 / *POW10.get(fraction_digits)?;
@@ -357,7 +358,7 @@ mod tests {
 
     #[test]
     fn short_decimals_match_the_general_parser_bit_for_bit() {
-        let cases = ["0", "-0", "+1.5", "17.8693", "-17.3198", ".0083333", "5.", "-0.000000", "9999999", "0.1234567", "123.4567", "-.5"];
+        let cases = ["0", "-0", "+1.5", "17.8693", "-17.3198", ".0083333", "5.", "-0.000000", "9999999", "0.1234567", "123.4567", "-.5", "16777215", "1.6777215", "0.0000000001"];
         for c in cases {
             let (v, used) = parse_short_decimal(c.as_bytes()).unwrap_or_else(|| panic!("{c}"));
             let expected: f32 = c.parse().unwrap();
@@ -376,7 +377,7 @@ mod tests {
 
     #[test]
     fn long_or_exponent_forms_fall_back() {
-        for c in ["1e5", "12345678", "1.2345678", ".", "-", "1.2.3", "nan", "1x", "0.00000000001"] {
+        for c in ["1e5", "123456789", "1.23456789", "16777216", ".", "-", "1.2.3", "nan", "1x", "0.00000000001", "00000000000000000000001"] {
             assert!(parse_short_decimal(c.as_bytes()).is_none(), "{c}");
         }
     }
