@@ -375,6 +375,17 @@ mod tests {
         }
     }
 
+    proptest::proptest! {
+        #[test]
+        fn short_decimals_agree_with_std(sign in "[-+]?", int in "[0-9]{0,9}", frac in proptest::option::of("[0-9]{0,11}")) {
+            let text = format!("{sign}{int}{}", frac.as_ref().map(|f| format!(".{f}")).unwrap_or_default());
+            if let Some((v, used)) = parse_short_decimal(text.as_bytes()) {
+                let expected: f32 = text.parse().unwrap();
+                proptest::prop_assert_eq!((v.to_bits(), used), (expected.to_bits(), text.len()), "{}", text);
+            }
+        }
+    }
+
     #[test]
     fn long_or_exponent_forms_fall_back() {
         for c in ["1e5", "123456789", "1.23456789", "16777216", ".", "-", "1.2.3", "nan", "1x", "0.00000000001", "00000000000000000000001"] {
