@@ -1,5 +1,8 @@
-// Page glue: feature check, start the wasm viewer, file drop / Open, loading message.
+// Page glue: feature check, start the wasm viewer, `?url=` links with progress, the
+// view state in the fragment, Share, `?embed=1`, file drop / Open, loading message.
 import init, { start } from '../pkg/mocap_web.js';
+import { ClipError, DEFAULT_LIMIT, fetchClip, fileNameOf, resolveClipUrl } from './fetch-clip.js';
+import { followViewState, share } from './view-link.js';
 
 const status = document.getElementById('status');
 const input = document.getElementById('file-input');
@@ -12,6 +15,66 @@ function showStatus(text, isError = false) {
 
 function hideStatus() {
   status.hidden = true;
+}
+
+// Where the open clip came from, for the Share link.
+let source = { kind: 'default', urls: [], name: 'walk.bvh' };
+
+// Shows "Loading name: x / y MB" with a progress bar (indeterminate without a length).
+function showProgress(name, received, total) {
+  const mb = (n) => (n / 1048576).toFixed(1);
+  status.replaceChildren();
+  status.classList.remove('error');
+  const text = document.createElement('div');
+  text.textContent = total ? `Loading ${name}: ${mb(received)} / ${mb(total)} MB` : `Loading ${name}: ${mb(received)} MB`;
+  const bar = document.createElement('progress');
+  if (total) {
+    bar.max = total;
+    bar.value = received;
+  }
+  status.append(text, bar);
+  status.hidden = false;
+}
+
+// Loads the clip of a `?url=` link; errors go to the viewer's banner. Resolves when done.
+async function loadUrl(viewer, raw, limit) {
+  const t0 = performance.now();
+  const record = { url: raw, name: null, bytes: 0, progressEvents: 0, error: null };
+  window.mocapUrlLoad = record;
+  try {
+    const url = resolveClipUrl(raw);
+    const name = fileNameOf(url);
+    record.name = name;
+    showProgress(name, 0, null);
+    let lastPaint = 0;
+    const bytes = await fetchClip(url, {
+      limit,
+      onProgress: (received, total) => {
+        record.progressEvents += 1;
+        record.bytes = received;
+        record.total = total;
+        const now = performance.now();
+        if (now - lastPaint > 100) {
+          lastPaint = now;
+          showProgress(name, received, total);
+        }
+      },
+    });
+    hideStatus();
+    const error = viewer.load(name, bytes);
+    if (error) {
+      record.error = error;
+    } else {
+      source = { kind: 'url', urls: [raw], name };
+    }
+  } catch (e) {
+    hideStatus();
+    const message = e instanceof ClipError ? e.message : `${raw}: ${e && e.message ? e.message : e}`;
+    record.error = message;
+    viewer.showError(message);
+  }
+  record.ms = performance.now() - t0;
+  record.done = true;
 }
 
 function hasWebGL2() {
@@ -48,6 +111,7 @@ async function loadFile(viewer, file, t0) {
   const bytes = new Uint8Array(await file.arrayBuffer());
   const tParse = performance.now();
   const error = viewer.load(file.name, bytes);
+  if (!error) source = { kind: 'local', urls: [], name: file.name };
   const tLoaded = performance.now();
   const parseMs = tLoaded - tParse;
   if (big) hideStatus();
@@ -97,16 +161,34 @@ async function main() {
     showStatus(NO_GPU, true);
     return;
   }
+  const params = new URLSearchParams(location.search);
+  const urls = params.getAll('url').filter((u) => u.trim() !== '');
+  const maxMb = Number(params.get('maxmb'));
+  const limit = maxMb > 0 ? maxMb * 1048576 : DEFAULT_LIMIT;
+  const embed = params.get('embed') === '1';
+  if (embed) document.body.classList.add('embed');
+  let viewer;
   try {
     await init();
-    const viewer = await start('viewer', 'file-input');
+    viewer = await start('viewer', 'file-input', urls.length === 0);
     window.mocapViewer = viewer;
+    viewer.setEmbed(embed);
     wireFiles(viewer);
     hideStatus();
   } catch (e) {
     console.warn('viewer failed to start:', e);
     showStatus(`${NO_GPU}\n\n(${e && e.message ? e.message : e})`, true);
+    return;
   }
+  // One character at a time for now: the first link is loaded.
+  if (urls.length > 0) await loadUrl(viewer, urls[0], limit);
+  if (location.hash.length > 1) viewer.applyViewState(location.hash.slice(1));
+  followViewState(viewer);
+  window.addEventListener('mocap-share', () => share(viewer, source));
+  document.getElementById('share-close').addEventListener('click', () => {
+    document.getElementById('share').hidden = true;
+  });
+  window.mocapReady = true;
 }
 
 main();

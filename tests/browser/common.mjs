@@ -40,9 +40,9 @@ export const state = (page) => page.evaluate(() => window.mocapViewer.state());
 
 /** Waits until `predicate(state)` holds (predicate is serialised to the page). */
 export async function waitState(page, predicate, arg, timeout = 60000) {
-  await page.waitForFunction(
-    ([src, a]) => { const s = window.mocapViewer && window.mocapViewer.state(); return !!s && (0, eval)(src)(s, a); },
-    [predicate.toString(), arg], { timeout, polling: 50 });
+  // One function built here (Node's eval), so the page never calls eval: its CSP forbids it.
+  const check = (0, eval)(`(a) => { const s = window.mocapViewer && window.mocapViewer.state(); return !!s && (${predicate.toString()})(s, a); }`);
+  await page.waitForFunction(check, arg, { timeout, polling: 50 });
   return state(page);
 }
 
@@ -57,12 +57,8 @@ export async function waitFrames(page, n = 2) {
  * (the frame counter is read in the same task, so a quick repaint cannot be missed).
  */
 export async function changeAndRender(page, fn, arg) {
-  const f0 = await page.evaluate(([src, a]) => {
-    const v = window.mocapViewer;
-    const f = v.state().framesRendered;
-    (0, eval)(src)(v, a);
-    return f;
-  }, [fn.toString(), arg]);
+  const change = (0, eval)(`(a) => { const v = window.mocapViewer; const f = v.state().framesRendered; (${fn.toString()})(v, a); return f; }`);
+  const f0 = await page.evaluate(change, arg);
   return waitState(page, (s, a) => s.framesRendered > a, f0);
 }
 

@@ -33,13 +33,19 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
     let out = root().join("tests/browser/out");
     std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
     let expected = expected_frames(&out)?;
-    let url = spawn_server(dist)?;
+    let url = spawn_server(dist.clone())?;
     let mut failures = Vec::new();
     for mode in ["webgl2", "webgpu"] {
         let result = run(node("run.mjs").args([url.as_str(), mode]).arg(&out).arg(&chromium).arg(&expected));
         if let Err(e) = result {
             failures.push(format!("{mode}: {e}"));
         }
+        if let Err(e) = run(node("links.mjs").args([url.as_str(), mode]).arg(&out).arg(&chromium)) {
+            failures.push(format!("{mode} links: {e}"));
+        }
+    }
+    if let Err(e) = run(node("api.mjs").arg(&url).arg(&dist).arg(&out).arg(&chromium)) {
+        failures.push(format!("JavaScript API: {e}"));
     }
     if let Err(e) = run(node("nogpu.mjs").arg(&url).arg(&out).arg(&chromium)) {
         failures.push(format!("no-gpu message: {e}"));

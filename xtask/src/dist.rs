@@ -43,7 +43,7 @@ pub fn dist(fast: bool) -> Result<PathBuf, String> {
     std::fs::create_dir_all(&pkg).map_err(|e| format!("{}: {e}", pkg.display()))?;
     let bindgen = setup::wasm_bindgen_cli()?;
     run(Command::new(bindgen)
-        .args(["--target", "web", "--no-typescript", "--remove-name-section", "--remove-producers-section", "--out-dir"])
+        .args(["--target", "web", "--remove-name-section", "--remove-producers-section", "--out-dir"])
         .arg(&pkg)
         .arg(&wasm))?;
     copy(&root.join("index.html"), &dist.join("index.html"))?;

@@ -1,4 +1,5 @@
-//! A minimal static file server for `dist/` (std only).
+//! A minimal static file server for `dist/` (std only). `/data/…` falls back to the
+//! repository's `data/`, so `?url=data/walk.bvh` works out of the box.
 
 use crate::util::root;
 use std::io::{BufRead, BufReader, Write};
@@ -40,7 +41,7 @@ fn handle(mut stream: TcpStream, dir: &Path) -> std::io::Result<()> {
     }
     let path = request.split_whitespace().nth(1).unwrap_or("/");
     let path = path.split(['?', '#']).next().unwrap_or("/");
-    let file = resolve(dir, path);
+    let file = resolve(dir, path).or_else(|| resolve(&root().join("data"), path.strip_prefix("/data/")?));
     match file.and_then(|f| std::fs::read(&f).ok().map(|b| (f, b))) {
         Some((f, body)) => {
             let head = format!(
@@ -75,6 +76,7 @@ fn mime(path: &Path) -> &'static str {
         Some("json") => "application/json",
         Some("png") => "image/png",
         Some("svg") => "image/svg+xml",
+        Some("bvh" | "BVH") => "text/plain; charset=utf-8",
         _ => "application/octet-stream",
     }
 }

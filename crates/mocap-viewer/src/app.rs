@@ -8,25 +8,35 @@ use std::rc::Rc;
 pub struct ViewerApp {
     viewer: Rc<RefCell<Viewer>>,
     on_open_requested: Box<dyn FnMut()>,
+    on_share_requested: Box<dyn FnMut()>,
 }
 
 impl ViewerApp {
     /// Wraps `viewer` (and picks the dark theme, to match the 3D view); `on_open_requested` runs when the user presses "Open…".
     pub fn new(ctx: &egui::Context, viewer: Rc<RefCell<Viewer>>, on_open_requested: Box<dyn FnMut()>) -> ViewerApp {
         ctx.set_theme(egui::ThemePreference::Dark);
-        ViewerApp { viewer, on_open_requested }
+        ViewerApp { viewer, on_open_requested, on_share_requested: Box::new(|| {}) }
+    }
+
+    /// Sets what runs when the user presses "Share" (the host builds and copies the link).
+    pub fn on_share(mut self, f: Box<dyn FnMut()>) -> ViewerApp {
+        self.on_share_requested = f;
+        self
     }
 }
 
 impl eframe::App for ViewerApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        let open = {
+        let (open, share) = {
             let Ok(mut viewer) = self.viewer.try_borrow_mut() else { return };
             viewer.ui(ui, frame.wgpu_render_state());
-            std::mem::take(&mut viewer.open_requested)
+            (std::mem::take(&mut viewer.open_requested), std::mem::take(&mut viewer.share_requested))
         };
         if open {
             (self.on_open_requested)();
+        }
+        if share {
+            (self.on_share_requested)();
         }
     }
 }

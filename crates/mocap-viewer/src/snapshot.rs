@@ -36,6 +36,10 @@ pub struct Snapshot {
     pub tree_labels: Vec<String>,
     /// Frames the 3D view has rendered.
     pub frames_rendered: u64,
+    /// The view state as a URL fragment (no leading `#`).
+    pub view: String,
+    /// Whether the embed layout is on.
+    pub embed: bool,
     /// The wgpu backend drawing the 3D view ("BrowserWebGpu", "Gl", ...).
     pub backend: Option<String>,
 }

@@ -4,6 +4,7 @@
 use crate::camera::OrbitCamera;
 use crate::document::Document;
 use crate::keys::{self, Action};
+use crate::panels::Panels;
 use crate::playback::Playback;
 use crate::settings::ViewSettings;
 use crate::snapshot::{ClipSummary, Snapshot};
@@ -33,6 +34,10 @@ pub struct Viewer {
     pub error: Option<String>,
     /// Set when the user pressed "Open…"; the host shows a file picker and clears it.
     pub open_requested: bool,
+    /// Set when the user pressed "Share"; the host builds the link and clears it.
+    pub share_requested: bool,
+    /// Which panels are shown.
+    pub panels: Panels,
     viewport: Viewport,
     transforms: Vec<Transform>,
     scene: Scene,
@@ -91,6 +96,21 @@ impl Viewer {
         self.selected = joint.filter(|&j| self.document.as_ref().is_some_and(|d| j < d.clip.skeleton.joints.len()));
     }
 
+    /// The view state as a URL fragment (see [`crate::view_state`]).
+    pub fn view_fragment(&self) -> String {
+        crate::view_state::ViewState::format(self)
+    }
+
+    /// Applies a URL fragment (see [`crate::view_state`]); unknown parts are ignored.
+    pub fn apply_fragment(&mut self, fragment: &str) {
+        crate::view_state::ViewState::parse(fragment).apply(self);
+    }
+
+    /// Forgets the last frame time so the next frame advances playback by nothing.
+    pub fn restart_clock(&mut self) {
+        self.last_time = None;
+    }
+
     /// Current frame of the open clip (0 without one).
     pub fn frame(&self) -> usize {
         self.document.as_ref().map_or(0, |d| self.playback.frame(d.timing()))
@@ -123,6 +143,8 @@ impl Viewer {
             error: self.error.clone(),
             tree_labels: self.tree_labels.clone(),
             frames_rendered: self.viewport.frames_rendered,
+            view: self.view_fragment(),
+            embed: self.panels.embed,
             backend: self.viewport.backend.clone(),
         }
     }
@@ -136,11 +158,17 @@ impl Viewer {
         actions.iter().for_each(|&a| self.apply(a));
         self.actions = actions;
 
-        ui::toolbar::show(ui, self);
+        if !self.panels.embed {
+            ui::toolbar::show(ui, self);
+        }
         ui::timeline::show(ui, self);
-        ui::side::show(ui, self);
+        if self.panels.show_inspector() {
+            ui::side::show(ui, self);
+        }
         self.tree_labels.clear();
-        ui::hierarchy::show(ui, self.document.as_ref(), &mut self.selected, &mut self.tree_labels);
+        if self.panels.show_hierarchy() {
+            ui::hierarchy::show(ui, self.document.as_ref(), &mut self.selected, &mut self.tree_labels);
+        }
 
         self.pose();
         egui::CentralPanel::no_frame().show(ui, |ui| {

@@ -97,3 +97,48 @@ fn clip_without_frames_is_shown_without_panicking() {
     pose_scene::build_scene(doc, &transforms, &v.settings, None, &mut scene);
     assert_eq!(v.frame(), 0);
 }
+
+#[test]
+fn view_fragment_round_trips_exactly() {
+    let mut v = loaded();
+    v.set_playing(false);
+    v.seek(17);
+    v.playback.speed = 0.37;
+    v.playback.looping = false;
+    v.playback.range = Some((5, 40));
+    v.camera.yaw = 1.234_567_9;
+    v.camera.pitch = -0.3;
+    v.camera.distance = 3.251_877_4;
+    v.camera.target = mocap::glam::Vec3::new(0.1, 0.2, -0.3);
+    v.settings.show_axes = true;
+    v.settings.show_joints = false;
+    v.panels.inspector = false;
+    let joint = v.document.as_ref().and_then(|d| d.clip.skeleton.joints.iter().position(|j| j.name == "LeftHand")).or(Some(3));
+    v.select(joint);
+    let fragment = v.view_fragment();
+
+    let mut w = loaded();
+    w.apply_fragment(&format!("#{fragment}"));
+    assert_eq!(w.view_fragment(), fragment);
+    assert_eq!(w.playback, v.playback);
+    assert_eq!(w.camera, v.camera);
+    assert_eq!(w.settings, v.settings);
+    assert_eq!(w.panels, v.panels);
+    assert_eq!(w.selected, v.selected);
+    assert_eq!(w.frame(), 17);
+}
+
+#[test]
+fn view_fragment_accepts_frames_names_and_junk() {
+    let mut v = loaded();
+    let name = v.document.as_ref().and_then(|d| d.clip.skeleton.joints.get(2)).map(|j| j.name.clone()).unwrap_or_default();
+    v.apply_fragment(&format!("f=9999&play=0&sel={}&speed=abc&cam=nan,1,1,1,1,1&panels=none", mocap_viewer::view_state::percent_encode(&name)));
+    let last = v.document.as_ref().map_or(0, |d| d.clip.frame_count() - 1);
+    assert_eq!(v.frame(), last);
+    assert!(!v.playback.playing);
+    assert_eq!(v.snapshot().selected_joint.as_deref(), Some(name.as_str()));
+    assert_eq!(v.playback.speed, 1.0);
+    assert!(!v.panels.hierarchy && !v.panels.inspector);
+    v.apply_fragment("sel=NoSuchJoint");
+    assert_eq!(v.selected, None);
+}

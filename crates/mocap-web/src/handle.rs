@@ -17,7 +17,7 @@ pub struct MocapViewer {
 #[wasm_bindgen]
 impl MocapViewer {
     /// `{clips:[{name, frames, frameTime, joints, jointNames}], frame, time, playing, speed,
-    /// selectedJoint, error, treeLabels, framesRendered, backend}`.
+    /// selectedJoint, error, treeLabels, framesRendered, view, embed, backend}`.
     pub fn state(&self) -> JsValue {
         match self.viewer.try_borrow() {
             Ok(v) => crate::js_state::to_js(&v.snapshot()),
@@ -36,6 +36,13 @@ impl MocapViewer {
         }
     }
 
+    /// Opens a clip from `parseMotion` (copying it; `clip` stays usable) under `file_name`.
+    #[wasm_bindgen(js_name = loadClip)]
+    pub fn load_clip(&self, clip: &crate::MotionClip, file_name: &str) {
+        let doc = mocap_viewer::Document::new(file_name, clip.clip().clone());
+        self.with_viewer(|v| v.open(doc));
+    }
+
     /// Moves to a frame (clamped).
     pub fn seek(&self, frame: u32) {
         self.with_viewer(|v| v.seek(frame as usize));
@@ -49,6 +56,39 @@ impl MocapViewer {
     /// Pauses playback (on an exact frame).
     pub fn pause(&self) {
         self.with_viewer(|v| v.set_playing(false));
+    }
+
+    /// The view state as a URL fragment (no leading `#`): time, play state, speed,
+    /// loop range, camera, selection, draw flags and panels.
+    #[wasm_bindgen(js_name = viewState)]
+    pub fn view_state(&self) -> String {
+        self.viewer.try_borrow().map(|v| v.view_fragment()).unwrap_or_default()
+    }
+
+    /// Restores a view state written by [`MocapViewer::view_state`] (a `#` is optional).
+    #[wasm_bindgen(js_name = applyViewState)]
+    pub fn apply_view_state(&self, fragment: &str) {
+        self.with_viewer(|v| v.apply_fragment(fragment));
+    }
+
+    /// Shows a message in the viewer's error banner (the open clip, if any, stays).
+    #[wasm_bindgen(js_name = showError)]
+    pub fn show_error(&self, message: &str) {
+        self.with_viewer(|v| v.error = Some(message.to_owned()));
+    }
+
+    /// Switches the embed layout (3D view and a minimal timeline) on or off.
+    #[wasm_bindgen(js_name = setEmbed)]
+    pub fn set_embed(&self, embed: bool) {
+        self.with_viewer(|v| v.panels.embed = embed);
+    }
+
+    /// Closes the open clip (the view shows a drop hint).
+    pub fn clear(&self) {
+        self.with_viewer(|v| {
+            v.document = None;
+            v.selected = None;
+        });
     }
 
     /// Selects a joint by name; returns whether it exists.

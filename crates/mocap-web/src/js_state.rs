@@ -42,6 +42,8 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "error", opt(&s.error));
     set(&o, "treeLabels", strings(&s.tree_labels));
     set(&o, "framesRendered", s.frames_rendered as f64);
+    set(&o, "view", s.view.as_str());
+    set(&o, "embed", s.embed);
     set(&o, "backend", opt(&s.backend));
     o.into()
 }

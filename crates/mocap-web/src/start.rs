@@ -10,29 +10,69 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 /// Starts the viewer on the canvas with id `canvas_id`. `file_input_id` names an
-/// `<input type=file>` that the "Open…" button clicks. Fails (with a message) when
-/// the browser has neither WebGPU nor WebGL2.
+/// `<input type=file>` that the "Open…" button clicks. With `default_clip` the
+/// generated walk cycle is open at once. The "Share" button dispatches a
+/// `mocap-share` event on `window`. Fails (with a message) when the browser has
+/// neither WebGPU nor WebGL2.
 #[wasm_bindgen]
-pub async fn start(canvas_id: &str, file_input_id: &str) -> Result<MocapViewer, JsValue> {
+pub async fn start(canvas_id: &str, file_input_id: &str, default_clip: bool) -> Result<MocapViewer, JsValue> {
     let document = web_sys::window().and_then(|w| w.document()).ok_or("no document")?;
     let canvas = document
         .get_element_by_id(canvas_id)
         .ok_or_else(|| format!("no element #{canvas_id}"))?
         .dyn_into::<web_sys::HtmlCanvasElement>()
         .map_err(|_| format!("#{canvas_id} is not a canvas"))?;
+    start_on(canvas, Some(file_input_id.to_owned()), default_clip, false).await
+}
 
+#[wasm_bindgen(typescript_custom_section)]
+const VIEWER_OPTIONS: &str = r#"
+/** Options for `startViewer`. */
+export interface ViewerOptions {
+  /** Open the built-in walk cycle at once (default false). */
+  defaultClip?: boolean;
+  /** Embed layout: the 3D view and a minimal timeline only (default false). */
+  embed?: boolean;
+  /** Id of an `<input type=file>` that the "Open…" button clicks. */
+  fileInput?: string;
+}
+"#;
+
+/// Starts the viewer on `canvas` and returns its handle (`load`, `seek`, `play`,
+/// `pause`, `state`, ...). Options: `{defaultClip, embed, fileInput}`.
+#[wasm_bindgen(js_name = startViewer)]
+pub async fn start_viewer(
+    canvas: web_sys::HtmlCanvasElement,
+    #[wasm_bindgen(unchecked_param_type = "ViewerOptions | undefined")] options: JsValue,
+) -> Result<MocapViewer, JsValue> {
+    let get = |key: &str| {
+        if options.is_object() { js_sys::Reflect::get(&options, &JsValue::from_str(key)).ok() } else { None }
+    };
+    let default_clip = get("defaultClip").is_some_and(|v| v.is_truthy());
+    let embed = get("embed").is_some_and(|v| v.is_truthy());
+    let file_input = get("fileInput").and_then(|v| v.as_string());
+    start_on(canvas, file_input, default_clip, embed).await
+}
+
+async fn start_on(
+    canvas: web_sys::HtmlCanvasElement,
+    file_input_id: Option<String>,
+    default_clip: bool,
+    embed: bool,
+) -> Result<MocapViewer, JsValue> {
     let mut viewer = Viewer::default();
-    if let Err(e) = viewer.load(crate::DEFAULT_CLIP_NAME, crate::DEFAULT_CLIP) {
+    viewer.panels.embed = embed;
+    if default_clip && let Err(e) = viewer.load(crate::DEFAULT_CLIP_NAME, crate::DEFAULT_CLIP) {
         web_sys::console::error_1(&format!("default clip: {e}").into());
     }
     let viewer = Rc::new(RefCell::new(viewer));
     let ctx: Rc<RefCell<Option<egui::Context>>> = Rc::default();
 
-    let input_id = file_input_id.to_owned();
     let open_picker = move || {
         let input = web_sys::window()
             .and_then(|w| w.document())
-            .and_then(|d| d.get_element_by_id(&input_id))
+            .zip(file_input_id.as_deref())
+            .and_then(|(d, id)| d.get_element_by_id(id))
             .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok());
         if let Some(input) = input {
             input.click();
@@ -50,9 +90,18 @@ pub async fn start(canvas_id: &str, file_input_id: &str) -> Result<MocapViewer, 
                 if cc.wgpu_render_state.is_none() {
                     return Err("no wgpu renderer".into());
                 }
-                Ok(Box::new(ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker))))
+                let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker)).on_share(Box::new(share_event));
+                Ok(Box::new(app))
             }),
         )
         .await?;
     Ok(MocapViewer { viewer, ctx, _runner: runner })
+}
+
+/// Tells the page that the user pressed "Share" (a `mocap-share` event on `window`).
+fn share_event() {
+    let event = web_sys::Event::new("mocap-share");
+    if let (Some(window), Ok(event)) = (web_sys::window(), event) {
+        let _ = window.dispatch_event(&event);
+    }
 }

@@ -14,6 +14,10 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
         };
         let frame = viewer.playback.frame(timing);
         let play = if viewer.playback.playing { "Pause" } else { "Play" };
+        if viewer.panels.embed {
+            minimal(ui, viewer, play, frame, timing);
+            return;
+        }
         ui.horizontal(|ui| {
             let mut act = |ui: &mut egui::Ui, text: &str, hint: &str, action: Action| {
                 if ui.button(text).on_hover_text(hint).clicked() {
@@ -58,4 +62,19 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
         });
         ui.add_space(2.0);
     });
+}
+
+/// The embed layout's timeline: play/pause and the scrub bar on one row.
+fn minimal(ui: &mut egui::Ui, viewer: &mut Viewer, play: &str, frame: usize, timing: crate::playback::Timing) {
+    ui.horizontal(|ui| {
+        if ui.button(play).on_hover_text("Play / pause (Space)").clicked() {
+            viewer.apply(Action::TogglePlay);
+        }
+        let mut f = frame;
+        ui.spacing_mut().slider_width = (ui.available_width() - 60.0).max(100.0);
+        if ui.add(egui::Slider::new(&mut f, 0..=timing.last()).show_value(true).trailing_fill(true)).changed() {
+            viewer.playback.seek(f, timing);
+        }
+    });
+    ui.add_space(2.0);
 }

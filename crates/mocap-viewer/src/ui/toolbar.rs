@@ -1,4 +1,4 @@
-//! Top bar: Open button, view toggles and camera buttons.
+//! Top bar: Open and Share buttons, panel toggles, view toggles and camera buttons.
 
 use crate::camera::Waypoint;
 use crate::keys::{Action, HELP};
@@ -11,9 +11,15 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             if ui.button("Open…").on_hover_text("Open a .bvh file (or drop one anywhere on the page)").clicked() {
                 viewer.open_requested = true;
             }
+            if ui.button("Share").on_hover_text("Copy a link that reproduces this view").clicked() {
+                viewer.share_requested = true;
+            }
             if let Some(doc) = &viewer.document {
                 ui.strong(&doc.name);
             }
+            ui.separator();
+            ui.checkbox(&mut viewer.panels.hierarchy, "Tree").on_hover_text("Show the joint hierarchy");
+            ui.checkbox(&mut viewer.panels.inspector, "Inspector").on_hover_text("Show clip info and the joint inspector");
             ui.separator();
             ui.checkbox(&mut viewer.settings.show_joints, "Joints");
             ui.checkbox(&mut viewer.settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");

@@ -1,0 +1,233 @@
+//! The view state as a URL fragment (`t=3.25&speed=0.5&cam=…&sel=LeftHand`): written
+//! from a [`Viewer`] and read back exactly (numbers use Rust's shortest round-trip
+//! formatting, so `parse(format(x)) == x` bit for bit).
+//!
+//! Keys: `t` seconds (or `f` frame), `play` 0/1, `speed`, `loop` 0/1, `range` `a-b`
+//! (frames, `all` for the whole clip), `cam` `yaw,pitch,distance,x,y,z` (radians and
+//! file units), `sel` joint name, `draw` a comma list of `joints`, `axes`, `follow`,
+//! `interp`, and `panels` a comma list of `tree`, `inspector` (or `none`). Unknown keys
+//! and unreadable values are ignored; missing keys leave the viewer as it is.
+
+use crate::viewer::Viewer;
+use mocap::glam::Vec3;
+
+/// A parsed fragment: every field is optional (absent = leave as is).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ViewState {
+    /// Playhead in seconds.
+    pub time: Option<f64>,
+    /// Playhead as a frame (used when `time` is absent).
+    pub frame: Option<usize>,
+    /// Playing or paused.
+    pub playing: Option<bool>,
+    /// Playback speed factor.
+    pub speed: Option<f32>,
+    /// Loop at the end.
+    pub looping: Option<bool>,
+    /// Loop sub-range: `Some(None)` is the whole clip.
+    pub range: Option<Option<(usize, usize)>>,
+    /// Camera: yaw, pitch, distance, target.
+    pub camera: Option<(f32, f32, f32, Vec3)>,
+    /// Selected joint name (`Some(None)`: no selection).
+    pub selected: Option<Option<String>>,
+    /// Draw flags: joints, axes, follow root, interpolate.
+    pub draw: Option<[bool; 4]>,
+    /// Panels: hierarchy, inspector.
+    pub panels: Option<[bool; 2]>,
+}
+
+const DRAW_NAMES: [&str; 4] = ["joints", "axes", "follow", "interp"];
+const PANEL_NAMES: [&str; 2] = ["tree", "inspector"];
+
+impl ViewState {
+    /// Reads a fragment (with or without the leading `#`).
+    pub fn parse(fragment: &str) -> ViewState {
+        let mut s = ViewState::default();
+        for pair in fragment.trim_start_matches('#').split('&') {
+            let (key, raw) = pair.split_once('=').unwrap_or((pair, ""));
+            let value = percent_decode(raw);
+            let v = value.as_str();
+            match key {
+                "t" => s.time = v.parse().ok().filter(|t: &f64| t.is_finite() && *t >= 0.0),
+                "f" => s.frame = v.parse().ok(),
+                "play" => s.playing = flag(v),
+                "speed" => s.speed = v.parse().ok().filter(|x: &f32| x.is_finite() && *x > 0.0),
+                "loop" => s.looping = flag(v),
+                "range" => s.range = parse_range(v),
+                "cam" => s.camera = parse_camera(v),
+                "sel" => s.selected = Some((!v.is_empty()).then(|| v.to_owned())),
+                "draw" => s.draw = Some(flags(v, DRAW_NAMES)),
+                "panels" => s.panels = Some(flags(v, PANEL_NAMES)),
+                _ => {}
+            }
+        }
+        s
+    }
+
+    /// Everything the viewer shows, as a fragment (no leading `#`).
+    pub fn format(viewer: &Viewer) -> String {
+        let p = &viewer.playback;
+        let c = &viewer.camera;
+        let st = &viewer.settings;
+        let mut parts = vec![
+            format!("t={}", p.time),
+            format!("play={}", u8::from(p.playing)),
+            format!("speed={}", p.speed),
+            format!("loop={}", u8::from(p.looping)),
+        ];
+        if let Some((a, b)) = p.range {
+            parts.push(format!("range={a}-{b}"));
+        }
+        parts.push(format!("cam={},{},{},{},{},{}", c.yaw, c.pitch, c.distance, c.target.x, c.target.y, c.target.z));
+        let selected = viewer.selected.and_then(|j| viewer.document.as_ref()?.clip.skeleton.joints.get(j));
+        if let Some(joint) = selected {
+            parts.push(format!("sel={}", percent_encode(&joint.name)));
+        }
+        let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate];
+        parts.push(format!("draw={}", join_flags(draw, DRAW_NAMES)));
+        let panels = [viewer.panels.hierarchy, viewer.panels.inspector];
+        parts.push(format!("panels={}", join_flags(panels, PANEL_NAMES)));
+        parts.join("&")
+    }
+
+    /// Applies the present fields to `viewer` (the clip should be open already).
+    pub fn apply(&self, viewer: &mut Viewer) {
+        if let Some(speed) = self.speed {
+            viewer.playback.speed = speed.clamp(*crate::playback::SPEED_RANGE.start(), *crate::playback::SPEED_RANGE.end());
+        }
+        if let Some(looping) = self.looping {
+            viewer.playback.looping = looping;
+        }
+        if let Some(range) = self.range {
+            viewer.playback.range = range;
+        }
+        if let Some([joints, axes, follow, interp]) = self.draw {
+            viewer.settings.show_joints = joints;
+            viewer.settings.show_axes = axes;
+            viewer.settings.follow_root = follow;
+            viewer.settings.interpolate = interp;
+        }
+        if let Some([tree, inspector]) = self.panels {
+            viewer.panels.hierarchy = tree;
+            viewer.panels.inspector = inspector;
+        }
+        if let Some((yaw, pitch, distance, target)) = self.camera {
+            viewer.camera.yaw = yaw;
+            viewer.camera.pitch = pitch;
+            viewer.camera.distance = distance;
+            viewer.camera.target = target;
+        }
+        if let Some(selected) = &self.selected {
+            let index = selected.as_ref().and_then(|name| {
+                viewer.document.as_ref()?.clip.skeleton.joints.iter().position(|j| &j.name == name)
+            });
+            viewer.select(index);
+        }
+        if let Some(playing) = self.playing {
+            viewer.playback.playing = playing;
+        }
+        if let Some(timing) = viewer.document.as_ref().map(crate::document::Document::timing) {
+            let end = timing.time_of(timing.last());
+            if let Some(t) = self.time {
+                viewer.playback.time = t.min(end);
+            } else if let Some(f) = self.frame {
+                viewer.playback.seek(f, timing);
+            }
+        }
+        viewer.restart_clock();
+    }
+}
+
+fn flag(v: &str) -> Option<bool> {
+    match v {
+        "1" | "true" => Some(true),
+        "0" | "false" => Some(false),
+        _ => None,
+    }
+}
+
+fn flags<const N: usize>(v: &str, names: [&str; N]) -> [bool; N] {
+    let items: Vec<&str> = v.split(',').collect();
+    names.map(|n| items.contains(&n))
+}
+
+fn join_flags<const N: usize>(on: [bool; N], names: [&str; N]) -> String {
+    let list: Vec<&str> = names.iter().zip(on).filter(|(_, on)| *on).map(|(n, _)| *n).collect();
+    if list.is_empty() { "none".to_owned() } else { list.join(",") }
+}
+
+fn parse_range(v: &str) -> Option<Option<(usize, usize)>> {
+    if v == "all" {
+        return Some(None);
+    }
+    let (a, b) = v.split_once('-')?;
+    Some(Some((a.parse().ok()?, b.parse().ok()?)))
+}
+
+fn parse_camera(v: &str) -> Option<(f32, f32, f32, Vec3)> {
+    let n: Vec<f32> = v.split(',').map(str::parse).collect::<Result<_, _>>().ok()?;
+    match n.as_slice() {
+        &[yaw, pitch, distance, x, y, z] if n.iter().all(|x| x.is_finite()) && distance > 0.0 => {
+            Some((yaw, pitch, distance, Vec3::new(x, y, z)))
+        }
+        _ => None,
+    }
+}
+
+/// Percent-encodes everything but unreserved characters (UTF-8 bytes).
+pub fn percent_encode(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for b in s.bytes() {
+        if b.is_ascii_alphanumeric() || matches!(b, b'-' | b'.' | b'_' | b'~') {
+            out.push(char::from(b));
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
+/// Decodes `%XX` escapes (invalid escapes stay as written; invalid UTF-8 is replaced).
+pub fn percent_decode(s: &str) -> String {
+    let bytes = s.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while let Some(&b) = bytes.get(i) {
+        let hex = |k: usize| bytes.get(k).and_then(|c| char::from(*c).to_digit(16));
+        match (b, hex(i + 1), hex(i + 2)) {
+            (b'%', Some(hi), Some(lo)) => {
+                out.push((hi * 16 + lo) as u8);
+                i += 3;
+            }
+            _ => {
+                out.push(b);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn percent_round_trip() {
+        for s in ["LeftHand", "left hand:1", "Ünïcode&=#%", ""] {
+            assert_eq!(percent_decode(&percent_encode(s)), s);
+        }
+        assert_eq!(percent_decode("%zz%4"), "%zz%4");
+    }
+
+    #[test]
+    fn parse_ignores_junk() {
+        let s = ViewState::parse("#t=abc&speed=-1&cam=1,2&range=x&nothing&play=1&draw=axes,bogus");
+        assert_eq!(s.time, None);
+        assert_eq!(s.speed, None);
+        assert_eq!(s.camera, None);
+        assert_eq!(s.range, None);
+        assert_eq!(s.playing, Some(true));
+        assert_eq!(s.draw, Some([false, true, false, false]));
+    }
+}

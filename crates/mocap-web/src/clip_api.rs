@@ -1,0 +1,76 @@
+//! `parseMotion(bytes, fileName)`: the core library from JavaScript, without the viewer.
+
+use mocap::Clip;
+use mocap::glam::Vec3;
+use wasm_bindgen::prelude::*;
+
+/// A parsed motion clip, for JavaScript (`parseMotion`'s result).
+#[wasm_bindgen(js_name = MotionClip)]
+pub struct MotionClip {
+    clip: Clip,
+    scratch: Vec<Vec3>,
+}
+
+/// Parses a motion file (BVH); throws an `Error` whose message is `file:line:col: message`.
+#[wasm_bindgen(js_name = parseMotion)]
+pub fn parse_motion(bytes: &[u8], file_name: &str) -> Result<MotionClip, JsError> {
+    let clip = mocap::load(file_name, bytes).map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(MotionClip { clip, scratch: Vec::new() })
+}
+
+#[wasm_bindgen(js_class = MotionClip)]
+impl MotionClip {
+    /// Joint names in file order (End Sites included).
+    #[wasm_bindgen(getter, js_name = jointNames)]
+    pub fn joint_names(&self) -> Vec<String> {
+        self.clip.skeleton.joints.iter().map(|j| j.name.clone()).collect()
+    }
+
+    /// Parent index of each joint; -1 for a root.
+    #[wasm_bindgen(getter)]
+    pub fn parents(&self) -> Vec<i32> {
+        self.clip.skeleton.joints.iter().map(|j| j.parent.and_then(|p| i32::try_from(p).ok()).unwrap_or(-1)).collect()
+    }
+
+    /// Whether each joint is an End Site.
+    #[wasm_bindgen(getter, js_name = endSites)]
+    pub fn end_sites(&self) -> Vec<u8> {
+        self.clip.skeleton.joints.iter().map(|j| u8::from(j.end_site)).collect()
+    }
+
+    /// Number of frames.
+    #[wasm_bindgen(getter, js_name = frameCount)]
+    pub fn frame_count(&self) -> u32 {
+        u32::try_from(self.clip.frame_count()).unwrap_or(u32::MAX)
+    }
+
+    /// Seconds per frame.
+    #[wasm_bindgen(getter, js_name = frameTime)]
+    pub fn frame_time(&self) -> f64 {
+        self.clip.frame_time()
+    }
+
+    /// World positions of every joint at `frame` (clamped), as `x, y, z` per joint in file units.
+    #[wasm_bindgen(js_name = worldPositions)]
+    pub fn world_positions(&mut self, frame: u32) -> Vec<f32> {
+        let last = self.clip.frame_count().saturating_sub(1);
+        if self.clip.frame_count() == 0 {
+            return Vec::new();
+        }
+        self.clip.world_positions_into((frame as usize).min(last), &mut self.scratch);
+        self.scratch.iter().flat_map(|p| p.to_array()).collect()
+    }
+
+    /// The clip as standard BVH text.
+    #[wasm_bindgen(js_name = toBvh)]
+    pub fn to_bvh(&self) -> String {
+        mocap::bvh::write(&self.clip)
+    }
+}
+
+impl MotionClip {
+    /// The parsed clip.
+    pub fn clip(&self) -> &Clip {
+        &self.clip
+    }
+}

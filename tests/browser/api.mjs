@@ -1,0 +1,82 @@
+// The wasm package's JavaScript API: parseMotion in Node on the built package, its
+// TypeScript types, and the Canvas 2D example page in Chromium.
+// node api.mjs <url> <distDir> <outDir> <chromium>
+import fs from 'node:fs';
+import path from 'node:path';
+import { launch } from './common.mjs';
+
+const [base, dist, outDir, chromiumPath] = process.argv.slice(2);
+let failures = 0;
+
+function check(cond, what) {
+  console.log(`${cond ? 'ok  ' : 'FAIL'} [api] ${what}`);
+  if (!cond) failures += 1;
+}
+
+async function step(name, fn) {
+  try {
+    await fn();
+  } catch (e) {
+    check(false, `${name}: ${e.message.split('\n')[0]}`);
+  }
+}
+
+const walk = fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url));
+
+await step('parseMotion in Node on the built package', async () => {
+  const pkg = await import(path.join(dist, 'pkg/mocap_web.js'));
+  await pkg.default({ module_or_path: fs.readFileSync(path.join(dist, 'pkg/mocap_web_bg.wasm')) });
+  const clip = pkg.parseMotion(walk, 'walk.bvh');
+  check(clip.frameCount === 67 && Math.abs(clip.frameTime - 1 / 30) < 1e-6, `67 frames at 30 fps (${clip.frameCount}, ${clip.frameTime})`);
+  const names = clip.jointNames;
+  const parents = clip.parents;
+  check(names[0] === 'Hips' && parents.length === names.length && parents[0] === -1 && parents instanceof Int32Array,
+    `${names.length} joints, root ${names[0]}, parents an Int32Array`);
+  const p = clip.worldPositions(10);
+  check(p instanceof Float32Array && p.length === 3 * names.length && p.every(Number.isFinite), `worldPositions(10): ${p.length} finite floats`);
+  const again = pkg.parseMotion(new TextEncoder().encode(clip.toBvh()), 'again.bvh');
+  check(again.frameCount === 67 && again.worldPositions(10).every((v, i) => v === p[i]), 'toBvh() parses back to the same positions');
+  let message = null;
+  try {
+    pkg.parseMotion(new TextEncoder().encode('HIERARCHY\nROOT a\n{\n'), 'bad.bvh');
+  } catch (e) {
+    message = e.message;
+  }
+  check(/^bad\.bvh:\d+:\d+/.test(message ?? ''), `a bad file throws with its position: ${message}`);
+  clip.free();
+  again.free();
+});
+
+await step('TypeScript types', async () => {
+  const dts = fs.readFileSync(path.join(dist, 'pkg/mocap_web.d.ts'), 'utf8');
+  for (const needle of ['export function parseMotion(bytes: Uint8Array | number[], file_name: string): MotionClip',
+    'export function startViewer(canvas: HTMLCanvasElement, options: ViewerOptions | undefined): Promise<MocapViewer>',
+    'worldPositions(frame: number): Float32Array', 'toBvh(): string', 'export interface ViewerOptions',
+    'readonly jointNames: string[]', 'readonly parents: Int32Array']) {
+    check(dts.includes(needle), `mocap_web.d.ts has ${needle}`);
+  }
+});
+
+const { page, close, errors } = await launch(chromiumPath, 'webgl2');
+try {
+  await step('the Canvas 2D example page draws the skeleton', async () => {
+    await page.goto(`${base}web/examples/skeleton-2d.html`);
+    await page.waitForFunction(() => window.skeletonExample && window.skeletonExample.ready && window.skeletonExample.frame > 3, null, { timeout: 60000 });
+    const s = await page.evaluate(() => window.skeletonExample);
+    check(s.name === 'walk.bvh' && s.frames === 67 && s.error === null, `example opened walk.bvh (${s.joints} joints, ${s.frames} frames)`);
+    const lit = await page.evaluate(() => {
+      const c = document.getElementById('view');
+      const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) if (d[i] > 200 && d[i + 1] > 200) n += 1;
+      return n;
+    });
+    check(lit > 200, `the canvas has skeleton pixels (${lit})`);
+    await page.screenshot({ path: path.join(outDir, 'api-example.png') });
+    check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
+  });
+} finally {
+  await close();
+}
+console.log(failures === 0 ? '[api] all API tests passed' : `[api] ${failures} failure(s)`);
+process.exit(failures === 0 ? 0 : 1);
