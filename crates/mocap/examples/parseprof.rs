@@ -7,7 +7,7 @@ fn main() {
     let at = text.find("Frame Time").expect("ft");
     let rows_at = at + text[at..].find('\n').expect("nl") + 1;
     let rows: Vec<&str> = text[rows_at..].lines().collect();
-    let mut input = text[..rows_at].as_bytes().to_vec();
+    let mut input = text.as_bytes()[..rows_at].to_vec();
     for i in 0..9000 {
         input.extend_from_slice(rows[i % rows.len()].as_bytes());
         input.push(b'\n');

@@ -33,7 +33,8 @@ impl Aabb {
 
     /// True when no point was added.
     pub fn is_empty(&self) -> bool {
-        !(self.min.x <= self.max.x)
+        // NaN-safe: an untouched box has min = +inf > max = -inf.
+        self.min.x.partial_cmp(&self.max.x).is_none_or(|o| o.is_gt())
     }
 
     /// Center, or the origin when empty.

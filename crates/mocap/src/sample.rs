@@ -35,7 +35,8 @@ pub fn time_of_frame(frame: usize, frame_time: f64) -> f64 {
 /// so `time_of_frame(n - 1)` always maps back to the last frame.
 pub fn frame_position(time: f64, frame_time: f64, frame_count: usize) -> FramePosition {
     let last = frame_count.saturating_sub(1);
-    if !(frame_time > 0.0) || !time.is_finite() || frame_count == 0 {
+    let valid_frame_time = frame_time.is_finite() && frame_time > 0.0;
+    if !valid_frame_time || !time.is_finite() || frame_count == 0 {
         return FramePosition { frame0: 0, frame1: 0, alpha: 0.0 };
     }
     let f = (time / frame_time).clamp(0.0, last as f64);

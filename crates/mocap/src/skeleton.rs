@@ -78,10 +78,8 @@ impl Skeleton {
     pub fn validate(&self) -> Result<(), String> {
         let width = self.channel_count();
         for (i, j) in self.joints.iter().enumerate() {
-            if let Some(p) = j.parent {
-                if p >= i {
-                    return Err(format!("joint {i} ({}) has parent {p} after it", j.name));
-                }
+            if let Some(p) = j.parent.filter(|&p| p >= i) {
+                return Err(format!("joint {i} ({}) has parent {p} after it", j.name));
             }
             if j.first_channel + j.channels.len() > width {
                 return Err(format!("joint {i} ({}) has channels out of range", j.name));

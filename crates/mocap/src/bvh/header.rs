@@ -207,11 +207,9 @@ impl<'a> Builder<'a> {
     }
 
     fn close_joint(&mut self, token: &Token) {
-        if let Some((joint, had_offset)) = self.stack.pop() {
-            if !had_offset {
-                let name = self.joints.get(joint).map_or("", |j| j.name.as_str());
-                self.warnings.push(Warning { line: Some(token.line), message: format!("joint `{name}` has no OFFSET; using 0 0 0") });
-            }
+        if let Some((joint, false)) = self.stack.pop() {
+            let name = self.joints.get(joint).map_or("", |j| j.name.as_str());
+            self.warnings.push(Warning { line: Some(token.line), message: format!("joint `{name}` has no OFFSET; using 0 0 0") });
         }
     }
 
