@@ -75,6 +75,22 @@ try {
     await page.screenshot({ path: path.join(outDir, 'api-example.png') });
     check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
   });
+
+  await step('startViewer on a canvas of another page, driven by the handle', async () => {
+    await page.goto(`${base}web/examples/start-viewer.html`);
+    await page.waitForFunction(() => window.exampleViewer && window.exampleViewer.state().framesRendered > 3, null, { timeout: 60000 });
+    const s = await page.evaluate(() => window.exampleViewer.state());
+    check(s.clips.length === 1 && s.clips[0].frames === 67 && s.embed && s.playing, `loadClip opened walk.bvh, embed layout, playing (${s.clips.length} clips)`);
+    await page.click('#pause');
+    await page.evaluate(() => window.exampleViewer.seek(30));
+    const paused = await page.evaluate(() => window.exampleViewer.state());
+    check(!paused.playing && paused.frame === 30, `pause and seek(30): frame ${paused.frame}, playing ${paused.playing}`);
+    await page.click('#play');
+    check(await page.evaluate(() => window.exampleViewer.state().playing), 'play resumes');
+    await page.waitForTimeout(500);
+    await page.screenshot({ path: path.join(outDir, 'api-start-viewer.png') });
+    check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
+  });
 } finally {
   await close();
 }

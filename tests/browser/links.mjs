@@ -41,6 +41,7 @@ const big = Buffer.from(bigText, 'latin1');
 const FILES = {
   '/walk.bvh': walk,
   '/big.bvh': big,
+  '/slow.bvh': big,
   '/notes.html': Buffer.from('<!DOCTYPE html><script>window.pwned = true</script><p>not motion</p>'),
 };
 
@@ -55,16 +56,37 @@ function fileServer(cors) {
       return;
     }
     res.writeHead(200, { ...headers, 'Content-Type': 'text/plain', 'Content-Length': body.length });
+    const pause = req.url.startsWith('/slow') ? 400 : 15;
     for (let at = 0; at < body.length; at += 256 * 1024) {
       res.write(body.subarray(at, at + 256 * 1024));
-      await new Promise((r) => setTimeout(r, 15));
+      await new Promise((r) => setTimeout(r, pause));
     }
     res.end();
   });
   return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve({ server, origin: `http://127.0.0.1:${server.address().port}` })));
 }
 
+/** Serves dist/ under /deep/site/ (a static host with the page in a sub-path). */
+function subPathServer() {
+  const dist = new URL('../../dist/', import.meta.url).pathname;
+  const types = { '.html': 'text/html', '.js': 'text/javascript', '.wasm': 'application/wasm', '.css': 'text/css' };
+  const server = http.createServer((req, res) => {
+    const url = new URL(req.url, 'http://x');
+    const rel = url.pathname.startsWith('/deep/site/') ? url.pathname.slice('/deep/site/'.length) || 'index.html' : null;
+    const file = rel && !rel.split('/').includes('..') ? path.join(dist, rel) : null;
+    if (!file || !fs.existsSync(file) || !fs.statSync(file).isFile()) {
+      res.writeHead(404);
+      res.end();
+      return;
+    }
+    res.writeHead(200, { 'Content-Type': types[path.extname(file)] || 'application/octet-stream' });
+    res.end(fs.readFileSync(file));
+  });
+  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve({ server, origin: `http://127.0.0.1:${server.address().port}` })));
+}
+
 const cors = await fileServer(true);
+const sub = await subPathServer();
 const plain = await fileServer(false);
 // A port nothing listens on: bind, note the port, close.
 const closed = await fileServer(false);
@@ -73,8 +95,8 @@ await new Promise((r) => closed.server.close(r));
 
 const { context, page, close, errors } = await launch(chromiumPath, mode);
 await context.grantPermissions(['clipboard-read', 'clipboard-write'], { origin: new URL(base).origin });
-const open = async (p, query) => {
-  await p.goto(`${base}${query}`);
+const open = async (p, query, prefix = base) => {
+  await p.goto(`${prefix}${query}`);
   await p.waitForFunction(() => window.mocapReady === true, null, { timeout: 90000 });
   return state(p);
 };
@@ -94,6 +116,27 @@ try {
     await waitFrames(page, 3);
     const b = await view3d(page, shot('url-b'));
     check(!a.equals(b), 'the linked clip animates');
+  });
+
+  await step('a large file shows a progress bar while it arrives', async () => {
+    await page.goto(`${base}?url=${encodeURIComponent(`${cors.origin}/slow.bvh`)}`);
+    await page.waitForFunction(() => window.mocapUrlLoad && window.mocapUrlLoad.bytes > 600000 && !window.mocapUrlLoad.done, null, { timeout: 60000 });
+    const bar = await page.evaluate(() => {
+      const st = document.getElementById('status');
+      const p = st.querySelector('progress');
+      return { hidden: st.hidden, text: st.textContent, value: p && p.value, max: p && p.max };
+    });
+    await page.screenshot({ path: shot('progress') });
+    check(!bar.hidden && /Loading slow\.bvh: [\d.]+ \/ 3\.0 MB/.test(bar.text) && bar.value > 0 && bar.max === big.length,
+      `progress shown: "${bar.text}" (${bar.value} / ${bar.max})`);
+    const s = await waitState(page, (s) => s.clips.length === 1, null, 60000);
+    check(s.clips[0].name === 'slow.bvh' && await page.evaluate(() => document.getElementById('status').hidden), 'loaded, progress hidden');
+  });
+
+  await step('dist/ works from a sub-path of another static host', async () => {
+    await open(page, `${sub.origin}/deep/site/?url=${encodeURIComponent(`${cors.origin}/walk.bvh`)}`, '');
+    const s = await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
+    check(s.clips[0].name === 'walk.bvh' && s.error === null, `page at /deep/site/ loads and opens a linked clip (${s.backend})`);
   });
 
   await step('relative ?url=data/walk.bvh resolves against the page', async () => {
@@ -203,6 +246,7 @@ try {
   await close();
   cors.server.close();
   plain.server.close();
+  sub.server.close();
 }
 console.log(failures === 0 ? `[${mode}] all link tests passed` : `[${mode}] ${failures} failure(s)`);
 process.exit(failures === 0 ? 0 : 1);
