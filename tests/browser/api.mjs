@@ -3,23 +3,10 @@
 // node api.mjs <url> <distDir> <outDir> <chromium>
 import fs from 'node:fs';
 import path from 'node:path';
-import { launch } from './common.mjs';
+import { launch, reporter } from './common.mjs';
 
 const [base, dist, outDir, chromiumPath] = process.argv.slice(2);
-let failures = 0;
-
-function check(cond, what) {
-  console.log(`${cond ? 'ok  ' : 'FAIL'} [api] ${what}`);
-  if (!cond) failures += 1;
-}
-
-async function step(name, fn) {
-  try {
-    await fn();
-  } catch (e) {
-    check(false, `${name}: ${e.message.split('\n')[0]}`);
-  }
-}
+const { check, step, finish } = reporter('api');
 
 const walk = fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url));
 
@@ -94,5 +81,4 @@ try {
 } finally {
   await close();
 }
-console.log(failures === 0 ? '[api] all API tests passed' : `[api] ${failures} failure(s)`);
-process.exit(failures === 0 ? 0 : 1);
+finish('API tests');

@@ -100,3 +100,26 @@ export async function slowClick(page, x, y) {
 export function view3d(page, file) {
   return page.screenshot({ path: file, clip: { x: 330, y: 120, width: 520, height: 420 } });
 }
+
+// A test report for one script: `check(cond, what)` prints ok/FAIL lines,
+// `step(name, fn)` runs an async step and turns a throw into a failure, and
+// `finish(what)` prints the summary and exits with the right status.
+export function reporter(label) {
+  let failures = 0;
+  const check = (cond, what) => {
+    console.log(`${cond ? 'ok  ' : 'FAIL'} [${label}] ${what}`);
+    if (!cond) failures += 1;
+  };
+  const step = async (name, fn) => {
+    try {
+      await fn();
+    } catch (e) {
+      check(false, `${name}: ${e.message.split('\n')[0]}`);
+    }
+  };
+  const finish = (what) => {
+    console.log(failures === 0 ? `[${label}] all ${what} passed` : `[${label}] ${failures} failure(s)`);
+    process.exit(failures === 0 ? 0 : 1);
+  };
+  return { check, step, finish };
+}

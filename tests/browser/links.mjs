@@ -4,24 +4,11 @@
 import fs from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
-import { launch, state, waitState, waitFrames, dropFile, view3d, waitDropped, slowClick } from './common.mjs';
+import { launch, state, waitState, waitFrames, dropFile, view3d, waitDropped, slowClick, reporter } from './common.mjs';
 
 const [base, mode, outDir, chromiumPath] = process.argv.slice(2);
 const shot = (name) => path.join(outDir, `${mode}-link-${name}.png`);
-let failures = 0;
-
-function check(cond, what) {
-  console.log(`${cond ? 'ok  ' : 'FAIL'} [${mode}] ${what}`);
-  if (!cond) failures += 1;
-}
-
-async function step(name, fn) {
-  try {
-    await fn();
-  } catch (e) {
-    check(false, `${name}: ${e.message.split('\n')[0]}`);
-  }
-}
+const { check, step, finish } = reporter(`${mode}`);
 
 const walk = fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url));
 // A 3 MB clip: the walk's motion rows repeated (a disagreeing Frames: count is only a warning).
@@ -248,5 +235,4 @@ try {
   plain.server.close();
   sub.server.close();
 }
-console.log(failures === 0 ? `[${mode}] all link tests passed` : `[${mode}] ${failures} failure(s)`);
-process.exit(failures === 0 ? 0 : 1);
+finish('link tests');

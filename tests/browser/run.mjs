@@ -1,25 +1,12 @@
 // Browser tests for one GPU mode: node run.mjs <url> <webgl2|webgpu> <outDir> <chromium> <expected.json>
 import fs from 'node:fs';
 import path from 'node:path';
-import { launch, state, waitState, waitFrames, dropFile, view3d, changeAndRender, waitDropped, slowClick } from './common.mjs';
+import { launch, state, waitState, waitFrames, dropFile, view3d, changeAndRender, waitDropped, slowClick, reporter } from './common.mjs';
 
 const [url, mode, outDir, chromiumPath, expectedPath] = process.argv.slice(2);
 const expected = JSON.parse(fs.readFileSync(expectedPath, 'utf8'));
 const shot = (name) => path.join(outDir, `${mode}-${name}.png`);
-let failures = 0;
-
-function check(cond, what) {
-  console.log(`${cond ? 'ok  ' : 'FAIL'} [${mode}] ${what}`);
-  if (!cond) failures += 1;
-}
-
-async function step(name, fn) {
-  try {
-    await fn();
-  } catch (e) {
-    check(false, `${name}: ${e.message.split('\n')[0]}`);
-  }
-}
+const { check, step, finish } = reporter(`${mode}`);
 
 const { page, close, errors } = await launch(chromiumPath, mode);
 try {
@@ -122,5 +109,4 @@ try {
 } finally {
   await close();
 }
-console.log(failures === 0 ? `[${mode}] all browser tests passed` : `[${mode}] ${failures} failure(s)`);
-process.exit(failures === 0 ? 0 : 1);
+finish('browser tests');
