@@ -254,15 +254,7 @@ impl<'a> Stage<'a> {
 
     /// A floor under the lowest point of the motion, with 0.5 m cells.
     fn floor(&self) -> Grid {
-        let cell = 0.5;
-        let (center, half) = if self.bounds.is_empty() {
-            (Vec3::ZERO, 10)
-        } else {
-            let size = self.bounds.size();
-            let half = ((size.x.max(size.z) * 0.5 + self.extent) / cell).ceil();
-            (Vec3::new(0.0, self.bounds.min.y, self.bounds.center().z), (half as u32).clamp(4, 400))
-        };
-        Grid { center, cell, half_cells: half, major_every: 2, color: [75, 78, 88, 255], major_color: [110, 114, 126, 255] }
+        Grid::floor(self.bounds.min, self.bounds.max, self.extent, 0.5)
     }
 
     /// A camera orbiting the motion's centre; the default distance fits it all.

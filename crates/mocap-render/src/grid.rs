@@ -21,6 +21,24 @@ pub struct Grid {
 }
 
 impl Grid {
+    /// A floor under a motion: at the height of `min.y`, centred on the box (snapped
+    /// to whole major cells so it does not swim), covering the box plus `margin`,
+    /// with `cell`-sized cells and a major line every two. An empty or non-finite box
+    /// (min > max) gives a 20-cell floor at the origin.
+    pub fn floor(min: Vec3, max: Vec3, margin: f32, cell: f32) -> Grid {
+        let cell = if cell.is_finite() && cell > 0.0 { cell } else { 1.0 };
+        let size = max - min;
+        let (center, half_cells) = if !(size.is_finite() && size.min_element() >= 0.0) {
+            (Vec3::ZERO, 10)
+        } else {
+            let c = (min + max) * 0.5;
+            let snap = |v: f32| (v / (2.0 * cell)).round() * 2.0 * cell;
+            let half = size.x.max(size.z) * 0.5 + margin.max(0.0);
+            (Vec3::new(snap(c.x), min.y, snap(c.z)), ((half / cell).ceil() as u32).clamp(4, 400))
+        };
+        Grid { center, cell, half_cells, major_every: 2, color: [75, 78, 88, 255], major_color: [110, 114, 126, 255] }
+    }
+
     /// Appends the grid's lines to `out`.
     pub fn lines_into(&self, out: &mut Vec<Line>) {
         let n = self.half_cells.min(500) as i32;
@@ -39,6 +57,15 @@ impl Grid {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn floor_sits_under_the_box_and_covers_it() {
+        let g = Grid::floor(Vec3::new(-3.0, 1.5, -1.0), Vec3::new(5.0, 4.0, 1.0), 1.0, 0.5);
+        assert_eq!(g.center, Vec3::new(1.0, 1.5, 0.0));
+        assert_eq!(g.half_cells, 10);
+        let empty = Grid::floor(Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), 1.0, 0.5);
+        assert_eq!((empty.center, empty.half_cells), (Vec3::ZERO, 10));
+    }
 
     #[test]
     fn grid_has_two_lines_per_row() {

@@ -45,15 +45,5 @@ fn push_axes(t: &Transform, length: f32, scene: &mut Scene) {
 /// A floor at the lowest point the motion reaches, with 0.5 m cells (1 m major lines)
 /// in the clip's units, covering the whole motion.
 pub fn floor_grid(doc: &Document) -> Grid {
-    let bounds = doc.bounds;
-    let cell = 0.5 * doc.units_per_meter();
-    let (center, half) = if bounds.is_empty() || !bounds.size().is_finite() {
-        (Vec3::ZERO, 10)
-    } else {
-        let c = bounds.center();
-        let size = bounds.size().x.max(bounds.size().z) * 0.5 + doc.extent;
-        let snap = |v: f32| (v / (2.0 * cell)).round() * 2.0 * cell;
-        (Vec3::new(snap(c.x), bounds.min.y, snap(c.z)), ((size / cell).ceil() as u32).clamp(4, 400))
-    };
-    Grid { center, cell, half_cells: half, major_every: 2, color: [75, 78, 88, 255], major_color: [110, 114, 126, 255] }
+    Grid::floor(doc.bounds.min, doc.bounds.max, doc.extent, 0.5 * doc.units_per_meter())
 }
