@@ -63,7 +63,7 @@ impl SceneRenderer {
             sample_count,
             &PipelineSpec {
                 label: "mocap lines",
-                shader: include_str!("shaders/lines.wgsl"),
+                shader: concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/lines.wgsl")),
                 attributes: &LINE_ATTRIBUTES,
                 stride: std::mem::size_of::<LineInstance>() as u64,
                 blend: wgpu::BlendState::ALPHA_BLENDING,
@@ -77,7 +77,7 @@ impl SceneRenderer {
             sample_count,
             &PipelineSpec {
                 label: "mocap spheres",
-                shader: include_str!("shaders/spheres.wgsl"),
+                shader: concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/spheres.wgsl")),
                 attributes: &SPHERE_ATTRIBUTES,
                 stride: std::mem::size_of::<SphereInstance>() as u64,
                 blend: wgpu::BlendState::REPLACE,

@@ -1,12 +1,6 @@
 // Screen-space-wide line segments: one instance per segment, six vertices per quad.
 
-struct Frame {
-    view: mat4x4<f32>,
-    projection: mat4x4<f32>,
-    viewport: vec4<f32>,
-};
-
-@group(0) @binding(0) var<uniform> frame: Frame;
+// `Frame` and `frame` come from frame.wgsl.
 
 struct Out {
     @builtin(position) position: vec4<f32>,

@@ -1,12 +1,6 @@
 // Lit sphere impostors: camera-facing quads shaded as spheres.
 
-struct Frame {
-    view: mat4x4<f32>,
-    projection: mat4x4<f32>,
-    viewport: vec4<f32>,
-};
-
-@group(0) @binding(0) var<uniform> frame: Frame;
+// `Frame` and `frame` come from frame.wgsl.
 
 struct Out {
     @builtin(position) position: vec4<f32>,
