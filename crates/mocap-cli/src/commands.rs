@@ -178,13 +178,11 @@ fn parse_range(text: &str) -> Result<(usize, usize, usize), String> {
 
 /// `mocap render`.
 pub fn render(files: &[PathBuf], shot: Shot, out: &Path, size: &str, mode: &str, camera: Option<&str>) -> Result<ExitCode, String> {
-    if mode != "sticks" {
-        return Err(format!("--mode {mode}: only `sticks` is available (capsules are not implemented yet)"));
-    }
+    let mode = mocap_render::DrawMode::from_name(mode).ok_or_else(|| format!("--mode {mode}: expected `capsules` or `sticks`"))?;
     let size = crate::render::parse_size(size)?;
     let orbit = camera.map(crate::render::parse_orbit).transpose()?.unwrap_or_default();
     let clips = files.iter().map(|f| read_clip(f)).collect::<Result<Vec<_>, _>>()?;
-    let stage = crate::render::Stage::new(clips.iter().collect());
+    let stage = crate::render::Stage::new(clips.iter().collect()).with_mode(mode);
     let gpu = crate::render::Gpu::new()?;
     let mut scene = mocap_render::Scene::default();
     let dt = stage.frame_time();

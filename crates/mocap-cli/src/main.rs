@@ -70,11 +70,11 @@ enum Command {
         /// Image size WIDTHxHEIGHT (the whole sheet for --sheet).
         #[arg(long, default_value = "1280x720")]
         size: String,
-        /// Draw mode: sticks (bones and joints). Capsules are not available yet.
-        #[arg(long, default_value = "sticks")]
+        /// Draw mode: capsules (lit solids per bone) or sticks (lines and joints).
+        #[arg(long, default_value = "capsules")]
         mode: String,
         /// Camera `yaw,pitch[,distance]` in degrees and metres (default frames the motion).
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         camera: Option<String>,
     },
     /// Checks files or directories (recursively): one line per file.

@@ -4,7 +4,7 @@
 
 use mocap::glam::Vec3;
 use mocap::{Aabb, Clip, Interpolation};
-use mocap_render::{Camera, Grid, Line, RenderTarget, Scene, SceneRenderer, Sphere, wgpu};
+use mocap_render::{Camera, DrawMode, FigureJoint, FigureStyle, Grid, RenderTarget, Scene, SceneRenderer, wgpu};
 use std::path::Path;
 
 /// Colour format of the offscreen target (sRGB, read back as RGBA8).
@@ -13,6 +13,9 @@ const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 const SAMPLES: u32 = 4;
 /// Vertical field of view, radians.
 const FOV_Y: f32 = 0.8;
+
+/// Joint marker colour (stick mode).
+const JOINT: [u8; 4] = [90, 160, 235, 255];
 
 /// Per-character colours (bones), cycled.
 const PALETTE: [[u8; 4]; 6] =
@@ -130,6 +133,19 @@ impl Offscreen {
         self.target.size()
     }
 
+    /// Draw calls of the last frame.
+    pub fn draw_calls(&self) -> u32 {
+        self.renderer.draw_calls()
+    }
+
+    /// Renders and waits for the GPU to finish, without reading pixels back (what a
+    /// frame costs in a window).
+    pub fn render(&mut self, gpu: &Gpu, scene: &Scene, camera: &Camera) -> Result<(), String> {
+        self.renderer.render(&gpu.device, &gpu.queue, &self.target, scene, camera);
+        gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU wait failed: {e}"))?;
+        Ok(())
+    }
+
     /// Renders and returns tightly packed RGBA8 (sRGB) rows.
     pub fn draw(&mut self, gpu: &Gpu, scene: &Scene, camera: &Camera) -> Result<Vec<u8>, String> {
         let [w, h] = self.target.size();
@@ -169,8 +185,10 @@ pub struct Stage<'a> {
     clips: Vec<&'a Clip>,
     scales: Vec<f32>,
     offsets: Vec<Vec3>,
+    figures: Vec<Vec<FigureJoint>>,
     bounds: Aabb,
     extent: f32,
+    mode: DrawMode,
 }
 
 impl<'a> Stage<'a> {
@@ -209,7 +227,17 @@ impl<'a> Stage<'a> {
         if !bounds.is_empty() {
             bounds = Aabb { min: bounds.min + shift, max: bounds.max + shift };
         }
-        Stage { clips, scales, offsets, bounds, extent }
+        let figures = clips
+            .iter()
+            .map(|c| c.skeleton.joints.iter().map(|j| FigureJoint { parent: j.parent, end_site: j.end_site }).collect())
+            .collect();
+        Stage { clips, scales, offsets, figures, bounds, extent, mode: DrawMode::default() }
+    }
+
+    /// The same stage drawn in `mode`.
+    pub fn with_mode(mut self, mode: DrawMode) -> Stage<'a> {
+        self.mode = mode;
+        self
     }
 
     /// The longest clip's duration.
@@ -232,23 +260,20 @@ impl<'a> Stage<'a> {
         scene.clear();
         scene.background = [38, 40, 46, 255];
         scene.grid = Some(self.floor());
-        let radius = self.extent * 0.012;
         let mut positions = Vec::new();
-        for (n, ((clip, offset), &scale)) in self.clips.iter().zip(&self.offsets).zip(&self.scales).enumerate() {
+        for (n, clip) in self.clips.iter().enumerate() {
+            let (Some(offset), Some(&scale), Some(joints)) = (self.offsets.get(n), self.scales.get(n), self.figures.get(n)) else { break };
             clip.sample_world_positions_into(time.min(clip.duration()), Interpolation::Linear, &mut positions);
-            positions.iter_mut().for_each(|p| *p *= scale);
-            let color = PALETTE[n % PALETTE.len()];
-            for (joint, &p) in clip.skeleton.joints.iter().zip(&positions) {
-                if !p.is_finite() {
-                    continue;
-                }
-                if let Some(parent) = joint.parent.and_then(|i| positions.get(i)).filter(|q| q.is_finite()) {
-                    scene.lines.push(Line { a: *parent + *offset, b: p + *offset, color, width_px: 3.0 });
-                }
-                if !joint.end_site {
-                    scene.spheres.push(Sphere { center: p + *offset, radius, color: [90, 160, 235, 255] });
-                }
-            }
+            positions.iter_mut().for_each(|p| *p = *p * scale + *offset);
+            let style = FigureStyle {
+                mode: self.mode,
+                color: PALETTE[n % PALETTE.len()],
+                joint_color: JOINT,
+                size: self.extent,
+                show_joints: true,
+                highlight: None,
+            };
+            mocap_render::push_figure(scene, joints, &positions, &style);
         }
     }
 

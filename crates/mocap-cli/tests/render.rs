@@ -140,6 +140,11 @@ fn golden_single_frame() {
 }
 
 #[test]
+fn golden_sticks_mode() {
+    check_golden("figure_sticks.png", 1, &["--frame", "2", "--size", "320x180", "--mode", "sticks", "--camera", "-20,10"]);
+}
+
+#[test]
 fn golden_two_characters_custom_camera() {
     check_golden("figure_pair_camera.png", 2, &["--time", "0.75", "--size", "320x180", "--camera", "60,25"]);
 }
@@ -168,7 +173,7 @@ fn render_rejects_bad_arguments_clearly() {
     for (args, needle) in [
         (vec![f, "--out", "x.png", "--size", "10x10"], "16 to 8192"),
         (vec![f, "--out", "x.png", "--camera", "a,b"], "not a number"),
-        (vec![f, "--out", "x.png", "--mode", "capsules"], "only `sticks`"),
+        (vec![f, "--out", "x.png", "--mode", "boxes"], "expected `capsules` or `sticks`"),
         (vec![f, "--out", "d", "--frames", "5:1"], "a <= b"),
         (vec![f, "--out", "x.png", "--frame", "99"], "out of range"),
     ] {

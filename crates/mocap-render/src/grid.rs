@@ -1,6 +1,5 @@
-//! The floor grid primitive and its expansion into lines.
+//! The floor primitive: a plane with grid lines (drawn by floor.wgsl).
 
-use crate::Line;
 use glam::Vec3;
 
 /// A square grid on the horizontal (XZ) plane.
@@ -16,8 +15,10 @@ pub struct Grid {
     pub major_every: u32,
     /// Colour of ordinary lines (sRGB, 0-255).
     pub color: [u8; 4],
-    /// Colour of major lines and the axes through the centre.
+    /// Colour of major lines.
     pub major_color: [u8; 4],
+    /// Colour of the floor between the lines (it fades to the background at the edge).
+    pub floor_color: [u8; 4],
 }
 
 impl Grid {
@@ -33,23 +34,18 @@ impl Grid {
         } else {
             let c = (min + max) * 0.5;
             let snap = |v: f32| (v / (2.0 * cell)).round() * 2.0 * cell;
-            let half = size.x.max(size.z) * 0.5 + margin.max(0.0);
+            // Wide enough that the fade towards the edge starts beyond the motion.
+            let half = (size.x.max(size.z) * 0.5 + margin.max(0.0)) * 1.8;
             (Vec3::new(snap(c.x), min.y, snap(c.z)), ((half / cell).ceil() as u32).clamp(4, 400))
         };
-        Grid { center, cell, half_cells, major_every: 2, color: [75, 78, 88, 255], major_color: [110, 114, 126, 255] }
-    }
-
-    /// Appends the grid's lines to `out`.
-    pub fn lines_into(&self, out: &mut Vec<Line>) {
-        let n = self.half_cells.min(500) as i32;
-        let extent = n as f32 * self.cell;
-        for i in -n..=n {
-            let major = i == 0 || (self.major_every > 0 && i.unsigned_abs() % self.major_every == 0);
-            let (color, width_px) = if major { (self.major_color, 1.5) } else { (self.color, 1.0) };
-            let d = i as f32 * self.cell;
-            let c = self.center;
-            out.push(Line { a: c + Vec3::new(d, 0.0, -extent), b: c + Vec3::new(d, 0.0, extent), color, width_px });
-            out.push(Line { a: c + Vec3::new(-extent, 0.0, d), b: c + Vec3::new(extent, 0.0, d), color, width_px });
+        Grid {
+            center,
+            cell,
+            half_cells,
+            major_every: 2,
+            color: [72, 76, 86, 255],
+            major_color: [100, 105, 118, 255],
+            floor_color: [50, 53, 60, 255],
         }
     }
 }
@@ -62,17 +58,8 @@ mod tests {
     fn floor_sits_under_the_box_and_covers_it() {
         let g = Grid::floor(Vec3::new(-3.0, 1.5, -1.0), Vec3::new(5.0, 4.0, 1.0), 1.0, 0.5);
         assert_eq!(g.center, Vec3::new(1.0, 1.5, 0.0));
-        assert_eq!(g.half_cells, 10);
+        assert_eq!(g.half_cells, 18);
         let empty = Grid::floor(Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), 1.0, 0.5);
         assert_eq!((empty.center, empty.half_cells), (Vec3::ZERO, 10));
-    }
-
-    #[test]
-    fn grid_has_two_lines_per_row() {
-        let g = Grid { center: Vec3::ZERO, cell: 1.0, half_cells: 2, major_every: 2, color: [0; 4], major_color: [1; 4] };
-        let mut out = Vec::new();
-        g.lines_into(&mut out);
-        assert_eq!(out.len(), 10);
-        assert!(out.iter().all(|l| l.a.y == 0.0 && l.b.y == 0.0));
     }
 }

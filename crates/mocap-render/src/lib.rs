@@ -1,9 +1,13 @@
 //! A small wgpu renderer for motion-capture scenes.
 //!
 //! It knows nothing of file formats or UI: callers hand it a [`Scene`] made of
-//! primitives (screen-space-wide line segments, shaded sphere impostors and a floor
-//! [`Grid`]) plus a [`Camera`], and it draws them into a [`RenderTarget`] with any
-//! wgpu `Device`/`Queue` (WebGPU, WebGL2, Vulkan, lavapipe, ...).
+//! primitives (lit [`Capsule`]s, screen-space-wide [`Line`]s, shaded [`Sphere`]
+//! impostors and a floor [`Grid`] that receives a soft shadow from a key light)
+//! plus a [`Camera`], and it draws them into a [`RenderTarget`] with any wgpu
+//! `Device`/`Queue` (WebGPU, WebGL2, Vulkan, lavapipe, ...). [`push_figure`] turns
+//! a posed skeleton (parents and world positions) into primitives in a
+//! [`DrawMode`]. Everything is instanced: a frame takes a handful of draw calls
+//! whatever the number of figures.
 //!
 //! ```no_run
 //! # fn demo(device: &wgpu::Device, queue: &wgpu::Queue) {
@@ -21,11 +25,14 @@
 
 mod buffer;
 mod camera;
+mod capsule;
 mod color;
+mod figure;
 mod grid;
 mod lines;
 mod pipeline;
 mod scene;
+mod shadow;
 mod spheres;
 mod target;
 mod uniforms;
@@ -33,9 +40,11 @@ mod renderer;
 
 pub use camera::Camera;
 pub use color::srgb_to_linear;
+pub use figure::{DrawMode, FigureJoint, FigureStyle, bone_radius, push_figure};
 pub use grid::Grid;
 pub use renderer::SceneRenderer;
-pub use scene::{Line, Scene, Sphere};
+pub use scene::{Capsule, Line, Scene, Sphere};
+pub use shadow::key_light_direction;
 pub use target::RenderTarget;
 pub use glam;
 pub use wgpu;

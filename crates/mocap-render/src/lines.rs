@@ -18,11 +18,11 @@ pub(crate) const LINE_ATTRIBUTES: [wgpu::VertexAttribute; 4] =
     wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32];
 
 impl LineInstance {
-    pub fn new(line: &Line, format: wgpu::TextureFormat, pixels_per_point: f32) -> LineInstance {
+    pub fn new(line: &Line, pixels_per_point: f32) -> LineInstance {
         LineInstance {
             a: line.a.to_array(),
             b: line.b.to_array(),
-            color: crate::color::for_target(line.color, format),
+            color: crate::srgb_to_linear(line.color),
             width: line.width_px * pixels_per_point,
         }
     }

@@ -1,59 +1,62 @@
-//! Shared pipeline construction: one uniform bind group, instanced quads.
+//! Shared pipeline construction.
 
-/// What differs between the line and sphere pipelines.
+/// What differs between the pipelines.
 pub(crate) struct PipelineSpec<'a> {
     pub label: &'static str,
-    pub shader: &'static str,
-    pub attributes: &'a [wgpu::VertexAttribute],
-    pub stride: u64,
-    pub blend: wgpu::BlendState,
+    pub shader: &'a wgpu::ShaderModule,
+    pub vertex_entry: &'static str,
+    pub fragment_entry: &'static str,
+    /// Vertex buffers: per-vertex and/or per-instance layouts.
+    pub buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    /// Colour output (format and blend); `None` for a depth-only pass.
+    pub color: Option<(wgpu::TextureFormat, wgpu::BlendState)>,
+    pub depth_format: wgpu::TextureFormat,
     pub depth_write: bool,
+    pub depth_compare: wgpu::CompareFunction,
+    pub depth_bias: wgpu::DepthBiasState,
+    pub cull_back: bool,
+    pub sample_count: u32,
 }
 
-/// Builds an instanced pipeline drawing six vertices per instance.
-pub(crate) fn instanced_pipeline(
-    device: &wgpu::Device,
-    layout: &wgpu::PipelineLayout,
-    format: wgpu::TextureFormat,
-    sample_count: u32,
-    spec: &PipelineSpec,
-) -> wgpu::RenderPipeline {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(spec.label),
-        source: wgpu::ShaderSource::Wgsl(spec.shader.into()),
-    });
-    let buffers = [Some(wgpu::VertexBufferLayout {
-        array_stride: spec.stride,
-        step_mode: wgpu::VertexStepMode::Instance,
-        attributes: spec.attributes,
+/// Per-instance buffer layout with `attributes` and `stride`.
+pub(crate) fn instances<'a>(attributes: &'a [wgpu::VertexAttribute], stride: usize) -> Option<wgpu::VertexBufferLayout<'a>> {
+    Some(wgpu::VertexBufferLayout { array_stride: stride as u64, step_mode: wgpu::VertexStepMode::Instance, attributes })
+}
+
+/// Builds a triangle-list pipeline from `spec`.
+pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: &PipelineSpec) -> wgpu::RenderPipeline {
+    let targets = [spec.color.map(|(format, blend)| wgpu::ColorTargetState {
+        format,
+        blend: Some(blend),
+        write_mask: wgpu::ColorWrites::ALL,
     })];
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(spec.label),
         layout: Some(layout),
         vertex: wgpu::VertexState {
-            module: &module,
-            entry_point: Some("vs_main"),
+            module: spec.shader,
+            entry_point: Some(spec.vertex_entry),
             compilation_options: Default::default(),
-            buffers: &buffers,
+            buffers: spec.buffers,
         },
-        primitive: wgpu::PrimitiveState { topology: wgpu::PrimitiveTopology::TriangleList, cull_mode: None, ..Default::default() },
+        primitive: wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            cull_mode: spec.cull_back.then_some(wgpu::Face::Back),
+            ..Default::default()
+        },
         depth_stencil: Some(wgpu::DepthStencilState {
-            format: crate::DEPTH_FORMAT,
+            format: spec.depth_format,
             depth_write_enabled: Some(spec.depth_write),
-            depth_compare: Some(wgpu::CompareFunction::LessEqual),
+            depth_compare: Some(spec.depth_compare),
             stencil: Default::default(),
-            bias: Default::default(),
+            bias: spec.depth_bias,
         }),
-        multisample: wgpu::MultisampleState { count: sample_count, ..Default::default() },
-        fragment: Some(wgpu::FragmentState {
-            module: &module,
-            entry_point: Some("fs_main"),
+        multisample: wgpu::MultisampleState { count: spec.sample_count, ..Default::default() },
+        fragment: spec.color.is_some().then(|| wgpu::FragmentState {
+            module: spec.shader,
+            entry_point: Some(spec.fragment_entry),
             compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format,
-                blend: Some(spec.blend),
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
+            targets: &targets,
         }),
         multiview_mask: None,
         cache: None,

@@ -1,28 +1,97 @@
 //! The scene renderer: owns pipelines and buffers, draws a [`Scene`] into a [`RenderTarget`].
+//!
+//! A frame is two passes and at most seven draw calls, whatever the number of
+//! figures: the shadow map (every caster, instanced over a coarse capsule mesh),
+//! then the floor and its shadows, the capsules (instanced: a fine mesh for those that cover
+//! some pixels, a coarse one for the rest), the sphere impostors and the lines.
 
 use crate::buffer::GrowingBuffer;
+use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
 use crate::lines::{LINE_ATTRIBUTES, LineInstance};
-use crate::pipeline::{PipelineSpec, instanced_pipeline};
+use crate::pipeline::{self, PipelineSpec, instances};
+use crate::shadow::{self, ShadowMap};
 use crate::spheres::{SPHERE_ATTRIBUTES, SphereInstance};
 use crate::uniforms::FrameUniforms;
 use crate::{Camera, RenderTarget, Scene};
+use glam::Vec3;
+use wgpu::util::DeviceExt;
 
 /// Draws [`Scene`]s with one device, colour format and sample count.
 pub struct SceneRenderer {
     format: wgpu::TextureFormat,
     sample_count: u32,
     uniforms: wgpu::Buffer,
-    bind_group: wgpu::BindGroup,
-    line_pipeline: wgpu::RenderPipeline,
-    sphere_pipeline: wgpu::RenderPipeline,
+    frame_group: wgpu::BindGroup,
+    shadow: ShadowMap,
+    pipelines: Pipelines,
+    fine_mesh: Mesh,
+    coarse_mesh: Mesh,
     lines: GrowingBuffer,
     spheres: GrowingBuffer,
+    fine_capsules: GrowingBuffer,
+    coarse_capsules: GrowingBuffer,
+    casters: GrowingBuffer,
     line_scratch: Vec<LineInstance>,
     sphere_scratch: Vec<SphereInstance>,
-    grid_scratch: Vec<crate::Line>,
+    fine_scratch: Vec<CapsuleInstance>,
+    coarse_scratch: Vec<CapsuleInstance>,
+    caster_scratch: Vec<CapsuleInstance>,
+    draw_calls: u32,
     /// Physical pixels per logical pixel; scales line widths.
     pub pixels_per_point: f32,
 }
+
+/// A unit-capsule mesh on the GPU.
+struct Mesh {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+}
+
+impl Mesh {
+    fn new(device: &wgpu::Device, detail: capsule::Detail) -> Mesh {
+        let (vertices, indices) = capsule::unit_mesh(detail);
+        Mesh {
+            vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("mocap capsule mesh"),
+                contents: bytemuck::cast_slice(&vertices),
+                usage: wgpu::BufferUsages::VERTEX,
+            }),
+            indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("mocap capsule indices"),
+                contents: bytemuck::cast_slice(&indices),
+                usage: wgpu::BufferUsages::INDEX,
+            }),
+            index_count: indices.len() as u32,
+        }
+    }
+
+    /// Draws `count` instances from `instances` over this mesh.
+    fn draw<'a>(&'a self, pass: &mut wgpu::RenderPass<'a>, instances: &'a wgpu::Buffer, count: u32) {
+        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        pass.set_vertex_buffer(1, instances.slice(..));
+        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint16);
+        pass.draw_indexed(0..self.index_count, 0, 0..count);
+    }
+}
+
+struct Pipelines {
+    shadow: wgpu::RenderPipeline,
+    floor: wgpu::RenderPipeline,
+    floor_shadow: wgpu::RenderPipeline,
+    capsules: wgpu::RenderPipeline,
+    spheres: wgpu::RenderPipeline,
+    lines: wgpu::RenderPipeline,
+}
+
+/// Multiplies the colour below by the fragment's colour (floor shadows).
+const MULTIPLY: wgpu::BlendState = wgpu::BlendState {
+    color: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::Dst, dst_factor: wgpu::BlendFactor::Zero, operation: wgpu::BlendOperation::Add },
+    alpha: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::Zero, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add },
+};
+
+/// WGSL sources: the shared uniform and lighting code prepended to each shader.
+const LIT_PRELUDE: &str = concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/lighting.wgsl"));
 
 impl SceneRenderer {
     /// Creates pipelines for targets of `format` with `sample_count` samples.
@@ -33,7 +102,7 @@ impl SceneRenderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let bind_group_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("mocap frame"),
             entries: &[wgpu::BindGroupLayoutEntry {
                 binding: 0,
@@ -46,56 +115,33 @@ impl SceneRenderer {
                 count: None,
             }],
         });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("mocap frame"),
-            layout: &bind_group_layout,
+            layout: &frame_layout,
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniforms.as_entire_binding() }],
         });
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("mocap"),
-            bind_group_layouts: &[Some(&bind_group_layout)],
-            immediate_size: 0,
-        });
-        let line_pipeline = instanced_pipeline(
-            device,
-            &layout,
-            format,
-            sample_count,
-            &PipelineSpec {
-                label: "mocap lines",
-                shader: concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/lines.wgsl")),
-                attributes: &LINE_ATTRIBUTES,
-                stride: std::mem::size_of::<LineInstance>() as u64,
-                blend: wgpu::BlendState::ALPHA_BLENDING,
-                depth_write: true,
-            },
-        );
-        let sphere_pipeline = instanced_pipeline(
-            device,
-            &layout,
-            format,
-            sample_count,
-            &PipelineSpec {
-                label: "mocap spheres",
-                shader: concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/spheres.wgsl")),
-                attributes: &SPHERE_ATTRIBUTES,
-                stride: std::mem::size_of::<SphereInstance>() as u64,
-                blend: wgpu::BlendState::REPLACE,
-                depth_write: true,
-            },
-        );
+        let shadow = ShadowMap::new(device);
+        let pipelines = Pipelines::new(device, &frame_layout, &shadow.layout, format, sample_count);
         SceneRenderer {
             format,
             sample_count,
             uniforms,
-            bind_group,
-            line_pipeline,
-            sphere_pipeline,
+            frame_group,
+            shadow,
+            pipelines,
+            fine_mesh: Mesh::new(device, capsule::FINE),
+            coarse_mesh: Mesh::new(device, capsule::COARSE),
             lines: GrowingBuffer::new("mocap lines"),
             spheres: GrowingBuffer::new("mocap spheres"),
+            fine_capsules: GrowingBuffer::new("mocap capsules"),
+            coarse_capsules: GrowingBuffer::new("mocap small capsules"),
+            casters: GrowingBuffer::new("mocap shadow casters"),
             line_scratch: Vec::new(),
             sphere_scratch: Vec::new(),
-            grid_scratch: Vec::new(),
+            fine_scratch: Vec::new(),
+            coarse_scratch: Vec::new(),
+            caster_scratch: Vec::new(),
+            draw_calls: 0,
             pixels_per_point: 1.0,
         }
     }
@@ -110,6 +156,11 @@ impl SceneRenderer {
         self.sample_count
     }
 
+    /// Draw calls recorded for the last frame (at most 7, whatever the scene).
+    pub fn draw_calls(&self) -> u32 {
+        self.draw_calls
+    }
+
     /// Records the draw of `scene` into `encoder`, targeting `target`.
     pub fn encode(
         &mut self,
@@ -120,7 +171,11 @@ impl SceneRenderer {
         scene: &Scene,
         camera: &Camera,
     ) {
-        self.upload(device, queue, target.size(), scene, camera);
+        let shadows = self.upload(device, queue, target.size(), scene, camera);
+        self.draw_calls = 0;
+        if shadows {
+            self.encode_shadow_pass(encoder);
+        }
         let (view, resolve_target) = target.color_attachment();
         let [r, g, b, a] = crate::color::for_target(scene.background, self.format);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -143,16 +198,36 @@ impl SceneRenderer {
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.set_bind_group(0, &self.frame_group, &[]);
+        pass.set_bind_group(1, &self.shadow.bind_group, &[]);
+        if scene.grid.is_some() {
+            pass.set_pipeline(&self.pipelines.floor);
+            pass.draw(0..6, 0..1);
+            self.draw_calls += 1;
+            if shadows {
+                pass.set_pipeline(&self.pipelines.floor_shadow);
+                pass.draw(0..6, 0..1);
+                self.draw_calls += 1;
+            }
+        }
+        pass.set_pipeline(&self.pipelines.capsules);
+        for (mesh, instances) in [(&self.fine_mesh, &self.fine_capsules), (&self.coarse_mesh, &self.coarse_capsules)] {
+            if let Some((buffer, count)) = instances.get() {
+                mesh.draw(&mut pass, buffer, count);
+                self.draw_calls += 1;
+            }
+        }
         if let Some((buffer, count)) = self.spheres.get() {
-            pass.set_pipeline(&self.sphere_pipeline);
+            pass.set_pipeline(&self.pipelines.spheres);
             pass.set_vertex_buffer(0, buffer.slice(..));
             pass.draw(0..6, 0..count);
+            self.draw_calls += 1;
         }
         if let Some((buffer, count)) = self.lines.get() {
-            pass.set_pipeline(&self.line_pipeline);
+            pass.set_pipeline(&self.pipelines.lines);
             pass.set_vertex_buffer(0, buffer.slice(..));
             pass.draw(0..6, 0..count);
+            self.draw_calls += 1;
         }
     }
 
@@ -163,19 +238,193 @@ impl SceneRenderer {
         queue.submit([encoder.finish()]);
     }
 
-    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, size: [u32; 2], scene: &Scene, camera: &Camera) {
-        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&FrameUniforms::new(camera, size)));
-        self.grid_scratch.clear();
-        if let Some(grid) = &scene.grid {
-            grid.lines_into(&mut self.grid_scratch);
-        }
-        let (format, ppp) = (self.format, self.pixels_per_point);
+    fn encode_shadow_pass(&mut self, encoder: &mut wgpu::CommandEncoder) {
+        let Some((buffer, count)) = self.casters.get() else { return };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("mocap shadow map"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &self.shadow.view,
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &self.frame_group, &[]);
+        pass.set_pipeline(&self.pipelines.shadow);
+        self.coarse_mesh.draw(&mut pass, buffer, count);
+        self.draw_calls += 1;
+    }
+
+    /// Uploads instances and uniforms; returns whether the shadow pass is needed.
+    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, size: [u32; 2], scene: &Scene, camera: &Camera) -> bool {
+        let ppp = self.pixels_per_point;
         self.line_scratch.clear();
-        // Grid first so bones blend over it.
-        self.line_scratch.extend(self.grid_scratch.iter().chain(&scene.lines).map(|l| LineInstance::new(l, format, ppp)));
+        self.line_scratch.extend(scene.lines.iter().map(|l| LineInstance::new(l, ppp)));
         self.sphere_scratch.clear();
-        self.sphere_scratch.extend(scene.spheres.iter().map(|s| SphereInstance::new(s, format)));
+        self.sphere_scratch.extend(scene.spheres.iter().map(SphereInstance::new));
+        self.fine_scratch.clear();
+        self.coarse_scratch.clear();
+        let pixels_per_unit = camera.projection.y_axis.y * size[1] as f32 * 0.5;
+        for capsule in &scene.capsules {
+            // Capsules under ~4 pixels across get the coarse mesh: the same look
+            // for a fraction of the triangles when many figures are far away.
+            let depth = -camera.view.transform_point3((capsule.a + capsule.b) * 0.5).z;
+            let small = capsule.radius * pixels_per_unit < 2.0 * depth.max(1e-6);
+            let list = if small { &mut self.coarse_scratch } else { &mut self.fine_scratch };
+            list.push(CapsuleInstance::new(capsule));
+        }
+        self.caster_scratch.clear();
+        if scene.shadows {
+            self.caster_scratch.extend_from_slice(&self.fine_scratch);
+            self.caster_scratch.extend_from_slice(&self.coarse_scratch);
+            self.caster_scratch.extend(scene.spheres.iter().map(CapsuleInstance::sphere));
+            self.caster_scratch.extend(scene.shadow_casters.iter().map(CapsuleInstance::new));
+        }
+        let floor_y = scene.grid.as_ref().map(|g| g.center.y);
+        let light = caster_bounds(&self.caster_scratch).and_then(|(min, max)| {
+            let (m, texel) = shadow::light_view_proj(min, max, floor_y)?;
+            Some((m, texel, shadow::floor_shadow_rect(min, max, floor_y.unwrap_or(min.y))))
+        });
+        let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light);
+        queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.lines.upload(device, queue, bytemuck::cast_slice(&self.line_scratch), self.line_scratch.len() as u32);
         self.spheres.upload(device, queue, bytemuck::cast_slice(&self.sphere_scratch), self.sphere_scratch.len() as u32);
+        self.fine_capsules.upload(device, queue, bytemuck::cast_slice(&self.fine_scratch), self.fine_scratch.len() as u32);
+        self.coarse_capsules.upload(device, queue, bytemuck::cast_slice(&self.coarse_scratch), self.coarse_scratch.len() as u32);
+        let casters = if light.is_some() { self.caster_scratch.len() as u32 } else { 0 };
+        self.casters.upload(device, queue, bytemuck::cast_slice(&self.caster_scratch), casters);
+        light.is_some()
+    }
+}
+
+/// The box around every finite caster (ends grown by the radius), if any.
+fn caster_bounds(casters: &[CapsuleInstance]) -> Option<(Vec3, Vec3)> {
+    let (mut min, mut max) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for c in casters {
+        let (a, b, r) = (Vec3::from(c.a), Vec3::from(c.b), Vec3::splat(c.radius.abs()));
+        if a.is_finite() && b.is_finite() && r.is_finite() {
+            min = min.min(a.min(b) - r);
+            max = max.max(a.max(b) + r);
+        }
+    }
+    (min.x <= max.x).then_some((min, max))
+}
+
+impl Pipelines {
+    fn new(
+        device: &wgpu::Device,
+        frame_layout: &wgpu::BindGroupLayout,
+        shadow_layout: &wgpu::BindGroupLayout,
+        format: wgpu::TextureFormat,
+        sample_count: u32,
+    ) -> Pipelines {
+        let lit_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap lit"),
+            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout)],
+            immediate_size: 0,
+        });
+        let shadow_pass_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap shadow pass"),
+            bind_group_layouts: &[Some(frame_layout)],
+            immediate_size: 0,
+        });
+        let module = |label: &str, body: &str| {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(format!("{LIT_PRELUDE}{body}").into()),
+            })
+        };
+        let capsule_shader = module("mocap capsules", include_str!("shaders/capsule.wgsl"));
+        let floor_shader = module("mocap floor", include_str!("shaders/floor.wgsl"));
+        let sphere_shader = module("mocap spheres", include_str!("shaders/spheres.wgsl"));
+        let line_shader = module("mocap lines", include_str!("shaders/lines.wgsl"));
+        let mesh = [
+            Some(wgpu::VertexBufferLayout {
+                array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &capsule::VERTEX_ATTRIBUTES,
+            }),
+            instances(&capsule::INSTANCE_ATTRIBUTES, std::mem::size_of::<CapsuleInstance>()),
+        ];
+        let spheres = [instances(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
+        let lines = [instances(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
+        let base = PipelineSpec {
+            label: "mocap capsules",
+            shader: &capsule_shader,
+            vertex_entry: "vs_main",
+            fragment_entry: "fs_main",
+            buffers: &mesh,
+            color: Some((format, wgpu::BlendState::REPLACE)),
+            depth_format: crate::DEPTH_FORMAT,
+            depth_write: true,
+            depth_compare: wgpu::CompareFunction::LessEqual,
+            depth_bias: Default::default(),
+            cull_back: true,
+            sample_count,
+        };
+        let shadow = pipeline::build(
+            device,
+            &shadow_pass_layout,
+            &PipelineSpec {
+                label: "mocap shadow casters",
+                vertex_entry: "vs_shadow",
+                color: None,
+                depth_format: shadow::FORMAT,
+                depth_bias: wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 },
+                cull_back: false,
+                sample_count: 1,
+                ..base
+            },
+        );
+        let floor = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap floor",
+                shader: &floor_shader,
+                buffers: &[],
+                color: Some((format, wgpu::BlendState::ALPHA_BLENDING)),
+                cull_back: false,
+                ..base
+            },
+        );
+        let floor_shadow = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap floor shadow",
+                shader: &floor_shader,
+                vertex_entry: "vs_shadow",
+                fragment_entry: "fs_shadow",
+                buffers: &[],
+                color: Some((format, MULTIPLY)),
+                depth_write: false,
+                depth_compare: wgpu::CompareFunction::Always,
+                cull_back: false,
+                ..base
+            },
+        );
+        let capsules = pipeline::build(device, &lit_layout, &base);
+        let spheres = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec { label: "mocap spheres", shader: &sphere_shader, buffers: &spheres, cull_back: false, ..base },
+        );
+        let lines = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap lines",
+                shader: &line_shader,
+                buffers: &lines,
+                color: Some((format, wgpu::BlendState::ALPHA_BLENDING)),
+                cull_back: false,
+                ..base
+            },
+        );
+        Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines }
     }
 }

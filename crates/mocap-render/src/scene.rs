@@ -27,22 +27,51 @@ pub struct Sphere {
     pub color: [u8; 4],
 }
 
+/// A lit, shadow-casting capsule: a cylinder from `a` to `b` with round ends of
+/// `radius`. With `a == b` it is a sphere.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Capsule {
+    /// One end (world space).
+    pub a: Vec3,
+    /// The other end (world space).
+    pub b: Vec3,
+    /// Radius (world units).
+    pub radius: f32,
+    /// sRGB colour, 0-255.
+    pub color: [u8; 4],
+}
+
 /// Everything to draw in one frame. Reuse it between frames to avoid allocation.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     /// Clear colour (sRGB, 0-255).
     pub background: [u8; 4],
-    /// The floor grid, if any.
+    /// The floor (a shaded plane with grid lines that fades with distance), if any.
     pub grid: Option<Grid>,
     /// Line segments (bones, axes, ...).
     pub lines: Vec<Line>,
-    /// Spheres (joints, ...).
+    /// Spheres (joints, ...); they also cast shadows.
     pub spheres: Vec<Sphere>,
+    /// Shaded capsules (bones drawn as solids); they cast shadows.
+    pub capsules: Vec<Capsule>,
+    /// Capsules that only cast shadows and are not drawn (e.g. under stick figures,
+    /// whose screen-space lines cast none).
+    pub shadow_casters: Vec<Capsule>,
+    /// Whether the floor receives the key light's soft shadow.
+    pub shadows: bool,
 }
 
 impl Default for Scene {
     fn default() -> Scene {
-        Scene { background: [38, 40, 46, 255], grid: None, lines: Vec::new(), spheres: Vec::new() }
+        Scene {
+            background: [38, 40, 46, 255],
+            grid: None,
+            lines: Vec::new(),
+            spheres: Vec::new(),
+            capsules: Vec::new(),
+            shadow_casters: Vec::new(),
+            shadows: true,
+        }
     }
 }
 
@@ -52,5 +81,7 @@ impl Scene {
         self.grid = None;
         self.lines.clear();
         self.spheres.clear();
+        self.capsules.clear();
+        self.shadow_casters.clear();
     }
 }

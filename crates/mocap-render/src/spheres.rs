@@ -17,11 +17,11 @@ pub(crate) const SPHERE_ATTRIBUTES: [wgpu::VertexAttribute; 3] =
     wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32, 2 => Float32x4];
 
 impl SphereInstance {
-    pub fn new(sphere: &Sphere, format: wgpu::TextureFormat) -> SphereInstance {
+    pub fn new(sphere: &Sphere) -> SphereInstance {
         SphereInstance {
             center: sphere.center.to_array(),
             radius: sphere.radius,
-            color: crate::color::for_target(sphere.color, format),
+            color: crate::srgb_to_linear(sphere.color),
         }
     }
 }

@@ -1,24 +1,61 @@
 //! The per-frame uniform block shared by all pipelines.
 
-use crate::Camera;
+use crate::{Camera, Grid};
 use bytemuck::{Pod, Zeroable};
+use glam::Mat4;
 
-/// Must match `Frame` in the WGSL shaders.
+/// Must match `Frame` in frame.wgsl.
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 pub(crate) struct FrameUniforms {
     pub view: [[f32; 4]; 4],
     pub projection: [[f32; 4]; 4],
-    /// Viewport width, height in pixels; unused; unused.
+    /// Width, height in pixels; 1 to sRGB-encode in the shader; shadow strength.
     pub viewport: [f32; 4],
+    pub light_view_proj: [[f32; 4]; 4],
+    /// Towards the key light; shadow texel size in world units.
+    pub light_dir: [f32; 4],
+    pub eye: [f32; 4],
+    /// Floor centre and fade radius.
+    pub floor_center: [f32; 4],
+    /// Cell size, cells per major line, half extent, unused.
+    pub floor_grid: [f32; 4],
+    pub floor_minor: [f32; 4],
+    pub floor_major: [f32; 4],
+    pub floor_color: [f32; 4],
+    /// Floor area under the shadow casters: min x, min z, max x, max z.
+    pub shadow_rect: [f32; 4],
 }
 
+/// The light's projection, its texel size and the floor rectangle the shadows
+/// fall in, when shadows are drawn.
+pub(crate) type LightFit = Option<(Mat4, f32, [f32; 4])>;
+
 impl FrameUniforms {
-    pub fn new(camera: &Camera, size: [u32; 2]) -> FrameUniforms {
-        FrameUniforms {
+    pub fn new(camera: &Camera, size: [u32; 2], format: wgpu::TextureFormat, grid: Option<&Grid>, light: LightFit) -> FrameUniforms {
+        let eye = camera.view.inverse().w_axis;
+        let (light_view_proj, texel, strength, shadow_rect) = match light {
+            Some((m, texel, rect)) => (m, texel, 1.0, rect),
+            None => (Mat4::IDENTITY, 0.0, 0.0, [0.0; 4]),
+        };
+        let mut u = FrameUniforms {
             view: camera.view.to_cols_array_2d(),
             projection: camera.projection.to_cols_array_2d(),
-            viewport: [size[0].max(1) as f32, size[1].max(1) as f32, 0.0, 0.0],
+            viewport: [size[0].max(1) as f32, size[1].max(1) as f32, if format.is_srgb() { 0.0 } else { 1.0 }, strength],
+            light_view_proj: light_view_proj.to_cols_array_2d(),
+            light_dir: crate::shadow::key_light_direction().extend(texel).to_array(),
+            eye: eye.to_array(),
+            shadow_rect,
+            ..Zeroable::zeroed()
+        };
+        if let Some(g) = grid {
+            let half = g.half_cells.clamp(1, 1000) as f32 * g.cell;
+            u.floor_center = g.center.extend(half).to_array();
+            u.floor_grid = [g.cell, g.major_every.max(1) as f32, half, 0.0];
+            u.floor_minor = crate::srgb_to_linear(g.color);
+            u.floor_major = crate::srgb_to_linear(g.major_color);
+            u.floor_color = crate::srgb_to_linear(g.floor_color);
         }
+        u
     }
 }

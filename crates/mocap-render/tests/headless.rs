@@ -2,9 +2,9 @@
 //! box) and reads the pixels back. Skips, with a note, when no adapter exists.
 
 use mocap_render::glam::Vec3;
-use mocap_render::{Camera, Grid, Line, RenderTarget, Scene, SceneRenderer, Sphere};
+use mocap_render::{Camera, Capsule, Grid, Line, RenderTarget, Scene, SceneRenderer, Sphere};
 
-const SIZE: u32 = 64;
+const SIZE: u32 = 128;
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
 fn device() -> Option<(wgpu::Device, wgpu::Queue)> {
@@ -54,7 +54,7 @@ fn draws_lines_spheres_and_grid_offscreen() {
     let empty = read_pixels(&device, &queue, &target);
     assert!(empty.chunks(4).all(|p| p == background), "an empty scene is just the background");
 
-    scene.grid = Some(Grid { center: Vec3::ZERO, cell: 0.5, half_cells: 4, major_every: 2, color: [90; 4], major_color: [120; 4] });
+    scene.grid = Some(Grid::floor(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0), 0.5, 0.5));
     scene.lines.push(Line { a: Vec3::new(0.0, 0.5, 0.0), b: Vec3::new(0.0, 1.5, 0.0), color: [255, 0, 0, 255], width_px: 3.0 });
     scene.spheres.push(Sphere { center: Vec3::new(0.0, 1.5, 0.0), radius: 0.1, color: [0, 255, 0, 255] });
     renderer.render(&device, &queue, &target, &scene, &camera);
@@ -65,4 +65,35 @@ fn draws_lines_spheres_and_grid_offscreen() {
     // Y up: the sphere (y = 1.5, eye height 1) lands in the upper half of the image.
     let green_rows: Vec<usize> = pixels.chunks(4).enumerate().filter(|(_, p)| p[1] > 100 && p[0] < 60).map(|(i, _)| i / SIZE as usize).collect();
     assert!(green_rows.iter().all(|&r| r < SIZE as usize / 2), "sphere above the centre: rows {green_rows:?}");
+}
+
+#[test]
+fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
+    let Some((device, queue)) = device() else {
+        eprintln!("no wgpu adapter here (install mesa-vulkan-drivers for lavapipe); skipping");
+        return;
+    };
+    let mut renderer = SceneRenderer::new(&device, FORMAT, 4);
+    let target = RenderTarget::new(&device, FORMAT, 4, [SIZE, SIZE]);
+    // Looking straight down at a floor with a pole standing at its centre.
+    let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
+    let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let bare = read_pixels(&device, &queue, &target);
+    scene.capsules.push(Capsule { a: Vec3::new(0.0, 0.0, 0.0), b: Vec3::new(0.0, 2.5, 0.0), radius: 0.15, color: [200, 60, 60, 255] });
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    assert_eq!(renderer.draw_calls(), 4, "shadow map, floor, floor shadow, capsules");
+    let lit = read_pixels(&device, &queue, &target);
+    let luma = |p: &[u8]| p[0] as u32 + p[1] as u32 + p[2] as u32;
+    let red = lit.chunks(4).filter(|p| p[0] > 100 && p[0] as u32 > 2 * p[1] as u32).count();
+    assert!(red > 20, "the capsule is drawn: {red} red pixels");
+    // The light is not straight overhead, so the pole's shadow is a streak on the
+    // floor beside it (the pole itself covers only a disc from above).
+    let darker = bare.chunks(4).zip(lit.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
+    assert!(darker > 20, "a shadow darkens the floor: {darker} pixels");
+    scene.shadows = false;
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let unshadowed = read_pixels(&device, &queue, &target);
+    let darker = bare.chunks(4).zip(unshadowed.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
+    assert_eq!(darker, 0, "no shadow when shadows are off");
 }

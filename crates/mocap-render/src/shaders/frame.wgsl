@@ -4,7 +4,36 @@
 struct Frame {
     view: mat4x4<f32>,
     projection: mat4x4<f32>,
+    // Viewport width and height in pixels; 1 when the target needs sRGB encoding
+    // in the shader (a plain unorm target); shadow strength (0 = no shadows).
     viewport: vec4<f32>,
+    // World to the shadow map's clip space (orthographic, along the key light).
+    light_view_proj: mat4x4<f32>,
+    // Unit vector towards the key light; w: shadow map texel size in world units.
+    light_dir: vec4<f32>,
+    // Camera position in world space; w unused.
+    eye: vec4<f32>,
+    // Floor centre (xyz) and the radius at which it has faded out (w).
+    floor_center: vec4<f32>,
+    // Floor cell size, cells between major lines, half extent, unused.
+    floor_grid: vec4<f32>,
+    // Floor colours (linear): minor lines, major lines, the floor itself.
+    floor_minor: vec4<f32>,
+    floor_major: vec4<f32>,
+    floor_color: vec4<f32>,
+    // The floor area the shadow map covers: min x, min z, max x, max z.
+    shadow_rect: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;
+
+// Linear colour to what the target stores: sRGB targets encode in hardware,
+// plain unorm targets (egui's, which composites in gamma space) here.
+fn to_target(c: vec4<f32>) -> vec4<f32> {
+    if (frame.viewport.z < 0.5) {
+        return c;
+    }
+    let lo = c.rgb * 12.92;
+    let hi = 1.055 * pow(max(c.rgb, vec3<f32>(0.0)), vec3<f32>(1.0 / 2.4)) - 0.055;
+    return vec4<f32>(select(hi, lo, c.rgb <= vec3<f32>(0.0031308)), c.a);
+}

@@ -56,5 +56,5 @@ fn vs_main(
 
 @fragment
 fn fs_main(in: Out) -> @location(0) vec4<f32> {
-    return in.color;
+    return to_target(in.color);
 }

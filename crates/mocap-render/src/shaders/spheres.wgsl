@@ -1,11 +1,12 @@
 // Lit sphere impostors: camera-facing quads shaded as spheres.
-
-// `Frame` and `frame` come from frame.wgsl.
+// `Frame`, `frame`, `to_target` and `shade` come from frame.wgsl and lighting.wgsl.
 
 struct Out {
     @builtin(position) position: vec4<f32>,
     @location(0) color: vec4<f32>,
     @location(1) uv: vec2<f32>,
+    @location(2) center: vec3<f32>,
+    @location(3) radius: f32,
 };
 
 @vertex
@@ -26,6 +27,8 @@ fn vs_main(
     out.position = frame.projection * corner;
     out.color = color;
     out.uv = uv;
+    out.center = center;
+    out.radius = radius;
     return out;
 }
 
@@ -35,10 +38,10 @@ fn fs_main(in: Out) -> @location(0) vec4<f32> {
     if (r2 > 1.0) {
         discard;
     }
-    let normal = vec3<f32>(in.uv, sqrt(1.0 - r2));
-    let light = normalize(vec3<f32>(-0.4, 0.6, 0.7));
-    let diffuse = max(dot(normal, light), 0.0);
-    let rim = smoothstep(0.85, 1.0, r2) * 0.25;
-    let shade = 0.35 + 0.65 * diffuse;
-    return vec4<f32>(in.color.rgb * shade * (1.0 - rim), in.color.a);
+    // View-space normal back to world space (the view matrix is a rotation + shift).
+    let view_normal = vec3<f32>(in.uv, sqrt(1.0 - r2));
+    let rot = mat3x3<f32>(frame.view[0].xyz, frame.view[1].xyz, frame.view[2].xyz);
+    let n = normalize(transpose(rot) * view_normal);
+    let p = in.center + n * in.radius;
+    return to_target(vec4<f32>(shade(in.color.rgb, p, n), in.color.a));
 }

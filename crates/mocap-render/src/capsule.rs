@@ -1,0 +1,136 @@
+//! Capsules on the GPU: the shared unit-capsule mesh and the per-capsule instance layout.
+
+use crate::Capsule;
+use bytemuck::{Pod, Zeroable};
+use std::f32::consts::{FRAC_PI_2, TAU};
+
+/// Detail of a capsule mesh: vertices around the axis and latitude rings in each
+/// round end (pole excluded).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Detail {
+    pub segments: u32,
+    pub rings: u32,
+}
+
+/// For capsules that cover more than a few pixels (144 triangles).
+pub(crate) const FINE: Detail = Detail { segments: 12, rings: 3 };
+/// For small or distant capsules and the shadow pass (24 triangles).
+pub(crate) const COARSE: Detail = Detail { segments: 6, rings: 1 };
+
+/// One vertex of the unit capsule: a unit direction in the capsule's frame (axis =
+/// +Z) and which end it hangs from (0 = `a`, 1 = `b`). Placed as
+/// `mix(a, b, end) + radius * basis * dir`, which is also the normal.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub(crate) struct CapsuleVertex {
+    pub dir: [f32; 3],
+    pub end: f32,
+}
+
+/// Vertex attributes of [`CapsuleVertex`] (locations 0-1).
+pub(crate) const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 2] = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32];
+
+/// One capsule as the capsule shaders read it (linear colour).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub(crate) struct CapsuleInstance {
+    pub a: [f32; 3],
+    pub radius: f32,
+    pub b: [f32; 3],
+    pub color: [f32; 4],
+}
+
+/// Instance attributes of [`CapsuleInstance`] (locations 2-5).
+pub(crate) const INSTANCE_ATTRIBUTES: [wgpu::VertexAttribute; 4] =
+    wgpu::vertex_attr_array![2 => Float32x3, 3 => Float32, 4 => Float32x3, 5 => Float32x4];
+
+impl CapsuleInstance {
+    pub fn new(c: &Capsule) -> CapsuleInstance {
+        CapsuleInstance { a: c.a.to_array(), radius: c.radius, b: c.b.to_array(), color: crate::srgb_to_linear(c.color) }
+    }
+
+    /// A sphere as a capsule of zero length.
+    pub fn sphere(s: &crate::Sphere) -> CapsuleInstance {
+        let center = s.center.to_array();
+        CapsuleInstance { a: center, radius: s.radius, b: center, color: crate::srgb_to_linear(s.color) }
+    }
+}
+
+/// The unit capsule: a UV sphere cut at its equator, the lower half at end `a`
+/// and the upper half at end `b`, joined by the cylinder. Counter-clockwise
+/// triangles seen from outside.
+pub(crate) fn unit_mesh(detail: Detail) -> (Vec<CapsuleVertex>, Vec<u16>) {
+    let Detail { segments, rings } = detail;
+    let mut vertices = Vec::new();
+    // Rings from the `a` pole up to its equator, then from `b`'s equator to its pole.
+    let ring = |vertices: &mut Vec<CapsuleVertex>, latitude: f32, end: f32| {
+        for s in 0..segments {
+            let theta = TAU * s as f32 / segments as f32;
+            let (sin_t, cos_t) = theta.sin_cos();
+            let (sin_l, cos_l) = latitude.sin_cos();
+            vertices.push(CapsuleVertex { dir: [cos_t * cos_l, sin_t * cos_l, sin_l], end });
+        }
+    };
+    vertices.push(CapsuleVertex { dir: [0.0, 0.0, -1.0], end: 0.0 });
+    for r in (0..rings).rev() {
+        ring(&mut vertices, -FRAC_PI_2 * r as f32 / rings as f32, 0.0);
+    }
+    for r in 0..rings {
+        ring(&mut vertices, FRAC_PI_2 * r as f32 / rings as f32, 1.0);
+    }
+    let top = vertices.len() as u16;
+    vertices.push(CapsuleVertex { dir: [0.0, 0.0, 1.0], end: 1.0 });
+
+    let mut indices = Vec::new();
+    let at = |ring: u32, s: u32| (1 + ring * segments + s % segments) as u16;
+    for s in 0..segments {
+        // Bottom pole fan (looking from below, -Z).
+        indices.extend([0, at(0, s + 1), at(0, s)]);
+        // Top pole fan.
+        let last = 2 * rings - 1;
+        indices.extend([top, at(last, s), at(last, s + 1)]);
+    }
+    for r in 0..2 * rings - 1 {
+        for s in 0..segments {
+            let (p, q, u, v) = (at(r, s), at(r, s + 1), at(r + 1, s), at(r + 1, s + 1));
+            indices.extend([p, q, v, p, v, u]);
+        }
+    }
+    (vertices, indices)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn meshes_are_closed_and_face_outwards() {
+        for detail in [FINE, COARSE] {
+            check_mesh(detail);
+        }
+    }
+
+    fn check_mesh(detail: Detail) {
+        let (vertices, indices) = unit_mesh(detail);
+        assert_eq!(indices.len() % 3, 0);
+        assert!(indices.iter().all(|&i| (i as usize) < vertices.len()));
+        // Every edge is shared by exactly two triangles, in opposite directions.
+        let mut edges = std::collections::HashMap::new();
+        for t in indices.chunks(3) {
+            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                *edges.entry((a, b)).or_insert(0) += 1;
+            }
+        }
+        assert!(edges.iter().all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1)));
+        // Place the capsule a = origin, b = +Z*2 and check every face normal points out.
+        let place = |v: &CapsuleVertex| Vec3::from(v.dir) + Vec3::Z * 2.0 * v.end;
+        for t in indices.chunks(3) {
+            let [p, q, r] = [0, 1, 2].map(|k| place(&vertices[t[k] as usize]));
+            let normal = (q - p).cross(r - p);
+            let centre = (p + q + r) / 3.0;
+            let axis_point = Vec3::Z * centre.z.clamp(0.0, 2.0);
+            assert!(normal.dot(centre - axis_point) > 0.0, "triangle {t:?} faces inwards");
+        }
+    }
+}

@@ -1,0 +1,167 @@
+//! Skeletons to primitives: one figure (a posed skeleton) becomes bones and joints
+//! in the chosen [`DrawMode`]. Knows joint positions and parents, no file formats.
+
+use crate::{Capsule, Line, Scene, Sphere};
+use glam::Vec3;
+
+/// How figures are drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DrawMode {
+    /// Lit solids: one capsule per bone, sized to the bone (the default).
+    #[default]
+    Capsules,
+    /// Screen-space sticks for bones and small spheres at the joints.
+    Sticks,
+}
+
+impl DrawMode {
+    /// Every mode, in menu order.
+    pub const ALL: [DrawMode; 2] = [DrawMode::Capsules, DrawMode::Sticks];
+
+    /// Lower-case name used on command lines and in URLs.
+    pub fn name(self) -> &'static str {
+        match self {
+            DrawMode::Capsules => "capsules",
+            DrawMode::Sticks => "sticks",
+        }
+    }
+
+    /// The mode called `name` (see [`DrawMode::name`]).
+    pub fn from_name(name: &str) -> Option<DrawMode> {
+        DrawMode::ALL.into_iter().find(|m| m.name().eq_ignore_ascii_case(name.trim()))
+    }
+}
+
+/// One joint of a figure: its parent (earlier in the list) and whether it is an
+/// end point (a BVH End Site), which gets a bone but no joint marker.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FigureJoint {
+    /// Index of the parent joint, `None` for a root.
+    pub parent: Option<usize>,
+    /// An end point: no joint marker.
+    pub end_site: bool,
+}
+
+/// Looks of one figure.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FigureStyle {
+    /// Capsules or sticks.
+    pub mode: DrawMode,
+    /// Bone colour (sRGB).
+    pub color: [u8; 4],
+    /// Joint marker colour in stick mode (sRGB).
+    pub joint_color: [u8; 4],
+    /// Size of the figure (e.g. a standing height) in world units: sets thicknesses.
+    pub size: f32,
+    /// Draw joint markers (stick mode).
+    pub show_joints: bool,
+    /// A joint to highlight, and its colour.
+    pub highlight: Option<(usize, [u8; 4])>,
+}
+
+/// Bone radius (capsule mode) for a bone of `length` in a figure of `size`: thick
+/// for long limbs, thin for fingers, within 0.8%–4% of the figure's size.
+pub fn bone_radius(length: f32, size: f32) -> f32 {
+    (length * 0.2).clamp(size * 0.008, size * 0.04)
+}
+
+/// Appends the figure posed at `positions` (world space, one per joint of `joints`)
+/// to `scene`. Joints with non-finite positions and their bones are skipped.
+pub fn push_figure(scene: &mut Scene, joints: &[FigureJoint], positions: &[Vec3], style: &FigureStyle) {
+    let size = if style.size.is_finite() && style.size > 0.0 { style.size } else { 1.0 };
+    let joint_radius = size * 0.012;
+    let highlight = style.highlight.map(|(j, _)| j);
+    for (i, (joint, &p)) in joints.iter().zip(positions).enumerate() {
+        if !p.is_finite() {
+            continue;
+        }
+        let is_highlight = highlight == Some(i);
+        let color = match style.highlight {
+            Some((j, c)) if j == i => c,
+            _ => style.color,
+        };
+        let parent = joint.parent.and_then(|q| positions.get(q)).copied().filter(|q| q.is_finite());
+        match style.mode {
+            DrawMode::Capsules => {
+                if let Some(q) = parent {
+                    let radius = bone_radius(q.distance(p), size);
+                    scene.capsules.push(Capsule { a: q, b: p, radius, color });
+                } else if !joint.end_site {
+                    // A root: a ball so a lone root (or the hips) is visible.
+                    scene.capsules.push(Capsule { a: p, b: p, radius: size * 0.03, color });
+                }
+                if is_highlight {
+                    scene.capsules.push(Capsule { a: p, b: p, radius: size * 0.04, color });
+                }
+            }
+            DrawMode::Sticks => {
+                if let Some(q) = parent {
+                    scene.lines.push(Line { a: q, b: p, color, width_px: 3.0 });
+                    scene.shadow_casters.push(Capsule { a: q, b: p, radius: size * 0.006, color });
+                }
+                if !joint.end_site && (style.show_joints || is_highlight) {
+                    let (radius, color) = if is_highlight { (joint_radius * 1.8, color) } else { (joint_radius, style.joint_color) };
+                    scene.spheres.push(Sphere { center: p, radius, color });
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn chain() -> (Vec<FigureJoint>, Vec<Vec3>) {
+        let joints = vec![
+            FigureJoint { parent: None, end_site: false },
+            FigureJoint { parent: Some(0), end_site: false },
+            FigureJoint { parent: Some(1), end_site: true },
+        ];
+        (joints, vec![Vec3::ZERO, Vec3::Y, Vec3::new(0.0, 2.0, 0.0)])
+    }
+
+    fn style(mode: DrawMode) -> FigureStyle {
+        FigureStyle { mode, color: [1; 4], joint_color: [2; 4], size: 1.8, show_joints: true, highlight: None }
+    }
+
+    #[test]
+    fn capsules_one_per_bone_plus_the_root() {
+        let (joints, positions) = chain();
+        let mut scene = Scene::default();
+        push_figure(&mut scene, &joints, &positions, &style(DrawMode::Capsules));
+        assert_eq!(scene.capsules.len(), 3);
+        assert!(scene.lines.is_empty() && scene.spheres.is_empty());
+        assert_eq!((scene.capsules[1].a, scene.capsules[1].b), (Vec3::ZERO, Vec3::Y));
+        assert_eq!(scene.capsules[1].radius, bone_radius(1.0, 1.8));
+    }
+
+    #[test]
+    fn sticks_lines_joints_and_shadow_casters() {
+        let (joints, positions) = chain();
+        let mut scene = Scene::default();
+        let mut s = style(DrawMode::Sticks);
+        s.highlight = Some((1, [9; 4]));
+        push_figure(&mut scene, &joints, &positions, &s);
+        assert_eq!(scene.lines.len(), 2);
+        assert_eq!(scene.shadow_casters.len(), 2);
+        assert_eq!(scene.spheres.len(), 2, "End Sites get no joint marker");
+        assert_eq!(scene.spheres[1].color, [9; 4]);
+    }
+
+    #[test]
+    fn non_finite_joints_are_skipped() {
+        let (joints, mut positions) = chain();
+        positions[1] = Vec3::NAN;
+        let mut scene = Scene::default();
+        push_figure(&mut scene, &joints, &positions, &style(DrawMode::Capsules));
+        assert_eq!(scene.capsules.len(), 1, "only the root remains");
+        assert!(DrawMode::from_name("Sticks") == Some(DrawMode::Sticks) && DrawMode::from_name("x").is_none());
+    }
+
+    #[test]
+    fn radius_is_bounded() {
+        assert_eq!(bone_radius(100.0, 1.0), 0.04);
+        assert_eq!(bone_radius(0.0, 1.0), 0.008);
+    }
+}

@@ -1,0 +1,74 @@
+// The floor: one quad on the plane y = floor height, with anti-aliased grid lines
+// and a fade to the background with distance; then the key light's soft shadow as
+// a second quad covering only the shadow map's footprint, multiplied over it (so
+// the shadow lookups, costly on software rasterisers, run only where needed).
+// `Frame`, `frame`, `to_target` and `key_visibility` come from frame.wgsl and lighting.wgsl.
+
+struct Out {
+    @builtin(position) position: vec4<f32>,
+    @location(0) world: vec3<f32>,
+};
+
+@vertex
+fn vs_main(@builtin(vertex_index) vertex: u32) -> Out {
+    var xs = array<f32, 6>(-1.0, 1.0, -1.0, -1.0, 1.0, 1.0);
+    var zs = array<f32, 6>(-1.0, -1.0, 1.0, 1.0, -1.0, 1.0);
+    let i = vertex % 6u;
+    let half = frame.floor_grid.z;
+    let p = frame.floor_center.xyz + vec3<f32>(xs[i] * half, 0.0, zs[i] * half);
+    var out: Out;
+    out.position = frame.projection * frame.view * vec4<f32>(p, 1.0);
+    out.world = p;
+    return out;
+}
+
+// Coverage (0..1) of lines every `cell` units, `width` pixels wide, at `coord`.
+fn grid_lines(coord: vec2<f32>, width: f32) -> f32 {
+    let w = fwidth(coord);
+    let d = abs(fract(coord - 0.5) - 0.5) / max(w, vec2<f32>(1e-6));
+    let line = 1.0 - min(min(d.x, d.y) / width, 1.0);
+    // Lines closer together than about two pixels fade out instead of shimmering.
+    let dense = smoothstep(0.3, 0.6, max(w.x, w.y));
+    return line * (1.0 - dense);
+}
+
+@fragment
+fn fs_main(in: Out) -> @location(0) vec4<f32> {
+    let rel = in.world.xz - frame.floor_center.xz;
+    let cell = max(frame.floor_grid.x, 1e-6);
+    let coord = rel / cell;
+    let minor = grid_lines(coord, 1.0);
+    let major_every = max(frame.floor_grid.y, 1.0);
+    let major = grid_lines(coord / major_every, 1.5);
+    var color = frame.floor_color.rgb;
+    color = mix(color, frame.floor_minor.rgb, minor * frame.floor_minor.a);
+    color = mix(color, frame.floor_major.rgb, major * frame.floor_major.a);
+    return to_target(vec4<f32>(color, floor_alpha(in.world) * frame.floor_color.a));
+}
+
+// Opacity of the floor at `p`: 1 near the centre, fading out towards the edge.
+fn floor_alpha(p: vec3<f32>) -> f32 {
+    let r = length(p.xz - frame.floor_center.xz) / max(frame.floor_center.w, 1e-6);
+    return 1.0 - smoothstep(0.45, 1.0, r);
+}
+
+@vertex
+fn vs_shadow(@builtin(vertex_index) vertex: u32) -> Out {
+    var xs = array<f32, 6>(0.0, 1.0, 0.0, 0.0, 1.0, 1.0);
+    var zs = array<f32, 6>(0.0, 0.0, 1.0, 1.0, 0.0, 1.0);
+    let i = vertex % 6u;
+    let r = frame.shadow_rect;
+    let p = vec3<f32>(mix(r.x, r.z, xs[i]), frame.floor_center.y, mix(r.y, r.w, zs[i]));
+    var out: Out;
+    out.position = frame.projection * frame.view * vec4<f32>(p, 1.0);
+    out.world = p;
+    return out;
+}
+
+// A factor the colour below is multiplied by: 1 in light, darker in shadow.
+@fragment
+fn fs_shadow(in: Out) -> @location(0) vec4<f32> {
+    let lit = key_visibility(in.world, vec3<f32>(0.0, 1.0, 0.0));
+    let k = 1.0 - (1.0 - lit) * 0.55 * floor_alpha(in.world) * frame.floor_color.a;
+    return vec4<f32>(k, k, k, 1.0);
+}

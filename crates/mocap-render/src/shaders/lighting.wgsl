@@ -1,0 +1,50 @@
+// Lighting shared by the lit pipelines (capsules, spheres, floor): a key light
+// with a soft shadow from the shadow map, and sky/ground ambient.
+// `Frame`, `frame` and `to_target` come from frame.wgsl.
+
+@group(1) @binding(0) var shadow_map: texture_depth_2d;
+@group(1) @binding(1) var shadow_sampler: sampler_comparison;
+
+const SKY: vec3<f32> = vec3<f32>(0.50, 0.55, 0.65);
+const GROUND: vec3<f32> = vec3<f32>(0.22, 0.20, 0.18);
+const KEY: vec3<f32> = vec3<f32>(1.0, 0.96, 0.90);
+
+// 1 where the key light reaches `p` (normal `n`), 0 in full shadow; soft at the
+// edges (percentage-closer filtering).
+fn key_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
+    if (frame.viewport.w <= 0.0) {
+        return 1.0;
+    }
+    let texel = frame.light_dir.w;
+    // Normal offset against acne on curved surfaces.
+    let lp = frame.light_view_proj * vec4<f32>(p + n * texel * 3.0, 1.0);
+    let ndc = lp.xyz / lp.w;
+    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 + ndc.y * 0.5);
+    if (any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0) {
+        return 1.0;
+    }
+    // Four hardware-filtered (2x2 bilinear) comparisons 1.5 texels apart: a
+    // soft edge about four texels wide for four taps.
+    let d = 0.75 / vec2<f32>(textureDimensions(shadow_map));
+    let z = ndc.z - 0.003;
+    let lit = textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(-d.x, -d.y), z)
+        + textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(d.x, -d.y), z)
+        + textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(-d.x, d.y), z)
+        + textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(d.x, d.y), z);
+    let v = lit * 0.25;
+    return mix(1.0, v, frame.viewport.w);
+}
+
+// Shades a surface of linear colour `base` at `p` with unit normal `n`.
+fn shade(base: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let l = frame.light_dir.xyz;
+    let v = normalize(frame.eye.xyz - p);
+    let visible = key_visibility(p, n);
+    let diffuse = max(dot(n, l), 0.0) * visible;
+    let ambient = mix(GROUND, SKY, n.y * 0.5 + 0.5);
+    let h = normalize(l + v);
+    let specular = pow(max(dot(n, h), 0.0), 40.0) * 0.25 * visible;
+    // Soft rim so silhouettes read against the dark background.
+    let rim = pow(1.0 - max(dot(n, v), 0.0), 3.0) * 0.15;
+    return base * (ambient * 0.75 + KEY * diffuse * 0.85) + vec3<f32>(specular + rim * 0.5);
+}

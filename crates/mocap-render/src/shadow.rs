@@ -1,0 +1,159 @@
+//! The key light's shadow map: a depth texture rendered from the light with an
+//! orthographic projection fitted to the shadow casters, sampled with a comparison
+//! sampler (soft edges from a small filter in the shader).
+
+use glam::{Mat4, Vec3};
+
+/// Shadow map resolution (square).
+pub(crate) const SIZE: u32 = 2048;
+/// Depth format of the shadow map.
+pub(crate) const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// Unit vector towards the key light: high and from the left of the default
+/// camera, so figures are lit from the front and their shadows fall to the right
+/// where the camera sees them.
+pub fn key_light_direction() -> Vec3 {
+    Vec3::new(-0.6, 1.0, 0.35).normalize()
+}
+
+/// The shadow map texture and the bind group the lit pipelines sample it through.
+pub(crate) struct ShadowMap {
+    pub view: wgpu::TextureView,
+    pub layout: wgpu::BindGroupLayout,
+    pub bind_group: wgpu::BindGroup,
+}
+
+impl ShadowMap {
+    pub fn new(device: &wgpu::Device) -> ShadowMap {
+        let size = SIZE.min(device.limits().max_texture_dimension_2d);
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("mocap shadow map"),
+            size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: FORMAT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&Default::default());
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("mocap shadow"),
+            address_mode_u: wgpu::AddressMode::ClampToEdge,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            compare: Some(wgpu::CompareFunction::LessEqual),
+            ..Default::default()
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("mocap shadow"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                    count: None,
+                },
+            ],
+        });
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("mocap shadow"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view) },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
+            ],
+        });
+        ShadowMap { view, layout, bind_group }
+    }
+}
+
+/// The rectangle (min x, min z, max x, max z) on the floor at `floor_y` where the
+/// shadows of casters inside `min..max` fall, with a margin for soft edges.
+pub(crate) fn floor_shadow_rect(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
+    let l = key_light_direction();
+    let (mut lo, mut hi) = (glam::Vec2::splat(f32::INFINITY), glam::Vec2::splat(f32::NEG_INFINITY));
+    for i in 0..8 {
+        let pick = |bit: u32, a: f32, b: f32| if i & bit == 0 { a } else { b };
+        let p = Vec3::new(pick(1, min.x, max.x), pick(2, min.y, max.y), pick(4, min.z, max.z));
+        // Along the light down to the floor (points below it stay where they are).
+        let q = p - l * ((p.y - floor_y).max(0.0) / l.y);
+        let q = glam::Vec2::new(q.x, q.z);
+        lo = lo.min(q);
+        hi = hi.max(q);
+    }
+    let margin = (hi - lo).max_element() * 0.05;
+    [lo.x - margin, lo.y - margin, hi.x + margin, hi.y + margin]
+}
+
+/// The light's view-projection for casters inside `min..max` (world space) and a
+/// floor at height `floor_y` (included so the floor lies inside the depth range),
+/// and the size of one shadow-map texel in world units. The fitted square is
+/// quantised (size in steps of 25%, centre on whole texels) so that shadows do not
+/// shimmer as the figures move. `None` for an empty or non-finite box.
+pub(crate) fn light_view_proj(min: Vec3, max: Vec3, floor_y: Option<f32>) -> Option<(Mat4, f32)> {
+    let mut lo = min;
+    if let Some(y) = floor_y.filter(|y| y.is_finite()) {
+        lo.y = lo.y.min(y);
+    }
+    if !(lo.is_finite() && max.is_finite() && (max - lo).min_element() >= 0.0) {
+        return None;
+    }
+    let l = key_light_direction();
+    let center = (lo + max) * 0.5;
+    let radius = ((max - lo).length() * 0.5).max(1e-3);
+    let view = glam::camera::rh::view::look_at_mat4(center + l * radius * 2.0, center, Vec3::Y);
+    let corners = (0..8).map(|i| {
+        let pick = |bit: u32, a: f32, b: f32| if i & bit == 0 { a } else { b };
+        view.transform_point3(Vec3::new(pick(1, lo.x, max.x), pick(2, lo.y, max.y), pick(4, lo.z, max.z)))
+    });
+    let (mut a, mut b) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for c in corners {
+        a = a.min(c);
+        b = b.max(c);
+    }
+    // Square extent, grown to the next step of 1.25^k, with a margin for the filter.
+    let half = ((b.x - a.x).max(b.y - a.y) * 0.5 * 1.05).max(1e-3);
+    let half = 1.25f32.powf(half.log(1.25).ceil());
+    let texel = 2.0 * half / SIZE as f32;
+    let snap = |v: f32| (v / texel).round() * texel;
+    let (cx, cy) = (snap((a.x + b.x) * 0.5), snap((a.y + b.y) * 0.5));
+    // View space looks down -Z: depths are -z.
+    let (near, far) = (-b.z - radius * 0.1, -a.z + radius * 0.1);
+    let projection = glam::camera::rh::proj::directx::orthographic(cx - half, cx + half, cy - half, cy + half, near, far);
+    Some((projection * view, texel))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fitted_box_and_floor_land_inside_the_map() {
+        let (m, texel) = light_view_proj(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), Some(-0.1)).unwrap();
+        assert!(texel > 0.0 && texel < 0.01);
+        for p in [Vec3::new(-1.0, -0.1, -0.5), Vec3::new(1.0, 1.8, 0.5), Vec3::new(0.0, 0.9, 0.0)] {
+            let c = m.project_point3(p);
+            assert!(c.x.abs() <= 1.0 && c.y.abs() <= 1.0 && (0.0..=1.0).contains(&c.z), "{p} -> {c}");
+        }
+        // Higher points are closer to the light.
+        assert!(m.project_point3(Vec3::new(0.0, 1.8, 0.0)).z < m.project_point3(Vec3::new(0.0, 0.0, 0.0)).z);
+    }
+
+    #[test]
+    fn empty_or_broken_boxes_give_none() {
+        assert!(light_view_proj(Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), None).is_none());
+        assert!(light_view_proj(Vec3::ZERO, Vec3::splat(f32::NAN), Some(0.0)).is_none());
+    }
+}
