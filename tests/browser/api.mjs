@@ -40,7 +40,7 @@ await step('TypeScript types', async () => {
     'export function startViewer(canvas: HTMLCanvasElement, options?: ViewerOptions): Promise<MocapViewer>',
     'addClip(clip: MotionClip, file_name: string): void', 'loadClip(clip: MotionClip, file_name: string): void',
     'add(file_name: string, bytes: Uint8Array | number[]): string | undefined', 'setVisible(index: number, visible: boolean): boolean',
-    'remove(index: number): boolean', 'setLayout(layout: string): boolean',
+    'remove(index: number): boolean', "setLayout(layout: 'spread' | 'overlay'): boolean",
     'worldPositions(frame: number): Float32Array', 'toBvh(): string', 'export interface ViewerOptions',
     'readonly jointNames: string[]', 'readonly parents: Int32Array']) {
     check(dts.includes(needle), `mocap_web.d.ts has ${needle}`);

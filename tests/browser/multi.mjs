@@ -72,6 +72,8 @@ try {
     check(near(s.clips[0].frameTime, first.frameTime) || Math.abs(s.clips[0].frameTime - first.frameTime) < 1e-5,
       `frame times ${s.clips.map((c) => c.frameTime.toFixed(5)).join(', ')}`);
     check(s.error === null && s.clips.every((c) => c.visible), 'no error, both visible');
+    const backend = { webgl2: 'Gl', webgpu: 'BrowserWebGpu' }[mode];
+    check(s.backend === backend, `drawn with wgpu backend ${s.backend} (expected ${backend})`);
     check(s.clips[0].offset[0] < s.clips[1].offset[0] && s.layout === 'spread', `spread along X: offsets ${JSON.stringify(s.clips.map((c) => c.offset.map((x) => +x.toFixed(2))))}`);
     check(s.clips[0].color !== s.clips[1].color, `own colours ${s.clips.map((c) => c.color).join(' ')}`);
     const names = s.clips.flatMap((c) => c.jointNames);

@@ -71,7 +71,7 @@ impl MocapViewer {
     /// Places the characters `'spread'` (side by side) or `'overlay'` (on top of each
     /// other); returns false for any other name.
     #[wasm_bindgen(js_name = setLayout)]
-    pub fn set_layout(&self, layout: &str) -> bool {
+    pub fn set_layout(&self, #[wasm_bindgen(unchecked_param_type = "'spread' | 'overlay'")] layout: &str) -> bool {
         let Some(layout) = mocap_viewer::Layout::parse(layout) else { return false };
         self.with_viewer(|v| v.set_layout(layout)).is_some()
     }

@@ -9,14 +9,14 @@ use crate::viewer::Viewer;
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
     egui::Panel::left("hierarchy").resizable(true).default_size(240.0).show(ui, |ui| {
         ui.heading("Characters");
-        if viewer.stage.characters.is_empty() {
-            ui.label("No clip open");
-            return;
-        }
         ui.spacing_mut().indent = 10.0;
         let mut remove = None;
         let mut selected = viewer.selected;
+        // The scroll area fills the panel even when empty, so the panel keeps its width.
         egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
+            if viewer.stage.characters.is_empty() {
+                ui.label("No clip open");
+            }
             for (index, c) in viewer.stage.characters.iter_mut().enumerate() {
                 if character_entry(ui, index, c, &mut selected, labels) {
                     remove = Some(index);
