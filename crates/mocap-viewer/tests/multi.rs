@@ -180,3 +180,22 @@ fn fragment_round_trips_layout_hidden_and_selection_with_a_character() {
     assert_eq!(w.selected, None);
     assert_eq!(w.stage.layout, Layout::Spread);
 }
+
+#[test]
+fn more_than_eight_characters_wrap_into_rows_and_colours_cycle() {
+    let mut v = Viewer::default();
+    let clip = metres_clip(30, 5, "Head");
+    for i in 0..9 {
+        v.add(&format!("c{i}.bvh"), &clip).unwrap();
+    }
+    let zs: std::collections::BTreeSet<i64> = v.stage.characters.iter().map(|c| (c.placement().z * 1000.0).round() as i64).collect();
+    assert_eq!(zs.len(), 3, "three rows of three: {zs:?}");
+    let xs: std::collections::BTreeSet<i64> = v.stage.characters.iter().map(|c| (c.placement().x * 1000.0).round() as i64).collect();
+    assert_eq!(xs.len(), 3, "three lanes per row: {xs:?}");
+    let palette = mocap_viewer::character::PALETTE;
+    assert_eq!(v.stage.characters[6].color, palette[0], "colours cycle after {}", palette.len());
+    // Removing one frees its colour for the next character.
+    v.remove(2);
+    v.add("c9.bvh", &clip).unwrap();
+    assert_eq!(v.stage.characters.last().map(|c| c.color), Some(palette[2]));
+}
