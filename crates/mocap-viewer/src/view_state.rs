@@ -151,7 +151,14 @@ impl ViewState {
         }
         match &self.selected {
             Some(Some((character, name))) => {
-                viewer.select_named(*character, name);
+                // `sel=2%3AHead` (the whole value encoded once more, as URLSearchParams
+                // does) names no joint of character 1: then it is read as `sel=2:Head`.
+                let numbered = || split_numbered(name).filter(|_| *character == 0);
+                if !viewer.select_named(*character, name)
+                    && let Some((c, n)) = numbered()
+                {
+                    viewer.select_named(c, &percent_decode(n));
+                }
             }
             Some(None) => viewer.selected = None,
             None => {}
@@ -195,9 +202,14 @@ fn parse_selection(raw: &str) -> Option<(usize, String)> {
     if raw.is_empty() {
         return None;
     }
-    let numbered = raw.split_once(':').and_then(|(n, name)| Some((n.parse::<usize>().ok()?.checked_sub(1)?, name)));
-    let (character, name) = numbered.unwrap_or((0, raw));
+    let (character, name) = split_numbered(raw).unwrap_or((0, raw));
     Some((character, percent_decode(name)))
+}
+
+/// `n:rest` with `n` a 1-based number: `(n - 1, rest)`.
+fn split_numbered(s: &str) -> Option<(usize, &str)> {
+    let (n, rest) = s.split_once(':')?;
+    Some((n.parse::<usize>().ok()?.checked_sub(1)?, rest))
 }
 
 /// `none`, empty, or a comma list of 1-based character numbers (0-based out).

@@ -176,6 +176,9 @@ fn fragment_round_trips_layout_hidden_and_selection_with_a_character() {
     assert_eq!(w.stage.layout, Layout::Spread);
     w.apply_fragment("sel=2:Head");
     assert_eq!(w.selected, Some(Selection { character: 1, joint: 2 }));
+    w.apply_fragment("sel=Hips");
+    w.apply_fragment("sel=3%3Amix%253AHead"); // as URLSearchParams writes 3:mix%3AHead
+    assert_eq!(w.selected, Some(Selection { character: 2, joint: 2 }));
     w.apply_fragment("sel=9:Head&hide=x&layout=bogus");
     assert_eq!(w.selected, None);
     assert_eq!(w.stage.layout, Layout::Spread);
