@@ -12,17 +12,22 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
         ui.spacing_mut().indent = 10.0;
         let mut remove = None;
         let mut selected = viewer.selected;
+        // A selection made elsewhere (a link, JavaScript) scrolls its row into view once.
+        let shown_id = egui::Id::unique("hierarchy-shown-selection");
+        let shown: Option<Selection> = ui.ctx().data(|d| d.get_temp(shown_id)).flatten();
+        let reveal = selected.filter(|s| Some(*s) != shown);
         // The scroll area fills the panel even when empty, so the panel keeps its width.
         egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
             if viewer.stage.characters.is_empty() {
                 ui.label("No clip open");
             }
             for (index, c) in viewer.stage.characters.iter_mut().enumerate() {
-                if character_entry(ui, index, c, &mut selected, labels) {
+                if character_entry(ui, index, c, Tree { selected: &mut selected, reveal, labels }) {
                     remove = Some(index);
                 }
             }
         });
+        ui.ctx().data_mut(|d| d.insert_temp(shown_id, selected));
         if selected != viewer.selected {
             viewer.selected = selected;
         }
@@ -32,8 +37,15 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
     });
 }
 
+/// What the joint rows read and write: the selection, the row to scroll to, the labels drawn.
+struct Tree<'a> {
+    selected: &'a mut Option<Selection>,
+    reveal: Option<Selection>,
+    labels: &'a mut Vec<String>,
+}
+
 /// One character: header row, offset row and joint tree. Returns whether "remove" was pressed.
-fn character_entry(ui: &mut egui::Ui, index: usize, c: &mut Character, selected: &mut Option<Selection>, labels: &mut Vec<String>) -> bool {
+fn character_entry(ui: &mut egui::Ui, index: usize, c: &mut Character, mut tree: Tree<'_>) -> bool {
     let mut remove = false;
     let id = ui.make_persistent_id(("character", index));
     egui::collapsing_header::CollapsingState::load_with_default_open(ui.ctx(), id, true)
@@ -49,7 +61,7 @@ fn character_entry(ui: &mut egui::Ui, index: usize, c: &mut Character, selected:
             let joints = &c.document.clip.skeleton.joints;
             let roots = joints.iter().enumerate().filter(|(_, j)| j.parent.is_none()).map(|(i, _)| i);
             for root in roots {
-                joint_row(ui, c, index, root, selected, labels);
+                joint_row(ui, c, index, root, &mut tree);
             }
         });
     remove
@@ -72,30 +84,33 @@ fn offset_row(ui: &mut egui::Ui, c: &mut Character) {
     });
 }
 
-fn joint_row(ui: &mut egui::Ui, c: &Character, character: usize, index: usize, selected: &mut Option<Selection>, labels: &mut Vec<String>) {
+fn joint_row(ui: &mut egui::Ui, c: &Character, character: usize, index: usize, tree: &mut Tree<'_>) {
     let doc = &c.document;
     let Some(joint) = doc.clip.skeleton.joints.get(index) else { return };
-    labels.push(joint.name.clone());
+    tree.labels.push(joint.name.clone());
     let children = doc.children.get(index).map_or(&[][..], Vec::as_slice);
     let here = Selection { character, joint: index };
-    let is_selected = *selected == Some(here);
+    let is_selected = *tree.selected == Some(here);
     let text = if joint.end_site { egui::RichText::new(&joint.name).weak() } else { egui::RichText::new(&joint.name) };
-    if children.is_empty() {
-        if ui.selectable_label(is_selected, text).clicked() {
-            *selected = Some(here);
+    let label = |ui: &mut egui::Ui, tree: &mut Tree<'_>| {
+        let response = ui.selectable_label(is_selected, text.clone());
+        if response.clicked() {
+            *tree.selected = Some(here);
         }
+        if tree.reveal == Some(here) {
+            response.scroll_to_me(Some(egui::Align::Center));
+        }
+    };
+    if children.is_empty() {
+        label(ui, tree);
         return;
     }
     let id = ui.make_persistent_id(("joint", character, index));
     egui::collapsing_header::CollapsingState::load_with_default_open(ui.ctx(), id, true)
-        .show_header(ui, |ui| {
-            if ui.selectable_label(is_selected, text).clicked() {
-                *selected = Some(here);
-            }
-        })
+        .show_header(ui, |ui| label(ui, tree))
         .body(|ui| {
             for &child in children {
-                joint_row(ui, c, character, child, selected, labels);
+                joint_row(ui, c, character, child, tree);
             }
         });
 }
