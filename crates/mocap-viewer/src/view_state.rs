@@ -8,7 +8,9 @@
 //! `sel` a joint name, of the first character (`sel=LeftHand`) or of character `n`,
 //! 1-based (`sel=2:LeftHand`; a colon inside a name is written `%3A`), `layout`
 //! `spread` or `overlay`, `hide` a comma list of hidden characters' numbers (1-based
-//! like `sel`; `none` or absent when all are shown), `draw` a comma list of `joints`,
+//! like `sel`; `none` or absent when all are shown), `offset` the hand-set offsets in
+//! metres as `n:x,y,z` joined by `;` (`offset=2:0.5,0,-1`; characters not listed sit
+//! at zero; `none` or absent when all are zero), `draw` a comma list of `joints`,
 //! `axes`, `follow`, `interp`, and `panels` a comma list of `tree`, `inspector` (or
 //! `none`). Timeline frames (`f`, `range`, the frame shown) count in the frame time
 //! of the selection's character, else the first one. Unknown keys and unreadable
@@ -41,6 +43,8 @@ pub struct ViewState {
     pub layout: Option<Layout>,
     /// Hidden characters (0-based; written 1-based); `Some(empty)` shows all.
     pub hidden: Option<Vec<usize>>,
+    /// Hand-set offsets in metres by character (0-based; written 1-based); the rest are zero.
+    pub offsets: Option<Vec<(usize, Vec3)>>,
     /// Draw flags: joints, axes, follow root, interpolate.
     pub draw: Option<[bool; 4]>,
     /// Panels: hierarchy, inspector.
@@ -72,6 +76,7 @@ impl ViewState {
                 "cam" => s.camera = parse_camera(v),
                 "layout" => s.layout = Layout::parse(v),
                 "hide" => s.hidden = parse_hidden(v),
+                "offset" => s.offsets = parse_offsets(v),
                 "draw" => s.draw = Some(flags(v, DRAW_NAMES)),
                 "panels" => s.panels = Some(flags(v, PANEL_NAMES)),
                 _ => {}
@@ -105,6 +110,13 @@ impl ViewState {
         if !hidden.is_empty() {
             parts.push(format!("hide={}", hidden.join(",")));
         }
+        let moved: Vec<String> = (viewer.stage.characters.iter().enumerate())
+            .filter(|(_, c)| c.offset != Vec3::ZERO)
+            .map(|(i, c)| format!("{}:{},{},{}", i + 1, c.offset.x, c.offset.y, c.offset.z))
+            .collect();
+        if !moved.is_empty() {
+            parts.push(format!("offset={}", moved.join(";")));
+        }
         let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate];
         parts.push(format!("draw={}", join_flags(draw, DRAW_NAMES)));
         let panels = [viewer.panels.hierarchy, viewer.panels.inspector];
@@ -122,6 +134,11 @@ impl ViewState {
         if let Some(hidden) = &self.hidden {
             for (i, c) in viewer.stage.characters.iter_mut().enumerate() {
                 c.visible = !hidden.contains(&i);
+            }
+        }
+        if let Some(offsets) = &self.offsets {
+            for (i, c) in viewer.stage.characters.iter_mut().enumerate() {
+                c.offset = offsets.iter().find(|(n, _)| *n == i).map_or(Vec3::ZERO, |(_, o)| *o);
             }
         }
         if let Some(speed) = self.speed {
@@ -218,6 +235,22 @@ fn parse_hidden(v: &str) -> Option<Vec<usize>> {
         return Some(Vec::new());
     }
     v.split(',').map(|n| n.trim().parse::<usize>().ok()?.checked_sub(1)).collect()
+}
+
+/// `none`, empty, or `n:x,y,z` items joined by `;` (`n` 1-based, 0-based out; finite numbers).
+fn parse_offsets(v: &str) -> Option<Vec<(usize, Vec3)>> {
+    if v.is_empty() || v == "none" {
+        return Some(Vec::new());
+    }
+    let item = |s: &str| {
+        let (n, xyz) = split_numbered(s)?;
+        let n3: Vec<f32> = xyz.split(',').map(str::parse).collect::<Result<_, _>>().ok()?;
+        match n3.as_slice() {
+            &[x, y, z] if n3.iter().all(|x| x.is_finite()) => Some((n, Vec3::new(x, y, z))),
+            _ => None,
+        }
+    };
+    v.split(';').map(item).collect()
 }
 
 fn parse_range(v: &str) -> Option<Option<(usize, usize)>> {

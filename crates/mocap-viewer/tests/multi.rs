@@ -155,10 +155,12 @@ fn fragment_round_trips_layout_hidden_and_selection_with_a_character() {
     v.set_visible(1, false);
     v.select_named(2, "mix:Head");
     v.seek(7);
+    v.stage.characters[2].offset = mocap::glam::Vec3::new(0.25, 0.0, -1.1);
     let fragment = v.view_fragment();
     assert!(fragment.contains("layout=overlay"), "{fragment}");
     assert!(fragment.contains("hide=2&") || fragment.ends_with("hide=2"), "{fragment}");
     assert!(fragment.contains("sel=3:mix%3AHead"), "{fragment}");
+    assert!(fragment.contains("offset=3:0.25,0,-1.1"), "{fragment}");
 
     let mut w = make();
     w.apply_fragment(&fragment);
@@ -168,6 +170,7 @@ fn fragment_round_trips_layout_hidden_and_selection_with_a_character() {
     assert!(!w.stage.characters[1].visible && w.stage.characters[0].visible);
     assert_eq!(w.frame(), 7);
     assert_eq!(w.camera, v.camera);
+    assert_eq!(w.snapshot().clips, v.snapshot().clips, "visibility, colours, offsets");
 
     // `sel=Name` is the first character; `hide=none` shows all again.
     w.apply_fragment("sel=Hips&hide=none&layout=spread");
@@ -179,6 +182,10 @@ fn fragment_round_trips_layout_hidden_and_selection_with_a_character() {
     w.apply_fragment("sel=Hips");
     w.apply_fragment("sel=3%3Amix%253AHead"); // as URLSearchParams writes 3:mix%3AHead
     assert_eq!(w.selected, Some(Selection { character: 2, joint: 2 }));
+    w.apply_fragment("offset=none");
+    assert!(w.stage.characters.iter().all(|c| c.offset == mocap::glam::Vec3::ZERO));
+    w.apply_fragment("offset=1:1,2,nan;2:1,1,1");
+    assert!(w.stage.characters.iter().all(|c| c.offset == mocap::glam::Vec3::ZERO), "unreadable offsets are ignored");
     w.apply_fragment("sel=9:Head&hide=x&layout=bogus");
     assert_eq!(w.selected, None);
     assert_eq!(w.stage.layout, Layout::Spread);
