@@ -147,8 +147,8 @@ async function loadFiles(viewer, files, add, t0) {
       opened = true;
     }
   }
-  if (errors.length > 1) viewer.showError(errors.join('\n'));
-  else if (errors.length === 1) viewer.showError(errors[0]);
+  // A later file that opened cleared the banner: show every failure again.
+  if (errors.length > 0) viewer.showError(errors.join('\n'));
   const tLoaded = performance.now();
   if (big) hideStatus();
   const rendered = viewer.state().framesRendered;
