@@ -1,5 +1,7 @@
-// Page glue: feature check, start the wasm viewer, `?url=` links with progress, the
-// view state in the fragment, Share, `?embed=1`, file drop / Open, loading message.
+// Page glue: feature check, start the wasm viewer, `?url=` links with progress (each
+// link one character), the view state in the fragment, Share, `?embed=1`, file drop
+// (several files replace what is open; with Shift held they are added) / Open… / Add…,
+// loading message.
 import init, { start } from '../pkg/mocap_web.js';
 import { ClipError, DEFAULT_LIMIT, fetchClip, fileNameOf, resolveClipUrl } from './fetch-clip.js';
 import { followViewState, share } from './view-link.js';
@@ -17,7 +19,8 @@ function hideStatus() {
   status.hidden = true;
 }
 
-// Where the open clip came from, for the Share link.
+// Where the open clips came from, for the Share link: the default clip, `url=` links
+// (every one that loaded, in order), or local files (which a link cannot carry).
 let source = { kind: 'default', urls: [], name: 'walk.bvh' };
 
 // Shows "Loading name: x / y MB" with a progress bar (indeterminate without a length).
@@ -36,11 +39,13 @@ function showProgress(name, received, total) {
   status.hidden = false;
 }
 
-// Loads the clip of a `?url=` link; errors go to the viewer's banner. Resolves when done.
+// Loads the clip of one `?url=` link and adds it as a character; errors go to the
+// viewer's banner. Resolves with the error message, or null when it opened.
 async function loadUrl(viewer, raw, limit) {
   const t0 = performance.now();
   const record = { url: raw, name: null, bytes: 0, progressEvents: 0, error: null };
   window.mocapUrlLoad = record;
+  window.mocapUrlLoads.push(record);
   try {
     const url = resolveClipUrl(raw);
     const name = fileNameOf(url);
@@ -61,11 +66,11 @@ async function loadUrl(viewer, raw, limit) {
       },
     });
     hideStatus();
-    const error = viewer.load(name, bytes);
+    const error = viewer.add(name, bytes);
     if (error) {
       record.error = error;
     } else {
-      source = { kind: 'url', urls: [raw], name };
+      source = { kind: 'url', urls: [...source.urls, raw], name };
     }
   } catch (e) {
     hideStatus();
@@ -75,6 +80,19 @@ async function loadUrl(viewer, raw, limit) {
   }
   record.ms = performance.now() - t0;
   record.done = true;
+  return record.error;
+}
+
+// Loads every `?url=` link in order, one character each; with several failures the
+// banner lists them all.
+async function loadUrls(viewer, urls, limit) {
+  source = { kind: 'url', urls: [], name: null };
+  const errors = [];
+  for (const raw of urls) {
+    const error = await loadUrl(viewer, raw, limit);
+    if (error) errors.push(error);
+  }
+  if (errors.length > 0) viewer.showError(errors.join('\n'));
 }
 
 function hasWebGL2() {
@@ -102,24 +120,42 @@ function nextRenderedFrame(viewer, since) {
   });
 }
 
-async function loadFile(viewer, file, t0) {
-  const big = file.size > 512 * 1024;
+// Opens dropped or picked files: with `add` they join what is open, else the first
+// that parses replaces it and the rest join it. What fails is reported (all of it)
+// and changes nothing.
+async function loadFiles(viewer, files, add, t0) {
+  const size = files.reduce((n, f) => n + f.size, 0);
+  const big = size > 512 * 1024;
+  const names = files.map((f) => f.name);
   if (big) {
-    showStatus(`Loading ${file.name} (${(file.size / 1048576).toFixed(1)} MB)…`);
+    showStatus(`Loading ${names.join(', ')} (${(size / 1048576).toFixed(1)} MB)…`);
     await afterPaint();
   }
-  const bytes = new Uint8Array(await file.arrayBuffer());
-  const tParse = performance.now();
-  const error = viewer.load(file.name, bytes);
-  if (!error) source = { kind: 'local', urls: [], name: file.name };
+  const errors = [];
+  let parseMs = 0;
+  let opened = add;
+  for (const file of files) {
+    const bytes = new Uint8Array(await file.arrayBuffer());
+    const tParse = performance.now();
+    const error = opened ? viewer.add(file.name, bytes) : viewer.load(file.name, bytes);
+    parseMs += performance.now() - tParse;
+    if (error) {
+      errors.push(error);
+    } else {
+      // A link cannot carry a local file; the links of clips still open are kept for the record.
+      source = { kind: 'local', urls: opened ? source.urls : [], name: file.name };
+      opened = true;
+    }
+  }
+  // A later file that opened cleared the banner: show every failure again.
+  if (errors.length > 0) viewer.showError(errors.join('\n'));
   const tLoaded = performance.now();
-  const parseMs = tLoaded - tParse;
   if (big) hideStatus();
   const rendered = viewer.state().framesRendered;
   const firstFrame = await nextRenderedFrame(viewer, rendered);
   window.mocapLastLoad = {
-    name: file.name, bytes: file.size, error: error ?? null, firstFrame,
-    parseMs, loadMs: tLoaded - t0, dropToFrameMs: performance.now() - t0,
+    name: names[names.length - 1], names, add, errors, error: errors[0] ?? null, firstFrame,
+    bytes: size, parseMs, loadMs: tLoaded - t0, dropToFrameMs: performance.now() - t0,
   };
 }
 
@@ -146,12 +182,12 @@ function wireFiles(viewer) {
     e.stopPropagation();
     depth = 0;
     document.body.classList.remove('dragging');
-    const file = e.dataTransfer && e.dataTransfer.files && e.dataTransfer.files[0];
-    if (file) loadFile(viewer, file, t0);
+    const files = Array.from((e.dataTransfer && e.dataTransfer.files) || []);
+    if (files.length > 0) loadFiles(viewer, files, e.shiftKey, t0);
   }, true);
   input.addEventListener('change', () => {
-    const file = input.files && input.files[0];
-    if (file) loadFile(viewer, file, performance.now());
+    const files = Array.from(input.files || []);
+    if (files.length > 0) loadFiles(viewer, files, input.dataset.mode === 'add', performance.now());
     input.value = '';
   });
 }
@@ -180,8 +216,8 @@ async function main() {
     showStatus(`${NO_GPU}\n\n(${e && e.message ? e.message : e})`, true);
     return;
   }
-  // One character at a time for now: the first link is loaded.
-  if (urls.length > 0) await loadUrl(viewer, urls[0], limit);
+  window.mocapUrlLoads = [];
+  if (urls.length > 0) await loadUrls(viewer, urls, limit);
   if (location.hash.length > 1) viewer.applyViewState(location.hash.slice(1));
   followViewState(viewer);
   window.addEventListener('mocap-share', () => share(viewer, source));

@@ -37,7 +37,10 @@ await step('parseMotion in Node on the built package', async () => {
 await step('TypeScript types', async () => {
   const dts = fs.readFileSync(path.join(dist, 'pkg/mocap_web.d.ts'), 'utf8');
   for (const needle of ['export function parseMotion(bytes: Uint8Array | number[], file_name: string): MotionClip',
-    'export function startViewer(canvas: HTMLCanvasElement, options: ViewerOptions | undefined): Promise<MocapViewer>',
+    'export function startViewer(canvas: HTMLCanvasElement, options?: ViewerOptions): Promise<MocapViewer>',
+    'addClip(clip: MotionClip, file_name: string): void', 'loadClip(clip: MotionClip, file_name: string): void',
+    'add(file_name: string, bytes: Uint8Array | number[]): string | undefined', 'setVisible(index: number, visible: boolean): boolean',
+    'remove(index: number): boolean', "setLayout(layout: 'spread' | 'overlay'): boolean",
     'worldPositions(frame: number): Float32Array', 'toBvh(): string', 'export interface ViewerOptions',
     'readonly jointNames: string[]', 'readonly parents: Int32Array']) {
     check(dts.includes(needle), `mocap_web.d.ts has ${needle}`);
@@ -74,6 +77,19 @@ try {
     check(!paused.playing && paused.frame === 30, `pause and seek(30): frame ${paused.frame}, playing ${paused.playing}`);
     await page.click('#play');
     check(await page.evaluate(() => window.exampleViewer.state().playing), 'play resumes');
+    const added = await page.evaluate(async () => {
+      const { parseMotion } = await import('../../pkg/mocap_web.js');
+      const bytes = new Uint8Array(await (await fetch('../../data/walk.bvh')).arrayBuffer());
+      const clip = parseMotion(bytes, 'second.bvh');
+      const v = window.exampleViewer;
+      v.addClip(clip, 'second.bvh');
+      const two = v.state().clips.map((c) => c.name);
+      v.loadClip(clip, 'only.bvh');
+      clip.free();
+      return { two, one: v.state().clips.map((c) => c.name) };
+    });
+    check(added.two.join() === 'walk.bvh,second.bvh' && added.one.join() === 'only.bvh',
+      `addClip adds (${added.two.join(', ')}), loadClip replaces (${added.one.join(', ')})`);
     await page.waitForTimeout(500);
     await page.screenshot({ path: path.join(outDir, 'api-start-viewer.png') });
     check(errors.length === 0, `no console errors (${errors.join(' | ')})`);

@@ -87,6 +87,30 @@ export async function dropFile(page, name, bytes) {
   }, [name, b64]);
 }
 
+/**
+ * Drops several files at once (`files`: [{name, bytes}]), with Shift held when
+ * `shift`; returns the drop time. Wait with `waitDropped(page, lastName)`.
+ */
+export async function dropFiles(page, files, shift = false) {
+  const list = files.map((f) => [f.name, Buffer.from(f.bytes).toString('base64')]);
+  return page.evaluate(([list, shift]) => {
+    const dt = new DataTransfer();
+    for (const [name, b64] of list) {
+      const bin = atob(b64);
+      const data = new Uint8Array(bin.length);
+      for (let i = 0; i < bin.length; i++) data[i] = bin.charCodeAt(i);
+      dt.items.add(new File([data], name));
+    }
+    const canvas = document.getElementById('viewer');
+    const t0 = performance.now();
+    window.mocapLastLoad = null;
+    for (const type of ['dragenter', 'dragover', 'drop']) {
+      canvas.dispatchEvent(new DragEvent(type, { dataTransfer: dt, bubbles: true, cancelable: true, shiftKey: shift }));
+    }
+    return t0;
+  }, [list, shift]);
+}
+
 /** A deliberate click: hover, then hold the button across a few (slow) frames, as a person would. */
 export async function slowClick(page, x, y) {
   await page.mouse.move(x, y);

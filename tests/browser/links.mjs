@@ -183,7 +183,7 @@ try {
     check(/speed=0\.5/.test(s.view) && /sel=/.test(s.view) && /panels=tree/.test(s.view) && /range=10-40/.test(s.view), 'fragment has speed, selection, range, panels');
 
     await page.evaluate(() => { window.mocapLastShare = null; });
-    await slowClick(page, 85, 12); // the "Share" button, right of "Open…"
+    await slowClick(page, 161, 12); // the "Share" button, right of "Open…" and "Add…"
     await page.waitForFunction(() => window.mocapLastShare, null, { timeout: 20000 });
     const shared = await page.evaluate(() => window.mocapLastShare);
     await page.screenshot({ path: shot('share-box') });

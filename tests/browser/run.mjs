@@ -28,7 +28,7 @@ try {
   });
 
   await step('clicking a joint in the hierarchy selects it', async () => {
-    await slowClick(page, 51, 84); // "Spine", second row of the default clip's tree
+    await slowClick(page, 62, 130); // "Spine", second joint row of the default clip's tree (under the character and offset rows)
     const s = await waitState(page, (s) => s.selectedJoint !== null, null, 20000);
     check(s.selectedJoint === 'Spine', `clicked tree row selects ${s.selectedJoint}`);
     await page.screenshot({ path: shot('tree-click') });

@@ -43,6 +43,14 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
         if let Err(e) = run(node("links.mjs").args([url.as_str(), mode]).arg(&out).arg(&chromium)) {
             failures.push(format!("{mode} links: {e}"));
         }
+        let mut multi = node("multi.mjs");
+        multi.args([url.as_str(), mode]).arg(&out).arg(&chromium);
+        if let Some(corpus) = corpus_dir() {
+            multi.arg(corpus);
+        }
+        if let Err(e) = run(&mut multi) {
+            failures.push(format!("{mode} several characters: {e}"));
+        }
     }
     if let Err(e) = run(node("api.mjs").arg(&url).arg(&dist).arg(&out).arg(&chromium)) {
         failures.push(format!("JavaScript API: {e}"));

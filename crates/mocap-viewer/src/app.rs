@@ -1,19 +1,20 @@
 //! The eframe app: runs a shared [`Viewer`] each frame with eframe's wgpu state.
 
-use crate::viewer::Viewer;
+use crate::viewer::{OpenMode, Viewer};
 use std::cell::RefCell;
 use std::rc::Rc;
 
 /// An eframe app around a viewer that the host (e.g. JavaScript) can also reach.
 pub struct ViewerApp {
     viewer: Rc<RefCell<Viewer>>,
-    on_open_requested: Box<dyn FnMut()>,
+    on_open_requested: Box<dyn FnMut(OpenMode)>,
     on_share_requested: Box<dyn FnMut()>,
 }
 
 impl ViewerApp {
-    /// Wraps `viewer` (and picks the dark theme, to match the 3D view); `on_open_requested` runs when the user presses "Open…".
-    pub fn new(ctx: &egui::Context, viewer: Rc<RefCell<Viewer>>, on_open_requested: Box<dyn FnMut()>) -> ViewerApp {
+    /// Wraps `viewer` (and picks the dark theme, to match the 3D view); `on_open_requested`
+    /// runs when the user presses "Open…" ([`OpenMode::Replace`]) or "Add…" ([`OpenMode::Add`]).
+    pub fn new(ctx: &egui::Context, viewer: Rc<RefCell<Viewer>>, on_open_requested: Box<dyn FnMut(OpenMode)>) -> ViewerApp {
         ctx.set_theme(egui::ThemePreference::Dark);
         ViewerApp { viewer, on_open_requested, on_share_requested: Box::new(|| {}) }
     }
@@ -32,8 +33,8 @@ impl eframe::App for ViewerApp {
             viewer.ui(ui, frame.wgpu_render_state());
             (std::mem::take(&mut viewer.open_requested), std::mem::take(&mut viewer.share_requested))
         };
-        if open {
-            (self.on_open_requested)();
+        if let Some(mode) = open {
+            (self.on_open_requested)(mode);
         }
         if share {
             (self.on_share_requested)();

@@ -43,8 +43,8 @@ impl Document {
         self.clip.skeleton.joints.iter().filter(|j| !j.end_site).count()
     }
 
-    /// File units per metre (for the floor grid).
-    pub fn units_per_meter(&self) -> f32 {
-        1.0 / self.units.meters_per_unit()
+    /// Metres per file unit (the scale that puts this clip in the shared metre world).
+    pub fn meters_per_unit(&self) -> f32 {
+        self.units.meters_per_unit()
     }
 }

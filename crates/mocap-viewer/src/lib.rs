@@ -1,33 +1,42 @@
 //! The motion-capture viewer: an egui app with a timeline, a joint hierarchy, an
 //! inspector and a 3D view drawn by `mocap-render`.
 //!
-//! Data flows one way: bytes → [`mocap::Clip`] ([`Document`]) → playhead
-//! ([`Playback`]) → world transforms → scene primitives ([`pose_scene`]) → GPU
-//! ([`viewport`]). [`Viewer`] holds the state; on the web, [`app::ViewerApp`]
-//! runs it inside eframe.
+//! Data flows one way: bytes → [`mocap::Clip`] ([`Document`]) → a [`Character`]
+//! on the [`Stage`] (colour, visibility, placement in metres) → playhead
+//! ([`Playback`], one clock for all) → world transforms → scene primitives
+//! ([`pose_scene`]) → GPU ([`viewport`]). [`Viewer`] holds the state; on the web,
+//! [`app::ViewerApp`] runs it inside eframe.
 
 #![warn(missing_docs)]
 
 #[cfg(target_arch = "wasm32")]
 pub mod app;
 pub mod camera;
+pub mod character;
 pub mod document;
 pub mod keys;
+pub mod layout;
 pub mod panels;
 pub mod playback;
 pub mod pose_scene;
+pub mod selection;
 pub mod settings;
 pub mod snapshot;
+pub mod stage;
 pub mod ui;
 pub mod viewer;
 pub mod view_state;
 pub mod viewport;
 
 pub use camera::{OrbitCamera, Waypoint};
+pub use character::Character;
 pub use document::Document;
+pub use layout::Layout;
 pub use panels::Panels;
 pub use playback::Playback;
+pub use selection::Selection;
 pub use settings::ViewSettings;
 pub use snapshot::{ClipSummary, Snapshot};
+pub use stage::Stage;
 pub use view_state::ViewState;
-pub use viewer::Viewer;
+pub use viewer::{OpenMode, Viewer};

@@ -1,26 +1,49 @@
-//! Turns a posed skeleton into renderer primitives: bones, joints, axes, floor.
+//! Turns posed characters into renderer primitives: bones, joints, axes, floor.
+//! This is the only place that does; [`character_primitives`] draws one character.
 
 use crate::document::Document;
+use crate::selection::Selection;
 use crate::settings::ViewSettings;
+use crate::stage::Stage;
 use mocap::Transform;
 use mocap::glam::Vec3;
 use mocap_render::{Grid, Line, Scene, Sphere};
 
-const BONE: [u8; 4] = [200, 205, 215, 255];
 const JOINT: [u8; 4] = [90, 160, 235, 255];
 const SELECTED: [u8; 4] = [255, 200, 40, 255];
 const AXES: [[u8; 4]; 3] = [[235, 60, 60, 255], [60, 210, 80, 255], [70, 120, 255, 255]];
 
-/// Fills `scene` with the floor grid and the skeleton posed by `transforms`.
-pub fn build_scene(doc: &Document, transforms: &[Transform], settings: &ViewSettings, selected: Option<usize>, scene: &mut Scene) {
+/// Fills `scene` with the floor grid and every visible character in its last pose
+/// ([`crate::character::Character::pose_at`]); empty without characters.
+pub fn build_scene(stage: &Stage, settings: &ViewSettings, selected: Option<Selection>, scene: &mut Scene) {
     scene.clear();
-    scene.grid = Some(floor_grid(doc));
-    let radius = doc.extent * 0.012;
+    if stage.characters.is_empty() {
+        return;
+    }
+    scene.grid = Some(floor_grid(stage));
+    for (i, c) in stage.visible() {
+        let joint = selected.filter(|s| s.character == i).map(|s| s.joint);
+        character_primitives(&c.document, c.pose(), c.color, settings, joint, scene);
+    }
+}
+
+/// Appends one character: bones in `color`, joint spheres, axes and the highlight
+/// of joint `selected`. `transforms` are its world transforms in metres, already
+/// placed (one per joint of `doc`, in joint order).
+pub fn character_primitives(
+    doc: &Document,
+    transforms: &[Transform],
+    color: [u8; 4],
+    settings: &ViewSettings,
+    selected: Option<usize>,
+    scene: &mut Scene,
+) {
+    let radius = doc.extent * doc.meters_per_unit() * 0.012;
     for (i, joint) in doc.clip.skeleton.joints.iter().enumerate() {
         let Some(t) = transforms.get(i) else { break };
         let is_selected = selected == Some(i);
         if let Some(parent) = joint.parent.and_then(|p| transforms.get(p)) {
-            let color = if is_selected { SELECTED } else { BONE };
+            let color = if is_selected { SELECTED } else { color };
             scene.lines.push(Line { a: parent.translation, b: t.translation, color, width_px: 3.0 });
         }
         if joint.end_site {
@@ -42,8 +65,9 @@ fn push_axes(t: &Transform, length: f32, scene: &mut Scene) {
     }
 }
 
-/// A floor at the lowest point the motion reaches, with 0.5 m cells (1 m major lines)
-/// in the clip's units, covering the whole motion.
-pub fn floor_grid(doc: &Document) -> Grid {
-    Grid::floor(doc.bounds.min, doc.bounds.max, doc.extent, 0.5 * doc.units_per_meter())
+/// A floor at the lowest point the visible motions reach, with 0.5 m cells (1 m
+/// major lines), covering all of them.
+pub fn floor_grid(stage: &Stage) -> Grid {
+    let b = stage.bounds();
+    Grid::floor(b.min, b.max, stage.extent(), 0.5)
 }

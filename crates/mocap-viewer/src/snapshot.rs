@@ -1,6 +1,9 @@
 //! A plain copy of what the viewer shows, for scripting and tests (`window.mocapViewer.state()`).
 
-/// Summary of one open clip.
+use crate::character::Character;
+use crate::viewer::Viewer;
+
+/// Summary of one open character.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ClipSummary {
     /// File name.
@@ -13,14 +16,37 @@ pub struct ClipSummary {
     pub joints: usize,
     /// Names of all joints (End Sites included) in file order.
     pub joint_names: Vec<String>,
+    /// Whether it is drawn.
+    pub visible: bool,
+    /// Bone colour (sRGB, 0-255).
+    pub color: [u8; 4],
+    /// Where its origin stands in metres: layout offset plus the hand-set offset.
+    pub offset: [f32; 3],
+}
+
+impl ClipSummary {
+    /// The summary of one character.
+    pub fn of(c: &Character) -> ClipSummary {
+        let d = &c.document;
+        ClipSummary {
+            name: d.name.clone(),
+            frames: d.clip.frame_count(),
+            frame_time: d.clip.frame_time(),
+            joints: d.joint_count(),
+            joint_names: d.clip.skeleton.joints.iter().map(|j| j.name.clone()).collect(),
+            visible: c.visible,
+            color: c.color,
+            offset: c.placement().to_array(),
+        }
+    }
 }
 
 /// The observable state of the viewer.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct Snapshot {
-    /// Open clips (zero or one for now).
+    /// Open characters, in order.
     pub clips: Vec<ClipSummary>,
-    /// Current frame.
+    /// Current frame of the timeline (in the current character's frame time).
     pub frame: usize,
     /// Playhead in seconds.
     pub time: f64,
@@ -30,6 +56,10 @@ pub struct Snapshot {
     pub speed: f32,
     /// Name of the selected joint.
     pub selected_joint: Option<String>,
+    /// Index (0-based) of the selected joint's character.
+    pub selected_character: Option<usize>,
+    /// `spread` or `overlay`.
+    pub layout: &'static str,
     /// Last load error, shown in the page.
     pub error: Option<String>,
     /// Joint labels the hierarchy panel drew in its last frame.
@@ -42,4 +72,26 @@ pub struct Snapshot {
     pub embed: bool,
     /// The wgpu backend drawing the 3D view ("BrowserWebGpu", "Gl", ...).
     pub backend: Option<String>,
+}
+
+impl Snapshot {
+    /// The state of `v`, with what only the viewer's private parts know passed in.
+    pub fn of(v: &Viewer, tree_labels: Vec<String>, frames_rendered: u64, backend: Option<String>) -> Snapshot {
+        Snapshot {
+            clips: v.stage.characters.iter().map(ClipSummary::of).collect(),
+            frame: v.frame(),
+            time: v.playback.time,
+            playing: v.playback.playing,
+            speed: v.playback.speed,
+            selected_joint: v.selected_name().map(str::to_owned),
+            selected_character: v.selected.map(|s| s.character),
+            layout: v.stage.layout.name(),
+            error: v.error.clone(),
+            tree_labels,
+            frames_rendered,
+            view: v.view_fragment(),
+            embed: v.panels.embed,
+            backend,
+        }
+    }
 }

@@ -3,11 +3,20 @@
 //! formatting, so `parse(format(x)) == x` bit for bit).
 //!
 //! Keys: `t` seconds (or `f` frame), `play` 0/1, `speed`, `loop` 0/1, `range` `a-b`
-//! (frames, `all` for the whole clip), `cam` `yaw,pitch,distance,x,y,z` (radians and
-//! file units), `sel` joint name, `draw` a comma list of `joints`, `axes`, `follow`,
-//! `interp`, and `panels` a comma list of `tree`, `inspector` (or `none`). Unknown keys
-//! and unreadable values are ignored; missing keys leave the viewer as it is.
+//! (frames of the timeline, `all` for the whole of it), `cam` `yaw,pitch,distance,x,y,z`
+//! (radians, then metres: every clip is scaled to metres by its guessed unit),
+//! `sel` a joint name, of the first character (`sel=LeftHand`) or of character `n`,
+//! 1-based (`sel=2:LeftHand`; a colon inside a name is written `%3A`), `layout`
+//! `spread` or `overlay`, `hide` a comma list of hidden characters' numbers (1-based
+//! like `sel`; `none` or absent when all are shown), `offset` the hand-set offsets in
+//! metres as `n:x,y,z` joined by `;` (`offset=2:0.5,0,-1`; characters not listed sit
+//! at zero; `none` or absent when all are zero), `draw` a comma list of `joints`,
+//! `axes`, `follow`, `interp`, and `panels` a comma list of `tree`, `inspector` (or
+//! `none`). Timeline frames (`f`, `range`, the frame shown) count in the frame time
+//! of the selection's character, else the first one. Unknown keys and unreadable
+//! values are ignored; missing keys leave the viewer as it is.
 
+use crate::layout::Layout;
 use crate::viewer::Viewer;
 use mocap::glam::Vec3;
 
@@ -28,8 +37,14 @@ pub struct ViewState {
     pub range: Option<Option<(usize, usize)>>,
     /// Camera: yaw, pitch, distance, target.
     pub camera: Option<(f32, f32, f32, Vec3)>,
-    /// Selected joint name (`Some(None)`: no selection).
-    pub selected: Option<Option<String>>,
+    /// Selected character (0-based) and joint name (`Some(None)`: no selection).
+    pub selected: Option<Option<(usize, String)>>,
+    /// Spread or overlay.
+    pub layout: Option<Layout>,
+    /// Hidden characters (0-based; written 1-based); `Some(empty)` shows all.
+    pub hidden: Option<Vec<usize>>,
+    /// Hand-set offsets in metres by character (0-based; written 1-based); the rest are zero.
+    pub offsets: Option<Vec<(usize, Vec3)>>,
     /// Draw flags: joints, axes, follow root, interpolate.
     pub draw: Option<[bool; 4]>,
     /// Panels: hierarchy, inspector.
@@ -45,6 +60,10 @@ impl ViewState {
         let mut s = ViewState::default();
         for pair in fragment.trim_start_matches('#').split('&') {
             let (key, raw) = pair.split_once('=').unwrap_or((pair, ""));
+            if key == "sel" {
+                s.selected = Some(parse_selection(raw));
+                continue;
+            }
             let value = percent_decode(raw);
             let v = value.as_str();
             match key {
@@ -55,7 +74,9 @@ impl ViewState {
                 "loop" => s.looping = flag(v),
                 "range" => s.range = parse_range(v),
                 "cam" => s.camera = parse_camera(v),
-                "sel" => s.selected = Some((!v.is_empty()).then(|| v.to_owned())),
+                "layout" => s.layout = Layout::parse(v),
+                "hide" => s.hidden = parse_hidden(v),
+                "offset" => s.offsets = parse_offsets(v),
                 "draw" => s.draw = Some(flags(v, DRAW_NAMES)),
                 "panels" => s.panels = Some(flags(v, PANEL_NAMES)),
                 _ => {}
@@ -79,9 +100,22 @@ impl ViewState {
             parts.push(format!("range={a}-{b}"));
         }
         parts.push(format!("cam={},{},{},{},{},{}", c.yaw, c.pitch, c.distance, c.target.x, c.target.y, c.target.z));
-        let selected = viewer.selected.and_then(|j| viewer.document.as_ref()?.clip.skeleton.joints.get(j));
-        if let Some(joint) = selected {
-            parts.push(format!("sel={}", percent_encode(&joint.name)));
+        if let (Some(sel), Some(name)) = (viewer.selected, viewer.selected_name()) {
+            let name = percent_encode(name);
+            let number = sel.character + 1;
+            parts.push(if number == 1 { format!("sel={name}") } else { format!("sel={number}:{name}") });
+        }
+        parts.push(format!("layout={}", viewer.stage.layout.name()));
+        let hidden: Vec<String> = viewer.stage.characters.iter().enumerate().filter(|(_, c)| !c.visible).map(|(i, _)| (i + 1).to_string()).collect();
+        if !hidden.is_empty() {
+            parts.push(format!("hide={}", hidden.join(",")));
+        }
+        let moved: Vec<String> = (viewer.stage.characters.iter().enumerate())
+            .filter(|(_, c)| c.offset != Vec3::ZERO)
+            .map(|(i, c)| format!("{}:{},{},{}", i + 1, c.offset.x, c.offset.y, c.offset.z))
+            .collect();
+        if !moved.is_empty() {
+            parts.push(format!("offset={}", moved.join(";")));
         }
         let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate];
         parts.push(format!("draw={}", join_flags(draw, DRAW_NAMES)));
@@ -90,8 +124,23 @@ impl ViewState {
         parts.join("&")
     }
 
-    /// Applies the present fields to `viewer` (the clip should be open already).
+    /// Applies the present fields to `viewer` (the clips should be open already).
     pub fn apply(&self, viewer: &mut Viewer) {
+        if let Some(layout) = self.layout
+            && layout != viewer.stage.layout
+        {
+            viewer.stage.set_layout(layout);
+        }
+        if let Some(hidden) = &self.hidden {
+            for (i, c) in viewer.stage.characters.iter_mut().enumerate() {
+                c.visible = !hidden.contains(&i);
+            }
+        }
+        if let Some(offsets) = &self.offsets {
+            for (i, c) in viewer.stage.characters.iter_mut().enumerate() {
+                c.offset = offsets.iter().find(|(n, _)| *n == i).map_or(Vec3::ZERO, |(_, o)| *o);
+            }
+        }
         if let Some(speed) = self.speed {
             viewer.playback.speed = speed.clamp(*crate::playback::SPEED_RANGE.start(), *crate::playback::SPEED_RANGE.end());
         }
@@ -117,16 +166,24 @@ impl ViewState {
             viewer.camera.distance = distance;
             viewer.camera.target = target;
         }
-        if let Some(selected) = &self.selected {
-            let index = selected.as_ref().and_then(|name| {
-                viewer.document.as_ref()?.clip.skeleton.joints.iter().position(|j| &j.name == name)
-            });
-            viewer.select(index);
+        match &self.selected {
+            Some(Some((character, name))) => {
+                // `sel=2%3AHead` (the whole value encoded once more, as URLSearchParams
+                // does) names no joint of character 1: then it is read as `sel=2:Head`.
+                let numbered = || split_numbered(name).filter(|_| *character == 0);
+                if !viewer.select_named(*character, name)
+                    && let Some((c, n)) = numbered()
+                {
+                    viewer.select_named(c, &percent_decode(n));
+                }
+            }
+            Some(None) => viewer.selected = None,
+            None => {}
         }
         if let Some(playing) = self.playing {
             viewer.playback.playing = playing;
         }
-        if let Some(timing) = viewer.document.as_ref().map(crate::document::Document::timing) {
+        if let Some(timing) = viewer.timing() {
             let end = timing.time_of(timing.last());
             if let Some(t) = self.time {
                 viewer.playback.time = t.min(end);
@@ -154,6 +211,46 @@ fn flags<const N: usize>(v: &str, names: [&str; N]) -> [bool; N] {
 fn join_flags<const N: usize>(on: [bool; N], names: [&str; N]) -> String {
     let list: Vec<&str> = names.iter().zip(on).filter(|(_, on)| *on).map(|(n, _)| *n).collect();
     if list.is_empty() { "none".to_owned() } else { list.join(",") }
+}
+
+/// `Name` (character 1) or `n:Name` (character `n`, 1-based), from the raw (still
+/// percent-encoded) value, so an encoded colon inside a name is not a separator.
+fn parse_selection(raw: &str) -> Option<(usize, String)> {
+    if raw.is_empty() {
+        return None;
+    }
+    let (character, name) = split_numbered(raw).unwrap_or((0, raw));
+    Some((character, percent_decode(name)))
+}
+
+/// `n:rest` with `n` a 1-based number: `(n - 1, rest)`.
+fn split_numbered(s: &str) -> Option<(usize, &str)> {
+    let (n, rest) = s.split_once(':')?;
+    Some((n.parse::<usize>().ok()?.checked_sub(1)?, rest))
+}
+
+/// `none`, empty, or a comma list of 1-based character numbers (0-based out).
+fn parse_hidden(v: &str) -> Option<Vec<usize>> {
+    if v.is_empty() || v == "none" {
+        return Some(Vec::new());
+    }
+    v.split(',').map(|n| n.trim().parse::<usize>().ok()?.checked_sub(1)).collect()
+}
+
+/// `none`, empty, or `n:x,y,z` items joined by `;` (`n` 1-based, 0-based out; finite numbers).
+fn parse_offsets(v: &str) -> Option<Vec<(usize, Vec3)>> {
+    if v.is_empty() || v == "none" {
+        return Some(Vec::new());
+    }
+    let item = |s: &str| {
+        let (n, xyz) = split_numbered(s)?;
+        let n3: Vec<f32> = xyz.split(',').map(str::parse).collect::<Result<_, _>>().ok()?;
+        match n3.as_slice() {
+            &[x, y, z] if n3.iter().all(|x| x.is_finite()) => Some((n, Vec3::new(x, y, z))),
+            _ => None,
+        }
+    };
+    v.split(';').map(item).collect()
 }
 
 fn parse_range(v: &str) -> Option<Option<(usize, usize)>> {

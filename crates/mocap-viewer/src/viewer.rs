@@ -1,99 +1,189 @@
-//! The viewer: the open document, playback, camera, selection and settings, and the
-//! frame loop that ties them to the UI.
+//! The viewer: the open characters, playback, camera, selection and settings, and
+//! the frame loop that ties them to the UI.
 
 use crate::camera::OrbitCamera;
 use crate::document::Document;
 use crate::keys::{self, Action};
+use crate::layout::Layout;
 use crate::panels::Panels;
-use crate::playback::Playback;
+use crate::playback::{Playback, Timing};
+use crate::selection::Selection;
 use crate::settings::ViewSettings;
-use crate::snapshot::{ClipSummary, Snapshot};
+use crate::snapshot::Snapshot;
+use crate::stage::Stage;
 use crate::viewport::Viewport;
 use crate::{pose_scene, ui};
-use mocap::{Interpolation, Transform};
 use mocap_render::Scene;
 
 /// Longest wall-clock step playback takes in one frame (s); longer gaps (a hidden
 /// tab, a debugger) do not make the playhead jump.
 const MAX_STEP: f64 = 0.5;
 
+/// What a file picker the user asked for should do with the files.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OpenMode {
+    /// Close what is open and open the picked files ("Open…").
+    Replace,
+    /// Add the picked files to what is open ("Add…").
+    Add,
+}
+
 /// The whole viewer. Plain state is public; GPU and scratch state is private.
 #[derive(Default)]
 pub struct Viewer {
-    /// The open clip, if any.
-    pub document: Option<Document>,
-    /// Playback settings and playhead.
+    /// The open characters and their layout.
+    pub stage: Stage,
+    /// Playback settings and playhead (one clock for every character).
     pub playback: Playback,
-    /// Camera.
+    /// Camera (world units are metres).
     pub camera: OrbitCamera,
     /// View settings.
     pub settings: ViewSettings,
-    /// Selected joint index.
-    pub selected: Option<usize>,
-    /// Last load error (the previous clip stays open).
+    /// Selected joint and its character.
+    pub selected: Option<Selection>,
+    /// Last load error (what was open stays open).
     pub error: Option<String>,
-    /// Set when the user pressed "Open…"; the host shows a file picker and clears it.
-    pub open_requested: bool,
+    /// Set when the user pressed "Open…" or "Add…"; the host shows a file picker and clears it.
+    pub open_requested: Option<OpenMode>,
     /// Set when the user pressed "Share"; the host builds the link and clears it.
     pub share_requested: bool,
     /// Which panels are shown.
     pub panels: Panels,
     viewport: Viewport,
-    transforms: Vec<Transform>,
     scene: Scene,
     last_time: Option<f64>,
     actions: Vec<Action>,
     tree_labels: Vec<String>,
 }
 
-
 impl Viewer {
-    /// Parses `bytes` and replaces the open clip. On error the old clip stays and the
-    /// error is kept for display; the message is also returned.
+    /// Parses `bytes` and replaces everything open with it. On error what was open
+    /// stays and the error is kept for display; the message is also returned.
     pub fn load(&mut self, file_name: &str, bytes: &[u8]) -> Result<(), String> {
-        match mocap::load(file_name, bytes) {
-            Ok(clip) => {
-                self.open(Document::new(file_name, clip));
-                Ok(())
-            }
-            Err(e) => {
-                let message = e.to_string();
-                self.error = Some(message.clone());
-                Err(message)
-            }
-        }
+        let doc = self.parse(file_name, bytes)?;
+        self.open(doc);
+        Ok(())
     }
 
-    /// Opens a document: frame 0, play state kept, camera framed on the motion.
-    /// The first frame drawn afterwards shows frame 0 (the clock restarts).
+    /// Parses `bytes` and adds it as one more character. On error what was open
+    /// stays and the error is kept for display; the message is also returned.
+    pub fn add(&mut self, file_name: &str, bytes: &[u8]) -> Result<(), String> {
+        let doc = self.parse(file_name, bytes)?;
+        self.add_document(doc);
+        Ok(())
+    }
+
+    /// Opens one document in place of everything open (see [`Viewer::open_all`]).
     pub fn open(&mut self, doc: Document) {
+        self.open_all(vec![doc]);
+    }
+
+    /// Replaces everything open with `docs`: time 0, play state kept, no loop range
+    /// or selection, camera framed on the motion. The first frame drawn afterwards
+    /// shows frame 0 (the clock restarts).
+    pub fn open_all(&mut self, docs: Vec<Document>) {
         self.playback.time = 0.0;
         self.last_time = None;
         self.playback.range = None;
-        self.camera.frame(doc.bounds);
         self.selected = None;
         self.error = None;
-        self.document = Some(doc);
+        self.stage.replace(docs);
+        self.camera.frame(self.stage.bounds());
     }
 
-    /// Moves to a frame (clamped); keeps the play state.
+    /// Adds a character, keeping the playhead, selection and play state; the
+    /// camera frames everything visible.
+    pub fn add_document(&mut self, doc: Document) {
+        self.error = None;
+        self.stage.add(doc);
+        self.camera.frame(self.stage.bounds());
+    }
+
+    /// Closes character `index` (0-based); returns whether it existed.
+    pub fn remove(&mut self, index: usize) -> bool {
+        if !self.stage.remove(index) {
+            return false;
+        }
+        self.selected = match self.selected {
+            Some(s) if s.character == index => None,
+            Some(s) if s.character > index => Some(Selection { character: s.character - 1, ..s }),
+            other => other,
+        };
+        true
+    }
+
+    /// Closes every character.
+    pub fn clear(&mut self) {
+        self.stage.replace(Vec::new());
+        self.selected = None;
+    }
+
+    /// Shows or hides character `index`; returns whether it exists.
+    pub fn set_visible(&mut self, index: usize, visible: bool) -> bool {
+        self.stage.set_visible(index, visible)
+    }
+
+    /// Switches the layout and frames the result.
+    pub fn set_layout(&mut self, layout: Layout) {
+        self.stage.set_layout(layout);
+        self.camera.frame(self.stage.bounds());
+    }
+
+    /// Index of the current character: the selection's, else the first. The
+    /// timeline counts frames in its frame time and the info panel shows it.
+    pub fn current(&self) -> usize {
+        self.selected.map_or(0, |s| s.character)
+    }
+
+    /// The current character's document (see [`Viewer::current`]), if any is open.
+    pub fn document(&self) -> Option<&Document> {
+        let stage = &self.stage.characters;
+        stage.get(self.current()).or(stage.first()).map(|c| &c.document)
+    }
+
+    /// The shared timeline: the longest clip, in frames of the current character.
+    pub fn timing(&self) -> Option<Timing> {
+        self.stage.timing(self.current())
+    }
+
+    /// Moves to a frame of the timeline (clamped); keeps the play state.
     pub fn seek(&mut self, frame: usize) {
-        if let Some(doc) = &self.document {
-            self.playback.seek(frame, doc.timing());
+        if let Some(t) = self.timing() {
+            self.playback.seek(frame, t);
         }
     }
 
     /// Starts or stops playback.
     pub fn set_playing(&mut self, playing: bool) {
-        match &self.document {
-            Some(doc) => self.playback.set_playing(playing, doc.timing()),
+        match self.timing() {
+            Some(t) => self.playback.set_playing(playing, t),
             None => self.playback.playing = playing,
         }
     }
 
-    /// Selects a joint by index.
+    /// Selects a joint by index in the current character (see [`Viewer::current`]).
     pub fn select(&mut self, joint: Option<usize>) {
-        self.selected = joint.filter(|&j| self.document.as_ref().is_some_and(|d| j < d.clip.skeleton.joints.len()));
+        self.select_in(self.current(), joint);
+    }
+
+    /// Selects joint `joint` of character `character`, or nothing when either is out of range.
+    pub fn select_in(&mut self, character: usize, joint: Option<usize>) {
+        let valid = |j: &usize| self.stage.characters.get(character).is_some_and(|c| *j < c.document.clip.skeleton.joints.len());
+        self.selected = joint.filter(valid).map(|joint| Selection { character, joint });
+    }
+
+    /// Selects the first joint called `name` in character `character`; returns whether one exists.
+    pub fn select_named(&mut self, character: usize, name: &str) -> bool {
+        let joint = self.stage.characters.get(character).and_then(|c| c.document.clip.skeleton.joints.iter().position(|j| j.name == name));
+        self.select_in(character, joint);
+        joint.is_some()
+    }
+
+    /// The selected joint's name.
+    pub fn selected_name(&self) -> Option<&str> {
+        let s = self.selected?;
+        let joint = self.stage.characters.get(s.character)?.document.clip.skeleton.joints.get(s.joint)?;
+        Some(joint.name.as_str())
     }
 
     /// The view state as a URL fragment (see [`crate::view_state`]).
@@ -111,42 +201,14 @@ impl Viewer {
         self.last_time = None;
     }
 
-    /// Current frame of the open clip (0 without one).
+    /// Current frame of the timeline (0 without a clip).
     pub fn frame(&self) -> usize {
-        self.document.as_ref().map_or(0, |d| self.playback.frame(d.timing()))
+        self.timing().map_or(0, |t| self.playback.frame(t))
     }
 
     /// A plain copy of the observable state.
     pub fn snapshot(&self) -> Snapshot {
-        let clips = self
-            .document
-            .iter()
-            .map(|d| ClipSummary {
-                name: d.name.clone(),
-                frames: d.clip.frame_count(),
-                frame_time: d.clip.frame_time(),
-                joints: d.joint_count(),
-                joint_names: d.clip.skeleton.joints.iter().map(|j| j.name.clone()).collect(),
-            })
-            .collect();
-        let selected_joint = self
-            .selected
-            .and_then(|j| self.document.as_ref()?.clip.skeleton.joints.get(j))
-            .map(|j| j.name.clone());
-        Snapshot {
-            clips,
-            frame: self.frame(),
-            time: self.playback.time,
-            playing: self.playback.playing,
-            speed: self.playback.speed,
-            selected_joint,
-            error: self.error.clone(),
-            tree_labels: self.tree_labels.clone(),
-            frames_rendered: self.viewport.frames_rendered,
-            view: self.view_fragment(),
-            embed: self.panels.embed,
-            backend: self.viewport.backend.clone(),
-        }
+        Snapshot::of(self, self.tree_labels.clone(), self.viewport.frames_rendered, self.viewport.backend.clone())
     }
 
     /// Draws the whole UI for one frame and advances playback.
@@ -165,24 +227,26 @@ impl Viewer {
         if self.panels.show_inspector() {
             ui::side::show(ui, self);
         }
-        self.tree_labels.clear();
+        let mut labels = std::mem::take(&mut self.tree_labels);
+        labels.clear();
         if self.panels.show_hierarchy() {
-            ui::hierarchy::show(ui, self.document.as_ref(), &mut self.selected, &mut self.tree_labels);
+            ui::hierarchy::show(ui, self, &mut labels);
         }
+        self.tree_labels = labels;
 
         self.pose();
         egui::CentralPanel::no_frame().show(ui, |ui| {
             self.viewport.show(ui, render_state, &mut self.camera, &self.scene);
             ui::overlay::show(ui, self);
         });
-        if self.playback.playing && self.document.is_some() {
+        if self.playback.playing && !self.stage.characters.is_empty() {
             ui.ctx().request_repaint();
         }
     }
 
     /// Applies a user action.
     pub fn apply(&mut self, action: Action) {
-        let timing = self.document.as_ref().map(Document::timing);
+        let timing = self.timing();
         match (action, timing) {
             (Action::TogglePlay, _) => self.set_playing(!self.playback.playing),
             (Action::Step(d), Some(t)) => self.playback.step(d, t),
@@ -205,11 +269,20 @@ impl Viewer {
         }
     }
 
-    /// Back to the default view angles, framing the whole motion.
+    /// Back to the default view angles, framing every visible character's motion.
     pub fn reset_camera(&mut self) {
         self.camera = OrbitCamera::default();
-        if let Some(doc) = &self.document {
-            self.camera.frame(doc.bounds);
+        self.camera.frame(self.stage.bounds());
+    }
+
+    fn parse(&mut self, file_name: &str, bytes: &[u8]) -> Result<Document, String> {
+        match mocap::load(file_name, bytes) {
+            Ok(clip) => Ok(Document::new(file_name, clip)),
+            Err(e) => {
+                let message = e.to_string();
+                self.error = Some(message.clone());
+                Err(message)
+            }
         }
     }
 
@@ -217,28 +290,29 @@ impl Viewer {
         let now = ctx.input(|i| i.time);
         let dt = self.last_time.map_or(0.0, |t| (now - t).clamp(0.0, MAX_STEP));
         self.last_time = Some(now);
-        if let Some(doc) = &self.document {
-            self.playback.advance(dt, doc.timing());
+        if let Some(t) = self.timing() {
+            self.playback.advance(dt, t);
         }
     }
 
-    /// Samples the pose at the playhead and rebuilds the scene primitives.
-    fn pose(&mut self) {
-        let Some(doc) = &self.document else {
-            self.scene.clear();
-            return;
-        };
-        let timing = doc.timing();
-        if self.playback.playing && self.settings.interpolate {
-            doc.clip.sample_world_transforms_into(self.playback.time, Interpolation::Linear, &mut self.transforms);
-        } else {
-            doc.clip.world_transforms_into(self.playback.frame(timing), &mut self.transforms);
+    /// Poses every visible character at the playhead and rebuilds the scene primitives.
+    pub fn pose(&mut self) {
+        let smooth = self.playback.playing && self.settings.interpolate;
+        for c in self.stage.characters.iter_mut().filter(|c| c.visible) {
+            c.pose_at(&self.playback, smooth);
         }
+        let current = self.stage.characters.get(self.current()).filter(|c| c.visible);
         if self.settings.follow_root
-            && let Some(root) = self.transforms.first() {
-                self.camera.target.x = root.translation.x;
-                self.camera.target.z = root.translation.z;
-            }
-        pose_scene::build_scene(doc, &self.transforms, &self.settings, self.selected, &mut self.scene);
+            && let Some(root) = current.and_then(|c| c.pose().first())
+        {
+            self.camera.target.x = root.translation.x;
+            self.camera.target.z = root.translation.z;
+        }
+        pose_scene::build_scene(&self.stage, &self.settings, self.selected, &mut self.scene);
+    }
+
+    /// The scene primitives built by the last [`Viewer::pose`].
+    pub fn scene(&self) -> &Scene {
+        &self.scene
     }
 }

@@ -46,3 +46,23 @@ fn ui_runs_plays_and_reacts_to_keys() {
     assert!(s.error.is_some());
     assert!(s.tree_labels.iter().any(|l| l == "LeftForeArm"), "tree drawn: {:?}", s.tree_labels);
 }
+
+#[test]
+fn ui_draws_several_characters() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    v.add("again.bvh", WALK).unwrap();
+    v.set_visible(0, false);
+    v.select_in(1, Some(4));
+    frame(&ctx, &mut v, 0.0, vec![]);
+    frame(&ctx, &mut v, 0.1, vec![key(egui::Key::Space), key(egui::Key::ArrowRight)]);
+    let s = v.snapshot();
+    assert_eq!(s.clips.len(), 2);
+    let hips = s.tree_labels.iter().filter(|l| *l == "Hips").count();
+    assert_eq!(hips, 2, "one joint tree per character: {:?}", s.tree_labels);
+    assert_eq!((s.selected_character, s.selected_joint.as_deref()), (Some(1), Some("Head")));
+    v.remove(0);
+    frame(&ctx, &mut v, 0.2, vec![]);
+    assert_eq!(v.snapshot().tree_labels.iter().filter(|l| *l == "Hips").count(), 1);
+}

@@ -64,21 +64,24 @@ fn selection_by_index_is_validated() {
 }
 
 #[test]
-fn pose_becomes_bones_joints_and_a_floor_in_file_units() {
-    let v = loaded();
-    let doc = v.document.as_ref().unwrap();
-    let mut transforms = Vec::new();
-    doc.clip.world_transforms_into(0, &mut transforms);
-    let mut scene = mocap_render::Scene::default();
-    pose_scene::build_scene(doc, &transforms, &v.settings, Some(0), &mut scene);
+fn pose_becomes_bones_joints_and_a_floor_in_metres() {
+    let mut v = loaded();
+    v.set_playing(false);
+    v.select(Some(0));
+    v.pose();
+    let doc = v.document().unwrap();
     let joints = doc.clip.skeleton.joints.len();
+    let scene = v.scene();
     assert_eq!(scene.lines.len(), joints - 1, "one bone per non-root joint");
     assert_eq!(scene.spheres.len(), 21);
     let grid = scene.grid.unwrap();
-    assert!((grid.cell - 50.0).abs() < 1e-3, "0.5 m cells in centimetres: {}", grid.cell);
-    // Y up: the head is above the hips.
-    assert!(transforms[4].translation.y > transforms[0].translation.y);
-    assert!(grid.center.y <= transforms[0].translation.y);
+    assert!((grid.cell - 0.5).abs() < 1e-6, "0.5 m cells: {}", grid.cell);
+    // Y up: the head is above the hips; the centimetre clip is about 1.7 m tall.
+    let pose = v.stage.characters[0].pose();
+    assert!(pose[4].translation.y > pose[0].translation.y);
+    assert!(grid.center.y <= pose[0].translation.y);
+    let height = v.stage.characters[0].extent();
+    assert!((1.0..2.5).contains(&height), "height in metres: {height}");
 }
 
 #[test]
@@ -90,11 +93,9 @@ fn clip_without_frames_is_shown_without_panicking() {
     }
     v.set_playing(true);
     v.seek(3);
-    let doc = v.document.as_ref().unwrap();
-    let mut transforms = Vec::new();
-    doc.clip.world_transforms_into(0, &mut transforms);
+    v.pose();
     let mut scene = mocap_render::Scene::default();
-    pose_scene::build_scene(doc, &transforms, &v.settings, None, &mut scene);
+    pose_scene::build_scene(&v.stage, &v.settings, None, &mut scene);
     assert_eq!(v.frame(), 0);
 }
 
@@ -113,7 +114,7 @@ fn view_fragment_round_trips_exactly() {
     v.settings.show_axes = true;
     v.settings.show_joints = false;
     v.panels.inspector = false;
-    let joint = v.document.as_ref().and_then(|d| d.clip.skeleton.joints.iter().position(|j| j.name == "LeftHand")).or(Some(3));
+    let joint = v.document().and_then(|d| d.clip.skeleton.joints.iter().position(|j| j.name == "LeftHand")).or(Some(3));
     v.select(joint);
     let fragment = v.view_fragment();
 
@@ -131,9 +132,9 @@ fn view_fragment_round_trips_exactly() {
 #[test]
 fn view_fragment_accepts_frames_names_and_junk() {
     let mut v = loaded();
-    let name = v.document.as_ref().and_then(|d| d.clip.skeleton.joints.get(2)).map(|j| j.name.clone()).unwrap_or_default();
+    let name = v.document().and_then(|d| d.clip.skeleton.joints.get(2)).map(|j| j.name.clone()).unwrap_or_default();
     v.apply_fragment(&format!("f=9999&play=0&sel={}&speed=abc&cam=nan,1,1,1,1,1&panels=none", mocap_viewer::view_state::percent_encode(&name)));
-    let last = v.document.as_ref().map_or(0, |d| d.clip.frame_count() - 1);
+    let last = v.document().map_or(0, |d| d.clip.frame_count() - 1);
     assert_eq!(v.frame(), last);
     assert!(!v.playback.playing);
     assert_eq!(v.snapshot().selected_joint.as_deref(), Some(name.as_str()));

@@ -1,4 +1,5 @@
-//! The object JavaScript holds: `state()`, `load()`, `seek()`, `play()`, `pause()`.
+//! The object JavaScript holds: `state()`, `load()`, `add()`, `setVisible()`,
+//! `remove()`, `setLayout()`, `seek()`, `play()`, `pause()`, ...
 
 use eframe::egui;
 use mocap_viewer::Viewer;
@@ -16,8 +17,12 @@ pub struct MocapViewer {
 
 #[wasm_bindgen]
 impl MocapViewer {
-    /// `{clips:[{name, frames, frameTime, joints, jointNames}], frame, time, playing, speed,
-    /// selectedJoint, error, treeLabels, framesRendered, view, embed, backend}`.
+    /// `{clips:[{name, frames, frameTime, joints, jointNames, visible, color, offset}],
+    /// frame, time, playing, speed, selectedJoint, selectedCharacter, layout, error,
+    /// treeLabels, framesRendered, view, embed, backend}`. `color` is `#rrggbb`,
+    /// `offset` `[x, y, z]` in metres (layout plus hand-set), `selectedCharacter` an
+    /// index into `clips` (or `null`), `frame` counts in the frame time of that
+    /// character, else the first.
     pub fn state(&self) -> JsValue {
         match self.viewer.try_borrow() {
             Ok(v) => crate::js_state::to_js(&v.snapshot()),
@@ -25,22 +30,50 @@ impl MocapViewer {
         }
     }
 
-    /// Parses and opens a file; returns the error text (and shows it) when it cannot,
-    /// keeping the clip that was open. Returns `undefined` on success.
+    /// Parses a file and opens it in place of everything open; returns the error text
+    /// (and shows it) when it cannot, keeping what was open. Returns `undefined` on success.
     pub fn load(&self, file_name: &str, bytes: &[u8]) -> Option<String> {
-        let result = self.with_viewer(|v| v.load(file_name, bytes));
-        match result {
-            Some(Ok(())) => None,
-            Some(Err(e)) => Some(e),
-            None => Some("viewer busy".to_owned()),
-        }
+        self.with_viewer(|v| v.load(file_name, bytes)).map_or_else(|| Some("viewer busy".to_owned()), Result::err)
     }
 
-    /// Opens a clip from `parseMotion` (copying it; `clip` stays usable) under `file_name`.
+    /// Parses a file and adds it as one more character; returns the error text (and
+    /// shows it) when it cannot, keeping what was open. Returns `undefined` on success.
+    pub fn add(&self, file_name: &str, bytes: &[u8]) -> Option<String> {
+        self.with_viewer(|v| v.add(file_name, bytes)).map_or_else(|| Some("viewer busy".to_owned()), Result::err)
+    }
+
+    /// Opens a clip from `parseMotion` (copying it; `clip` stays usable) under
+    /// `file_name`, in place of everything open.
     #[wasm_bindgen(js_name = loadClip)]
     pub fn load_clip(&self, clip: &crate::MotionClip, file_name: &str) {
         let doc = mocap_viewer::Document::new(file_name, clip.clip().clone());
         self.with_viewer(|v| v.open(doc));
+    }
+
+    /// Adds a clip from `parseMotion` (copying it) as one more character named `file_name`.
+    #[wasm_bindgen(js_name = addClip)]
+    pub fn add_clip(&self, clip: &crate::MotionClip, file_name: &str) {
+        let doc = mocap_viewer::Document::new(file_name, clip.clip().clone());
+        self.with_viewer(|v| v.add_document(doc));
+    }
+
+    /// Shows or hides character `index` (0-based, as in `state().clips`); returns whether it exists.
+    #[wasm_bindgen(js_name = setVisible)]
+    pub fn set_visible(&self, index: u32, visible: bool) -> bool {
+        self.with_viewer(|v| v.set_visible(index as usize, visible)).unwrap_or(false)
+    }
+
+    /// Closes character `index` (0-based); returns whether it existed.
+    pub fn remove(&self, index: u32) -> bool {
+        self.with_viewer(|v| v.remove(index as usize)).unwrap_or(false)
+    }
+
+    /// Places the characters `'spread'` (side by side) or `'overlay'` (on top of each
+    /// other); returns false for any other name.
+    #[wasm_bindgen(js_name = setLayout)]
+    pub fn set_layout(&self, #[wasm_bindgen(unchecked_param_type = "'spread' | 'overlay'")] layout: &str) -> bool {
+        let Some(layout) = mocap_viewer::Layout::parse(layout) else { return false };
+        self.with_viewer(|v| v.set_layout(layout)).is_some()
     }
 
     /// Moves to a frame (clamped).
@@ -83,23 +116,16 @@ impl MocapViewer {
         self.with_viewer(|v| v.panels.embed = embed);
     }
 
-    /// Closes the open clip (the view shows a drop hint).
+    /// Closes every character (the view shows a drop hint).
     pub fn clear(&self) {
-        self.with_viewer(|v| {
-            v.document = None;
-            v.selected = None;
-        });
+        self.with_viewer(Viewer::clear);
     }
 
-    /// Selects a joint by name; returns whether it exists.
+    /// Selects a joint by name in character `character` (0-based; the first when
+    /// omitted); returns whether it exists.
     #[wasm_bindgen(js_name = selectJoint)]
-    pub fn select_joint(&self, name: &str) -> bool {
-        self.with_viewer(|v| {
-            let index = v.document.as_ref().and_then(|d| d.clip.skeleton.joints.iter().position(|j| j.name == name));
-            v.select(index);
-            index.is_some()
-        })
-        .unwrap_or(false)
+    pub fn select_joint(&self, name: &str, character: Option<u32>) -> bool {
+        self.with_viewer(|v| v.select_named(character.unwrap_or(0) as usize, name)).unwrap_or(false)
     }
 
     /// Runs `f` on the viewer and asks for a repaint.

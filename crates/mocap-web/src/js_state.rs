@@ -17,7 +17,7 @@ fn strings(items: &[String]) -> Array {
     items.iter().map(|s| JsValue::from_str(s)).collect()
 }
 
-/// The snapshot as `{clips, frame, time, playing, speed, selectedJoint, error, ...}`.
+/// The snapshot as `{clips, frame, time, playing, speed, selectedJoint, selectedCharacter, layout, error, ...}`.
 pub fn to_js(s: &Snapshot) -> JsValue {
     let clips: Array = s
         .clips
@@ -29,6 +29,11 @@ pub fn to_js(s: &Snapshot) -> JsValue {
             set(&o, "frameTime", c.frame_time);
             set(&o, "joints", c.joints as f64);
             set(&o, "jointNames", strings(&c.joint_names));
+            set(&o, "visible", c.visible);
+            let [r, g, b, _] = c.color;
+            set(&o, "color", format!("#{r:02x}{g:02x}{b:02x}"));
+            let offset: Array = c.offset.iter().map(|x| JsValue::from_f64(f64::from(*x))).collect();
+            set(&o, "offset", offset);
             JsValue::from(o)
         })
         .collect();
@@ -39,6 +44,8 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "playing", s.playing);
     set(&o, "speed", f64::from(s.speed));
     set(&o, "selectedJoint", opt(&s.selected_joint));
+    set(&o, "selectedCharacter", s.selected_character.map_or(JsValue::NULL, |c| JsValue::from_f64(c as f64)));
+    set(&o, "layout", s.layout);
     set(&o, "error", opt(&s.error));
     set(&o, "treeLabels", strings(&s.tree_labels));
     set(&o, "framesRendered", s.frames_rendered as f64);

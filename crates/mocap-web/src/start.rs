@@ -2,15 +2,16 @@
 
 use crate::MocapViewer;
 use eframe::egui;
-use mocap_viewer::Viewer;
 use mocap_viewer::app::ViewerApp;
+use mocap_viewer::{OpenMode, Viewer};
 use std::cell::RefCell;
 use std::rc::Rc;
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
 /// Starts the viewer on the canvas with id `canvas_id`. `file_input_id` names an
-/// `<input type=file>` that the "Open…" button clicks. With `default_clip` the
+/// `<input type=file>` that the "Open…" and "Add…" buttons click, after setting its
+/// `data-mode` attribute to `replace` or `add` (the page reads it). With `default_clip` the
 /// generated walk cycle is open at once. The "Share" button dispatches a
 /// `mocap-share` event on `window`. Fails (with a message) when the browser has
 /// neither WebGPU nor WebGL2.
@@ -38,12 +39,13 @@ export interface ViewerOptions {
 }
 "#;
 
-/// Starts the viewer on `canvas` and returns its handle (`load`, `seek`, `play`,
-/// `pause`, `state`, ...). Options: `{defaultClip, embed, fileInput}`.
+/// Starts the viewer on `canvas` and returns its handle (`load`, `add`, `loadClip`,
+/// `addClip`, `seek`, `play`, `pause`, `state`, ...). Options (optional):
+/// `{defaultClip, embed, fileInput}`.
 #[wasm_bindgen(js_name = startViewer)]
 pub async fn start_viewer(
     canvas: web_sys::HtmlCanvasElement,
-    #[wasm_bindgen(unchecked_param_type = "ViewerOptions | undefined")] options: JsValue,
+    #[wasm_bindgen(unchecked_optional_param_type = "ViewerOptions")] options: JsValue,
 ) -> Result<MocapViewer, JsValue> {
     let get = |key: &str| {
         if options.is_object() { js_sys::Reflect::get(&options, &JsValue::from_str(key)).ok() } else { None }
@@ -68,13 +70,17 @@ async fn start_on(
     let viewer = Rc::new(RefCell::new(viewer));
     let ctx: Rc<RefCell<Option<egui::Context>>> = Rc::default();
 
-    let open_picker = move || {
+    let open_picker = move |mode: OpenMode| {
         let input = web_sys::window()
             .and_then(|w| w.document())
             .zip(file_input_id.as_deref())
             .and_then(|(d, id)| d.get_element_by_id(id))
             .and_then(|e| e.dyn_into::<web_sys::HtmlElement>().ok());
         if let Some(input) = input {
+            let mode = if mode == OpenMode::Add { "add" } else { "replace" };
+            // Plain attributes on an element the page owns: cannot fail in practice.
+            let _ = input.set_attribute("data-mode", mode);
+            let _ = input.set_attribute("multiple", "");
             input.click();
         }
     };

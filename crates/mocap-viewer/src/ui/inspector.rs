@@ -6,10 +6,11 @@ use crate::document::Document;
 /// Most points per plotted channel (longer clips are decimated for drawing).
 const MAX_PLOT_POINTS: usize = 4000;
 
-/// Shows the inspector section.
-pub fn show(ui: &mut egui::Ui, doc: Option<&Document>, selected: Option<usize>, frame: usize, time: f64) {
+/// Shows the inspector section for joint `index` of `doc` (the selection), at the
+/// clip's own `frame` and the playhead `time`.
+pub fn show(ui: &mut egui::Ui, selected: Option<(&Document, usize)>, frame: usize, time: f64) {
     ui.heading("Joint");
-    let (Some(doc), Some(index)) = (doc, selected) else {
+    let Some((doc, index)) = selected else {
         ui.label("Click a joint in the hierarchy to inspect it.");
         return;
     };
@@ -18,6 +19,9 @@ pub fn show(ui: &mut egui::Ui, doc: Option<&Document>, selected: Option<usize>, 
     egui::Grid::new("joint").num_columns(2).striped(true).show(ui, |ui| {
         ui.label("Name");
         ui.strong(&joint.name);
+        ui.end_row();
+        ui.label("Clip");
+        ui.label(&doc.name);
         ui.end_row();
         ui.label("Parent");
         let parent = joint.parent.and_then(|p| doc.clip.skeleton.joints.get(p)).map_or("—", |p| p.name.as_str());

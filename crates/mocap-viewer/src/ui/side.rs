@@ -1,4 +1,4 @@
-//! Right panel: clip info, then the selected joint's inspector.
+//! Right panel: the current character's clip info, then the selected joint's inspector.
 
 use crate::viewer::Viewer;
 
@@ -6,10 +6,12 @@ use crate::viewer::Viewer;
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     egui::Panel::right("side").resizable(true).default_size(280.0).show(ui, |ui| {
         egui::ScrollArea::vertical().auto_shrink([false, false]).show(ui, |ui| {
-            super::info::show(ui, viewer.document.as_ref());
+            let current = viewer.stage.characters.get(viewer.current());
+            super::info::show(ui, current.map(|c| &c.document), viewer.stage.characters.len());
             ui.separator();
-            let frame = viewer.frame();
-            super::inspector::show(ui, viewer.document.as_ref(), viewer.selected, frame, viewer.playback.time);
+            let selected = viewer.selected.and_then(|s| Some((&viewer.stage.characters.get(s.character)?.document, s.joint)));
+            let frame = selected.map_or(0, |(doc, _)| viewer.playback.frame(doc.timing()));
+            super::inspector::show(ui, selected, frame, viewer.playback.time);
         });
     });
 }

@@ -1,4 +1,5 @@
-//! Bottom panel: transport buttons, scrub bar, loop, speed and loop range.
+//! Bottom panel: transport buttons, scrub bar, loop, speed and loop range, over
+//! the longest clip, counted in frames of the current character.
 
 use crate::keys::Action;
 use crate::playback::SPEED_RANGE;
@@ -8,7 +9,7 @@ use crate::viewer::Viewer;
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     egui::Panel::bottom("timeline").show(ui, |ui| {
         ui.add_space(4.0);
-        let Some(timing) = viewer.document.as_ref().map(|d| d.timing()) else {
+        let Some(timing) = viewer.timing() else {
             ui.label("No clip open");
             return;
         };
@@ -31,7 +32,9 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             act(ui, ">|", "Last frame (End)", Action::Last);
         });
         ui.horizontal(|ui| {
-            ui.monospace(format!("frame {frame:>5} / {}   {:>8.3} s", timing.last(), viewer.playback.time));
+            let counted_in = viewer.document().map_or(String::new(), |d| format!("Frames of {} ({:.2} fps)", d.name, d.clip.fps()));
+            ui.monospace(format!("frame {frame:>5} / {}   {:>8.3} s", timing.last(), viewer.playback.time))
+                .on_hover_text(format!("{counted_in}: the selected joint's character, else the first. The timeline spans the longest clip; shorter ones hold their last pose."));
             ui.separator();
             ui.checkbox(&mut viewer.playback.looping, "Loop");
             ui.add(

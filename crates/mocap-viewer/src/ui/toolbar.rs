@@ -1,22 +1,35 @@
-//! Top bar: Open and Share buttons, panel toggles, view toggles and camera buttons.
+//! Top bar: Open, Add and Share buttons, layout, panel toggles, view toggles and
+//! camera buttons.
 
 use crate::camera::Waypoint;
 use crate::keys::{Action, HELP};
-use crate::viewer::Viewer;
+use crate::layout::Layout;
+use crate::viewer::{OpenMode, Viewer};
 
 /// Shows the top panel.
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     egui::Panel::top("toolbar").show(ui, |ui| {
         ui.horizontal_wrapped(|ui| {
-            if ui.button("Open…").on_hover_text("Open a .bvh file (or drop one anywhere on the page)").clicked() {
-                viewer.open_requested = true;
+            if ui.button("Open…").on_hover_text("Open .bvh files in place of what is open (or drop them anywhere on the page)").clicked() {
+                viewer.open_requested = Some(OpenMode::Replace);
+            }
+            if ui.button("Add…").on_hover_text("Add .bvh files to what is open (or drop them with Shift held)").clicked() {
+                viewer.open_requested = Some(OpenMode::Add);
             }
             if ui.button("Share").on_hover_text("Copy a link that reproduces this view").clicked() {
                 viewer.share_requested = true;
             }
-            if let Some(doc) = &viewer.document {
-                ui.strong(&doc.name);
+            match viewer.stage.characters.as_slice() {
+                [] => {}
+                [one] => {
+                    ui.strong(&one.document.name);
+                }
+                many => {
+                    ui.strong(format!("{} characters", many.len()));
+                }
             }
+            ui.separator();
+            layout_choice(ui, viewer);
             ui.separator();
             ui.checkbox(&mut viewer.panels.hierarchy, "Tree").on_hover_text("Show the joint hierarchy");
             ui.checkbox(&mut viewer.panels.inspector, "Inspector").on_hover_text("Show clip info and the joint inspector");
@@ -37,4 +50,14 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.label("Keys (?)").on_hover_text(HELP);
         });
     });
+}
+
+/// Spread / Overlay.
+fn layout_choice(ui: &mut egui::Ui, viewer: &mut Viewer) {
+    let mut layout = viewer.stage.layout;
+    ui.selectable_value(&mut layout, Layout::Spread, "Spread").on_hover_text("Characters side by side");
+    ui.selectable_value(&mut layout, Layout::Overlay, "Overlay").on_hover_text("Characters on top of each other, to compare");
+    if layout != viewer.stage.layout {
+        viewer.set_layout(layout);
+    }
 }
