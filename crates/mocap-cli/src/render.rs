@@ -180,7 +180,8 @@ impl Offscreen {
 }
 
 /// The clips to draw, in metres (each scaled by its guessed unit, so clips in cm
-/// and inches stand side by side at the same size), placed along X.
+/// and inches stand side by side at the same size), placed side by side along X
+/// (wrapping into rows past eight, see [`mocap::arrange::spread`]).
 pub struct Stage<'a> {
     clips: Vec<&'a Clip>,
     scales: Vec<f32>,
@@ -192,7 +193,7 @@ pub struct Stage<'a> {
 }
 
 impl<'a> Stage<'a> {
-    /// Places `clips` along X, each in its own lane, and measures the whole motion.
+    /// Places `clips` in lanes and measures the whole motion.
     pub fn new(clips: Vec<&'a Clip>) -> Stage<'a> {
         let scales: Vec<f32> = clips.iter().map(|c| c.units().meters_per_unit()).collect();
         let per_clip: Vec<Aabb> = clips
@@ -204,28 +205,14 @@ impl<'a> Stage<'a> {
             })
             .collect();
         let extent = clips.iter().zip(&scales).map(|(c, &s)| c.pose_extent() * s).fold(0.0f32, f32::max).max(1e-3);
-        let mut offsets = Vec::with_capacity(clips.len());
-        let mut cursor = 0.0f32;
+        // Lanes side by side (rows past eight clips), as the viewer's Spread layout.
+        let offsets = mocap::arrange::spread(&per_clip, extent * 0.5);
         let mut bounds = Aabb::EMPTY;
-        for b in &per_clip {
-            let width = if b.is_empty() { extent } else { b.size().x };
-            // Centre each clip's motion in its lane; lanes are a little wider than it.
-            let center_x = if b.is_empty() { 0.0 } else { b.center().x };
-            let offset = Vec3::new(cursor + width * 0.5 - center_x, 0.0, 0.0);
+        for (b, offset) in per_clip.iter().zip(&offsets) {
             if !b.is_empty() {
-                bounds.include(b.min + offset);
-                bounds.include(b.max + offset);
+                bounds.include(b.min + *offset);
+                bounds.include(b.max + *offset);
             }
-            offsets.push(offset);
-            cursor += width + extent * 0.5;
-        }
-        // Centre the whole row on the origin.
-        let shift = Vec3::new(-bounds.center().x, 0.0, 0.0);
-        for o in &mut offsets {
-            *o += shift;
-        }
-        if !bounds.is_empty() {
-            bounds = Aabb { min: bounds.min + shift, max: bounds.max + shift };
         }
         let figures = clips
             .iter()

@@ -1,6 +1,7 @@
 //! A loaded clip with what the UI derives from it once.
 
 use mocap::{Aabb, Clip, Units};
+use mocap_render::FigureJoint;
 
 /// A clip, its file name and derived facts (children lists, units, scale).
 pub struct Document {
@@ -16,6 +17,8 @@ pub struct Document {
     pub bounds: Aabb,
     /// Size of the first pose in file units (a humanoid's height), for sizing markers.
     pub extent: f32,
+    /// Parents and end points of the joints, as the renderer draws them.
+    pub figure: Vec<FigureJoint>,
 }
 
 impl Document {
@@ -30,7 +33,8 @@ impl Document {
         }
         let extent = clip.pose_extent();
         let extent = if extent.is_finite() && extent > 0.0 { extent } else { 1.0 };
-        Document { name: name.to_owned(), units: clip.units(), bounds: clip.bounds(), clip, children, extent }
+        let figure = clip.skeleton.joints.iter().map(|j| FigureJoint { parent: j.parent, end_site: j.end_site }).collect();
+        Document { name: name.to_owned(), units: clip.units(), bounds: clip.bounds(), clip, children, extent, figure }
     }
 
     /// Timing facts for playback.

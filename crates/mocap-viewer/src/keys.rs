@@ -23,12 +23,14 @@ pub enum Action {
     ToggleFollow,
     /// Toggle bone axes.
     ToggleAxes,
+    /// Switch between capsules and sticks.
+    ToggleDrawMode,
     /// Frame the whole motion again.
     ResetCamera,
 }
 
 /// Key bindings, listed for the help text.
-pub const HELP: &str = "Space play/pause · ←/→ step · Home/End first/last · z/Z zoom · j/k orbit · 1 2 3 views · f follow root · a axes · r reset view · drag: left orbit, right/middle pan, wheel zoom";
+pub const HELP: &str = "Space play/pause · ←/→ step · Home/End first/last · z/Z zoom · j/k orbit · 1 2 3 views · f follow root · a axes · m capsules/sticks · r reset view · drag: left orbit, right/middle pan, wheel zoom";
 
 /// Reads this frame's key presses (ignored while a text field has focus).
 pub fn read_actions(ctx: &egui::Context, out: &mut Vec<Action>) {
@@ -61,6 +63,7 @@ fn action_for(key: egui::Key, shift: bool) -> Option<Action> {
         Key::Num3 => Action::Waypoint(Waypoint::Top),
         Key::F => Action::ToggleFollow,
         Key::A => Action::ToggleAxes,
+        Key::M => Action::ToggleDrawMode,
         Key::R => Action::ResetCamera,
         _ => return None,
     })

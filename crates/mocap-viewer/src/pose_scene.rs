@@ -1,4 +1,4 @@
-//! Turns posed characters into renderer primitives: bones, joints, axes, floor.
+//! Turns posed characters into renderer primitives: bones (capsules or sticks), joints, axes, floor.
 //! This is the only place that does; [`character_primitives`] draws one character.
 
 use crate::document::Document;
@@ -7,7 +7,7 @@ use crate::settings::ViewSettings;
 use crate::stage::Stage;
 use mocap::Transform;
 use mocap::glam::Vec3;
-use mocap_render::{Grid, Line, Scene, Sphere};
+use mocap_render::{FigureStyle, Grid, Line, Scene, push_figure};
 
 const JOINT: [u8; 4] = [90, 160, 235, 255];
 const SELECTED: [u8; 4] = [255, 200, 40, 255];
@@ -21,40 +21,41 @@ pub fn build_scene(stage: &Stage, settings: &ViewSettings, selected: Option<Sele
         return;
     }
     scene.grid = Some(floor_grid(stage));
+    scene.shadows = settings.shadows;
     for (i, c) in stage.visible() {
         let joint = selected.filter(|s| s.character == i).map(|s| s.joint);
-        character_primitives(&c.document, c.pose(), c.color, settings, joint, scene);
+        character_primitives(&c.document, c.pose(), c.positions(), c.color, settings, joint, scene);
     }
 }
 
-/// Appends one character: bones in `color`, joint spheres, axes and the highlight
-/// of joint `selected`. `transforms` are its world transforms in metres, already
-/// placed (one per joint of `doc`, in joint order).
+/// Appends one character in the chosen draw mode ([`mocap_render::push_figure`]):
+/// bones in `color`, joint spheres (stick mode), axes and the highlight of joint
+/// `selected`. `transforms` are its world transforms in metres, already placed (one
+/// per joint of `doc`, in joint order), and `positions` their translations.
 pub fn character_primitives(
     doc: &Document,
     transforms: &[Transform],
+    positions: &[Vec3],
     color: [u8; 4],
     settings: &ViewSettings,
     selected: Option<usize>,
     scene: &mut Scene,
 ) {
-    let radius = doc.extent * doc.meters_per_unit() * 0.012;
-    for (i, joint) in doc.clip.skeleton.joints.iter().enumerate() {
-        let Some(t) = transforms.get(i) else { break };
-        let is_selected = selected == Some(i);
-        if let Some(parent) = joint.parent.and_then(|p| transforms.get(p)) {
-            let color = if is_selected { SELECTED } else { color };
-            scene.lines.push(Line { a: parent.translation, b: t.translation, color, width_px: 3.0 });
-        }
-        if joint.end_site {
-            continue;
-        }
-        if settings.show_joints || is_selected {
-            let (r, color) = if is_selected { (radius * 1.8, SELECTED) } else { (radius, JOINT) };
-            scene.spheres.push(Sphere { center: t.translation, radius: r, color });
-        }
-        if settings.show_axes {
-            push_axes(t, radius * 5.0, scene);
+    let size = doc.extent * doc.meters_per_unit();
+    let style = FigureStyle {
+        mode: settings.mode,
+        color,
+        joint_color: JOINT,
+        size,
+        show_joints: settings.show_joints,
+        highlight: selected.map(|j| (j, SELECTED)),
+    };
+    push_figure(scene, &doc.figure, positions, &style);
+    if settings.show_axes {
+        for (joint, t) in doc.clip.skeleton.joints.iter().zip(transforms) {
+            if !joint.end_site {
+                push_axes(t, size * 0.06, scene);
+            }
         }
     }
 }

@@ -1,12 +1,18 @@
-//! View settings: plain, serialisable-in-spirit state (a later issue puts it in the URL).
+//! View settings: plain state, all of it in the URL fragment (see [`crate::view_state`]).
+
+pub use mocap_render::DrawMode;
 
 /// What the 3D view shows and how the camera behaves.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ViewSettings {
     /// Draw each joint's local axes (x red, y green, z blue).
     pub show_axes: bool,
-    /// Draw joint spheres.
+    /// Draw joint spheres (stick mode).
     pub show_joints: bool,
+    /// Capsules or sticks.
+    pub mode: DrawMode,
+    /// The key light casts soft shadows on the floor.
+    pub shadows: bool,
     /// Keep the camera target over the root joint.
     pub follow_root: bool,
     /// Interpolate between frames while playing (paused views are always frame-exact).
@@ -15,6 +21,13 @@ pub struct ViewSettings {
 
 impl Default for ViewSettings {
     fn default() -> ViewSettings {
-        ViewSettings { show_axes: false, show_joints: true, follow_root: false, interpolate: true }
+        ViewSettings {
+            show_axes: false,
+            show_joints: true,
+            mode: DrawMode::Capsules,
+            shadows: true,
+            follow_root: false,
+            interpolate: true,
+        }
     }
 }

@@ -60,6 +60,10 @@ pub struct Snapshot {
     pub selected_character: Option<usize>,
     /// `spread` or `overlay`.
     pub layout: &'static str,
+    /// `capsules` or `sticks`.
+    pub draw_mode: &'static str,
+    /// Whether floor shadows are drawn.
+    pub shadows: bool,
     /// Last load error, shown in the page.
     pub error: Option<String>,
     /// Joint labels the hierarchy panel drew in its last frame.
@@ -86,6 +90,8 @@ impl Snapshot {
             selected_joint: v.selected_name().map(str::to_owned),
             selected_character: v.selected.map(|s| s.character),
             layout: v.stage.layout.name(),
+            draw_mode: v.settings.mode.name(),
+            shadows: v.settings.shadows,
             error: v.error.clone(),
             tree_labels,
             frames_rendered,

@@ -10,8 +10,8 @@
 //! `spread` or `overlay`, `hide` a comma list of hidden characters' numbers (1-based
 //! like `sel`; `none` or absent when all are shown), `offset` the hand-set offsets in
 //! metres as `n:x,y,z` joined by `;` (`offset=2:0.5,0,-1`; characters not listed sit
-//! at zero; `none` or absent when all are zero), `draw` a comma list of `joints`,
-//! `axes`, `follow`, `interp`, and `panels` a comma list of `tree`, `inspector` (or
+//! at zero; `none` or absent when all are zero), `mode` `capsules` or `sticks`,
+//! `shadows` 0/1, `draw` a comma list of `joints`, `axes`, `follow`, `interp`, and `panels` a comma list of `tree`, `inspector` (or
 //! `none`). Timeline frames (`f`, `range`, the frame shown) count in the frame time
 //! of the selection's character, else the first one. Unknown keys and unreadable
 //! values are ignored; missing keys leave the viewer as it is.
@@ -45,6 +45,10 @@ pub struct ViewState {
     pub hidden: Option<Vec<usize>>,
     /// Hand-set offsets in metres by character (0-based; written 1-based); the rest are zero.
     pub offsets: Option<Vec<(usize, Vec3)>>,
+    /// Capsules or sticks.
+    pub mode: Option<crate::settings::DrawMode>,
+    /// Soft shadows on the floor.
+    pub shadows: Option<bool>,
     /// Draw flags: joints, axes, follow root, interpolate.
     pub draw: Option<[bool; 4]>,
     /// Panels: hierarchy, inspector.
@@ -78,6 +82,8 @@ impl ViewState {
                 "hide" => s.hidden = parse_hidden(v),
                 "offset" => s.offsets = parse_offsets(v),
                 "draw" => s.draw = Some(flags(v, DRAW_NAMES)),
+                "mode" => s.mode = crate::settings::DrawMode::from_name(v),
+                "shadows" => s.shadows = flag(v),
                 "panels" => s.panels = Some(flags(v, PANEL_NAMES)),
                 _ => {}
             }
@@ -117,6 +123,8 @@ impl ViewState {
         if !moved.is_empty() {
             parts.push(format!("offset={}", moved.join(";")));
         }
+        parts.push(format!("mode={}", st.mode.name()));
+        parts.push(format!("shadows={}", u8::from(st.shadows)));
         let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate];
         parts.push(format!("draw={}", join_flags(draw, DRAW_NAMES)));
         let panels = [viewer.panels.hierarchy, viewer.panels.inspector];
@@ -155,6 +163,12 @@ impl ViewState {
             viewer.settings.show_axes = axes;
             viewer.settings.follow_root = follow;
             viewer.settings.interpolate = interp;
+        }
+        if let Some(mode) = self.mode {
+            viewer.settings.mode = mode;
+        }
+        if let Some(shadows) = self.shadows {
+            viewer.settings.shadows = shadows;
         }
         if let Some([tree, inspector]) = self.panels {
             viewer.panels.hierarchy = tree;
@@ -315,6 +329,14 @@ mod tests {
             assert_eq!(percent_decode(&percent_encode(s)), s);
         }
         assert_eq!(percent_decode("%zz%4"), "%zz%4");
+    }
+
+    #[test]
+    fn draw_mode_and_shadows() {
+        let s = ViewState::parse("mode=sticks&shadows=0");
+        assert_eq!((s.mode, s.shadows), (Some(crate::settings::DrawMode::Sticks), Some(false)));
+        let s = ViewState::parse("mode=boxes&shadows=maybe");
+        assert_eq!((s.mode, s.shadows), (None, None));
     }
 
     #[test]

@@ -8,7 +8,7 @@ use crate::layout::Layout;
 use crate::panels::Panels;
 use crate::playback::{Playback, Timing};
 use crate::selection::Selection;
-use crate::settings::ViewSettings;
+use crate::settings::{DrawMode, ViewSettings};
 use crate::snapshot::Snapshot;
 use crate::stage::Stage;
 use crate::viewport::Viewport;
@@ -264,6 +264,12 @@ impl Viewer {
             (Action::Waypoint(w), _) => self.camera.waypoint(w),
             (Action::ToggleFollow, _) => self.settings.follow_root = !self.settings.follow_root,
             (Action::ToggleAxes, _) => self.settings.show_axes = !self.settings.show_axes,
+            (Action::ToggleDrawMode, _) => {
+                self.settings.mode = match self.settings.mode {
+                    DrawMode::Capsules => DrawMode::Sticks,
+                    DrawMode::Sticks => DrawMode::Capsules,
+                }
+            }
             (Action::ResetCamera, _) => self.reset_camera(),
             (Action::Step(_) | Action::First | Action::Last, None) => {}
         }

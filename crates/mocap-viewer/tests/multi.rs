@@ -99,15 +99,15 @@ fn centimetres_and_metres_stand_at_the_same_size_side_by_side() {
 fn hidden_characters_are_not_drawn_and_removal_shifts_the_selection() {
     let mut v = two();
     v.pose();
-    let all = v.scene().lines.len();
+    let all = v.scene().capsules.len();
     let colors = (v.stage.characters[0].color, v.stage.characters[1].color);
     assert_ne!(colors.0, colors.1, "each character has its own colour");
-    assert!(v.scene().lines.iter().any(|l| l.color == colors.1));
+    assert!(v.scene().capsules.iter().any(|l| l.color == colors.1));
     assert!(v.set_visible(1, false));
     assert!(!v.set_visible(5, false));
     v.pose();
-    assert!(v.scene().lines.len() < all);
-    assert!(!v.scene().lines.iter().any(|l| l.color == colors.1), "hidden character drawn");
+    assert!(v.scene().capsules.len() < all);
+    assert!(!v.scene().capsules.iter().any(|l| l.color == colors.1), "hidden character drawn");
     assert!(!v.snapshot().clips[1].visible);
 
     v.set_visible(1, true);
@@ -122,7 +122,7 @@ fn hidden_characters_are_not_drawn_and_removal_shifts_the_selection() {
     assert!(v.remove(0));
     assert_eq!(v.selected, None);
     v.pose();
-    assert!(v.scene().lines.is_empty() && v.scene().grid.is_none());
+    assert!(v.scene().capsules.is_empty() && v.scene().grid.is_none());
 }
 
 #[test]

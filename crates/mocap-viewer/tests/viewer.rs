@@ -72,8 +72,11 @@ fn pose_becomes_bones_joints_and_a_floor_in_metres() {
     let doc = v.document().unwrap();
     let joints = doc.clip.skeleton.joints.len();
     let scene = v.scene();
-    assert_eq!(scene.lines.len(), joints - 1, "one bone per non-root joint");
-    assert_eq!(scene.spheres.len(), 21);
+    // Capsules (the default): one per bone, a ball at the root, and the
+    // selected joint's highlight ball.
+    assert_eq!(scene.capsules.len(), joints - 1 + 1 + 1, "one capsule per non-root joint");
+    assert!(scene.lines.is_empty() && scene.spheres.is_empty());
+    assert!(scene.shadows);
     let grid = scene.grid.unwrap();
     assert!((grid.cell - 0.5).abs() < 1e-6, "0.5 m cells: {}", grid.cell);
     // Y up: the head is above the hips; the centimetre clip is about 1.7 m tall.
@@ -82,6 +85,17 @@ fn pose_becomes_bones_joints_and_a_floor_in_metres() {
     assert!(grid.center.y <= pose[0].translation.y);
     let height = v.stage.characters[0].extent();
     assert!((1.0..2.5).contains(&height), "height in metres: {height}");
+
+    // Sticks: one line per bone, a sphere per joint (not End Sites), casters for shadows.
+    v.apply(mocap_viewer::keys::Action::ToggleDrawMode);
+    v.settings.shadows = false;
+    v.pose();
+    let scene = v.scene();
+    assert_eq!(scene.lines.len(), joints - 1, "one bone per non-root joint");
+    assert_eq!(scene.spheres.len(), 21);
+    assert_eq!(scene.shadow_casters.len(), joints - 1);
+    assert!(scene.capsules.is_empty() && !scene.shadows);
+    assert!(v.view_fragment().contains("mode=sticks&shadows=0"), "{}", v.view_fragment());
 }
 
 #[test]

@@ -46,6 +46,8 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "selectedJoint", opt(&s.selected_joint));
     set(&o, "selectedCharacter", s.selected_character.map_or(JsValue::NULL, |c| JsValue::from_f64(c as f64)));
     set(&o, "layout", s.layout);
+    set(&o, "drawMode", s.draw_mode);
+    set(&o, "shadows", s.shadows);
     set(&o, "error", opt(&s.error));
     set(&o, "treeLabels", strings(&s.tree_labels));
     set(&o, "framesRendered", s.frames_rendered as f64);

@@ -4,6 +4,7 @@
 use crate::camera::Waypoint;
 use crate::keys::{Action, HELP};
 use crate::layout::Layout;
+use crate::settings::DrawMode;
 use crate::viewer::{OpenMode, Viewer};
 
 /// Shows the top panel.
@@ -34,7 +35,11 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.checkbox(&mut viewer.panels.hierarchy, "Tree").on_hover_text("Show the joint hierarchy");
             ui.checkbox(&mut viewer.panels.inspector, "Inspector").on_hover_text("Show clip info and the joint inspector");
             ui.separator();
-            ui.checkbox(&mut viewer.settings.show_joints, "Joints");
+            draw_mode_choice(ui, viewer);
+            ui.checkbox(&mut viewer.settings.shadows, "Shadows").on_hover_text("Soft shadows from the key light on the floor");
+            if viewer.settings.mode == DrawMode::Sticks {
+                ui.checkbox(&mut viewer.settings.show_joints, "Joints");
+            }
             ui.checkbox(&mut viewer.settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");
             ui.checkbox(&mut viewer.settings.follow_root, "Follow root").on_hover_text("f");
             ui.checkbox(&mut viewer.settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
@@ -50,6 +55,13 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.label("Keys (?)").on_hover_text(HELP);
         });
     });
+}
+
+/// Capsules / Sticks.
+fn draw_mode_choice(ui: &mut egui::Ui, viewer: &mut Viewer) {
+    let mode = &mut viewer.settings.mode;
+    ui.selectable_value(mode, DrawMode::Capsules, "Capsules").on_hover_text("Lit solids sized to each bone (m)");
+    ui.selectable_value(mode, DrawMode::Sticks, "Sticks").on_hover_text("Lines and joint balls (m)");
 }
 
 /// Spread / Overlay.
