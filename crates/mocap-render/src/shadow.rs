@@ -114,12 +114,21 @@ pub(crate) fn light_view_proj(min: Vec3, max: Vec3, floor_y: Option<f32>) -> Opt
     let center = (lo + max) * 0.5;
     let radius = ((max - lo).length() * 0.5).max(1e-3);
     let view = glam::camera::rh::view::look_at_mat4(center + l * radius * 2.0, center, Vec3::Y);
-    let corners = (0..8).map(|i| {
-        let pick = |bit: u32, a: f32, b: f32| if i & bit == 0 { a } else { b };
-        view.transform_point3(Vec3::new(pick(1, lo.x, max.x), pick(2, lo.y, max.y), pick(4, lo.z, max.z)))
-    });
+    // The box's corners and, on the floor, the far end of the shadows they cast:
+    // floor points there lie farther from the light than the box.
+    let mut points: Vec<Vec3> = (0..8)
+        .map(|i| {
+            let pick = |bit: u32, a: f32, b: f32| if i & bit == 0 { a } else { b };
+            Vec3::new(pick(1, lo.x, max.x), pick(2, lo.y, max.y), pick(4, lo.z, max.z))
+        })
+        .collect();
+    if let Some(y) = floor_y.filter(|y| y.is_finite()) {
+        let [x0, z0, x1, z1] = floor_shadow_rect(min, max, y);
+        points.extend([Vec3::new(x0, y, z0), Vec3::new(x1, y, z0), Vec3::new(x0, y, z1), Vec3::new(x1, y, z1)]);
+    }
     let (mut a, mut b) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    for c in corners {
+    for p in points {
+        let c = view.transform_point3(p);
         a = a.min(c);
         b = b.max(c);
     }
@@ -130,7 +139,8 @@ pub(crate) fn light_view_proj(min: Vec3, max: Vec3, floor_y: Option<f32>) -> Opt
     let snap = |v: f32| (v / texel).round() * texel;
     let (cx, cy) = (snap((a.x + b.x) * 0.5), snap((a.y + b.y) * 0.5));
     // View space looks down -Z: depths are -z.
-    let (near, far) = (-b.z - radius * 0.1, -a.z + radius * 0.1);
+    let depth = b.z - a.z;
+    let (near, far) = (-b.z - depth * 0.05 - 1e-3, -a.z + depth * 0.05 + 1e-3);
     let projection = glam::camera::rh::proj::directx::orthographic(cx - half, cx + half, cy - half, cy + half, near, far);
     Some((projection * view, texel))
 }
@@ -146,6 +156,12 @@ mod tests {
         for p in [Vec3::new(-1.0, -0.1, -0.5), Vec3::new(1.0, 1.8, 0.5), Vec3::new(0.0, 0.9, 0.0)] {
             let c = m.project_point3(p);
             assert!(c.x.abs() <= 1.0 && c.y.abs() <= 1.0 && (0.0..=1.0).contains(&c.z), "{p} -> {c}");
+        }
+        // So does the floor under the far end of the shadow of the box's top.
+        let rect = floor_shadow_rect(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), -0.1);
+        for corner in [Vec3::new(rect[0], -0.1, rect[1]), Vec3::new(rect[2], -0.1, rect[3])] {
+            let c = m.project_point3(corner);
+            assert!(c.x.abs() <= 1.0 && c.y.abs() <= 1.0 && (0.0..=1.0).contains(&c.z), "{corner} -> {c}");
         }
         // Higher points are closer to the light.
         assert!(m.project_point3(Vec3::new(0.0, 1.8, 0.0)).z < m.project_point3(Vec3::new(0.0, 0.0, 0.0)).z);
