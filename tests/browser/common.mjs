@@ -17,12 +17,16 @@ export const MODES = {
     '--use-angle=vulkan', '--enable-unsafe-swiftshader', '--use-webgpu-adapter=swiftshader'],
 };
 
-/** Launches headless Chromium with a fresh profile; returns { context, page, close, errors }. */
-export async function launch(executablePath, mode) {
+/**
+ * Launches headless Chromium with a fresh profile; returns { context, page, close, errors }.
+ * `options` may set `deviceScaleFactor` (default 1).
+ */
+export async function launch(executablePath, mode, options = {}) {
   const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'mocap-chromium-'));
   const context = await chromium.launchPersistentContext(userDataDir, {
     executablePath, headless: true, args: [...COMMON, ...MODES[mode]],
     viewport: { width: 1280, height: 800 },
+    deviceScaleFactor: options.deviceScaleFactor ?? 1,
   });
   const page = context.pages()[0] ?? await context.newPage();
   const errors = [];

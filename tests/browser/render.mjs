@@ -1,0 +1,122 @@
+// Browser tests of what the 3D view draws: capsules by default with floor shadows,
+// the m key and the fragment switch to sticks and turn shadows off, and the view
+// keeps drawing correctly when the window is resized or the pixel ratio is 2.
+// Usage: node render.mjs URL MODE OUT_DIR CHROMIUM
+import path from 'node:path';
+import { changeAndRender, launch, reporter, state, waitState } from './common.mjs';
+
+const [base, mode, outDir, chromiumPath] = process.argv.slice(2);
+const { check, step, finish } = reporter(`render ${mode}`);
+const shot = (name) => path.join(outDir, `render-${mode}-${name}.png`);
+
+/** Counts pixels of a PNG (decoded in a blank page, away from the viewer's CSP). */
+async function pixelStats(context, png, reference) {
+  const page = await context.newPage();
+  try {
+    return await page.evaluate(async ([a, b]) => {
+      const decode = async (b64) => {
+        const img = new Image();
+        img.src = `data:image/png;base64,${b64}`;
+        await img.decode();
+        const c = new OffscreenCanvas(img.width, img.height);
+        const g = c.getContext('2d');
+        g.drawImage(img, 0, 0);
+        return g.getImageData(0, 0, img.width, img.height).data;
+      };
+      const d = await decode(a);
+      const r = b ? await decode(b) : null;
+      let figure = 0;
+      let darker = 0;
+      let blue = 0;
+      for (let i = 0; i < d.length; i += 4) {
+        // Light grey, lit figure pixels (the default character colour).
+        if (d[i] > 150 && d[i + 1] > 150 && d[i + 2] > 150 && Math.abs(d[i] - d[i + 2]) < 40) figure += 1;
+        // The blue joint balls of stick mode.
+        if (d[i + 2] > 150 && d[i + 2] > d[i] + 60) blue += 1;
+        if (r && d[i] + d[i + 1] + d[i + 2] + 24 < r[i] + r[i + 1] + r[i + 2]) darker += 1;
+      }
+      return { figure, darker, blue };
+    }, [png.toString('base64'), reference ? reference.toString('base64') : null]);
+  } finally {
+    await page.close();
+  }
+}
+
+/** The 3D view between the side panels, as PNG bytes. */
+const view = (page, file) => page.screenshot({ path: file, clip: { x: 300, y: 80, width: 640, height: 560 } });
+
+const { context, page, close, errors } = await launch(chromiumPath, mode);
+try {
+  let capsules;
+  await step('capsules with soft floor shadows by default', async () => {
+    await page.goto(`${base}#play=0`);
+    await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 0);
+    const s = await changeAndRender(page, (v) => v.seek(30));
+    check(s.drawMode === 'capsules' && s.shadows === true, `drawMode ${s.drawMode}, shadows ${s.shadows}`);
+    check(s.view.includes('mode=capsules') && s.view.includes('shadows=1'), `fragment has the mode (${s.view})`);
+    capsules = await view(page, shot('capsules'));
+    const px = await pixelStats(context, capsules);
+    check(px.figure > 1500, `the lit figure covers many pixels (${px.figure})`);
+  });
+
+  await step('shadows=0 in the fragment removes the floor shadow', async () => {
+    const s = await changeAndRender(page, (v) => v.applyViewState('shadows=0'));
+    const plain = await view(page, shot('no-shadows'));
+    const px = await pixelStats(context, capsules, plain);
+    check(px.darker > 300, `with shadows, floor pixels are darker (${px.darker} pixels)`);
+    check(s.view.includes('shadows=0'), 'the fragment follows');
+  });
+
+  await step('the m key switches to sticks', async () => {
+    await page.mouse.click(640, 400);
+    await page.keyboard.press('m');
+    const s = await waitState(page, (s) => s.drawMode === 'sticks');
+    const sticks = await view(page, shot('sticks'));
+    const [a, b] = [await pixelStats(context, capsules), await pixelStats(context, sticks)];
+    check(b.figure < a.figure, `sticks cover fewer pixels than capsules (${b.figure} < ${a.figure})`);
+    check(b.blue > 20 && a.blue < 5, `sticks have blue joint balls, capsules none (${b.blue}, ${a.blue})`);
+    check(s.view.includes('mode=sticks'), 'the fragment follows');
+  });
+
+  await step('a link with mode=sticks opens in stick mode', async () => {
+    await page.goto('about:blank');
+    await page.goto(`${base}#t=1&play=0&mode=sticks&shadows=1`);
+    const s = await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 0);
+    check(s.drawMode === 'sticks' && s.shadows, `drawMode ${s.drawMode}, shadows ${s.shadows}`);
+  });
+
+  await step('resizing the window keeps the figure drawn', async () => {
+    await page.goto('about:blank');
+    await page.goto(`${base}#play=0`);
+    await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 0);
+    for (const size of [{ width: 900, height: 600 }, { width: 1280, height: 800 }]) {
+      await page.setViewportSize(size);
+      await changeAndRender(page, (v) => v.seek(30));
+      const png = await page.screenshot({ path: shot(`resized-${size.width}`) });
+      const px = await pixelStats(context, png);
+      check(px.figure > 800, `${size.width}x${size.height}: the figure is drawn (${px.figure} pixels)`);
+    }
+  });
+  check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
+} finally {
+  await close();
+}
+
+await step('at a device pixel ratio of 2 the view is sharp and drawn', async () => {
+  const hi = await launch(chromiumPath, mode, { deviceScaleFactor: 2 });
+  try {
+    await hi.page.goto(`${base}#play=0`);
+    await waitState(hi.page, (s) => s.clips.length === 1 && s.framesRendered > 0);
+    await changeAndRender(hi.page, (v) => v.seek(30));
+    const png = await hi.page.screenshot({ path: shot('dpr2') });
+    const px = await pixelStats(hi.context, png);
+    // Twice the pixels each way: about four times the figure pixels of ratio 1.
+    check(px.figure > 4000, `the figure is drawn at full resolution (${px.figure} pixels)`);
+    const s = await state(hi.page);
+    check(s.error === null && hi.errors.length === 0, `no errors (${hi.errors.join(' | ')})`);
+  } finally {
+    await hi.close();
+  }
+});
+
+finish('render');
