@@ -59,9 +59,18 @@ pub struct FigureStyle {
     pub highlight: Option<(usize, [u8; 4])>,
 }
 
+/// Bones longer than this share of the figure's size are helpers, not limbs.
+pub const HELPER_BONE: f32 = 0.45;
+
 /// Bone radius (capsule mode) for a bone of `length` in a figure of `size`: thick
-/// for long limbs, thin for fingers, within 0.8%–4% of the figure's size.
+/// for long limbs, thin for fingers, within 0.8%–4% of the figure's size. Bones
+/// longer than [`HELPER_BONE`] × `size` are no limb (a rig helper joint, a root
+/// left on the floor far from the hips): they are drawn as thin rods (0.4%) so
+/// that they stay visible without hiding the figure.
 pub fn bone_radius(length: f32, size: f32) -> f32 {
+    if length > size * HELPER_BONE {
+        return size * 0.004;
+    }
     (length * 0.2).clamp(size * 0.008, size * 0.04)
 }
 
@@ -161,7 +170,8 @@ mod tests {
 
     #[test]
     fn radius_is_bounded() {
-        assert_eq!(bone_radius(100.0, 1.0), 0.04);
+        assert_eq!(bone_radius(0.3, 1.0), 0.04);
+        assert_eq!(bone_radius(100.0, 1.0), 0.004, "a helper bone is a thin rod");
         assert_eq!(bone_radius(0.0, 1.0), 0.008);
     }
 }

@@ -44,17 +44,24 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.checkbox(&mut viewer.settings.follow_root, "Follow root").on_hover_text("f");
             ui.checkbox(&mut viewer.settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
             ui.separator();
-            for (label, w) in [("Front", Waypoint::Front), ("Side", Waypoint::Side), ("Top", Waypoint::Top)] {
-                if ui.small_button(label).clicked() {
-                    viewer.apply(Action::Waypoint(w));
-                }
-            }
-            if ui.small_button("Reset view").on_hover_text("r").clicked() {
-                viewer.reset_camera();
-            }
+            ui.menu_button("Camera", |ui| camera_menu(ui, viewer));
             ui.label("Keys (?)").on_hover_text(HELP);
         });
     });
+}
+
+/// Front, side and top views, and back to the framing view (also keys 1 2 3 and r).
+fn camera_menu(ui: &mut egui::Ui, viewer: &mut Viewer) {
+    for (label, w) in [("Front (1)", Waypoint::Front), ("Side (2)", Waypoint::Side), ("Top (3)", Waypoint::Top)] {
+        if ui.button(label).clicked() {
+            viewer.apply(Action::Waypoint(w));
+            ui.close();
+        }
+    }
+    if ui.button("Reset view (r)").clicked() {
+        viewer.reset_camera();
+        ui.close();
+    }
 }
 
 /// Capsules / Sticks.
