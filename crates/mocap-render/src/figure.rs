@@ -60,7 +60,7 @@ pub struct FigureStyle {
 }
 
 /// Bones longer than this share of the figure's size are helpers, not limbs.
-pub const HELPER_BONE: f32 = 0.45;
+pub const HELPER_BONE: f32 = 0.75;
 
 /// Bone radius (capsule mode) for a bone of `length` in a figure of `size`: thick
 /// for long limbs, thin for fingers, within 0.8%–4% of the figure's size. Bones
