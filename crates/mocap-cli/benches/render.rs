@@ -3,6 +3,9 @@
 //! whatever Vulkan adapter is present (lavapipe on a machine without a GPU).
 //! The skeleton is `../shared/corpus/bvh/animated_drawings/jesse_dance.bvh`.
 //!
+//! Then the same for capsules without shadows, and without shadows or MSAA, to
+//! show where the time goes on a software rasteriser.
+//!
 //! "frame" is a whole frame as a window would show it: pose every character,
 //! build the primitives, draw (shadow map + scene, 4× MSAA) and wait for the GPU.
 //! "+ readback" adds copying the pixels back to memory, as `mocap render` does.
@@ -33,32 +36,48 @@ fn main() {
     let mut offscreen = Offscreen::new(&gpu, [1280, 720]);
     for mode in [DrawMode::Capsules, DrawMode::Sticks] {
         for count in [1usize, 16, 64] {
-            let stage = Stage::new(vec![&clip; count]).with_mode(mode);
-            let camera = stage.camera(Orbit::default(), offscreen.size());
-            let mut scene = mocap_render::Scene::default();
-            // Warm up (pipelines, buffer growth), then time whole frames.
-            stage.scene_at(0.0, &mut scene);
-            offscreen.draw(&gpu, &scene, &camera).expect("draw");
-            let start = Instant::now();
-            for f in 0..FRAMES {
-                stage.scene_at(f as f64 * clip.frame_time(), &mut scene);
-                offscreen.render(&gpu, &scene, &camera).expect("render");
-            }
-            let frame_ms = start.elapsed().as_secs_f64() * 1e3 / FRAMES as f64;
-            let start = Instant::now();
-            for f in 0..FRAMES {
-                stage.scene_at(f as f64 * clip.frame_time(), &mut scene);
-                offscreen.draw(&gpu, &scene, &camera).expect("draw");
-            }
-            let readback_ms = start.elapsed().as_secs_f64() * 1e3 / FRAMES as f64;
-            println!(
-                "{:<8} {count:>3} characters: frame {frame_ms:>7.2} ms, + readback {readback_ms:>7.2} ms  ({} capsules, {} lines, {} spheres; draw calls per frame: {})",
-                mode.name(),
-                scene.capsules.len(),
-                scene.lines.len(),
-                scene.spheres.len(),
-                offscreen.draw_calls(),
-            );
+            measure(&gpu, &mut offscreen, &clip, mode, count, true);
         }
     }
+    for (samples, label) in [(4, "4x MSAA, no shadows"), (1, "no MSAA, no shadows")] {
+        println!("capsules, {label}:");
+        let mut offscreen = Offscreen::with_samples(&gpu, [1280, 720], samples);
+        for count in [1usize, 16, 64] {
+            measure(&gpu, &mut offscreen, &clip, DrawMode::Capsules, count, false);
+        }
+    }
+}
+
+/// Times whole frames of `count` characters and prints one line.
+fn measure(gpu: &Gpu, offscreen: &mut Offscreen, clip: &mocap::Clip, mode: DrawMode, count: usize, shadows: bool) {
+    let stage = Stage::new(vec![clip; count]).with_mode(mode);
+    let camera = stage.camera(Orbit::default(), offscreen.size());
+    let mut scene = mocap_render::Scene::default();
+    let pose = |f: usize, scene: &mut mocap_render::Scene| {
+        stage.scene_at(f as f64 * clip.frame_time(), scene);
+        scene.shadows = shadows;
+    };
+    // Warm up (pipelines, buffer growth), then time whole frames.
+    pose(0, &mut scene);
+    offscreen.draw(gpu, &scene, &camera).expect("draw");
+    let start = Instant::now();
+    for f in 0..FRAMES {
+        pose(f, &mut scene);
+        offscreen.render(gpu, &scene, &camera).expect("render");
+    }
+    let frame_ms = start.elapsed().as_secs_f64() * 1e3 / FRAMES as f64;
+    let start = Instant::now();
+    for f in 0..FRAMES {
+        pose(f, &mut scene);
+        offscreen.draw(gpu, &scene, &camera).expect("draw");
+    }
+    let readback_ms = start.elapsed().as_secs_f64() * 1e3 / FRAMES as f64;
+    println!(
+        "{:<8} {count:>3} characters: frame {frame_ms:>7.2} ms, + readback {readback_ms:>7.2} ms  ({} capsules, {} lines, {} spheres; draw calls per frame: {})",
+        mode.name(),
+        scene.capsules.len(),
+        scene.lines.len(),
+        scene.spheres.len(),
+        offscreen.draw_calls(),
+    );
 }

@@ -115,8 +115,13 @@ pub struct Offscreen {
 impl Offscreen {
     /// A target of `size` pixels.
     pub fn new(gpu: &Gpu, size: [u32; 2]) -> Offscreen {
-        let renderer = SceneRenderer::new(&gpu.device, FORMAT, SAMPLES);
-        let target = RenderTarget::new(&gpu.device, FORMAT, SAMPLES, size);
+        Offscreen::with_samples(gpu, size, SAMPLES)
+    }
+
+    /// A target of `size` pixels with `samples` samples per pixel (1 or 4).
+    pub fn with_samples(gpu: &Gpu, size: [u32; 2], samples: u32) -> Offscreen {
+        let renderer = SceneRenderer::new(&gpu.device, FORMAT, samples);
+        let target = RenderTarget::new(&gpu.device, FORMAT, samples, size);
         let [w, h] = target.size();
         let padded_row = (w * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
