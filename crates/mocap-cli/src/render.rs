@@ -14,12 +14,6 @@ const SAMPLES: u32 = 4;
 /// Vertical field of view, radians.
 const FOV_Y: f32 = 0.8;
 
-/// Joint marker colour (stick mode).
-const JOINT: [u8; 4] = [90, 160, 235, 255];
-
-/// Per-character colours (bones), cycled.
-const PALETTE: [[u8; 4]; 6] =
-    [[215, 220, 230, 255], [240, 160, 80, 255], [120, 200, 130, 255], [110, 170, 240, 255], [225, 120, 190, 255], [230, 210, 100, 255]];
 
 /// Where the camera is: orbit angles in degrees and a distance in file units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -259,8 +253,8 @@ impl<'a> Stage<'a> {
             positions.iter_mut().for_each(|p| *p = *p * scale + *offset);
             let style = FigureStyle {
                 mode: self.mode,
-                color: PALETTE[n % PALETTE.len()],
-                joint_color: JOINT,
+                color: mocap_render::PALETTE[n % mocap_render::PALETTE.len()],
+                joint_color: mocap_render::JOINT_COLOR,
                 size: self.extent,
                 show_joints: true,
                 highlight: None,

@@ -4,6 +4,23 @@
 use crate::{Capsule, Line, Scene, Sphere};
 use glam::Vec3;
 
+/// Bone colours given to figures in turn (sRGB): a light grey first, then hues
+/// apart from [`JOINT_COLOR`] and [`HIGHLIGHT_COLOR`].
+pub const PALETTE: [[u8; 4]; 6] = [
+    [200, 205, 215, 255],
+    [240, 160, 80, 255],
+    [120, 200, 130, 255],
+    [175, 140, 245, 255],
+    [225, 120, 190, 255],
+    [90, 205, 205, 255],
+];
+
+/// Joint marker colour in stick mode (sRGB).
+pub const JOINT_COLOR: [u8; 4] = [90, 160, 235, 255];
+
+/// Colour of a highlighted (selected) joint and its bone (sRGB).
+pub const HIGHLIGHT_COLOR: [u8; 4] = [255, 200, 40, 255];
+
 /// How figures are drawn.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum DrawMode {

@@ -6,16 +6,8 @@ use crate::playback::Playback;
 use mocap::glam::Vec3;
 use mocap::{Aabb, Interpolation, Transform};
 
-/// Bone colours given to characters in turn (sRGB, 0-255); the first is the
-/// single-character viewer's grey.
-pub const PALETTE: [[u8; 4]; 6] = [
-    [200, 205, 215, 255],
-    [240, 160, 80, 255],
-    [120, 200, 130, 255],
-    [175, 140, 245, 255],
-    [225, 120, 190, 255],
-    [90, 205, 205, 255],
-];
+/// Bone colours given to characters in turn (the renderer's palette).
+pub use mocap_render::PALETTE;
 
 /// Share of a frame within which a playhead before a frame's time counts as on it.
 const NEAR_FRAME: f64 = 0.01;

@@ -7,10 +7,8 @@ use crate::settings::ViewSettings;
 use crate::stage::Stage;
 use mocap::Transform;
 use mocap::glam::Vec3;
-use mocap_render::{FigureStyle, Grid, Line, Scene, push_figure};
+use mocap_render::{FigureStyle, Grid, HIGHLIGHT_COLOR, JOINT_COLOR, Line, Scene, push_figure};
 
-const JOINT: [u8; 4] = [90, 160, 235, 255];
-const SELECTED: [u8; 4] = [255, 200, 40, 255];
 const AXES: [[u8; 4]; 3] = [[235, 60, 60, 255], [60, 210, 80, 255], [70, 120, 255, 255]];
 
 /// Fills `scene` with the floor grid and every visible character in its last pose
@@ -45,10 +43,10 @@ pub fn character_primitives(
     let style = FigureStyle {
         mode: settings.mode,
         color,
-        joint_color: JOINT,
+        joint_color: JOINT_COLOR,
         size,
         show_joints: settings.show_joints,
-        highlight: selected.map(|j| (j, SELECTED)),
+        highlight: selected.map(|j| (j, HIGHLIGHT_COLOR)),
     };
     push_figure(scene, &doc.figure, positions, &style);
     if settings.show_axes {

@@ -21,19 +21,22 @@ fn place(dir: vec3<f32>, end: f32, a: vec3<f32>, b: vec3<f32>, radius: f32) -> a
     return array<vec3<f32>, 2>(mix(a, b, end) + n * radius, n);
 }
 
-@vertex
-fn vs_main(
+// A mesh vertex (locations 0-1) of one capsule instance (locations 2-5).
+struct CapsuleVertex {
     @location(0) dir: vec3<f32>,
     @location(1) end: f32,
     @location(2) a: vec3<f32>,
     @location(3) radius: f32,
     @location(4) b: vec3<f32>,
     @location(5) color: vec4<f32>,
-) -> Out {
-    let placed = place(dir, end, a, b, radius);
+};
+
+@vertex
+fn vs_main(v: CapsuleVertex) -> Out {
+    let placed = place(v.dir, v.end, v.a, v.b, v.radius);
     var out: Out;
     out.position = frame.projection * frame.view * vec4<f32>(placed[0], 1.0);
-    out.color = color;
+    out.color = v.color;
     out.world = placed[0];
     out.normal = placed[1];
     return out;
@@ -41,14 +44,8 @@ fn vs_main(
 
 // Depth-only pass into the shadow map.
 @vertex
-fn vs_shadow(
-    @location(0) dir: vec3<f32>,
-    @location(1) end: f32,
-    @location(2) a: vec3<f32>,
-    @location(3) radius: f32,
-    @location(4) b: vec3<f32>,
-) -> @builtin(position) vec4<f32> {
-    let placed = place(dir, end, a, b, radius);
+fn vs_shadow(v: CapsuleVertex) -> @builtin(position) vec4<f32> {
+    let placed = place(v.dir, v.end, v.a, v.b, v.radius);
     return frame.light_view_proj * vec4<f32>(placed[0], 1.0);
 }
 
