@@ -59,8 +59,11 @@ pub enum Units {
     Millimeters,
     /// Decimetres (~17; MakeHuman exports).
     Decimeters,
-    /// Inches, or the CMU "×0.45 inches" scale (~25–90).
+    /// Inches (~50–100).
     Inches,
+    /// The CMU motion-capture scale, inches / 0.45 (the `length 0.45` of CMU's
+    /// ASF files, kept by the common BVH conversions): a person is ~30 units.
+    CmuInches,
     /// Nothing plausible; treated as metres.
     Unknown,
 }
@@ -72,7 +75,10 @@ impl Units {
             e if !(e.is_finite()) => Units::Unknown,
             e if (0.25..4.0).contains(&e) => Units::Meters,
             e if (10.0..20.0).contains(&e) => Units::Decimeters,
-            e if (20.0..110.0).contains(&e) => Units::Inches,
+            // A 20–45 unit humanoid is 0.5–1.1 m in inches, implausible, but 1.1–2.5 m
+            // at the CMU scale.
+            e if (20.0..45.0).contains(&e) => Units::CmuInches,
+            e if (45.0..110.0).contains(&e) => Units::Inches,
             e if (110.0..400.0).contains(&e) => Units::Centimeters,
             e if (400.0..4000.0).contains(&e) => Units::Millimeters,
             _ => Units::Unknown,
@@ -87,10 +93,11 @@ impl Units {
             Units::Centimeters => 0.01,
             Units::Millimeters => 0.001,
             Units::Inches => 0.0254,
+            Units::CmuInches => 0.0254 / 0.45,
         }
     }
 
-    /// Short name: "m", "dm", "cm", "mm", "in", "unknown".
+    /// Short name: "m", "dm", "cm", "mm", "in", "cmu" (inches / 0.45), "unknown".
     pub fn name(self) -> &'static str {
         match self {
             Units::Meters => "m",
@@ -98,6 +105,7 @@ impl Units {
             Units::Centimeters => "cm",
             Units::Millimeters => "mm",
             Units::Inches => "in",
+            Units::CmuInches => "cmu",
             Units::Unknown => "unknown",
         }
     }
@@ -231,5 +239,28 @@ impl Clip {
     /// Guess of the file's length unit from the height of the first pose.
     pub fn units(&self) -> Units {
         Units::guess(self.pose_height())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Units;
+
+    #[test]
+    fn unit_guesses_put_a_person_near_human_height() {
+        for (height, units) in [
+            (1.7, Units::Meters),
+            (17.0, Units::Decimeters),
+            (30.0, Units::CmuInches),
+            (67.0, Units::Inches),
+            (170.0, Units::Centimeters),
+            (1700.0, Units::Millimeters),
+        ] {
+            assert_eq!(Units::guess(height), units, "{height}");
+            let metres = height * units.meters_per_unit();
+            assert!((1.5..1.95).contains(&metres), "{height} {units:?}: {metres} m");
+        }
+        assert_eq!(Units::guess(f32::NAN), Units::Unknown);
+        assert_eq!(Units::guess(1e9), Units::Unknown);
     }
 }

@@ -78,7 +78,7 @@ fn corpus_bvh_files_parse_as_the_manifest_says() {
 fn unit_guesses_on_known_sources() {
     let Some(dir) = corpus_dir() else { return };
     let expect = [
-        ("bvh/assimp_cmu/01_01.bvh", mocap::Units::Inches),
+        ("bvh/assimp_cmu/01_01.bvh", mocap::Units::CmuInches),
         ("bvh/bandai_namco/dataset-1_bow_active_001.bvh", mocap::Units::Centimeters),
         ("bvh/bandai_namco/dataset-2_walk_elderly_004.bvh", mocap::Units::Centimeters),
         ("bvh/axis_neuron/test.bvh", mocap::Units::Centimeters),
