@@ -1,9 +1,10 @@
 //! The scene renderer: owns pipelines and buffers, draws a [`Scene`] into a [`RenderTarget`].
 //!
-//! A frame is two passes and at most seven draw calls, whatever the number of
+//! A frame is two passes and at most eight draw calls, whatever the number of
 //! figures: the shadow map (every caster, instanced over a coarse capsule mesh),
 //! then the floor and its shadows, the capsules (instanced: a fine mesh for those that cover
-//! some pixels, a coarse one for the rest), the sphere impostors and the lines.
+//! some pixels, a coarse one for the rest), the sphere impostors, the lines and
+//! the overlay lines (drawn over everything, e.g. bone axes inside capsules).
 
 use crate::buffer::GrowingBuffer;
 use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
@@ -27,6 +28,7 @@ pub struct SceneRenderer {
     fine_mesh: Mesh,
     coarse_mesh: Mesh,
     lines: GrowingBuffer,
+    overlay_lines: GrowingBuffer,
     spheres: GrowingBuffer,
     fine_capsules: GrowingBuffer,
     coarse_capsules: GrowingBuffer,
@@ -82,6 +84,7 @@ struct Pipelines {
     capsules: wgpu::RenderPipeline,
     spheres: wgpu::RenderPipeline,
     lines: wgpu::RenderPipeline,
+    overlay_lines: wgpu::RenderPipeline,
 }
 
 /// Multiplies the colour below by the fragment's colour (floor shadows).
@@ -132,6 +135,7 @@ impl SceneRenderer {
             fine_mesh: Mesh::new(device, capsule::FINE),
             coarse_mesh: Mesh::new(device, capsule::COARSE),
             lines: GrowingBuffer::new("mocap lines"),
+            overlay_lines: GrowingBuffer::new("mocap overlay lines"),
             spheres: GrowingBuffer::new("mocap spheres"),
             fine_capsules: GrowingBuffer::new("mocap capsules"),
             coarse_capsules: GrowingBuffer::new("mocap small capsules"),
@@ -156,7 +160,7 @@ impl SceneRenderer {
         self.sample_count
     }
 
-    /// Draw calls recorded for the last frame (at most 7, whatever the scene).
+    /// Draw calls recorded for the last frame (at most 8, whatever the scene).
     pub fn draw_calls(&self) -> u32 {
         self.draw_calls
     }
@@ -223,11 +227,13 @@ impl SceneRenderer {
             pass.draw(0..6, 0..count);
             self.draw_calls += 1;
         }
-        if let Some((buffer, count)) = self.lines.get() {
-            pass.set_pipeline(&self.pipelines.lines);
-            pass.set_vertex_buffer(0, buffer.slice(..));
-            pass.draw(0..6, 0..count);
-            self.draw_calls += 1;
+        for (pipeline, lines) in [(&self.pipelines.lines, &self.lines), (&self.pipelines.overlay_lines, &self.overlay_lines)] {
+            if let Some((buffer, count)) = lines.get() {
+                pass.set_pipeline(pipeline);
+                pass.set_vertex_buffer(0, buffer.slice(..));
+                pass.draw(0..6, 0..count);
+                self.draw_calls += 1;
+            }
         }
     }
 
@@ -263,6 +269,11 @@ impl SceneRenderer {
         let ppp = self.pixels_per_point;
         self.line_scratch.clear();
         self.line_scratch.extend(scene.lines.iter().map(|l| LineInstance::new(l, ppp)));
+        self.lines.upload(device, queue, bytemuck::cast_slice(&self.line_scratch), self.line_scratch.len() as u32);
+        self.line_scratch.clear();
+        self.line_scratch.extend(scene.overlay_lines.iter().map(|l| LineInstance::new(l, ppp)));
+        let overlay_count = self.line_scratch.len() as u32;
+        self.overlay_lines.upload(device, queue, bytemuck::cast_slice(&self.line_scratch), overlay_count);
         self.sphere_scratch.clear();
         self.sphere_scratch.extend(scene.spheres.iter().map(SphereInstance::new));
         self.fine_scratch.clear();
@@ -290,7 +301,6 @@ impl SceneRenderer {
         });
         let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light);
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
-        self.lines.upload(device, queue, bytemuck::cast_slice(&self.line_scratch), self.line_scratch.len() as u32);
         self.spheres.upload(device, queue, bytemuck::cast_slice(&self.sphere_scratch), self.sphere_scratch.len() as u32);
         self.fine_capsules.upload(device, queue, bytemuck::cast_slice(&self.fine_scratch), self.fine_scratch.len() as u32);
         self.coarse_capsules.upload(device, queue, bytemuck::cast_slice(&self.coarse_scratch), self.coarse_scratch.len() as u32);
@@ -350,7 +360,7 @@ impl Pipelines {
             instances(&capsule::INSTANCE_ATTRIBUTES, std::mem::size_of::<CapsuleInstance>()),
         ];
         let spheres = [instances(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
-        let lines = [instances(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
+        let line_buffers = [instances(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
         let base = PipelineSpec {
             label: "mocap capsules",
             shader: &capsule_shader,
@@ -419,12 +429,26 @@ impl Pipelines {
             &PipelineSpec {
                 label: "mocap lines",
                 shader: &line_shader,
-                buffers: &lines,
+                buffers: &line_buffers,
                 color: Some((format, wgpu::BlendState::ALPHA_BLENDING)),
                 cull_back: false,
                 ..base
             },
         );
-        Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines }
+        let overlay_lines = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap overlay lines",
+                shader: &line_shader,
+                buffers: &line_buffers,
+                color: Some((format, wgpu::BlendState::ALPHA_BLENDING)),
+                depth_write: false,
+                depth_compare: wgpu::CompareFunction::Always,
+                cull_back: false,
+                ..base
+            },
+        );
+        Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines, overlay_lines }
     }
 }

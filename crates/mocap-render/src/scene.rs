@@ -50,6 +50,9 @@ pub struct Scene {
     pub grid: Option<Grid>,
     /// Line segments (bones, axes, ...).
     pub lines: Vec<Line>,
+    /// Line segments drawn over everything, not hidden by what is in front (e.g.
+    /// bone axes inside capsules).
+    pub overlay_lines: Vec<Line>,
     /// Spheres (joints, ...); they also cast shadows.
     pub spheres: Vec<Sphere>,
     /// Shaded capsules (bones drawn as solids); they cast shadows.
@@ -67,6 +70,7 @@ impl Default for Scene {
             background: [38, 40, 46, 255],
             grid: None,
             lines: Vec::new(),
+            overlay_lines: Vec::new(),
             spheres: Vec::new(),
             capsules: Vec::new(),
             shadow_casters: Vec::new(),
@@ -80,6 +84,7 @@ impl Scene {
     pub fn clear(&mut self) {
         self.grid = None;
         self.lines.clear();
+        self.overlay_lines.clear();
         self.spheres.clear();
         self.capsules.clear();
         self.shadow_casters.clear();

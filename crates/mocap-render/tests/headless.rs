@@ -96,4 +96,15 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
     let unshadowed = read_pixels(&device, &queue, &target);
     let darker = bare.chunks(4).zip(unshadowed.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
     assert_eq!(darker, 0, "no shadow when shadows are off");
+
+    // A line inside the pole's top is hidden; as an overlay line it shows.
+    let green = |pixels: &[u8]| pixels.chunks(4).filter(|p| p[1] > 150 && p[0] < 100).count();
+    let inside = Line { a: Vec3::new(-0.1, 2.5, 0.0), b: Vec3::new(0.1, 2.5, 0.0), color: [0, 255, 0, 255], width_px: 3.0 };
+    scene.lines.push(inside);
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    assert_eq!(green(&read_pixels(&device, &queue, &target)), 0, "a line inside a capsule is hidden");
+    scene.lines.clear();
+    scene.overlay_lines.push(inside);
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    assert!(green(&read_pixels(&device, &queue, &target)) > 3, "an overlay line shows through");
 }

@@ -60,7 +60,7 @@ pub fn character_primitives(
 
 fn push_axes(t: &Transform, length: f32, scene: &mut Scene) {
     for (axis, color) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().zip(AXES) {
-        scene.lines.push(Line { a: t.translation, b: t.translation + t.rotation * axis * length, color, width_px: 2.0 });
+        scene.overlay_lines.push(Line { a: t.translation, b: t.translation + t.rotation * axis * length, color, width_px: 2.0 });
     }
 }
 

@@ -95,6 +95,10 @@ fn pose_becomes_bones_joints_and_a_floor_in_metres() {
     assert_eq!(scene.spheres.len(), 21);
     assert_eq!(scene.shadow_casters.len(), joints - 1);
     assert!(scene.capsules.is_empty() && !scene.shadows);
+    // Bone axes: three overlay lines per joint (not End Sites), over the figure.
+    v.settings.show_axes = true;
+    v.pose();
+    assert_eq!(v.scene().overlay_lines.len(), 3 * 21);
     assert!(v.view_fragment().contains("mode=sticks&shadows=0"), "{}", v.view_fragment());
 }
 
