@@ -108,3 +108,41 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
     renderer.render(&device, &queue, &target, &scene, &camera);
     assert!(green(&read_pixels(&device, &queue, &target)) > 3, "an overlay line shows through");
 }
+
+#[test]
+fn a_shadow_falls_where_the_key_light_projects_its_caster() {
+    let Some((device, queue)) = device() else {
+        eprintln!("no wgpu adapter here (install mesa-vulkan-drivers for lavapipe); skipping");
+        return;
+    };
+    let mut renderer = SceneRenderer::new(&device, FORMAT, 1);
+    let target = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
+    let camera = Camera::look_at(Vec3::new(0.0, 8.0, 0.01), Vec3::ZERO, 0.8, 1.0);
+    let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    // A ball in the air, and a small one off to a side so that the fitted shadow
+    // map is not symmetric about the ball (a mirrored lookup would then miss it).
+    let ball = Vec3::new(0.0, 1.5, 0.0);
+    scene.capsules.push(Capsule { a: ball, b: ball, radius: 0.3, color: [255, 0, 0, 255] });
+    let pebble = Vec3::new(-1.5, 0.05, 1.0);
+    scene.capsules.push(Capsule { a: pebble, b: pebble, radius: 0.05, color: [255, 0, 0, 255] });
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let pixels = read_pixels(&device, &queue, &target);
+    // Dark grey (shadowed floor) pixels: their centroid on screen.
+    let (mut sum, mut n) = ([0.0f32; 2], 0.0f32);
+    for (i, p) in pixels.chunks(4).enumerate() {
+        let luma = p[0] as u32 + p[1] as u32 + p[2] as u32;
+        if luma < 125 && (p[0] as i32 - p[2] as i32).abs() < 30 {
+            sum[0] += (i % SIZE as usize) as f32;
+            sum[1] += (i / SIZE as usize) as f32;
+            n += 1.0;
+        }
+    }
+    assert!(n > 30.0, "the ball casts a shadow ({n} pixels)");
+    let light = mocap_render::key_light_direction();
+    let on_floor = ball - light * (ball.y / light.y);
+    let c = (camera.projection * camera.view).project_point3(on_floor);
+    let expected = [(c.x * 0.5 + 0.5) * SIZE as f32, (0.5 - c.y * 0.5) * SIZE as f32];
+    let found = [sum[0] / n, sum[1] / n];
+    let off = ((found[0] - expected[0]).powi(2) + (found[1] - expected[1]).powi(2)).sqrt();
+    assert!(off < 3.0, "shadow centre at {found:?}, expected {expected:?}");
+}

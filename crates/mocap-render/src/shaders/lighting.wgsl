@@ -19,7 +19,8 @@ fn key_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
     // Normal offset against acne on curved surfaces.
     let lp = frame.light_view_proj * vec4<f32>(p + n * texel * 3.0, 1.0);
     let ndc = lp.xyz / lp.w;
-    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 + ndc.y * 0.5);
+    // Texture rows run down while clip-space y runs up.
+    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
     if (any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0) {
         return 1.0;
     }
