@@ -195,24 +195,11 @@ impl<'a> Stage<'a> {
     /// Places `clips` in lanes and measures the whole motion.
     pub fn new(clips: Vec<&'a Clip>) -> Stage<'a> {
         let scales: Vec<f32> = clips.iter().map(|c| c.units().meters_per_unit()).collect();
-        let per_clip: Vec<Aabb> = clips
-            .iter()
-            .zip(&scales)
-            .map(|(c, &s)| {
-                let b = c.bounds();
-                if b.is_empty() { b } else { Aabb { min: b.min * s, max: b.max * s } }
-            })
-            .collect();
+        let per_clip: Vec<Aabb> = clips.iter().zip(&scales).map(|(c, &s)| c.bounds().scaled(s)).collect();
         let extent = clips.iter().zip(&scales).map(|(c, &s)| c.pose_extent() * s).fold(0.0f32, f32::max).max(1e-3);
         // Lanes side by side (rows past eight clips), as the viewer's Spread layout.
         let offsets = mocap::arrange::spread(&per_clip, extent * 0.5);
-        let mut bounds = Aabb::EMPTY;
-        for (b, offset) in per_clip.iter().zip(&offsets) {
-            if !b.is_empty() {
-                bounds.include(b.min + *offset);
-                bounds.include(b.max + *offset);
-            }
-        }
+        let bounds = per_clip.iter().zip(&offsets).fold(Aabb::EMPTY, |union, (b, &o)| union.union(&b.translated(o)));
         let figures = clips
             .iter()
             .map(|c| c.skeleton.joints.iter().map(|j| FigureJoint { parent: j.parent, end_site: j.end_site }).collect())

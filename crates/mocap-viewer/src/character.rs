@@ -46,15 +46,12 @@ impl Character {
 
     /// Bounds of the whole motion in metres, before placement.
     pub fn local_bounds(&self) -> Aabb {
-        let b = self.document.bounds;
-        if b.is_empty() { b } else { Aabb { min: b.min * self.scale(), max: b.max * self.scale() } }
+        self.document.bounds.scaled(self.scale())
     }
 
     /// Bounds of the whole motion in metres, where it stands.
     pub fn bounds(&self) -> Aabb {
-        let b = self.local_bounds();
-        let at = self.placement();
-        if b.is_empty() { b } else { Aabb { min: b.min + at, max: b.max + at } }
+        self.local_bounds().translated(self.placement())
     }
 
     /// Size of the first pose in metres (a humanoid's height).

@@ -80,15 +80,7 @@ impl Stage {
     /// Union of the visible characters' motion bounds, in metres where they stand
     /// (empty when none is visible).
     pub fn bounds(&self) -> Aabb {
-        let mut union = Aabb::EMPTY;
-        for (_, c) in self.visible() {
-            let b = c.bounds();
-            if !b.is_empty() {
-                union.include(b.min);
-                union.include(b.max);
-            }
-        }
-        union
+        self.visible().fold(Aabb::EMPTY, |union, (_, c)| union.union(&c.bounds()))
     }
 
     /// Largest first-pose size among the visible characters in metres (1 when none).

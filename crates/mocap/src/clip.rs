@@ -46,6 +46,26 @@ impl Aabb {
     pub fn size(&self) -> Vec3 {
         if self.is_empty() { Vec3::ZERO } else { self.max - self.min }
     }
+
+    /// The box with both corners multiplied by a positive `scale` (empty stays empty).
+    pub fn scaled(&self, scale: f32) -> Aabb {
+        if self.is_empty() { *self } else { Aabb { min: self.min * scale, max: self.max * scale } }
+    }
+
+    /// The box moved by `offset` (empty stays empty).
+    pub fn translated(&self, offset: Vec3) -> Aabb {
+        if self.is_empty() { *self } else { Aabb { min: self.min + offset, max: self.max + offset } }
+    }
+
+    /// The smallest box holding both (an empty one adds nothing).
+    pub fn union(&self, other: &Aabb) -> Aabb {
+        let mut out = *self;
+        if !other.is_empty() {
+            out.include(other.min);
+            out.include(other.max);
+        }
+        out
+    }
 }
 
 /// A guess of the length unit a file uses, from its skeleton's rest height.
@@ -244,7 +264,19 @@ impl Clip {
 
 #[cfg(test)]
 mod tests {
-    use super::Units;
+    use super::{Aabb, Units};
+    use glam::Vec3;
+
+    #[test]
+    fn boxes_scale_move_and_join_and_empty_ones_stay_empty() {
+        let a = Aabb { min: Vec3::new(-1.0, 0.0, -1.0), max: Vec3::new(1.0, 2.0, 1.0) };
+        assert_eq!(a.scaled(0.5).translated(Vec3::X), Aabb { min: Vec3::new(0.5, 0.0, -0.5), max: Vec3::new(1.5, 1.0, 0.5) });
+        let b = Aabb { min: Vec3::splat(3.0), max: Vec3::splat(4.0) };
+        assert_eq!(a.union(&b), Aabb { min: a.min, max: Vec3::splat(4.0) });
+        assert_eq!(a.union(&Aabb::EMPTY), a);
+        assert!(Aabb::EMPTY.scaled(2.0).translated(Vec3::ONE).is_empty());
+        assert_eq!(Aabb::EMPTY.union(&b), b);
+    }
 
     #[test]
     fn unit_guesses_put_a_person_near_human_height() {
