@@ -91,22 +91,24 @@ pub fn bone_radius(length: f32, size: f32) -> f32 {
     (length * 0.2).clamp(size * 0.008, size * 0.04)
 }
 
-/// Appends the figure posed at `positions` (world space, one per joint of `joints`)
+/// Appends the figure posed at `positions` (world space, one per joint of `joints`:
+/// points, or anything that converts to its position, such as a world transform)
 /// to `scene`. Joints with non-finite positions and their bones are skipped.
-pub fn push_figure(scene: &mut Scene, joints: &[FigureJoint], positions: &[Vec3], style: &FigureStyle) {
+pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoint], positions: &[P], style: &FigureStyle) {
     let size = if style.size.is_finite() && style.size > 0.0 { style.size } else { 1.0 };
     let joint_radius = size * 0.012;
     let highlight = style.highlight.map(|(j, _)| j);
-    for (i, (joint, &p)) in joints.iter().zip(positions).enumerate() {
-        if !p.is_finite() {
+    let at = |i: usize| positions.get(i).map(|&p| p.into()).filter(|p: &Vec3| p.is_finite());
+    for (i, joint) in joints.iter().enumerate() {
+        let Some(p) = at(i) else {
             continue;
-        }
+        };
         let is_highlight = highlight == Some(i);
         let color = match style.highlight {
             Some((j, c)) if j == i => c,
             _ => style.color,
         };
-        let parent = joint.parent.and_then(|q| positions.get(q)).copied().filter(|q| q.is_finite());
+        let parent = joint.parent.and_then(at);
         match style.mode {
             DrawMode::Capsules => {
                 if let Some(q) = parent {

@@ -25,13 +25,12 @@ pub struct Character {
     /// Offset the layout gave it in metres (see [`crate::stage::Stage::arrange`]).
     pub layout_offset: Vec3,
     pose: Vec<Transform>,
-    positions: Vec<Vec3>,
 }
 
 impl Character {
     /// A visible character at the origin.
     pub fn new(document: Document, color: [u8; 4]) -> Character {
-        Character { document, color, visible: true, offset: Vec3::ZERO, layout_offset: Vec3::ZERO, pose: Vec::new(), positions: Vec::new() }
+        Character { document, color, visible: true, offset: Vec3::ZERO, layout_offset: Vec3::ZERO, pose: Vec::new() }
     }
 
     /// Metres per file unit (from the guessed unit).
@@ -73,13 +72,6 @@ impl Character {
         for t in &mut self.pose {
             t.translation = t.translation * scale + at;
         }
-        self.positions.clear();
-        self.positions.extend(self.pose.iter().map(|t| t.translation));
-    }
-
-    /// World positions of the last pose (the translations of [`Character::pose`]).
-    pub fn positions(&self) -> &[Vec3] {
-        &self.positions
     }
 
     /// World transforms of the last [`Character::pose_at`] (metres, placed), in joint order.

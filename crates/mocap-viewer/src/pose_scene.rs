@@ -22,18 +22,17 @@ pub fn build_scene(stage: &Stage, settings: &ViewSettings, selected: Option<Sele
     scene.shadows = settings.shadows;
     for (i, c) in stage.visible() {
         let joint = selected.filter(|s| s.character == i).map(|s| s.joint);
-        character_primitives(&c.document, c.pose(), c.positions(), c.color, settings, joint, scene);
+        character_primitives(&c.document, c.pose(), c.color, settings, joint, scene);
     }
 }
 
 /// Appends one character in the chosen draw mode ([`mocap_render::push_figure`]):
 /// bones in `color`, joint spheres (stick mode), axes and the highlight of joint
 /// `selected`. `transforms` are its world transforms in metres, already placed (one
-/// per joint of `doc`, in joint order), and `positions` their translations.
+/// per joint of `doc`, in joint order).
 pub fn character_primitives(
     doc: &Document,
     transforms: &[Transform],
-    positions: &[Vec3],
     color: [u8; 4],
     settings: &ViewSettings,
     selected: Option<usize>,
@@ -48,7 +47,7 @@ pub fn character_primitives(
         show_joints: settings.show_joints,
         highlight: selected.map(|j| (j, HIGHLIGHT_COLOR)),
     };
-    push_figure(scene, &doc.figure, positions, &style);
+    push_figure(scene, &doc.figure, transforms, &style);
     if settings.show_axes {
         for (joint, t) in doc.clip.skeleton.joints.iter().zip(transforms) {
             if !joint.end_site {

@@ -14,6 +14,13 @@ pub struct Transform {
     pub translation: Vec3,
 }
 
+/// A transform's position (so world transforms can stand where points are expected).
+impl From<Transform> for Vec3 {
+    fn from(t: Transform) -> Vec3 {
+        t.translation
+    }
+}
+
 impl Transform {
     /// No rotation, no translation.
     pub const IDENTITY: Transform = Transform { rotation: Quat::IDENTITY, translation: Vec3::ZERO };
