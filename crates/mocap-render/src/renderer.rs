@@ -295,11 +295,8 @@ impl SceneRenderer {
             self.caster_scratch.extend(scene.shadow_casters.iter().map(CapsuleInstance::new));
         }
         let floor_y = scene.grid.as_ref().map(|g| g.center.y);
-        let light = caster_bounds(&self.caster_scratch).and_then(|(min, max)| {
-            let (m, texel) = shadow::light_view_proj(min, max, floor_y)?;
-            Some((m, texel, shadow::floor_shadow_rect(min, max, floor_y.unwrap_or(min.y))))
-        });
-        let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light);
+        let light = caster_bounds(&self.caster_scratch).and_then(|(min, max)| shadow::fit_light(min, max, floor_y));
+        let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light.as_ref());
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.spheres.upload(device, queue, bytemuck::cast_slice(&self.sphere_scratch), self.sphere_scratch.len() as u32);
         self.fine_capsules.upload(device, queue, bytemuck::cast_slice(&self.fine_scratch), self.fine_scratch.len() as u32);

@@ -79,14 +79,31 @@ impl ShadowMap {
     }
 }
 
+/// How the key light's shadow map is laid over the scene this frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LightFit {
+    /// World to the shadow map's clip space.
+    pub view_proj: Mat4,
+    /// Size of one shadow-map texel in world units.
+    pub texel: f32,
+    /// Where on the floor the shadows fall: min x, min z, max x, max z.
+    pub floor_rect: [f32; 4],
+}
+
+/// The eight corners of the box `min..max`.
+fn corners(min: Vec3, max: Vec3) -> [Vec3; 8] {
+    std::array::from_fn(|i| {
+        let pick = |bit: usize, a: f32, b: f32| if i & bit == 0 { a } else { b };
+        Vec3::new(pick(1, min.x, max.x), pick(2, min.y, max.y), pick(4, min.z, max.z))
+    })
+}
+
 /// The rectangle (min x, min z, max x, max z) on the floor at `floor_y` where the
 /// shadows of casters inside `min..max` fall, with a margin for soft edges.
-pub(crate) fn floor_shadow_rect(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
+fn floor_shadow_rect(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
     let l = key_light_direction();
     let (mut lo, mut hi) = (glam::Vec2::splat(f32::INFINITY), glam::Vec2::splat(f32::NEG_INFINITY));
-    for i in 0..8 {
-        let pick = |bit: u32, a: f32, b: f32| if i & bit == 0 { a } else { b };
-        let p = Vec3::new(pick(1, min.x, max.x), pick(2, min.y, max.y), pick(4, min.z, max.z));
+    for p in corners(min, max) {
         // Along the light down to the floor (points below it stay where they are).
         let q = p - l * ((p.y - floor_y).max(0.0) / l.y);
         let q = glam::Vec2::new(q.x, q.z);
@@ -97,16 +114,16 @@ pub(crate) fn floor_shadow_rect(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] 
     [lo.x - margin, lo.y - margin, hi.x + margin, hi.y + margin]
 }
 
-/// The light's view-projection for casters inside `min..max` (world space) and a
-/// floor at height `floor_y` (included so the floor lies inside the depth range),
-/// and the size of one shadow-map texel in world units. The fitted square is
-/// quantised (size in steps of 25%, centre on whole texels) so that shadows do not
-/// shimmer as the figures move. `None` for an empty or non-finite box.
-pub(crate) fn light_view_proj(min: Vec3, max: Vec3, floor_y: Option<f32>) -> Option<(Mat4, f32)> {
-    let mut lo = min;
-    if let Some(y) = floor_y.filter(|y| y.is_finite()) {
-        lo.y = lo.y.min(y);
-    }
+/// Fits the shadow map to casters inside `min..max` (world space) and a floor at
+/// height `floor_y` (the box's bottom without one): an orthographic view along the
+/// light holding the box and the floor under the far end of its shadows (so the
+/// floor lies inside the depth range), and the floor rectangle the shadows fall
+/// in. The fitted square is quantised (size in steps of 25%, centre on whole
+/// texels) so that shadows do not shimmer as the figures move. `None` for an
+/// empty or non-finite box.
+pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>) -> Option<LightFit> {
+    let floor_y = floor_y.filter(|y| y.is_finite()).unwrap_or(min.y);
+    let lo = Vec3::new(min.x, min.y.min(floor_y), min.z);
     if !(lo.is_finite() && max.is_finite() && (max - lo).min_element() >= 0.0) {
         return None;
     }
@@ -116,18 +133,11 @@ pub(crate) fn light_view_proj(min: Vec3, max: Vec3, floor_y: Option<f32>) -> Opt
     let view = glam::camera::rh::view::look_at_mat4(center + l * radius * 2.0, center, Vec3::Y);
     // The box's corners and, on the floor, the far end of the shadows they cast:
     // floor points there lie farther from the light than the box.
-    let mut points: Vec<Vec3> = (0..8)
-        .map(|i| {
-            let pick = |bit: u32, a: f32, b: f32| if i & bit == 0 { a } else { b };
-            Vec3::new(pick(1, lo.x, max.x), pick(2, lo.y, max.y), pick(4, lo.z, max.z))
-        })
-        .collect();
-    if let Some(y) = floor_y.filter(|y| y.is_finite()) {
-        let [x0, z0, x1, z1] = floor_shadow_rect(min, max, y);
-        points.extend([Vec3::new(x0, y, z0), Vec3::new(x1, y, z0), Vec3::new(x0, y, z1), Vec3::new(x1, y, z1)]);
-    }
+    let floor_rect = floor_shadow_rect(min, max, floor_y);
+    let [x0, z0, x1, z1] = floor_rect;
+    let floor = [Vec3::new(x0, floor_y, z0), Vec3::new(x1, floor_y, z0), Vec3::new(x0, floor_y, z1), Vec3::new(x1, floor_y, z1)];
     let (mut a, mut b) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    for p in points {
+    for p in corners(lo, max).into_iter().chain(floor) {
         let c = view.transform_point3(p);
         a = a.min(c);
         b = b.max(c);
@@ -142,7 +152,7 @@ pub(crate) fn light_view_proj(min: Vec3, max: Vec3, floor_y: Option<f32>) -> Opt
     let depth = b.z - a.z;
     let (near, far) = (-b.z - depth * 0.05 - 1e-3, -a.z + depth * 0.05 + 1e-3);
     let projection = glam::camera::rh::proj::directx::orthographic(cx - half, cx + half, cy - half, cy + half, near, far);
-    Some((projection * view, texel))
+    Some(LightFit { view_proj: projection * view, texel, floor_rect })
 }
 
 #[cfg(test)]
@@ -151,14 +161,16 @@ mod tests {
 
     #[test]
     fn fitted_box_and_floor_land_inside_the_map() {
-        let (m, texel) = light_view_proj(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), Some(-0.1)).unwrap();
+        let fit = fit_light(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), Some(-0.1)).unwrap();
+        let (m, texel) = (fit.view_proj, fit.texel);
         assert!(texel > 0.0 && texel < 0.01);
         for p in [Vec3::new(-1.0, -0.1, -0.5), Vec3::new(1.0, 1.8, 0.5), Vec3::new(0.0, 0.9, 0.0)] {
             let c = m.project_point3(p);
             assert!(c.x.abs() <= 1.0 && c.y.abs() <= 1.0 && (0.0..=1.0).contains(&c.z), "{p} -> {c}");
         }
         // So does the floor under the far end of the shadow of the box's top.
-        let rect = floor_shadow_rect(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), -0.1);
+        let rect = fit.floor_rect;
+        assert_eq!(rect, floor_shadow_rect(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), -0.1));
         for corner in [Vec3::new(rect[0], -0.1, rect[1]), Vec3::new(rect[2], -0.1, rect[3])] {
             let c = m.project_point3(corner);
             assert!(c.x.abs() <= 1.0 && c.y.abs() <= 1.0 && (0.0..=1.0).contains(&c.z), "{corner} -> {c}");
@@ -169,7 +181,7 @@ mod tests {
 
     #[test]
     fn empty_or_broken_boxes_give_none() {
-        assert!(light_view_proj(Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), None).is_none());
-        assert!(light_view_proj(Vec3::ZERO, Vec3::splat(f32::NAN), Some(0.0)).is_none());
+        assert!(fit_light(Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), None).is_none());
+        assert!(fit_light(Vec3::ZERO, Vec3::splat(f32::NAN), Some(0.0)).is_none());
     }
 }

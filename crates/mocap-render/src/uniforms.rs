@@ -1,5 +1,6 @@
 //! The per-frame uniform block shared by all pipelines.
 
+use crate::shadow::LightFit;
 use crate::{Camera, Grid};
 use bytemuck::{Pod, Zeroable};
 use glam::Mat4;
@@ -27,15 +28,12 @@ pub(crate) struct FrameUniforms {
     pub shadow_rect: [f32; 4],
 }
 
-/// The light's projection, its texel size and the floor rectangle the shadows
-/// fall in, when shadows are drawn.
-pub(crate) type LightFit = Option<(Mat4, f32, [f32; 4])>;
 
 impl FrameUniforms {
-    pub fn new(camera: &Camera, size: [u32; 2], format: wgpu::TextureFormat, grid: Option<&Grid>, light: LightFit) -> FrameUniforms {
+    pub fn new(camera: &Camera, size: [u32; 2], format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>) -> FrameUniforms {
         let eye = camera.view.inverse().w_axis;
         let (light_view_proj, texel, strength, shadow_rect) = match light {
-            Some((m, texel, rect)) => (m, texel, 1.0, rect),
+            Some(fit) => (fit.view_proj, fit.texel, 1.0, fit.floor_rect),
             None => (Mat4::IDENTITY, 0.0, 0.0, [0.0; 4]),
         };
         let mut u = FrameUniforms {
