@@ -12,9 +12,10 @@ impl GrowingBuffer {
         GrowingBuffer { label, buffer: None, len: 0 }
     }
 
-    /// Uploads `data`, growing the buffer when needed.
-    pub fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, data: &[u8], count: u32) {
-        self.len = count;
+    /// Uploads `items` (the instances to draw), growing the buffer when needed.
+    pub fn upload<T: bytemuck::Pod>(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, items: &[T]) {
+        self.len = items.len() as u32;
+        let data: &[u8] = bytemuck::cast_slice(items);
         if data.is_empty() {
             return;
         }

@@ -269,11 +269,10 @@ impl SceneRenderer {
         let ppp = self.pixels_per_point;
         self.line_scratch.clear();
         self.line_scratch.extend(scene.lines.iter().map(|l| LineInstance::new(l, ppp)));
-        self.lines.upload(device, queue, bytemuck::cast_slice(&self.line_scratch), self.line_scratch.len() as u32);
+        self.lines.upload(device, queue, &self.line_scratch);
         self.line_scratch.clear();
         self.line_scratch.extend(scene.overlay_lines.iter().map(|l| LineInstance::new(l, ppp)));
-        let overlay_count = self.line_scratch.len() as u32;
-        self.overlay_lines.upload(device, queue, bytemuck::cast_slice(&self.line_scratch), overlay_count);
+        self.overlay_lines.upload(device, queue, &self.line_scratch);
         self.sphere_scratch.clear();
         self.sphere_scratch.extend(scene.spheres.iter().map(SphereInstance::new));
         self.fine_scratch.clear();
@@ -298,11 +297,11 @@ impl SceneRenderer {
         let light = caster_bounds(&self.caster_scratch).and_then(|(min, max)| shadow::fit_light(min, max, floor_y));
         let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light.as_ref());
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
-        self.spheres.upload(device, queue, bytemuck::cast_slice(&self.sphere_scratch), self.sphere_scratch.len() as u32);
-        self.fine_capsules.upload(device, queue, bytemuck::cast_slice(&self.fine_scratch), self.fine_scratch.len() as u32);
-        self.coarse_capsules.upload(device, queue, bytemuck::cast_slice(&self.coarse_scratch), self.coarse_scratch.len() as u32);
-        let casters = if light.is_some() { self.caster_scratch.len() as u32 } else { 0 };
-        self.casters.upload(device, queue, bytemuck::cast_slice(&self.caster_scratch), casters);
+        self.spheres.upload(device, queue, &self.sphere_scratch);
+        self.fine_capsules.upload(device, queue, &self.fine_scratch);
+        self.coarse_capsules.upload(device, queue, &self.coarse_scratch);
+        let casters: &[CapsuleInstance] = if light.is_some() { &self.caster_scratch } else { &[] };
+        self.casters.upload(device, queue, casters);
         light.is_some()
     }
 }
