@@ -7,10 +7,20 @@ use mocap_render::{Camera, Capsule, Grid, Line, RenderTarget, Scene, SceneRender
 const SIZE: u32 = 128;
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
-fn device() -> Option<(wgpu::Device, wgpu::Queue)> {
+/// A device, a renderer and a `SIZE`² target with `samples` samples, or `None`
+/// (with a note) where no adapter exists.
+fn setup(samples: u32) -> Option<(wgpu::Device, wgpu::Queue, SceneRenderer, RenderTarget)> {
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle());
-    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())).ok()?;
-    pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor::default())).ok()
+    let device = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default()))
+        .ok()
+        .and_then(|adapter| pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor::default())).ok());
+    let Some((device, queue)) = device else {
+        eprintln!("no wgpu adapter here (install mesa-vulkan-drivers for lavapipe); skipping");
+        return None;
+    };
+    let renderer = SceneRenderer::new(&device, FORMAT, samples);
+    let target = RenderTarget::new(&device, FORMAT, samples, [SIZE, SIZE]);
+    Some((device, queue, renderer, target))
 }
 
 fn read_pixels(device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget) -> Vec<u8> {
@@ -40,12 +50,7 @@ fn read_pixels(device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget
 
 #[test]
 fn draws_lines_spheres_and_grid_offscreen() {
-    let Some((device, queue)) = device() else {
-        eprintln!("no wgpu adapter here (install mesa-vulkan-drivers for lavapipe); skipping");
-        return;
-    };
-    let mut renderer = SceneRenderer::new(&device, FORMAT, 4);
-    let target = RenderTarget::new(&device, FORMAT, 4, [SIZE, SIZE]);
+    let Some((device, queue, mut renderer, target)) = setup(4) else { return };
     let background = [10, 20, 30, 255];
     let mut scene = Scene { background, ..Scene::default() };
     let camera = Camera::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.0);
@@ -69,12 +74,7 @@ fn draws_lines_spheres_and_grid_offscreen() {
 
 #[test]
 fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
-    let Some((device, queue)) = device() else {
-        eprintln!("no wgpu adapter here (install mesa-vulkan-drivers for lavapipe); skipping");
-        return;
-    };
-    let mut renderer = SceneRenderer::new(&device, FORMAT, 4);
-    let target = RenderTarget::new(&device, FORMAT, 4, [SIZE, SIZE]);
+    let Some((device, queue, mut renderer, target)) = setup(4) else { return };
     // Looking straight down at a floor with a pole standing at its centre.
     let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
     let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
@@ -111,12 +111,7 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
 
 #[test]
 fn a_shadow_falls_where_the_key_light_projects_its_caster() {
-    let Some((device, queue)) = device() else {
-        eprintln!("no wgpu adapter here (install mesa-vulkan-drivers for lavapipe); skipping");
-        return;
-    };
-    let mut renderer = SceneRenderer::new(&device, FORMAT, 1);
-    let target = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     let camera = Camera::look_at(Vec3::new(0.0, 8.0, 0.01), Vec3::ZERO, 0.8, 1.0);
     let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
     // A ball in the air, and a small one off to a side so that the fitted shadow
