@@ -13,6 +13,6 @@ fuzz_target!(|data: &[u8]| {
         let text = mocap::bvh::write(&clip);
         let again = mocap::bvh::parse(text.as_bytes()).expect("rewritten clip parses");
         assert_eq!(again.frame_count(), clip.frame_count());
-        assert_eq!(again.skeleton.len(), clip.skeleton.len());
+        assert_eq!(again.skeleton().len(), clip.skeleton().len());
     }
 });

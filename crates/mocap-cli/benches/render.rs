@@ -31,7 +31,7 @@ fn main() {
             return;
         }
     };
-    let joints = clip.skeleton.joints.iter().filter(|j| !j.end_site).count();
+    let joints = clip.skeleton().joints().iter().filter(|j| !j.is_end_site()).count();
     println!("adapter: {}   skeleton: {joints} joints (+ End Sites), 1280x720, 4x MSAA, shadows on", gpu.adapter_name());
     let mut offscreen = Offscreen::new(&gpu, [1280, 720]);
     for mode in [DrawMode::Capsules, DrawMode::Sticks] {

@@ -31,9 +31,9 @@ fn print_json(value: &Value) -> Result<ExitCode, String> {
 /// `mocap info`.
 pub fn info(path: &Path, as_json: bool) -> Result<ExitCode, String> {
     let clip = read_clip(path)?;
-    let skeleton = &clip.skeleton;
+    let skeleton = &clip.skeleton();
     let roots: Vec<&str> = skeleton.roots().filter_map(|r| skeleton.joints.get(r)).map(|j| j.name.as_str()).collect();
-    let joints = skeleton.joints.iter().filter(|j| !j.end_site).count();
+    let joints = skeleton.joints.iter().filter(|j| !j.is_end_site()).count();
     let end_sites = skeleton.len() - joints;
     let bounds = clip.bounds();
     let units = clip.units();
@@ -84,7 +84,7 @@ pub fn pose(path: &Path, frame: usize) -> Result<ExitCode, String> {
         .joints
         .iter()
         .zip(&positions)
-        .map(|(j, p)| json!({ "name": j.name, "parent": j.parent, "end_site": j.end_site, "position": vec3(*p) }))
+        .map(|(j, p)| json!({ "name": j.name, "parent": j.parent, "end_site": j.is_end_site(), "position": vec3(*p) }))
         .collect();
     let time = mocap::sample::time_of_frame(frame, clip.frame_time());
     print_json(&json!({ "frame": frame, "time": time, "joints": joints }))
@@ -138,7 +138,7 @@ pub fn validate(paths: &[PathBuf]) -> Result<ExitCode, String> {
         match read_clip(file) {
             Ok(clip) => {
                 let warn = if clip.warnings.is_empty() { String::new() } else { format!(", {} warnings", clip.warnings.len()) };
-                println!("ok   {}: {} joints, {} frames{warn}", file.display(), clip.skeleton.len(), clip.frame_count());
+                println!("ok   {}: {} joints, {} frames{warn}", file.display(), clip.skeleton().len(), clip.frame_count());
             }
             Err(message) => {
                 failed += 1;

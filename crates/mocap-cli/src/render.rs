@@ -202,7 +202,7 @@ impl<'a> Stage<'a> {
         let bounds = per_clip.iter().zip(&offsets).fold(Aabb::EMPTY, |union, (b, &o)| union.union(&b.translated(o)));
         let figures = clips
             .iter()
-            .map(|c| c.skeleton.joints.iter().map(|j| FigureJoint { parent: j.parent, end_site: j.end_site }).collect())
+            .map(|c| c.skeleton().joints().iter().map(|j| FigureJoint { parent: j.parent, end_site: j.is_end_site() }).collect())
             .collect();
         Stage { clips, scales, offsets, figures, bounds, extent, mode: DrawMode::default() }
     }

@@ -105,8 +105,8 @@ fn convert_round_trips() {
     assert!(!written.contains('\r'));
     let a = mocap::bvh::parse(SIMPLE.as_bytes()).unwrap();
     let b = mocap::bvh::parse(written.as_bytes()).unwrap();
-    assert_eq!(a.motion, b.motion);
-    assert_eq!(a.skeleton, b.skeleton);
+    assert_eq!(a.motion(), b.motion());
+    assert_eq!(a.skeleton(), b.skeleton());
     let bad = mocap(&["convert", file.to_str().unwrap(), "-o", dir.path().join("x.txt").to_str().unwrap()]);
     assert!(!bad.status.success());
 }

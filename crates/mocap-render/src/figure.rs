@@ -114,7 +114,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
                 if let Some(q) = parent {
                     let radius = bone_radius(q.distance(p), size);
                     scene.capsules.push(Capsule { a: q, b: p, radius, color });
-                } else if !joint.end_site {
+                } else if !joint.is_end_site() {
                     // A root: a ball so a lone root (or the hips) is visible.
                     scene.capsules.push(Capsule { a: p, b: p, radius: size * 0.03, color });
                 }
@@ -127,7 +127,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
                     scene.lines.push(Line { a: q, b: p, color, width_px: 3.0 });
                     scene.shadow_casters.push(Capsule { a: q, b: p, radius: size * 0.006, color });
                 }
-                if !joint.end_site && (style.show_joints || is_highlight) {
+                if !joint.is_end_site() && (style.show_joints || is_highlight) {
                     let (radius, color) = if is_highlight { (joint_radius * 1.8, color) } else { (joint_radius, style.joint_color) };
                     scene.spheres.push(Sphere { center: p, radius, color });
                 }

@@ -24,16 +24,16 @@ pub struct Document {
 impl Document {
     /// Wraps a clip.
     pub fn new(name: &str, clip: Clip) -> Document {
-        let n = clip.skeleton.joints.len();
+        let n = clip.skeleton().joints().len();
         let mut children = vec![Vec::new(); n];
-        for (i, joint) in clip.skeleton.joints.iter().enumerate() {
+        for (i, joint) in clip.skeleton().joints().iter().enumerate() {
             if let Some(list) = joint.parent.and_then(|p| children.get_mut(p)) {
                 list.push(i);
             }
         }
         let extent = clip.pose_extent();
         let extent = if extent.is_finite() && extent > 0.0 { extent } else { 1.0 };
-        let figure = clip.skeleton.joints.iter().map(|j| FigureJoint { parent: j.parent, end_site: j.end_site }).collect();
+        let figure = clip.skeleton().joints().iter().map(|j| FigureJoint { parent: j.parent, end_site: j.is_end_site() }).collect();
         Document { name: name.to_owned(), units: clip.units(), bounds: clip.bounds(), clip, children, extent, figure }
     }
 
@@ -44,7 +44,7 @@ impl Document {
 
     /// Joints that are not End Sites.
     pub fn joint_count(&self) -> usize {
-        self.clip.skeleton.joints.iter().filter(|j| !j.end_site).count()
+        self.clip.skeleton().joints().iter().filter(|j| !j.is_end_site()).count()
     }
 
     /// Metres per file unit (the scale that puts this clip in the shared metre world).

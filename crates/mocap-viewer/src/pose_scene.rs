@@ -49,8 +49,8 @@ pub fn character_primitives(
     };
     push_figure(scene, &doc.figure, transforms, &style);
     if settings.show_axes {
-        for (joint, t) in doc.clip.skeleton.joints.iter().zip(transforms) {
-            if !joint.end_site {
+        for (joint, t) in doc.clip.skeleton().joints().iter().zip(transforms) {
+            if !joint.is_end_site() {
                 push_axes(t, size * 0.06, scene);
             }
         }

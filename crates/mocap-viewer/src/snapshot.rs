@@ -33,7 +33,7 @@ impl ClipSummary {
             frames: d.clip.frame_count(),
             frame_time: d.clip.frame_time(),
             joints: d.joint_count(),
-            joint_names: d.clip.skeleton.joints.iter().map(|j| j.name.clone()).collect(),
+            joint_names: d.clip.skeleton().joints().iter().map(|j| j.name.clone()).collect(),
             visible: c.visible,
             color: c.color,
             offset: c.placement().to_array(),

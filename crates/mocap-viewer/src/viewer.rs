@@ -168,13 +168,13 @@ impl Viewer {
 
     /// Selects joint `joint` of character `character`, or nothing when either is out of range.
     pub fn select_in(&mut self, character: usize, joint: Option<usize>) {
-        let valid = |j: &usize| self.stage.characters.get(character).is_some_and(|c| *j < c.document.clip.skeleton.joints.len());
+        let valid = |j: &usize| self.stage.characters.get(character).is_some_and(|c| *j < c.document.clip.skeleton().joints().len());
         self.selected = joint.filter(valid).map(|joint| Selection { character, joint });
     }
 
     /// Selects the first joint called `name` in character `character`; returns whether one exists.
     pub fn select_named(&mut self, character: usize, name: &str) -> bool {
-        let joint = self.stage.characters.get(character).and_then(|c| c.document.clip.skeleton.joints.iter().position(|j| j.name == name));
+        let joint = self.stage.characters.get(character).and_then(|c| c.document.clip.skeleton().joints().iter().position(|j| j.name == name));
         self.select_in(character, joint);
         joint.is_some()
     }
@@ -182,7 +182,7 @@ impl Viewer {
     /// The selected joint's name.
     pub fn selected_name(&self) -> Option<&str> {
         let s = self.selected?;
-        let joint = self.stage.characters.get(s.character)?.document.clip.skeleton.joints.get(s.joint)?;
+        let joint = self.stage.characters.get(s.character)?.document.clip.skeleton().joints().get(s.joint)?;
         Some(joint.name.as_str())
     }
 

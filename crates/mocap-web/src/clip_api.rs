@@ -23,19 +23,19 @@ impl MotionClip {
     /// Joint names in file order (End Sites included).
     #[wasm_bindgen(getter, js_name = jointNames)]
     pub fn joint_names(&self) -> Vec<String> {
-        self.clip.skeleton.joints.iter().map(|j| j.name.clone()).collect()
+        self.clip.skeleton().joints().iter().map(|j| j.name.clone()).collect()
     }
 
     /// Parent index of each joint; -1 for a root.
     #[wasm_bindgen(getter)]
     pub fn parents(&self) -> Vec<i32> {
-        self.clip.skeleton.joints.iter().map(|j| j.parent.and_then(|p| i32::try_from(p).ok()).unwrap_or(-1)).collect()
+        self.clip.skeleton().joints().iter().map(|j| j.parent.and_then(|p| i32::try_from(p).ok()).unwrap_or(-1)).collect()
     }
 
     /// Whether each joint is an End Site.
     #[wasm_bindgen(getter, js_name = endSites)]
     pub fn end_sites(&self) -> Vec<u8> {
-        self.clip.skeleton.joints.iter().map(|j| u8::from(j.end_site)).collect()
+        self.clip.skeleton().joints().iter().map(|j| u8::from(j.is_end_site())).collect()
     }
 
     /// Number of frames.

@@ -118,8 +118,8 @@ fn main() {
     PEAK.store(base, Ordering::Relaxed);
     let clip = mocap::bvh::parse(&input).expect("parse");
     let peak = PEAK.load(Ordering::Relaxed) - base;
-    let matrix = clip.motion.data().len() * 4;
-    let skeleton: usize = clip.skeleton.joints.iter().map(|j| std::mem::size_of_val(j) + j.name.len() + j.channels.len()).sum();
+    let matrix = clip.motion().data().len() * 4;
+    let skeleton: usize = clip.skeleton().joints().iter().map(|j| std::mem::size_of_val(j) + j.name.len() + j.channels.len()).sum();
     println!(
         "peak memory of parse    {:>8.1} MB  = {:.2} × (matrix {:.1} MB + skeleton {:.1} KB)",
         peak as f64 / 1e6,
@@ -136,8 +136,8 @@ fn main() {
         }
         world.len()
     });
-    let transforms = (clip.frame_count() * clip.skeleton.len()) as f64;
-    println!("FK world transforms     {:>8.1} ms  {:>7.1} M joint transforms/s ({} joints × {} frames, 1 thread)", fk.as_secs_f64() * 1e3, transforms / fk.as_secs_f64() / 1e6, clip.skeleton.len(), clip.frame_count());
+    let transforms = (clip.frame_count() * clip.skeleton().len()) as f64;
+    println!("FK world transforms     {:>8.1} ms  {:>7.1} M joint transforms/s ({} joints × {} frames, 1 thread)", fk.as_secs_f64() * 1e3, transforms / fk.as_secs_f64() / 1e6, clip.skeleton().len(), clip.frame_count());
 
     let batch = best(5, || {
         let mut sum = 0.0f32;

@@ -14,6 +14,6 @@ fn main() {
             sum += world[0].translation.x;
         }
     }
-    let n = clip.frame_count() * clip.skeleton.len();
+    let n = clip.frame_count() * clip.skeleton().len();
     println!("{n} joint transforms, {:.1} M/s ({sum})", n as f64 / t.elapsed().as_secs_f64() / 1e6);
 }

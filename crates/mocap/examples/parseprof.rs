@@ -22,7 +22,7 @@ fn main() {
         }
         out.len()
     } else {
-        mocap::bvh::parse(&input).expect("parse").motion.data().len()
+        mocap::bvh::parse(&input).expect("parse").motion().data().len()
     };
     eprintln!("{mode}: {n} values, {} bytes, {:?}", input.len(), t.elapsed());
 }

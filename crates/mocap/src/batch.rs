@@ -1,11 +1,15 @@
-//! Forward kinematics for many frames at once: the same skeleton walk as
-//! [`crate::fk::world_transforms`], but each step works on `LANES` frames held
-//! side by side (structure of arrays), so the compiler turns it into SIMD. Used for
-//! whole-clip passes (bounds, exports, statistics).
+//! Forward kinematics for many frames at once: the same arithmetic as
+//! [`crate::pose::from_row`] followed by [`crate::fk::local_to_model`], but each
+//! step works on `LANES` frames held side by side (structure of arrays), so the
+//! compiler turns it into SIMD. Used for whole-clip passes (bounds, exports,
+//! statistics). Skeletons with scale or length channels or extrinsic rotations
+//! take the scalar path frame by frame; a test checks both agree.
 
 use crate::fastmath::sin_cos;
+use crate::fk::{local_to_model, Transform};
 use crate::motion::Motion;
-use crate::skeleton::Skeleton;
+use crate::pose::{from_row, LocalPose};
+use crate::skeleton::{EulerConvention, Skeleton};
 use glam::Vec3;
 
 /// Frames processed together.
@@ -19,15 +23,13 @@ struct JointLanes {
     t: [Lanes; 3],
 }
 
-const HALF_RAD_PER_DEG: f32 = core::f32::consts::PI / 360.0;
-
-/// `q · axis-rotation(angle)` lane by lane.
+/// `q · axis-rotation(angle)` lane by lane; `half` is half a radian per unit.
 #[inline(always)]
-fn rotate_about_axis(q: &mut [Lanes; 4], axis: usize, degrees: &Lanes) {
+fn rotate_about_axis(q: &mut [Lanes; 4], axis: usize, angles: &Lanes, half: f32) {
     let mut s = [0.0; LANES];
     let mut c = [0.0; LANES];
     for l in 0..LANES {
-        (s[l], c[l]) = sin_cos(degrees[l] * HALF_RAD_PER_DEG);
+        (s[l], c[l]) = sin_cos(angles[l] * half);
     }
     // One fixed loop per axis (constant field indices vectorise; dynamic ones don't).
     let [x, y, z, w] = q;
@@ -76,35 +78,36 @@ fn compose(parent: &JointLanes, local: &JointLanes) -> JointLanes {
 /// World transforms of every joint for `LANES` rows, compiled for the best SIMD
 /// the CPU has (AVX2 when detected at run time; SSE2 otherwise). Both versions run
 /// the same IEEE operations in the same order, so results are identical.
-fn fk_block_dispatch(skeleton: &Skeleton, rows: &[&[f32]; LANES], world: &mut [JointLanes]) {
+fn fk_block_dispatch(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
     #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        unsafe { fk_block_avx2(skeleton, rows, world) };
+        unsafe { fk_block_avx2(skeleton, rows, half, world) };
         return;
     }
-    fk_block(skeleton, rows, world);
+    fk_block(skeleton, rows, half, world);
 }
 
 #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
 #[target_feature(enable = "avx2")]
-fn fk_block_avx2(skeleton: &Skeleton, rows: &[&[f32]; LANES], world: &mut [JointLanes]) {
-    fk_block(skeleton, rows, world);
+fn fk_block_avx2(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
+    fk_block(skeleton, rows, half, world);
 }
 
 /// One block of `LANES` frames: local transforms from the rows, then parent ∘ local.
 #[inline(always)]
-fn fk_block(skeleton: &Skeleton, rows: &[&[f32]; LANES], world: &mut [JointLanes]) {
-    for (j, joint) in skeleton.joints.iter().enumerate() {
+fn fk_block(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
+    for (j, joint) in skeleton.joints().iter().enumerate() {
+        let [rx, ry, rz, rw] = joint.rest_rotation.to_array();
         let mut local = JointLanes {
-            q: [[0.0; LANES], [0.0; LANES], [0.0; LANES], [1.0; LANES]],
+            q: [[rx; LANES], [ry; LANES], [rz; LANES], [rw; LANES]],
             t: [[joint.offset.x; LANES], [joint.offset.y; LANES], [joint.offset.z; LANES]],
         };
         for (k, channel) in joint.channels.iter().enumerate() {
-            let column = joint.first_channel + k;
+            let column = joint.first_channel() + k;
             let values: Lanes = std::array::from_fn(|l| rows[l].get(column).copied().unwrap_or(0.0));
             if channel.is_rotation() {
-                rotate_about_axis(&mut local.q, channel.axis(), &values);
+                rotate_about_axis(&mut local.q, channel.axis(), &values, half);
             } else {
                 local.t[channel.axis()] = values;
             }
@@ -123,7 +126,20 @@ fn fk_block(skeleton: &Skeleton, rows: &[&[f32]; LANES], world: &mut [JointLanes
 /// position of every joint (End Sites included). `positions` is reused.
 pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, mut visit: impl FnMut(usize, &[Vec3])) {
     let frames = motion.frame_count();
-    let joints = skeleton.joints.len();
+    let joints = skeleton.len();
+    let simple = skeleton.euler() == EulerConvention::Intrinsic && skeleton.joints().iter().all(|j| j.channels.iter().all(|c| c.is_bvh()));
+    if !simple {
+        let (mut local, mut model, mut positions) = (LocalPose::default(), Vec::<Transform>::new(), Vec::new());
+        for frame in 0..frames {
+            from_row(skeleton, motion.row(frame), motion.angle_unit(), &mut local);
+            local_to_model(skeleton, &local, &mut model);
+            positions.clear();
+            positions.extend(model.iter().map(|t| t.translation));
+            visit(frame, &positions);
+        }
+        return;
+    }
+    let half = motion.angle_unit().radians_per_unit() * 0.5;
     let mut world = vec![JointLanes { q: [[0.0; LANES]; 4], t: [[0.0; LANES]; 3] }; joints];
     let mut positions = vec![Vec3::ZERO; joints];
     let mut start = 0;
@@ -131,7 +147,7 @@ pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, mut visit:
         let count = (frames - start).min(LANES);
         // Pad a short last block by repeating its last frame.
         let rows: [&[f32]; LANES] = std::array::from_fn(|l| motion.row(start + l.min(count - 1)));
-        fk_block_dispatch(skeleton, &rows, &mut world);
+        fk_block_dispatch(skeleton, &rows, half, &mut world);
         for l in 0..count {
             for (p, w) in positions.iter_mut().zip(&world) {
                 *p = Vec3::new(w.t[0][l], w.t[1][l], w.t[2][l]);
@@ -145,6 +161,24 @@ pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, mut visit:
 #[cfg(test)]
 mod tests {
     use super::for_each_frame_positions;
+    use crate::pose::axis_rotation;
+    use crate::{AngleUnit, Channel, Clip, EulerConvention, Joint, Motion, Skeleton};
+    use glam::Vec3;
+
+    /// The batch path against the scalar one (`from_row` + `local_to_model`) on every frame.
+    fn agrees_with_scalar(clip: &Clip) {
+        let mut seen = 0;
+        for_each_frame_positions(clip.skeleton(), clip.motion(), |frame, positions| {
+            assert_eq!(frame, seen);
+            seen += 1;
+            let reference = clip.world_positions(frame);
+            assert_eq!(positions.len(), reference.len());
+            for (a, b) in positions.iter().zip(&reference) {
+                assert!((*a - *b).abs().max_element() < 1e-4, "frame {frame}: {a} vs {b}");
+            }
+        });
+        assert_eq!(seen, clip.frame_count());
+    }
 
     #[test]
     fn matches_per_frame_fk() {
@@ -154,16 +188,27 @@ mod tests {
             let a = f as f32 * 37.0 - 180.0;
             text.push_str(&format!("{f} 1 -2 {a} {} {} {} 0.5 {} {}\n", a * 0.5, -a, a * 2.0, a + 10.0, 3.0 * a));
         }
-        let clip = crate::bvh::parse(text.as_bytes()).unwrap();
-        let mut seen = 0;
-        for_each_frame_positions(&clip.skeleton, &clip.motion, |frame, positions| {
-            assert_eq!(frame, seen);
-            seen += 1;
-            let reference = clip.world_positions(frame);
-            for (a, b) in positions.iter().zip(&reference) {
-                assert!((*a - *b).abs().max_element() < 1e-4, "frame {frame}: {a} vs {b}");
-            }
-        });
-        assert_eq!(seen, 11);
+        agrees_with_scalar(&crate::bvh::parse(text.as_bytes()).unwrap());
+    }
+
+    fn general_clip(euler: EulerConvention, channels: Vec<Channel>) -> Clip {
+        let width = channels.len();
+        let root = Joint::new("r", None, Vec3::new(1.0, 0.0, 0.0), channels).with_rest_rotation(axis_rotation(2, 35.0, AngleUnit::Degrees));
+        let child = Joint::new("c", Some(0), Vec3::new(0.0, 2.0, 0.0), vec![Channel::Xrotation, Channel::Zrotation])
+            .with_rest_rotation(axis_rotation(1, -60.0, AngleUnit::Degrees));
+        let end = Joint::end_site("e", Some(1), Vec3::new(0.3, 1.0, 0.0));
+        let skeleton = Skeleton::new(vec![root, child, end], euler).unwrap();
+        let frames = 9;
+        let data: Vec<f32> = (0..frames * (width + 2)).map(|i| ((i * 7919) % 23) as f32 * 0.2 - 1.5).collect();
+        let motion = Motion::new(0.1, width + 2, frames, data).unwrap().with_angle_unit(AngleUnit::Radians);
+        Clip::new(skeleton, motion).unwrap()
+    }
+
+    #[test]
+    fn rest_rotations_radians_and_the_general_channels_agree_with_scalar_fk() {
+        // Batch lanes (intrinsic, translation and rotation channels).
+        agrees_with_scalar(&general_clip(EulerConvention::Intrinsic, vec![Channel::Yposition, Channel::Yrotation, Channel::Xrotation]));
+        // Scalar fallback (extrinsic, scale and length channels).
+        agrees_with_scalar(&general_clip(EulerConvention::Extrinsic, vec![Channel::Yrotation, Channel::Xscale, Channel::Length]));
     }
 }

@@ -1,33 +1,101 @@
-//! The six BVH channel kinds and what each does to a joint's local transform.
+//! The animated degrees of freedom a joint can have, in one general set shared by
+//! every format, and the angle unit their rotation values are written in.
 
 use std::fmt;
 
-/// One animated degree of freedom of a joint, as named in a BVH `CHANNELS` line.
+/// One animated degree of freedom of a joint.
 ///
-/// Semantics (what [`crate::fk`] implements):
-/// - a position channel *replaces* that component of the joint's rest `OFFSET`
-///   (as Blender and BVHView do);
-/// - rotation channels are in degrees and are applied in file order as intrinsic
-///   rotations: `Zrotation Xrotation Yrotation` means `R = Rz · Rx · Ry`.
+/// What each kind does to the joint's local transform (see [`crate::pose`]):
+/// - a translation channel *sets* that component of the local translation (its rest
+///   value is replaced, as Blender and BVHView read BVH position channels; readers
+///   of formats that add to the rest translation add it when they read the value);
+/// - rotation channels are angles in the clip's [`AngleUnit`], composed in file order
+///   by the skeleton's [`crate::skeleton::EulerConvention`];
+/// - scale channels set that component of the local scale (1 at rest);
+/// - the bone-length channel (Acclaim `l`) moves the joint's children along their
+///   rest direction by the value (a change of bone length, 0 at rest).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Channel {
-    /// Replaces the X component of the offset.
+    /// Sets the X component of the local translation.
     Xposition,
-    /// Replaces the Y component of the offset.
+    /// Sets the Y component of the local translation.
     Yposition,
-    /// Replaces the Z component of the offset.
+    /// Sets the Z component of the local translation.
     Zposition,
-    /// Rotation about the local X axis, degrees.
+    /// Rotation about the local X axis.
     Xrotation,
-    /// Rotation about the local Y axis, degrees.
+    /// Rotation about the local Y axis.
     Yrotation,
-    /// Rotation about the local Z axis, degrees.
+    /// Rotation about the local Z axis.
     Zrotation,
+    /// Sets the X component of the local scale.
+    Xscale,
+    /// Sets the Y component of the local scale.
+    Yscale,
+    /// Sets the Z component of the local scale.
+    Zscale,
+    /// Changes the bone's length: the children move along their rest direction.
+    Length,
+}
+
+/// What a [`Channel`] animates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ChannelKind {
+    /// A component of the translation.
+    Translation,
+    /// A rotation about an axis.
+    Rotation,
+    /// A component of the scale.
+    Scale,
+    /// The bone length.
+    Length,
+}
+
+/// The unit rotation values are written in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum AngleUnit {
+    /// Degrees (BVH, most Acclaim files).
+    #[default]
+    Degrees,
+    /// Radians (`:RADIANS` AMC files, `angle rad` ASF files).
+    Radians,
+}
+
+impl AngleUnit {
+    /// Radians per unit.
+    pub fn radians_per_unit(self) -> f32 {
+        match self {
+            AngleUnit::Degrees => core::f32::consts::PI / 180.0,
+            AngleUnit::Radians => 1.0,
+        }
+    }
+
+    /// `"deg"` or `"rad"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            AngleUnit::Degrees => "deg",
+            AngleUnit::Radians => "rad",
+        }
+    }
 }
 
 impl Channel {
-    /// All channels, positions first.
-    pub const ALL: [Channel; 6] = [
+    /// Every channel: translations, rotations, scales, length.
+    pub const ALL: [Channel; 10] = [
+        Channel::Xposition,
+        Channel::Yposition,
+        Channel::Zposition,
+        Channel::Xrotation,
+        Channel::Yrotation,
+        Channel::Zrotation,
+        Channel::Xscale,
+        Channel::Yscale,
+        Channel::Zscale,
+        Channel::Length,
+    ];
+
+    /// The six channels BVH can write, positions first.
+    pub const BVH: [Channel; 6] = [
         Channel::Xposition,
         Channel::Yposition,
         Channel::Zposition,
@@ -36,7 +104,7 @@ impl Channel {
         Channel::Zrotation,
     ];
 
-    /// The BVH spelling, e.g. `"Xrotation"`.
+    /// The BVH-style spelling, e.g. `"Xrotation"`, `"Yscale"`, `"length"`.
     pub fn name(self) -> &'static str {
         match self {
             Channel::Xposition => "Xposition",
@@ -45,31 +113,46 @@ impl Channel {
             Channel::Xrotation => "Xrotation",
             Channel::Yrotation => "Yrotation",
             Channel::Zrotation => "Zrotation",
+            Channel::Xscale => "Xscale",
+            Channel::Yscale => "Yscale",
+            Channel::Zscale => "Zscale",
+            Channel::Length => "length",
         }
     }
 
-    /// Parses a channel name, ignoring ASCII case (`xRotation` is accepted).
+    /// Parses a BVH channel name, ignoring ASCII case (`xRotation` is accepted);
+    /// only the six channels BVH has.
     pub fn from_name(name: &[u8]) -> Option<Channel> {
-        Channel::ALL
-            .into_iter()
-            .find(|c| c.name().as_bytes().eq_ignore_ascii_case(name))
+        Channel::BVH.into_iter().find(|c| c.name().as_bytes().eq_ignore_ascii_case(name))
     }
 
-    /// The axis, 0 = X, 1 = Y, 2 = Z.
+    /// What the channel animates.
+    pub fn kind(self) -> ChannelKind {
+        match self {
+            Channel::Xposition | Channel::Yposition | Channel::Zposition => ChannelKind::Translation,
+            Channel::Xrotation | Channel::Yrotation | Channel::Zrotation => ChannelKind::Rotation,
+            Channel::Xscale | Channel::Yscale | Channel::Zscale => ChannelKind::Scale,
+            Channel::Length => ChannelKind::Length,
+        }
+    }
+
+    /// The axis, 0 = X, 1 = Y, 2 = Z (the length channel says 1: bones run along their direction).
     pub fn axis(self) -> usize {
         match self {
-            Channel::Xposition | Channel::Xrotation => 0,
-            Channel::Yposition | Channel::Yrotation => 1,
-            Channel::Zposition | Channel::Zrotation => 2,
+            Channel::Xposition | Channel::Xrotation | Channel::Xscale => 0,
+            Channel::Yposition | Channel::Yrotation | Channel::Yscale | Channel::Length => 1,
+            Channel::Zposition | Channel::Zrotation | Channel::Zscale => 2,
         }
     }
 
     /// True for the three rotation channels.
     pub fn is_rotation(self) -> bool {
-        matches!(
-            self,
-            Channel::Xrotation | Channel::Yrotation | Channel::Zrotation
-        )
+        self.kind() == ChannelKind::Rotation
+    }
+
+    /// True for the channels BVH can write.
+    pub fn is_bvh(self) -> bool {
+        matches!(self.kind(), ChannelKind::Translation | ChannelKind::Rotation)
     }
 }
 

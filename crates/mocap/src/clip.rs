@@ -4,10 +4,12 @@
 use std::cell::RefCell;
 
 use crate::error::Warning;
-use crate::fk::{rest_positions, world_transforms, Transform};
+use crate::fk::{local_to_model, rest_positions, Transform};
 use crate::motion::Motion;
-use crate::sample::{sample_world_transforms, Interpolation};
+use crate::pose::{self, LocalPose};
+use crate::sample::{sample, Interpolation, SampleScratch};
 use crate::skeleton::Skeleton;
+use crate::time::Timeline;
 use glam::Vec3;
 
 /// An axis-aligned bounding box.
@@ -132,25 +134,62 @@ impl Units {
 }
 
 thread_local! {
-    /// Scratch world transforms for the position-only queries.
-    static SCRATCH: RefCell<Vec<Transform>> = const { RefCell::new(Vec::new()) };
+    /// Scratch for the convenience queries that return model transforms.
+    static SCRATCH: RefCell<(LocalPose, SampleScratch, Vec<Transform>)> = RefCell::new(Default::default());
 }
 
-/// A skeleton with its motion, as read from one file.
+/// Why a skeleton and a motion do not make a clip.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("the motion has {motion} channels per frame but the skeleton has {skeleton}")]
+pub struct ClipError {
+    /// Channels per motion row.
+    pub motion: usize,
+    /// Channels the skeleton's joints have.
+    pub skeleton: usize,
+}
+
+/// A skeleton with its motion, as read from one file (or a skeleton file and a
+/// motion file).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Clip {
-    /// The joints (several roots allowed).
-    pub skeleton: Skeleton,
-    /// Frame time and channel values.
-    pub motion: Motion,
+    skeleton: Skeleton,
+    motion: Motion,
     /// Non-fatal problems the reader found.
     pub warnings: Vec<Warning>,
+    /// What the file says about itself (name, version, units, documentation…), as
+    /// `(key, value)` pairs in file order, for the inspector.
+    pub metadata: Vec<(String, String)>,
 }
 
 impl Clip {
+    /// Pairs a skeleton with its motion; the motion's rows must be exactly as wide
+    /// as the skeleton's channels.
+    pub fn new(skeleton: Skeleton, motion: Motion) -> Result<Clip, ClipError> {
+        if motion.channel_count() != skeleton.channel_count() {
+            return Err(ClipError { motion: motion.channel_count(), skeleton: skeleton.channel_count() });
+        }
+        Ok(Clip { skeleton, motion, warnings: Vec::new(), metadata: Vec::new() })
+    }
+
+    /// The same clip with these warnings.
+    pub fn with_warnings(mut self, warnings: Vec<Warning>) -> Clip {
+        self.warnings = warnings;
+        self
+    }
+
+    /// The joints.
+    pub fn skeleton(&self) -> &Skeleton {
+        &self.skeleton
+    }
+
+    /// Frame time, angle unit and channel values.
+    pub fn motion(&self) -> &Motion {
+        &self.motion
+    }
+
     /// Number of frames.
     pub fn frame_count(&self) -> usize {
-        self.motion.frame_count()
+        self.motion().frame_count()
     }
 
     /// Seconds per frame.
@@ -163,53 +202,76 @@ impl Clip {
         1.0 / self.motion.frame_time()
     }
 
+    /// The clip's frames in time (the one time↔frame rule).
+    pub fn timeline(&self) -> Timeline {
+        self.motion.timeline()
+    }
+
     /// Time of the last frame: `(frames - 1) × frame_time`, 0 for 0 or 1 frame.
     pub fn duration(&self) -> f64 {
-        self.frame_count().saturating_sub(1) as f64 * self.frame_time()
+        self.timeline().duration()
     }
 
     /// One frame's channel values (empty when out of range).
     pub fn channel_values(&self, frame: usize) -> &[f32] {
-        self.motion.row(frame)
+        self.motion().row(frame)
     }
 
-    /// World transforms of every joint (End Sites included) at a frame, into `out`.
-    /// A frame past the end gives the rest pose with channels at 0.
+    /// The local pose of a frame, into `out`. A frame past the end gives the rest pose.
+    pub fn local_pose_into(&self, frame: usize, out: &mut LocalPose) {
+        pose::from_row(&self.skeleton, self.motion().row(frame), self.motion.angle_unit(), out);
+    }
+
+    /// The local pose at a time in seconds, interpolated or nearest, into `out`.
+    pub fn sample_local_into(&self, time: f64, interpolation: Interpolation, scratch: &mut SampleScratch, out: &mut LocalPose) {
+        sample(&self.skeleton, &self.motion, time, interpolation, scratch, out);
+    }
+
+    /// Model transforms of every joint (End Sites included) at a frame, into `out`:
+    /// the frame's local pose through [`local_to_model`].
     pub fn world_transforms_into(&self, frame: usize, out: &mut Vec<Transform>) {
-        world_transforms(&self.skeleton, self.motion.row(frame), out);
-    }
-
-    /// World positions of every joint at a frame, into `out` (no allocation once sized).
-    pub fn world_positions_into(&self, frame: usize, out: &mut Vec<Vec3>) {
-        SCRATCH.with_borrow_mut(|scratch| {
-            self.world_transforms_into(frame, scratch);
-            out.clear();
-            out.extend(scratch.iter().map(|t| t.translation));
+        SCRATCH.with_borrow_mut(|(local, _, _)| {
+            self.local_pose_into(frame, local);
+            local_to_model(&self.skeleton, local, out);
         });
     }
 
-    /// World positions of every joint at a frame.
+    /// Model positions of every joint at a frame, into `out` (no allocation once sized).
+    pub fn world_positions_into(&self, frame: usize, out: &mut Vec<Vec3>) {
+        SCRATCH.with_borrow_mut(|(local, _, model)| {
+            self.local_pose_into(frame, local);
+            local_to_model(&self.skeleton, local, model);
+            out.clear();
+            out.extend(model.iter().map(|t| t.translation));
+        });
+    }
+
+    /// Model positions of every joint at a frame.
     pub fn world_positions(&self, frame: usize) -> Vec<Vec3> {
         let mut out = Vec::new();
         self.world_positions_into(frame, &mut out);
         out
     }
 
-    /// World transforms at a time in seconds, interpolated or nearest, into `out`.
+    /// Model transforms at a time in seconds, interpolated or nearest, into `out`.
     pub fn sample_world_transforms_into(&self, time: f64, interpolation: Interpolation, out: &mut Vec<Transform>) {
-        sample_world_transforms(&self.skeleton, &self.motion, time, interpolation, out);
-    }
-
-    /// World positions at a time in seconds, into `out`.
-    pub fn sample_world_positions_into(&self, time: f64, interpolation: Interpolation, out: &mut Vec<Vec3>) {
-        SCRATCH.with_borrow_mut(|scratch| {
-            self.sample_world_transforms_into(time, interpolation, scratch);
-            out.clear();
-            out.extend(scratch.iter().map(|t| t.translation));
+        SCRATCH.with_borrow_mut(|(local, scratch, _)| {
+            self.sample_local_into(time, interpolation, scratch, local);
+            local_to_model(&self.skeleton, local, out);
         });
     }
 
-    /// Calls `visit(frame, positions)` for every frame with the world positions of
+    /// Model positions at a time in seconds, into `out`.
+    pub fn sample_world_positions_into(&self, time: f64, interpolation: Interpolation, out: &mut Vec<Vec3>) {
+        SCRATCH.with_borrow_mut(|(local, scratch, model)| {
+            self.sample_local_into(time, interpolation, scratch, local);
+            local_to_model(&self.skeleton, local, model);
+            out.clear();
+            out.extend(model.iter().map(|t| t.translation));
+        });
+    }
+
+    /// Calls `visit(frame, positions)` for every frame with the model positions of
     /// all joints, computing several frames at once (much faster than a loop over
     /// [`Clip::world_positions_into`]).
     pub fn for_each_frame_positions(&self, visit: impl FnMut(usize, &[Vec3])) {
@@ -234,9 +296,9 @@ impl Clip {
     /// floor far from it and would inflate every size.
     pub fn first_pose_bounds(&self) -> Aabb {
         let positions = if self.frame_count() == 0 { rest_positions(&self.skeleton) } else { self.world_positions(0) };
-        let skip_roots = self.skeleton.joints.iter().any(|j| j.parent.is_some());
+        let skip_roots = self.skeleton().joints().iter().any(|j| j.parent.is_some());
         let mut b = Aabb::EMPTY;
-        for (joint, p) in self.skeleton.joints.iter().zip(positions) {
+        for (joint, p) in self.skeleton().joints().iter().zip(positions) {
             if !(skip_roots && joint.parent.is_none()) {
                 b.include(p);
             }

@@ -13,6 +13,7 @@
 //! ```
 
 pub mod arrange;
+pub mod bake;
 pub mod batch;
 pub mod bvh;
 pub mod channel;
@@ -21,17 +22,22 @@ pub mod error;
 mod fastmath;
 pub mod fk;
 pub mod motion;
+pub mod pose;
 pub mod sample;
 pub mod skeleton;
+pub mod stage;
+pub mod time;
 
-pub use channel::Channel;
-pub use clip::{Aabb, Clip, Units};
+pub use channel::{AngleUnit, Channel, ChannelKind};
+pub use clip::{Aabb, Clip, ClipError, Units};
 pub use error::{LoadError, ParseError, Warning};
-pub use fk::Transform;
+pub use fk::{local_to_model, Transform};
 pub use glam;
 pub use motion::Motion;
-pub use sample::Interpolation;
-pub use skeleton::{Joint, Skeleton};
+pub use pose::LocalPose;
+pub use sample::{Interpolation, SampleScratch};
+pub use skeleton::{EulerConvention, Joint, Limit, Skeleton};
+pub use time::Timeline;
 
 /// The formats [`load`] recognises.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,23 +1,44 @@
-//! Motion data: a frame time and one contiguous `frames × channels` f32 matrix.
+//! Motion data: a frame time, an angle unit and one contiguous `frames × channels`
+//! f32 matrix.
+
+use crate::channel::AngleUnit;
 
 /// Sampled channel values for every frame.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Motion {
     frame_time: f64,
+    angle_unit: AngleUnit,
     channel_count: usize,
     frame_count: usize,
     data: Vec<f32>,
 }
 
 impl Motion {
-    /// Builds motion from a row-major matrix. `data.len()` must equal
+    /// Builds motion from a row-major matrix, rotations in degrees. `None` unless
+    /// `frame_time` is positive and finite and `data.len()` equals
     /// `frame_count * channel_count` (when `channel_count` is 0, `data` is empty and
     /// `frame_count` is kept as given).
     pub fn new(frame_time: f64, channel_count: usize, frame_count: usize, data: Vec<f32>) -> Option<Motion> {
-        if data.len() != frame_count.checked_mul(channel_count)? {
+        if data.len() != frame_count.checked_mul(channel_count)? || !(frame_time.is_finite() && frame_time > 0.0) {
             return None;
         }
-        Some(Motion { frame_time, channel_count, frame_count, data })
+        Some(Motion { frame_time, angle_unit: AngleUnit::Degrees, channel_count, frame_count, data })
+    }
+
+    /// The same motion with rotation values in `unit`.
+    pub fn with_angle_unit(mut self, unit: AngleUnit) -> Motion {
+        self.angle_unit = unit;
+        self
+    }
+
+    /// The unit of the rotation values.
+    pub fn angle_unit(&self) -> AngleUnit {
+        self.angle_unit
+    }
+
+    /// Frame timing: the one time↔frame rule for this motion.
+    pub fn timeline(&self) -> crate::time::Timeline {
+        crate::time::Timeline::new(self.frame_time, self.frame_count)
     }
 
     /// Seconds between frames (always positive and finite).
@@ -66,5 +87,12 @@ impl Motion {
             .step_by(width)
             .copied()
             .filter(move |_| ok)
+    }
+}
+
+impl Default for Motion {
+    /// No frames, no channels, 30 fps.
+    fn default() -> Motion {
+        Motion { frame_time: 1.0 / 30.0, angle_unit: AngleUnit::Degrees, channel_count: 0, frame_count: 0, data: Vec::new() }
     }
 }

@@ -60,7 +60,7 @@ fn corpus_bvh_files_parse_as_the_manifest_says() {
         if e.frames.contains("declared") {
             assert!(clip.warnings.iter().any(|w| w.message.contains("Frames:")), "{}", e.path);
         }
-        let joints = clip.skeleton.joints.iter().filter(|j| !j.end_site).count();
+        let joints = clip.skeleton().joints().iter().filter(|j| !j.is_end_site()).count();
         assert_eq!(joints.to_string(), e.joints, "{}", e.path);
         // FK is finite on every frame.
         let mut pos = Vec::new();
@@ -93,16 +93,16 @@ fn unit_guesses_on_known_sources() {
 
 /// Same joints (names of real joints, parents, offsets, channels) and identical bits.
 pub fn assert_same(a: &mocap::Clip, b: &mocap::Clip, what: &str) {
-    assert_eq!(a.skeleton.len(), b.skeleton.len(), "{what}");
-    for (ja, jb) in a.skeleton.joints.iter().zip(&b.skeleton.joints) {
-        if !ja.end_site {
+    assert_eq!(a.skeleton().len(), b.skeleton().len(), "{what}");
+    for (ja, jb) in a.skeleton().joints().iter().zip(b.skeleton().joints()) {
+        if !ja.is_end_site() {
             assert_eq!(ja.name.trim(), jb.name, "{what}");
         }
-        assert_eq!((ja.parent, ja.end_site, &ja.channels, ja.first_channel), (jb.parent, jb.end_site, &jb.channels, jb.first_channel), "{what}");
+        assert_eq!((ja.parent, ja.is_end_site(), &ja.channels, ja.first_channel()), (jb.parent, jb.is_end_site(), &jb.channels, jb.first_channel()), "{what}");
         assert_eq!(ja.offset.to_array().map(f32::to_bits), jb.offset.to_array().map(f32::to_bits), "{what}");
     }
     assert_eq!(a.frame_count(), b.frame_count(), "{what}");
     assert_eq!(a.frame_time(), b.frame_time(), "{what}");
-    let bits = |c: &mocap::Clip| c.motion.data().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    let bits = |c: &mocap::Clip| c.motion().data().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     assert!(bits(a) == bits(b), "{what}: motion values differ after round trip");
 }

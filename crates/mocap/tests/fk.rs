@@ -2,7 +2,7 @@
 
 use mocap::bvh::parse;
 use mocap::glam::{EulerRot, Mat3, Quat, Vec3};
-use mocap::sample::{frame_at_time, frame_position, time_of_frame};
+use mocap::Timeline;
 use mocap::{Channel, Interpolation};
 
 fn approx(a: Vec3, b: Vec3) -> bool {
@@ -58,7 +58,7 @@ fn known_rotations_by_hand() {
     // Z then X (intrinsic): Rz(90)·Rx(90)·(0,1,0) = (0,0,1); X then Z would give (-1,0,0).
     let clip = chain("CHANNELS 3 Zrotation Xrotation Yrotation", "90 90 0 0 0 0");
     assert!(approx(clip.world_positions(0)[1], Vec3::new(0.0, 0.0, 1.0)), "{}", clip.world_positions(0)[1]);
-    let q = clip.skeleton.joints.len();
+    let q = clip.skeleton().joints().len();
     assert_eq!(q, 3);
     let glam_ref = Quat::from_euler(EulerRot::ZXY, 90f32.to_radians(), 90f32.to_radians(), 0.0);
     assert!(approx(glam_ref * Vec3::Y, Vec3::Z));
@@ -78,15 +78,16 @@ fn position_channels_replace_offset_components_on_any_joint() {
 fn frame_time_conversions_are_exact_at_the_last_frame() {
     for (n, dt) in [(2752usize, 0.0083333f64), (339, 0.0333333), (100, 0.013889), (7, 1.0 / 3.0)] {
         let last = n - 1;
-        assert_eq!(frame_at_time(time_of_frame(last, dt), dt, n), last);
-        let p = frame_position(time_of_frame(last, dt), dt, n);
+        let t = Timeline::new(dt, n);
+        assert_eq!(t.frame_at(t.time_of(last)), last);
+        let p = t.position(t.time_of(last));
         assert_eq!((p.frame0, p.frame1, p.alpha), (last, last, 0.0));
         for f in [0, 1, n / 2, last] {
-            assert_eq!(frame_at_time(time_of_frame(f, dt), dt, n), f, "n={n} f={f}");
+            assert_eq!(t.frame_at(t.time_of(f)), f, "n={n} f={f}");
         }
-        assert_eq!(frame_at_time(1e9, dt, n), last);
-        assert_eq!(frame_at_time(-5.0, dt, n), 0);
-        assert_eq!(frame_at_time(f64::NAN, dt, n), 0);
+        assert_eq!(t.frame_at(1e9), last);
+        assert_eq!(t.frame_at(-5.0), 0);
+        assert_eq!(t.frame_at(f64::NAN), 0);
     }
 }
 

@@ -12,7 +12,7 @@ fn check(name: &str, data: &[u8]) {
         clip.sample_world_positions_into(clip.duration() * 0.37, mocap::Interpolation::Linear, &mut out);
         let again = mocap::bvh::parse(mocap::bvh::write(&clip).as_bytes()).unwrap_or_else(|e| panic!("{name}: rewritten clip fails: {e}"));
         assert_eq!(again.frame_count(), clip.frame_count(), "{name}");
-        assert_eq!(again.skeleton.len(), clip.skeleton.len(), "{name}");
+        assert_eq!(again.skeleton().len(), clip.skeleton().len(), "{name}");
     }
 }
 

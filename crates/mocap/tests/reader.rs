@@ -20,11 +20,11 @@ fn err(src: &str) -> mocap::ParseError {
 fn keywords_any_case_and_braces_on_name_lines() {
     let src = "hierarchy\nroot Hips{\n offset 1 2 3\n channels 3 xrotation YROTATION Zrotation\n end site{ offset 0 1 0 }\n}\nmotion\nframes: 1\nframe time: 0.1\n0 0 0\n";
     let clip = parse(src.as_bytes()).unwrap();
-    assert_eq!(clip.skeleton.len(), 2);
-    assert_eq!(clip.skeleton.joints[0].name, "Hips");
-    assert_eq!(clip.skeleton.joints[0].offset, Vec3::new(1.0, 2.0, 3.0));
-    assert_eq!(clip.skeleton.joints[0].channels, vec![Channel::Xrotation, Channel::Yrotation, Channel::Zrotation]);
-    assert!(clip.skeleton.joints[1].end_site);
+    assert_eq!(clip.skeleton().len(), 2);
+    assert_eq!(clip.skeleton().joints()[0].name, "Hips");
+    assert_eq!(clip.skeleton().joints()[0].offset, Vec3::new(1.0, 2.0, 3.0));
+    assert_eq!(clip.skeleton().joints()[0].channels, vec![Channel::Xrotation, Channel::Yrotation, Channel::Zrotation]);
+    assert!(clip.skeleton().joints()[1].is_end_site());
     assert_eq!(clip.frame_count(), 1);
     assert!(clip.warnings.is_empty(), "{:?}", clip.warnings);
 }
@@ -64,9 +64,9 @@ fn names_with_spaces_dots_colons_and_non_ascii() {
     let mut src = b"HIERARCHY\nROOT mixamorig:Hips\n{\nOFFSET 0 0 0\nCHANNELS 0\nJOINT Left Up.Leg  \n{\nOFFSET 0 -1 0\nJOINT K\xe9\n{\nOFFSET 0 -1 0\n}\n}\nJOINT R\xc3\xa9\n{\nOFFSET 0 1 0\nEnd Site Tip\n{\nOFFSET 0 1 0\n}\n}\n}\n".to_vec();
     src.extend_from_slice(b"MOTION\nFrames: 0\nFrame Time: 0.1\n");
     let clip = parse(&src).unwrap();
-    let names: Vec<&str> = clip.skeleton.joints.iter().map(|j| j.name.as_str()).collect();
+    let names: Vec<&str> = clip.skeleton().joints().iter().map(|j| j.name.as_str()).collect();
     assert_eq!(names, ["mixamorig:Hips", "Left Up.Leg", "K\u{e9}", "R\u{e9}", "Tip"]);
-    assert_eq!(clip.skeleton.joints[4].parent, Some(3));
+    assert_eq!(clip.skeleton().joints()[4].parent, Some(3));
     assert_eq!(clip.frame_count(), 0);
 }
 
@@ -74,8 +74,8 @@ fn names_with_spaces_dots_colons_and_non_ascii() {
 fn unnamed_end_site_gets_parent_name_and_zero_channel_joints() {
     let src = "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 0\nEnd Site\n{\nOFFSET 0 2 0\n}\n}\nMOTION\nFrames: 3\nFrame Time: 0.1\n\n\n\n";
     let clip = parse(src.as_bytes()).unwrap();
-    assert_eq!(clip.skeleton.joints[1].name, "A_End");
-    assert_eq!(clip.skeleton.channel_count(), 0);
+    assert_eq!(clip.skeleton().joints()[1].name, "A_End");
+    assert_eq!(clip.skeleton().channel_count(), 0);
     assert_eq!(clip.world_positions(0)[1], Vec3::new(0.0, 2.0, 0.0));
 }
 
@@ -83,7 +83,7 @@ fn unnamed_end_site_gets_parent_name_and_zero_channel_joints() {
 fn several_roots_are_kept_with_their_own_columns() {
     let src = "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 3 Xposition Yposition Zposition\n}\nROOT B\n{\nOFFSET 0 0 0\nCHANNELS 3 Xposition Yposition Zposition\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n1 2 3 4 5 6\n";
     let clip = parse(src.as_bytes()).unwrap();
-    assert_eq!(clip.skeleton.roots().count(), 2);
+    assert_eq!(clip.skeleton().roots().count(), 2);
     assert_eq!(clip.world_positions(0), vec![Vec3::new(1.0, 2.0, 3.0), Vec3::new(4.0, 5.0, 6.0)]);
 }
 
@@ -126,7 +126,7 @@ fn huge_declared_frames_do_not_allocate() {
     // Parsing must be instant and small even though the header claims billions.
     let src = one_joint("CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation", "0 0 0 0 0 0\n0 0 0 0 0 0\n", 4_000_000_000);
     let clip = parse(src.as_bytes()).unwrap();
-    assert_eq!(clip.motion.data().len(), 12);
+    assert_eq!(clip.motion().data().len(), 12);
 }
 
 #[test]

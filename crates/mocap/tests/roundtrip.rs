@@ -1,7 +1,7 @@
 //! Property test: random skeletons and motions survive write → parse exactly.
 
-use mocap::glam::Vec3;
-use mocap::{Channel, Clip, Joint, Motion, Skeleton};
+use mocap::glam::{Quat, Vec3};
+use mocap::{AngleUnit, Channel, Clip, EulerConvention, Joint, Motion, Skeleton};
 use proptest::prelude::*;
 
 /// A random tree built in pre-order (as files are), with random channel layouts.
@@ -15,14 +15,14 @@ fn skeleton_strategy() -> impl Strategy<Value = Skeleton> {
     );
     prop::collection::vec(joint, 1..25).prop_map(|specs| {
         let mut joints: Vec<Joint> = Vec::new();
-        let mut next = 0;
         for (i, (pick, offset, channels, end, name)) in specs.into_iter().enumerate() {
             // Parent: any earlier non-End-Site joint, or a new root.
-            let candidates: Vec<usize> = (0..i).filter(|&p| !joints[p].end_site).collect();
+            let candidates: Vec<usize> = (0..i).filter(|&p| !joints[p].is_end_site()).collect();
             let parent = if candidates.is_empty() || pick % 9 == 0 { None } else { Some(candidates[pick as usize % candidates.len()]) };
             let end_site = end && parent.is_some() && pick % 3 == 0;
-            let channels: Vec<Channel> = if end_site { vec![] } else { channels.into_iter().map(|c| Channel::ALL[c]).collect() };
-            joints.push(Joint { name: format!("{name}{i}"), parent, offset: Vec3::from(offset), first_channel: 0, channels, end_site });
+            let channels: Vec<Channel> = if end_site { vec![] } else { channels.into_iter().map(|c| Channel::BVH[c]).collect() };
+            let name = format!("{name}{i}");
+            joints.push(if end_site { Joint::end_site(name, parent, Vec3::from(offset)) } else { Joint::new(name, parent, Vec3::from(offset), channels) });
         }
         // Reorder into pre-order so that the writer and the reader agree on columns.
         let mut order = Vec::new();
@@ -38,11 +38,40 @@ fn skeleton_strategy() -> impl Strategy<Value = Skeleton> {
         let mut out: Vec<Joint> = order.iter().map(|&old| joints[old].clone()).collect();
         for j in &mut out {
             j.parent = j.parent.map(|p| new_index[p]);
-            j.first_channel = next;
-            next += j.channels.len();
         }
-        Skeleton { joints: out }
+        Skeleton::new(out, EulerConvention::Intrinsic).unwrap()
     })
+}
+
+/// The same random trees, with random rest rotations, extrinsic or intrinsic
+/// rotations, bone-length channels and radians: what BVH cannot hold as it is.
+fn general_clip_strategy() -> impl Strategy<Value = Clip> {
+    (skeleton_strategy(), prop::collection::vec(prop::array::uniform4(-1.0f32..1.0), 25), any::<bool>(), any::<bool>(), 1usize..4)
+        .prop_flat_map(|(skeleton, rests, extrinsic, radians, frames)| {
+            let joints: Vec<Joint> = skeleton
+                .joints()
+                .iter()
+                .zip(rests.iter().cycle())
+                .map(|(j, r)| {
+                    let q = Quat::from_array(*r);
+                    let q = if q.length() > 0.1 { q.normalize() } else { Quat::IDENTITY };
+                    let mut j = j.clone().with_rest_rotation(q);
+                    if !j.is_end_site() && j.channels.len() % 3 == 1 {
+                        j.channels.push(Channel::Length);
+                    }
+                    j
+                })
+                .collect();
+            let euler = if extrinsic { EulerConvention::Extrinsic } else { EulerConvention::Intrinsic };
+            let skeleton = Skeleton::new(joints, euler).unwrap();
+            let width = skeleton.channel_count();
+            prop::collection::vec(-3.0f32..3.0, frames * width).prop_map(move |data| {
+                let frames = if width == 0 { 1 } else { frames };
+                let unit = if radians { AngleUnit::Radians } else { AngleUnit::Degrees };
+                let motion = Motion::new(0.05, width, frames, data).unwrap().with_angle_unit(unit);
+                Clip::new(skeleton.clone(), motion).unwrap()
+            })
+        })
 }
 
 fn clip_strategy() -> impl Strategy<Value = Clip> {
@@ -52,7 +81,7 @@ fn clip_strategy() -> impl Strategy<Value = Clip> {
         prop::collection::vec(value, frames * width).prop_map(move |data| {
             let frames = if width == 0 { frames.min(1) } else { frames };
             let data = if width == 0 { vec![] } else { data };
-            Clip { skeleton: skeleton.clone(), motion: Motion::new(dt, width, frames, data).unwrap(), warnings: vec![] }
+            Clip::new(skeleton.clone(), Motion::new(dt, width, frames, data).unwrap()).unwrap()
         })
     })
 }
@@ -65,16 +94,31 @@ proptest! {
         let text = mocap::bvh::write(&clip);
         prop_assert!(!text.contains('\r'));
         let back = mocap::bvh::parse(text.as_bytes()).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
-        prop_assert_eq!(clip.skeleton.len(), back.skeleton.len());
-        for (a, b) in clip.skeleton.joints.iter().zip(&back.skeleton.joints) {
-            if !a.end_site { prop_assert_eq!(&a.name, &b.name); }
-            prop_assert_eq!((a.parent, a.end_site, &a.channels, a.first_channel), (b.parent, b.end_site, &b.channels, b.first_channel));
+        prop_assert_eq!(clip.skeleton().len(), back.skeleton().len());
+        for (a, b) in clip.skeleton().joints().iter().zip(back.skeleton().joints()) {
+            if !a.is_end_site() { prop_assert_eq!(&a.name, &b.name); }
+            prop_assert_eq!((a.parent, a.is_end_site(), &a.channels, a.first_channel()), (b.parent, b.is_end_site(), &b.channels, b.first_channel()));
             prop_assert_eq!(a.offset.to_array().map(f32::to_bits), b.offset.to_array().map(f32::to_bits));
         }
         prop_assert_eq!(clip.frame_count(), back.frame_count());
         prop_assert_eq!(clip.frame_time(), back.frame_time());
-        let bits = |c: &Clip| c.motion.data().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        let bits = |c: &Clip| c.motion().data().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
         prop_assert_eq!(bits(&clip), bits(&back));
+    }
+
+    #[test]
+    fn rest_rotations_and_general_channels_survive_write_then_parse(clip in general_clip_strategy()) {
+        let text = mocap::bvh::write(&clip);
+        let back = mocap::bvh::parse(text.as_bytes()).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+        prop_assert_eq!(clip.skeleton().len(), back.skeleton().len());
+        prop_assert_eq!(clip.frame_count(), back.frame_count());
+        let size = clip.bounds().size().length().max(1.0);
+        for frame in 0..clip.frame_count() {
+            // Joints are written depth-first, as the random trees already are.
+            for (n, (a, b)) in clip.world_positions(frame).iter().zip(back.world_positions(frame)).enumerate() {
+                prop_assert!((*a - b).length() <= 1e-4 * size, "frame {} joint {}: {} vs {}", frame, n, a, b);
+            }
+        }
     }
 
     #[test]

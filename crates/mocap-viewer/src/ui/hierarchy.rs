@@ -58,7 +58,7 @@ fn character_entry(ui: &mut egui::Ui, index: usize, c: &mut Character, mut tree:
         })
         .body(|ui| {
             offset_row(ui, c);
-            let joints = &c.document.clip.skeleton.joints;
+            let joints = &c.document.clip.skeleton().joints();
             let roots = joints.iter().enumerate().filter(|(_, j)| j.parent.is_none()).map(|(i, _)| i);
             for root in roots {
                 joint_row(ui, c, index, root, &mut tree);
@@ -86,12 +86,12 @@ fn offset_row(ui: &mut egui::Ui, c: &mut Character) {
 
 fn joint_row(ui: &mut egui::Ui, c: &Character, character: usize, index: usize, tree: &mut Tree<'_>) {
     let doc = &c.document;
-    let Some(joint) = doc.clip.skeleton.joints.get(index) else { return };
+    let Some(joint) = doc.clip.skeleton().joints().get(index) else { return };
     tree.labels.push(joint.name.clone());
     let children = doc.children.get(index).map_or(&[][..], Vec::as_slice);
     let here = Selection { character, joint: index };
     let is_selected = *tree.selected == Some(here);
-    let text = if joint.end_site { egui::RichText::new(&joint.name).weak() } else { egui::RichText::new(&joint.name) };
+    let text = if joint.is_end_site() { egui::RichText::new(&joint.name).weak() } else { egui::RichText::new(&joint.name) };
     let label = |ui: &mut egui::Ui, tree: &mut Tree<'_>| {
         let response = ui.selectable_label(is_selected, text.clone());
         if response.clicked() {

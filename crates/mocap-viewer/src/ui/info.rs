@@ -21,7 +21,7 @@ pub fn show(ui: &mut egui::Ui, doc: Option<&Document>, count: usize) {
         if count > 1 {
             row("Open", format!("{count} characters"));
         }
-        row("Joints", format!("{} (+{} End Sites)", doc.joint_count(), clip.skeleton.joints.len().saturating_sub(doc.joint_count())));
+        row("Joints", format!("{} (+{} End Sites)", doc.joint_count(), clip.skeleton().joints().len().saturating_sub(doc.joint_count())));
         row("Frames", clip.frame_count().to_string());
         row("FPS", format!("{:.2}", clip.fps()));
         row("Duration", format!("{:.3} s", clip.duration()));

@@ -14,7 +14,7 @@ pub fn show(ui: &mut egui::Ui, selected: Option<(&Document, usize)>, frame: usiz
         ui.label("Click a joint in the hierarchy to inspect it.");
         return;
     };
-    let Some(joint) = doc.clip.skeleton.joints.get(index) else { return };
+    let Some(joint) = doc.clip.skeleton().joints().get(index) else { return };
     let values = doc.clip.channel_values(frame);
     egui::Grid::new("joint").num_columns(2).striped(true).show(ui, |ui| {
         ui.label("Name");
@@ -24,7 +24,7 @@ pub fn show(ui: &mut egui::Ui, selected: Option<(&Document, usize)>, frame: usiz
         ui.label(&doc.name);
         ui.end_row();
         ui.label("Parent");
-        let parent = joint.parent.and_then(|p| doc.clip.skeleton.joints.get(p)).map_or("—", |p| p.name.as_str());
+        let parent = joint.parent.and_then(|p| doc.clip.skeleton().joints().get(p)).map_or("—", |p| p.name.as_str());
         ui.label(parent);
         ui.end_row();
         ui.label("Offset");
@@ -32,7 +32,7 @@ pub fn show(ui: &mut egui::Ui, selected: Option<(&Document, usize)>, frame: usiz
         ui.end_row();
         for (k, channel) in joint.channels.iter().enumerate() {
             ui.label(channel.to_string());
-            let v = values.get(joint.first_channel + k).copied().unwrap_or(f32::NAN);
+            let v = values.get(joint.first_channel() + k).copied().unwrap_or(f32::NAN);
             ui.monospace(format!("{v:10.4}"));
             ui.end_row();
         }
@@ -52,10 +52,10 @@ fn plot(ui: &mut egui::Ui, doc: &Document, joint: &mocap::Joint, time: f64) {
         .allow_scroll(false)
         .show(ui, |plot_ui| {
             for (k, channel) in joint.channels.iter().enumerate() {
-                let c = joint.first_channel + k;
+                let c = joint.first_channel() + k;
                 let points: Vec<[f64; 2]> = (0..frames)
                     .step_by(step)
-                    .map(|f| [f as f64 * clip.frame_time(), f64::from(clip.motion.value(f, c))])
+                    .map(|f| [f as f64 * clip.frame_time(), f64::from(clip.motion().value(f, c))])
                     .collect();
                 plot_ui.line(egui_plot::Line::new(channel.to_string(), points));
             }

@@ -3,7 +3,7 @@
 use super::cursor::{Cursor, Token};
 use crate::channel::Channel;
 use crate::error::{ParseError, Warning};
-use crate::skeleton::{Joint, Skeleton};
+use crate::skeleton::{EulerConvention, Joint, Skeleton};
 use glam::Vec3;
 
 /// Everything before the motion rows.
@@ -52,13 +52,12 @@ struct Builder<'a> {
     joints: Vec<Joint>,
     /// Open joints, innermost last, with whether each has had its OFFSET.
     stack: Vec<(usize, bool)>,
-    next_channel: usize,
     warnings: Vec<Warning>,
 }
 
 /// Parses the header of a BVH file.
 pub(crate) fn parse_header(src: &[u8]) -> Result<Header, ParseError> {
-    let mut b = Builder { cursor: Cursor::new(src), joints: Vec::new(), stack: Vec::new(), next_channel: 0, warnings: Vec::new() };
+    let mut b = Builder { cursor: Cursor::new(src), joints: Vec::new(), stack: Vec::new(), warnings: Vec::new() };
     let first = b.cursor.next_token().ok_or_else(|| ParseError::new(1, 1, "empty file: expected HIERARCHY"))?;
     if !first.is("HIERARCHY") {
         return Err(error_at(&first, format!("expected HIERARCHY at the start of a BVH file, found `{}`", first.show())));
@@ -73,11 +72,11 @@ pub(crate) fn parse_header(src: &[u8]) -> Result<Header, ParseError> {
                 return Err(end_of_file(&b.cursor, "ROOT"));
             }
             b.warnings.push(Warning { line: None, message: "no MOTION section: showing the skeleton in its rest pose".into() });
-            return Ok(b.finish(None, None, None, false));
+            return b.finish(None, None, None, false);
         };
         if b.stack.is_empty() {
             if token.is("ROOT") {
-                b.open_joint(&token, None, false)?;
+                b.open_joint(&token, None, false, None)?;
             } else if token.is("MOTION") {
                 if b.joints.is_empty() {
                     return Err(error_at(&token, "expected ROOT before MOTION: the file has no skeleton"));
@@ -96,8 +95,12 @@ pub(crate) fn parse_header(src: &[u8]) -> Result<Header, ParseError> {
 }
 
 impl<'a> Builder<'a> {
-    fn finish(self, declared_frames: Option<(u64, u32)>, frame_time: Option<(f64, u32)>, data: Option<(usize, u32, u32)>, has_motion: bool) -> Header {
-        Header { skeleton: Skeleton { joints: self.joints }, declared_frames, frame_time, data, has_motion, warnings: self.warnings }
+    fn finish(self, declared_frames: Option<(u64, u32)>, frame_time: Option<(f64, u32)>, data: Option<(usize, u32, u32)>, has_motion: bool) -> Result<Header, ParseError> {
+        // Joints were pushed parent-first with End Sites channel-free, so this holds;
+        // a non-finite OFFSET is the one thing the file can still get wrong.
+        let skeleton = Skeleton::new(self.joints, EulerConvention::Intrinsic)
+            .map_err(|e| ParseError::new(1, 1, format!("{e}")))?;
+        Ok(Header { skeleton, declared_frames, frame_time, data, has_motion, warnings: self.warnings })
     }
 
     fn current(&self) -> Option<usize> {
@@ -107,7 +110,7 @@ impl<'a> Builder<'a> {
     /// One item inside an open joint's braces.
     fn joint_item(&mut self, token: &Token<'a>) -> Result<(), ParseError> {
         let Some(current) = self.current() else { return Ok(()) };
-        let in_end_site = self.joints.get(current).is_some_and(|j| j.end_site);
+        let in_end_site = self.joints.get(current).is_some_and(Joint::is_end_site);
         if token.is("OFFSET") {
             let mut v = [0.0f32; 3];
             for (axis, slot) in v.iter_mut().enumerate() {
@@ -131,18 +134,24 @@ impl<'a> Builder<'a> {
             if in_end_site {
                 return Err(error_at(token, "an End Site cannot contain a JOINT"));
             }
-            self.open_joint(token, Some(current), false)?;
+            self.open_joint(token, Some(current), false, None)?;
         } else if token.is("End") || token.is("EndSite") {
             if in_end_site {
                 return Err(error_at(token, "an End Site cannot contain another End Site"));
             }
+            let mut glued_name = None;
             if token.is("End") {
                 let site = self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, "`Site` after `End`"))?;
-                if !site.is("Site") {
+                let starts_with_site = site.text.get(..4).is_some_and(|w| w.eq_ignore_ascii_case(b"Site"));
+                if !starts_with_site {
                     return Err(error_at(&site, format!("expected `Site` after `End`, found `{}`", site.show())));
                 }
+                // `End Site4`: a suffix glued to `Site` names the End Site.
+                if site.text.len() > 4 {
+                    glued_name = Some(decode_name(site.text));
+                }
             }
-            self.open_joint(token, Some(current), true)?;
+            self.open_joint(token, Some(current), true, glued_name)?;
         } else if token.is("}") {
             self.close_joint(token);
         } else {
@@ -170,22 +179,20 @@ impl<'a> Builder<'a> {
             channels.push(channel);
         }
         if let Some(joint) = self.joints.get_mut(current) {
-            joint.first_channel = self.next_channel;
-            self.next_channel += channels.len();
             joint.channels = channels;
         }
         Ok(())
     }
 
     /// Reads a name (rest of the line, or the next token), the `{`, and opens a joint.
-    fn open_joint(&mut self, keyword: &Token<'a>, parent: Option<usize>, end_site: bool) -> Result<(), ParseError> {
+    fn open_joint(&mut self, keyword: &Token<'a>, parent: Option<usize>, end_site: bool, glued_name: Option<String>) -> Result<(), ParseError> {
         let name_token = self.cursor.rest_of_line();
         let name = match (name_token, end_site) {
             (Some(t), _) => decode_name(t.text),
-            (None, true) => {
+            (None, true) => glued_name.unwrap_or_else(|| {
                 let parent_name = parent.and_then(|p| self.joints.get(p)).map_or("", |j| j.name.as_str());
                 format!("{parent_name}_End")
-            }
+            }),
             (None, false) => {
                 // The name may be on the next line; it must not be a brace.
                 match self.cursor.peek_token() {
@@ -201,7 +208,7 @@ impl<'a> Builder<'a> {
         if open.text != b"{" {
             return Err(error_at(&open, format!("expected `{{` after joint name `{name}`, found `{}`", open.show())));
         }
-        self.joints.push(Joint { name, parent, offset: Vec3::ZERO, channels: Vec::new(), first_channel: self.next_channel, end_site });
+        self.joints.push(if end_site { Joint::end_site(name, parent, Vec3::ZERO) } else { Joint::new(name, parent, Vec3::ZERO, Vec::new()) });
         self.stack.push((self.joints.len() - 1, false));
         Ok(())
     }
@@ -219,7 +226,7 @@ impl<'a> Builder<'a> {
         let mut frame_time = None;
         loop {
             let Some(t) = self.cursor.peek_token() else {
-                return Ok(self.finish(frames, frame_time, None, true));
+                return self.finish(frames, frame_time, None, true);
             };
             let lower = t.text.to_ascii_lowercase();
             if lower.starts_with(b"frames") && (lower.len() == 6 || lower[6] == b':') {
@@ -248,7 +255,7 @@ impl<'a> Builder<'a> {
                 let v = v.ok_or_else(|| error_at(&value, format!("expected a number after Frame Time:, found `{}`", value.show())))?;
                 frame_time = Some((v, t.line));
             } else {
-                return Ok(self.finish(frames, frame_time, Some((t.start, t.line, t.column)), true));
+                return self.finish(frames, frame_time, Some((t.start, t.line, t.column)), true);
             }
         }
     }

@@ -72,5 +72,6 @@ pub fn parse(bytes: &[u8]) -> Result<Clip, ParseError> {
     let motion = Motion::new(frame_time, width, frame_count, rows.data)
         .or_else(|| Motion::new(frame_time, width, 0, Vec::new()))
         .unwrap_or_default();
-    Ok(Clip { skeleton: header.skeleton, motion, warnings })
+    let clip = Clip::new(header.skeleton, motion).map_err(|e| ParseError::new(1, 1, e.to_string()))?;
+    Ok(clip.with_warnings(warnings))
 }

@@ -29,46 +29,38 @@ fn indent(out: &mut String, depth: usize) {
     out.extend(std::iter::repeat_n('\t', depth.min(MAX_INDENT)));
 }
 
-/// Children of each joint, in file order.
-fn children(skeleton: &Skeleton) -> Vec<Vec<usize>> {
-    let mut kids = vec![Vec::new(); skeleton.len()];
-    for (i, j) in skeleton.joints.iter().enumerate() {
-        if let Some(list) = j.parent.and_then(|p| kids.get_mut(p)) {
-            list.push(i);
-        }
-    }
-    kids
+/// Channel columns in the order a reader will assign them: joints in depth-first
+/// file order (the order the hierarchy is written in), which may permute the clip's.
+fn column_order(skeleton: &Skeleton, written: &[usize]) -> Vec<usize> {
+    written.iter().filter_map(|&j| skeleton.joints().get(j)).flat_map(|j| j.columns()).collect()
 }
 
-/// Channel columns in the order a reader will assign them: joints in file order.
-/// The writer emits rows in that order, which may permute the clip's columns.
-fn column_order(skeleton: &Skeleton) -> Vec<usize> {
-    skeleton
-        .joints
-        .iter()
-        .flat_map(|j| (0..j.channels.len()).map(move |k| j.first_channel + k))
-        .collect()
-}
-
-/// Serialises a clip as BVH text.
+/// Serialises a clip as BVH text. A clip BVH cannot hold as it is (rest rotations,
+/// extrinsic rotations, radians, scale or length channels) is first baked by
+/// [`crate::bake::to_bvh`], which keeps every joint's model position.
 pub fn write(clip: &Clip) -> String {
-    let skeleton = &clip.skeleton;
-    let kids = children(skeleton);
-    let mut out = String::with_capacity(64 * skeleton.len() + clip.motion.data().len() * 10);
+    if !crate::bake::is_bvh_ready(clip) {
+        return write(&crate::bake::to_bvh(clip).0);
+    }
+    let skeleton = clip.skeleton();
+    let kids = skeleton.children();
+    let mut written = Vec::with_capacity(skeleton.len());
+    let mut out = String::with_capacity(64 * skeleton.len() + clip.motion().data().len() * 10);
     let mut buffer = ryu::Buffer::new();
     out.push_str("HIERARCHY\n");
     // Depth-first, iterative: (joint, depth, closing?)
     let mut stack: Vec<(usize, usize, bool)> = skeleton.roots().map(|r| (r, 0, false)).collect();
     stack.reverse();
     while let Some((j, depth, closing)) = stack.pop() {
-        let Some(joint) = skeleton.joints.get(j) else { continue };
+        let Some(joint) = skeleton.joints().get(j) else { continue };
         if closing {
             indent(&mut out, depth);
             out.push_str("}\n");
             continue;
         }
+        written.push(j);
         indent(&mut out, depth);
-        if joint.end_site {
+        if joint.is_end_site() {
             out.push_str("End Site\n");
         } else {
             out.push_str(if joint.parent.is_none() { "ROOT " } else { "JOINT " });
@@ -84,7 +76,7 @@ pub fn write(clip: &Clip) -> String {
             push_f32(&mut out, &mut buffer, v);
         }
         out.push('\n');
-        if !joint.end_site {
+        if !joint.is_end_site() {
             indent(&mut out, depth + 1);
             let _ = write!(out, "CHANNELS {}", joint.channels.len());
             for c in &joint.channels {
@@ -98,9 +90,9 @@ pub fn write(clip: &Clip) -> String {
             stack.extend(list.iter().rev().map(|&c| (c, depth + 1, false)));
         }
     }
-    let motion = &clip.motion;
+    let motion = clip.motion();
     let _ = write!(out, "MOTION\nFrames: {}\nFrame Time: {}\n", motion.frame_count(), ryu::Buffer::new().format(motion.frame_time()));
-    let order = column_order(skeleton);
+    let order = column_order(skeleton, &written);
     for frame in 0..motion.frame_count() {
         let row = motion.row(frame);
         for (n, &col) in order.iter().enumerate() {

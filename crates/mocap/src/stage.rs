@@ -1,0 +1,281 @@
+//! Several characters on one stage: each clip scaled to metres by its guessed
+//! unit, placed by a layout (side by side or overlaid) plus a hand-set offset, and
+//! one timeline over all of them. Shared by the viewer and `mocap render`; each
+//! keeps what only it needs in an actor's `extra`.
+
+use crate::arrange::spread;
+use crate::clip::{Aabb, Clip, Units};
+use crate::fk::{local_to_model, Transform};
+use crate::pose::LocalPose;
+use crate::sample::{Interpolation, SampleScratch};
+use crate::time::Timeline;
+use glam::Vec3;
+
+/// Gap between spread lanes, as a share of the largest character's size.
+pub const GAP_PER_EXTENT: f32 = 0.5;
+
+/// How characters are placed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Layout {
+    /// Side by side along X, wrapping into rows past eight (see [`crate::arrange::spread`]).
+    #[default]
+    Spread,
+    /// Every layout offset zero, to compare motions in place.
+    Overlay,
+}
+
+impl Layout {
+    /// The name used in the fragment, on command lines and from JavaScript.
+    pub fn name(self) -> &'static str {
+        match self {
+            Layout::Spread => "spread",
+            Layout::Overlay => "overlay",
+        }
+    }
+
+    /// Reads `spread` or `overlay`.
+    pub fn parse(name: &str) -> Option<Layout> {
+        match name {
+            "spread" => Some(Layout::Spread),
+            "overlay" => Some(Layout::Overlay),
+            _ => None,
+        }
+    }
+}
+
+/// Reusable buffers for posing actors.
+#[derive(Clone, Debug, Default)]
+pub struct PoseScratch {
+    local: LocalPose,
+    sample: SampleScratch,
+}
+
+/// A clip placed in the shared world (metres, Y up), with what is derived from it
+/// once, and `extra` for the caller.
+#[derive(Clone, Debug)]
+pub struct Actor<E> {
+    /// File name as given when loading.
+    pub name: String,
+    /// The clip.
+    pub clip: Clip,
+    /// Guessed length unit.
+    pub units: Units,
+    /// Bounds of all joints over all frames, file units.
+    pub bounds: Aabb,
+    /// Size of the first pose in file units (a humanoid's height; 1 when unknown).
+    pub extent: f32,
+    /// Whether it is drawn (hidden actors keep their lane and their time).
+    pub visible: bool,
+    /// Offset set by hand in metres, added to the layout's.
+    pub offset: Vec3,
+    /// Offset the layout gave it in metres (see [`Stage::arrange`]).
+    pub layout_offset: Vec3,
+    /// What the caller keeps per actor.
+    pub extra: E,
+}
+
+impl<E> Actor<E> {
+    /// A visible actor at the origin.
+    pub fn new(name: &str, clip: Clip, extra: E) -> Actor<E> {
+        let extent = clip.pose_extent();
+        let extent = if extent.is_finite() && extent > 0.0 { extent } else { 1.0 };
+        Actor {
+            name: name.to_owned(),
+            units: clip.units(),
+            bounds: clip.bounds(),
+            clip,
+            extent,
+            visible: true,
+            offset: Vec3::ZERO,
+            layout_offset: Vec3::ZERO,
+            extra,
+        }
+    }
+
+    /// Metres per file unit (from the guessed unit).
+    pub fn scale(&self) -> f32 {
+        self.units.meters_per_unit()
+    }
+
+    /// Where the clip's origin stands: layout offset plus the hand-set one (metres).
+    pub fn placement(&self) -> Vec3 {
+        self.layout_offset + self.offset
+    }
+
+    /// Bounds of the whole motion in metres, before placement.
+    pub fn local_bounds(&self) -> Aabb {
+        self.bounds.scaled(self.scale())
+    }
+
+    /// Bounds of the whole motion in metres, where it stands.
+    pub fn world_bounds(&self) -> Aabb {
+        self.local_bounds().translated(self.placement())
+    }
+
+    /// Size of the first pose in metres.
+    pub fn world_extent(&self) -> f32 {
+        self.extent * self.scale()
+    }
+
+    /// The frame of this clip shown at `time` (its own frame time; past its end the last).
+    pub fn frame_at(&self, time: f64) -> usize {
+        self.clip.timeline().frame_at(time)
+    }
+
+    /// Model transforms at `time` in metres, placed: interpolated, or the frame
+    /// shown ([`Interpolation::Step`]). Past its end a clip holds its last pose.
+    pub fn pose_at(&self, time: f64, interpolation: Interpolation, scratch: &mut PoseScratch, out: &mut Vec<Transform>) {
+        self.clip.sample_local_into(time, interpolation, &mut scratch.sample, &mut scratch.local);
+        local_to_model(self.clip.skeleton(), &scratch.local, out);
+        let (scale, at) = (self.scale(), self.placement());
+        for t in out.iter_mut() {
+            t.translation = t.translation * scale + at;
+            t.scale *= scale;
+        }
+    }
+}
+
+/// Every open actor, in order, and how they are placed.
+#[derive(Clone, Debug)]
+pub struct Stage<E> {
+    /// The actors (index 0 is "character 1" in the fragment).
+    pub actors: Vec<Actor<E>>,
+    /// Spread or overlay.
+    pub layout: Layout,
+}
+
+impl<E> Default for Stage<E> {
+    fn default() -> Stage<E> {
+        Stage { actors: Vec::new(), layout: Layout::default() }
+    }
+}
+
+impl<E> Stage<E> {
+    /// A stage holding `actors` in `layout`, arranged.
+    pub fn new(actors: Vec<Actor<E>>, layout: Layout) -> Stage<E> {
+        let mut stage = Stage { actors, layout };
+        stage.arrange();
+        stage
+    }
+
+    /// Closes everything and opens `actors`.
+    pub fn replace(&mut self, actors: Vec<Actor<E>>) {
+        self.actors = actors;
+        self.arrange();
+    }
+
+    /// Adds an actor after the open ones.
+    pub fn add(&mut self, actor: Actor<E>) {
+        self.actors.push(actor);
+        self.arrange();
+    }
+
+    /// Closes actor `index`; returns whether it existed.
+    pub fn remove(&mut self, index: usize) -> bool {
+        if index >= self.actors.len() {
+            return false;
+        }
+        self.actors.remove(index);
+        self.arrange();
+        true
+    }
+
+    /// Shows or hides actor `index`; returns whether it exists.
+    pub fn set_visible(&mut self, index: usize, visible: bool) -> bool {
+        self.actors.get_mut(index).map(|c| c.visible = visible).is_some()
+    }
+
+    /// Switches the layout and places the actors again.
+    pub fn set_layout(&mut self, layout: Layout) {
+        self.layout = layout;
+        self.arrange();
+    }
+
+    /// Recomputes every actor's layout offset. Spread lanes count hidden actors too,
+    /// so hiding one moves no other.
+    pub fn arrange(&mut self) {
+        let offsets = match self.layout {
+            Layout::Overlay => vec![Vec3::ZERO; self.actors.len()],
+            Layout::Spread => {
+                let bounds: Vec<Aabb> = self.actors.iter().map(Actor::local_bounds).collect();
+                let extent = self.actors.iter().map(Actor::world_extent).fold(0.0f32, f32::max);
+                let extent = if extent.is_finite() && extent > 0.0 { extent } else { 1.0 };
+                spread(&bounds, extent * GAP_PER_EXTENT)
+            }
+        };
+        for (c, o) in self.actors.iter_mut().zip(offsets) {
+            c.layout_offset = o;
+        }
+    }
+
+    /// The visible actors with their indices.
+    pub fn visible(&self) -> impl Iterator<Item = (usize, &Actor<E>)> {
+        self.actors.iter().enumerate().filter(|(_, c)| c.visible)
+    }
+
+    /// Union of the visible actors' motion bounds, in metres where they stand.
+    pub fn bounds(&self) -> Aabb {
+        self.visible().fold(Aabb::EMPTY, |union, (_, c)| union.union(&c.world_bounds()))
+    }
+
+    /// Largest first-pose size among the visible actors in metres (1 when none).
+    pub fn extent(&self) -> f32 {
+        let e = self.visible().map(|(_, c)| c.world_extent()).fold(0.0f32, f32::max);
+        if e.is_finite() && e > 0.0 { e } else { 1.0 }
+    }
+
+    /// The longest clip's duration in seconds (hidden actors included).
+    pub fn duration(&self) -> f64 {
+        self.actors.iter().map(|c| c.clip.duration()).filter(|d| d.is_finite()).fold(0.0, f64::max)
+    }
+
+    /// The shared timeline: frames in the frame time of actor `reference` (the first
+    /// when out of range), as many as it takes to reach the end of the longest clip
+    /// ([`Timeline::frames_to_reach`]). With one actor it is that clip's timeline.
+    pub fn timeline(&self, reference: usize) -> Option<Timeline> {
+        let r = self.actors.get(reference).or(self.actors.first())?.clip.timeline();
+        let duration = self.duration();
+        let frames = if duration > 0.0 {
+            r.frames_to_reach(duration)
+        } else {
+            self.actors.iter().map(|c| c.clip.frame_count()).max().unwrap_or(0).min(1)
+        };
+        Some(Timeline::new(r.frame_time(), frames.max(r.frames())))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn clip(frames: usize, frame_time: f64, height: f32) -> Clip {
+        let mut text = format!("HIERARCHY\nROOT a\n{{\nOFFSET 0 0 0\nCHANNELS 1 Xposition\nJOINT b\n{{\nOFFSET 0 0 0\nEnd Site\n{{\nOFFSET 0 {height} 0\n}}\n}}\n}}\nMOTION\nFrames: {frames}\nFrame Time: {frame_time}\n");
+        for f in 0..frames {
+            text.push_str(&format!("{f}\n"));
+        }
+        crate::bvh::parse(text.as_bytes()).unwrap()
+    }
+
+    #[test]
+    fn one_timeline_spans_the_longest_clip_in_the_reference_frame_time() {
+        let stage = Stage::new(vec![Actor::new("a", clip(11, 0.1, 1.7), ()), Actor::new("b", clip(121, 1.0 / 120.0, 1.7), ())], Layout::Spread);
+        assert_eq!(stage.timeline(0).unwrap().frames(), 11);
+        assert_eq!(stage.timeline(1).unwrap().frames(), 121);
+        let long = Stage::new(vec![Actor::new("a", clip(3, 0.1, 1.7), ()), Actor::new("b", clip(31, 0.0333333, 1.7), ())], Layout::Spread);
+        assert_eq!(long.timeline(0).unwrap().frames(), 11, "1 s in 0.1 s frames, within the snap of 0.999999 s");
+        assert!(Stage::<()>::default().timeline(0).is_none());
+    }
+
+    #[test]
+    fn spread_places_actors_apart_and_overlay_together() {
+        let mut stage = Stage::new(vec![Actor::new("a", clip(2, 0.1, 1.7), ()), Actor::new("b", clip(2, 0.1, 170.0), ())], Layout::Spread);
+        assert_eq!(stage.actors[1].units, Units::Centimeters);
+        assert!((stage.actors[1].world_extent() - 1.7).abs() < 1e-4);
+        assert!(stage.actors[0].placement().x < stage.actors[1].placement().x);
+        stage.set_layout(Layout::Overlay);
+        assert!(stage.actors.iter().all(|a| a.placement() == Vec3::ZERO));
+        let mut out = Vec::new();
+        stage.actors[1].pose_at(0.05, Interpolation::Linear, &mut PoseScratch::default(), &mut out);
+        assert!((out[2].translation.y - 1.7).abs() < 1e-4, "{:?}", out[2]);
+    }
+}
