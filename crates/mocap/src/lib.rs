@@ -14,6 +14,7 @@
 
 pub mod arrange;
 pub mod batch;
+pub mod bva;
 pub mod bvh;
 pub mod channel;
 pub mod clip;
