@@ -19,6 +19,11 @@
 //! usable become [`Warning`]s; the rest are [`ParseError`]s with line and column.
 //! Nothing is allocated from a number written in the file.
 //!
+//! The units line may be left out: when the line after the channel line is a row of
+//! numbers, the next `Segment:` line, or the end of the file, the units default to
+//! `INCHES` for translation and scale and `DEGREES` for rotation (by channel kind,
+//! so a permuted channel line gets matching units), with one warning per file.
+//!
 //! ```
 //! let text = b"Segment: Hips\nFrames: 1\nFrame Time: 0.5\n\
 //!     XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE\n\

@@ -74,7 +74,13 @@ fn write_segment(out: &mut String, buffer: &mut ryu::Buffer, segment: &Segment) 
 
 /// Serialises a BVA file: for each segment `Segment:`, `Frames:`, `Frame Time:`,
 /// the channel line, the units line and one tab-separated row per frame, LF line
-/// endings. Warnings are not written. `parse(write(x))` gives bit-identical data.
+/// endings. Warnings are not written. `parse(write(x))` gives bit-identical data
+/// and frame times. Values the format cannot hold are adjusted so the output still
+/// reads: a name is put on one line and trimmed (`unnamed` when empty), a unit
+/// becomes one word (blanks → `_`, empty → `-`), and only whole rows present in
+/// `data` (at most `frame_count`) are written. A units line whose first word reads
+/// as a number (`inf`, `nan`) or as `Segment` cannot be told from a row or the next
+/// segment, and does not read back.
 pub fn write(bva: &Bva) -> String {
     let values: usize = bva.segments.iter().map(|s| s.data.len()).sum();
     let mut out = String::with_capacity(160 * bva.segments.len() + values.saturating_mul(10));
