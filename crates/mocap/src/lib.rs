@@ -15,6 +15,7 @@
 pub mod arrange;
 pub mod bake;
 pub mod batch;
+pub mod bva;
 pub mod bvh;
 pub mod channel;
 pub mod clip;
