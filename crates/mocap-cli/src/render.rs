@@ -3,7 +3,8 @@
 //! sheets. The scene is built from world positions; the renderer knows no formats.
 
 use mocap::glam::Vec3;
-use mocap::{Aabb, Clip, Interpolation};
+use mocap::stage::{Actor, Layout, PoseScratch, Stage};
+use mocap::{Clip, Interpolation, Timeline};
 use mocap_render::{Camera, DrawMode, FigureJoint, FigureStyle, Grid, RenderTarget, Scene, SceneRenderer, wgpu};
 use std::path::Path;
 
@@ -178,54 +179,44 @@ impl Offscreen {
     }
 }
 
-/// The clips to draw, in metres (each scaled by its guessed unit, so clips in cm
-/// and inches stand side by side at the same size), placed side by side along X
-/// (wrapping into rows past eight, see [`mocap::arrange::spread`]).
-pub struct Stage<'a> {
-    clips: Vec<&'a Clip>,
-    scales: Vec<f32>,
-    offsets: Vec<Vec3>,
-    figures: Vec<Vec<FigureJoint>>,
-    bounds: Aabb,
-    extent: f32,
-    mode: DrawMode,
+/// The figure the renderer draws for a skeleton: parents, and joint markers on
+/// every joint but End Sites.
+pub fn figure(skeleton: &mocap::Skeleton) -> Vec<FigureJoint> {
+    skeleton.joints().iter().map(|j| FigureJoint { parent: j.parent, marker: !j.is_end_site() }).collect()
 }
 
-impl<'a> Stage<'a> {
-    /// Places `clips` in lanes and measures the whole motion.
-    pub fn new(clips: Vec<&'a Clip>) -> Stage<'a> {
-        let scales: Vec<f32> = clips.iter().map(|c| c.units().meters_per_unit()).collect();
-        let per_clip: Vec<Aabb> = clips.iter().zip(&scales).map(|(c, &s)| c.bounds().scaled(s)).collect();
-        let extent = clips.iter().zip(&scales).map(|(c, &s)| c.pose_extent() * s).fold(0.0f32, f32::max).max(1e-3);
-        // Lanes side by side (rows past eight clips), as the viewer's Spread layout.
-        let offsets = mocap::arrange::spread(&per_clip, extent * 0.5);
-        let bounds = per_clip.iter().zip(&offsets).fold(Aabb::EMPTY, |union, (b, &o)| union.union(&b.translated(o)));
-        let figures = clips
-            .iter()
-            .map(|c| c.skeleton().joints().iter().map(|j| FigureJoint { parent: j.parent, end_site: j.is_end_site() }).collect())
-            .collect();
-        Stage { clips, scales, offsets, figures, bounds, extent, mode: DrawMode::default() }
+/// How `mocap render` draws the shared [`Stage`] (the one the viewer uses: clips
+/// in metres by their guessed units, side by side in lanes, one timeline over all).
+pub struct StageView {
+    stage: Stage<Vec<FigureJoint>>,
+    mode: DrawMode,
+    scratch: std::cell::RefCell<(PoseScratch, Vec<mocap::Transform>)>,
+}
+
+impl StageView {
+    /// Places `clips` (name, clip) in lanes.
+    pub fn new(clips: Vec<(String, Clip)>) -> StageView {
+        let actors = clips.into_iter().map(|(name, clip)| {
+            let figure = figure(clip.skeleton());
+            Actor::new(&name, clip, figure)
+        });
+        StageView { stage: Stage::new(actors.collect(), Layout::Spread), mode: DrawMode::default(), scratch: Default::default() }
     }
 
     /// The same stage drawn in `mode`.
-    pub fn with_mode(mut self, mode: DrawMode) -> Stage<'a> {
+    pub fn with_mode(mut self, mode: DrawMode) -> StageView {
         self.mode = mode;
         self
     }
 
     /// The longest clip's duration.
     pub fn duration(&self) -> f64 {
-        self.clips.iter().map(|c| c.duration()).fold(0.0, f64::max)
+        self.stage.duration()
     }
 
-    /// Frame time of the first clip (frames on the command line count in it).
-    pub fn frame_time(&self) -> f64 {
-        self.clips.first().map_or(1.0 / 30.0, |c| c.frame_time())
-    }
-
-    /// Frames of the longest clip, in the first clip's frame time.
-    pub fn frame_count(&self) -> usize {
-        (self.duration() / self.frame_time()).round() as usize + 1
+    /// The shared timeline, in the first clip's frame time (frames on the command line count in it).
+    pub fn timeline(&self) -> Timeline {
+        self.stage.timeline(0).unwrap_or(Timeline::new(mocap::time::DEFAULT_FRAME_TIME, 0))
     }
 
     /// Fills `scene` with the floor and every clip posed at `time` seconds.
@@ -233,35 +224,37 @@ impl<'a> Stage<'a> {
         scene.clear();
         scene.background = [38, 40, 46, 255];
         scene.grid = Some(self.floor());
-        let mut positions = Vec::new();
-        for (n, clip) in self.clips.iter().enumerate() {
-            let (Some(offset), Some(&scale), Some(joints)) = (self.offsets.get(n), self.scales.get(n), self.figures.get(n)) else { break };
-            clip.sample_world_positions_into(time.min(clip.duration()), Interpolation::Linear, &mut positions);
-            positions.iter_mut().for_each(|p| *p = *p * scale + *offset);
+        let extent = self.stage.extent();
+        let mut scratch = self.scratch.borrow_mut();
+        let (pose_scratch, pose) = &mut *scratch;
+        for (n, actor) in self.stage.visible() {
+            actor.pose_at(time, Interpolation::Linear, pose_scratch, pose);
             let style = FigureStyle {
                 mode: self.mode,
                 color: mocap_render::PALETTE[n % mocap_render::PALETTE.len()],
                 joint_color: mocap_render::JOINT_COLOR,
-                size: self.extent,
+                size: extent,
                 show_joints: true,
                 highlight: None,
             };
-            mocap_render::push_figure(scene, joints, &positions, &style);
+            mocap_render::push_figure(scene, &actor.extra, pose, &style);
         }
     }
 
     /// A floor under the lowest point of the motion, with 0.5 m cells.
     fn floor(&self) -> Grid {
-        Grid::floor(self.bounds.min, self.bounds.max, self.extent, 0.5)
+        let b = self.stage.bounds();
+        Grid::floor(b.min, b.max, self.stage.extent(), 0.5)
     }
 
     /// A camera orbiting the motion's centre; the default distance fits it all.
     pub fn camera(&self, orbit: Orbit, size: [u32; 2]) -> Camera {
         let aspect = size[0] as f32 / size[1] as f32;
-        let (target, radius) = if self.bounds.is_empty() {
-            (Vec3::ZERO, self.extent)
+        let (bounds, extent) = (self.stage.bounds(), self.stage.extent());
+        let (target, radius) = if bounds.is_empty() {
+            (Vec3::ZERO, extent)
         } else {
-            (self.bounds.center(), (self.bounds.size().length() * 0.5).max(self.extent * 0.5))
+            (bounds.center(), (bounds.size().length() * 0.5).max(extent * 0.5))
         };
         let fit = (FOV_Y * 0.5).tan() * aspect.min(1.0);
         let distance = orbit.distance.unwrap_or(radius / fit * 1.05);

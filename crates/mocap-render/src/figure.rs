@@ -56,7 +56,7 @@ pub struct FigureJoint {
     /// Index of the parent joint, `None` for a root.
     pub parent: Option<usize>,
     /// An end point: no joint marker.
-    pub end_site: bool,
+    pub marker: bool,
 }
 
 /// Looks of one figure.
@@ -114,7 +114,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
                 if let Some(q) = parent {
                     let radius = bone_radius(q.distance(p), size);
                     scene.capsules.push(Capsule { a: q, b: p, radius, color });
-                } else if !joint.is_end_site() {
+                } else if joint.marker {
                     // A root: a ball so a lone root (or the hips) is visible.
                     scene.capsules.push(Capsule { a: p, b: p, radius: size * 0.03, color });
                 }
@@ -127,7 +127,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
                     scene.lines.push(Line { a: q, b: p, color, width_px: 3.0 });
                     scene.shadow_casters.push(Capsule { a: q, b: p, radius: size * 0.006, color });
                 }
-                if !joint.is_end_site() && (style.show_joints || is_highlight) {
+                if joint.marker && (style.show_joints || is_highlight) {
                     let (radius, color) = if is_highlight { (joint_radius * 1.8, color) } else { (joint_radius, style.joint_color) };
                     scene.spheres.push(Sphere { center: p, radius, color });
                 }
@@ -142,9 +142,9 @@ mod tests {
 
     fn chain() -> (Vec<FigureJoint>, Vec<Vec3>) {
         let joints = vec![
-            FigureJoint { parent: None, end_site: false },
-            FigureJoint { parent: Some(0), end_site: false },
-            FigureJoint { parent: Some(1), end_site: true },
+            FigureJoint { parent: None, marker: true },
+            FigureJoint { parent: Some(0), marker: true },
+            FigureJoint { parent: Some(1), marker: false },
         ];
         (joints, vec![Vec3::ZERO, Vec3::Y, Vec3::new(0.0, 2.0, 0.0)])
     }

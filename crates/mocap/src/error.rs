@@ -51,9 +51,23 @@ pub enum LoadError {
         error: ParseError,
     },
     /// Neither the extension nor the content matches a format we read.
-    #[error("{file}: not a motion file this viewer reads (expected a .bvh file starting with HIERARCHY)")]
+    #[error("{file}: not a motion file this viewer reads (BVH, BVA, or an Acclaim .asf skeleton with .amc motions)")]
     UnknownFormat {
         /// The file name as given by the caller.
         file: String,
+    },
+    /// An Acclaim motion with no skeleton to read it with.
+    #[error("{file}: an Acclaim motion (.amc) needs its skeleton: open it together with its .asf file")]
+    MissingSkeleton {
+        /// The motion file's name.
+        file: String,
+    },
+    /// The skeleton an Acclaim motion needs could not be read.
+    #[error("{file}: its skeleton could not be read: {skeleton}")]
+    SkeletonFailed {
+        /// The motion file's name.
+        file: String,
+        /// Why the skeleton failed.
+        skeleton: Box<LoadError>,
     },
 }

@@ -1,8 +1,10 @@
-//! Motion-capture data: readers and writers for the classic formats, skeletons,
-//! motion matrices, sampling and forward kinematics.
+//! Motion-capture data: readers and writers for the classic formats (Biovision
+//! BVH and BVA, Acclaim ASF/AMC), one animation model for all of them, sampling and
+//! forward kinematics.
 //!
-//! Data flows one way: bytes → [`Clip`] (skeleton + motion) → sampled pose →
-//! world transforms. This crate touches no file system, GPU or browser: it takes
+//! Data flows one way: bytes → [`Clip`] (skeleton + motion, [`load`]) → sampled
+//! [`LocalPose`] ([`sample`]) → [later stages: layers, IK, edits] → model
+//! transforms ([`local_to_model`]). This crate touches no file system, GPU or browser: it takes
 //! bytes and returns data.
 //!
 //! ```
@@ -12,6 +14,7 @@
 //! assert_eq!(positions[1], mocap::glam::Vec3::new(1.0, 3.0, 3.0));
 //! ```
 
+pub mod acclaim;
 pub mod arrange;
 pub mod bake;
 pub mod batch;
@@ -22,6 +25,7 @@ pub mod clip;
 pub mod error;
 mod fastmath;
 pub mod fk;
+pub mod load;
 pub mod motion;
 pub mod pose;
 pub mod sample;
@@ -40,30 +44,4 @@ pub use sample::{Interpolation, SampleScratch};
 pub use skeleton::{EulerConvention, Joint, Limit, Skeleton};
 pub use time::Timeline;
 
-/// The formats [`load`] recognises.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
-    /// Biovision hierarchy (`.bvh`).
-    Bvh,
-}
-
-impl Format {
-    /// Picks a format from the file name's extension, then from the content.
-    pub fn detect(file_name: &str, bytes: &[u8]) -> Option<Format> {
-        let ext = file_name.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
-        match ext.as_deref() {
-            Some("bvh") => Some(Format::Bvh),
-            _ if bvh::sniff(bytes) => Some(Format::Bvh),
-            _ => None,
-        }
-    }
-}
-
-/// Reads a motion file of any supported format; `file_name` picks the format and
-/// names the file in errors (`file:line:col: message`).
-pub fn load(file_name: &str, bytes: &[u8]) -> Result<Clip, LoadError> {
-    match Format::detect(file_name, bytes) {
-        Some(Format::Bvh) => bvh::parse(bytes).map_err(|error| LoadError::Parse { file: file_name.to_owned(), error }),
-        None => Err(LoadError::UnknownFormat { file: file_name.to_owned() }),
-    }
-}
+pub use load::{load, load_one, Format, Input, Loaded, Loader};

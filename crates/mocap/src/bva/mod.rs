@@ -35,11 +35,13 @@
 //! ```
 
 mod lines;
+mod model;
 mod read;
 #[cfg(test)]
 mod tests;
 mod write;
 
+pub use model::{from_clip, to_clip};
 pub use write::write;
 
 use crate::error::{ParseError, Warning};
