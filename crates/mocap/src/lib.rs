@@ -12,6 +12,7 @@
 //! assert_eq!(positions[1], mocap::glam::Vec3::new(1.0, 3.0, 3.0));
 //! ```
 
+pub mod acclaim;
 pub mod arrange;
 pub mod batch;
 pub mod bvh;
