@@ -489,3 +489,208 @@ impl<'a, 'l> Scanner<'a, 'l> {
         self.amc
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const LAYOUT: [(&str, usize); 4] = [("root", 6), ("hip", 3), ("toe", 0), ("knee", 2)];
+
+    fn parse(src: &str) -> Amc {
+        parse_amc(src.as_bytes(), &LAYOUT).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    fn fail(src: &str) -> ParseError {
+        match parse_amc(src.as_bytes(), &LAYOUT) {
+            Ok(amc) => panic!("expected an error, parsed {amc:?}"),
+            Err(e) => e,
+        }
+    }
+
+    fn at(e: &ParseError, line: u32, column: u32, words: &str) {
+        assert_eq!((e.line, e.column), (line, column), "{e}");
+        assert!(e.message.contains(words), "`{}` does not say `{words}`", e.message);
+    }
+
+    const TWO_FRAMES: &str = "#!OML:ASF test.asf
+:FULLY-SPECIFIED
+:DEGREES
+1
+root 1 2 3 4 5 6
+hip 7 8 9
+knee 10 11
+2
+knee -1e0 3.64024e-015
+root 0.5 -0.25 +2 1.5E+002 -6.75868e-015 0
+toe
+hip\t-7\t-8.5\t-9
+";
+
+    #[test]
+    fn frames_with_bones_in_any_order() {
+        let amc = parse(TWO_FRAMES);
+        assert!(amc.fully_specified);
+        assert_eq!(amc.angle, AngleUnit::Degrees);
+        assert_eq!((amc.frame_count, amc.width, amc.first_frame_number), (2, 11, Some(1)));
+        assert_eq!(amc.frame(0), Some(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0][..]));
+        assert_eq!(amc.frame(1), Some(&[0.5, -0.25, 2.0, 150.0, -6.75868e-15, 0.0, -7.0, -8.5, -9.0, -1.0, 3.64024e-15][..]));
+        assert_eq!(amc.frame(2), None);
+        assert!(amc.warnings.is_empty(), "{:?}", amc.warnings);
+        assert!(sniff_amc(TWO_FRAMES.as_bytes()));
+        // The same with CRLF, lone CR and a byte-order mark.
+        for text in [TWO_FRAMES.replace('\n', "\r\n"), TWO_FRAMES.replace('\n', "\r"), format!("\u{feff}{TWO_FRAMES}")] {
+            assert_eq!(parse(&text), amc);
+            assert!(sniff_amc(text.as_bytes()));
+        }
+    }
+
+    #[test]
+    fn missing_bone_keeps_previous_value_with_one_warning() {
+        let amc = parse("1\nroot 1 2 3 4 5 6\nhip 7 8 9\n2\nroot 0 0 0 0 0 0\n3\nroot 1 1 1 1 1 1\nknee 5 6\n4\nroot 1 1 1 1 1 1\nhip 1 2 3\nknee 7 8\n");
+        assert_eq!(amc.frame_count, 4);
+        assert_eq!(amc.frame(0).map(|f| &f[6..]), Some(&[7.0, 8.0, 9.0, 0.0, 0.0][..]));
+        assert_eq!(amc.frame(1).map(|f| &f[6..]), Some(&[7.0, 8.0, 9.0, 0.0, 0.0][..]));
+        assert_eq!(amc.frame(2).map(|f| &f[6..]), Some(&[7.0, 8.0, 9.0, 5.0, 6.0][..]));
+        assert_eq!(amc.frame(3).map(|f| &f[6..]), Some(&[1.0, 2.0, 3.0, 7.0, 8.0][..]));
+        assert_eq!(amc.warnings.len(), 1, "{:?}", amc.warnings);
+        assert_eq!(amc.warnings[0].line, Some(1));
+        let message = &amc.warnings[0].message;
+        assert!(message.contains("bone `knee` is missing from frame 1") && message.contains("3 frames lack some bone (2 bones in all)"), "{message}");
+    }
+
+    #[test]
+    fn unknown_bone() {
+        let e = fail("1\nroot 1 2 3 4 5 6\n  lfemur 1 2 3\n");
+        assert_eq!(e, ParseError::new(3, 3, "bone `lfemur` is not in the skeleton"));
+    }
+
+    #[test]
+    fn wrong_number_of_values() {
+        let e = fail("1\nroot 1 2 3 4 5 6\nhip 1 2\n");
+        at(&e, 3, 8, "bone `hip` has 3 degrees of freedom; this line gives 2 values");
+        let e = fail("1\nroot 1 2 3 4 5 6\nhip 1 2 3 4 5\n");
+        at(&e, 3, 11, "bone `hip` has 3 degrees of freedom; this line gives 5 values");
+        let e = fail("1\ntoe 1\n");
+        at(&e, 2, 5, "bone `toe` has 0 degrees of freedom; this line gives 1 value");
+        let e = fail("1\nknee 1 # two values\n");
+        at(&e, 2, 8, "has 2 degrees of freedom; this line gives 1 value");
+    }
+
+    #[test]
+    fn not_a_number() {
+        let e = fail("1\nroot 1 2 3 4 5 6\nhip 1 x2 3\n");
+        at(&e, 3, 7, "expected value 2 of bone `hip` (a number), found `x2`");
+        let e = fail("1\nknee 1 2.5.5\n");
+        at(&e, 2, 8, "found `2.5.5`");
+        let e = fail("1\nknee 1,5 2\n");
+        at(&e, 2, 6, "found `1,5`");
+    }
+
+    #[test]
+    fn other_errors() {
+        let e = fail(":DEGREES\nroot 1 2 3 4 5 6\n1\n");
+        at(&e, 2, 1, "before the first frame number");
+        let e = fail("1\nknee 1 2\nhip 1 2 3\nknee 3 4\n");
+        at(&e, 4, 1, "bone `knee` appears twice in frame 1 (first at line 2)");
+        let e = fail("99999999999999999999\nroot 1 2 3 4 5 6\n");
+        at(&e, 1, 1, "out of range");
+        let e = parse_amc(b"\x30\x26\xB2\x75\x8E\x66\xCF\x11\xA6\xD9\x00\xAA\x00\x62\xCE\x6C", &LAYOUT).unwrap_err();
+        at(&e, 1, 1, "not an Acclaim motion file");
+    }
+
+    #[test]
+    fn radians_no_header_and_zero_dof_bones() {
+        let amc = parse(":RADIANS\n1\nroot 1 2 3 4 5 6\nhip 1 2 3\nknee 1 2\n");
+        assert_eq!(amc.angle, AngleUnit::Radians);
+        assert!(!amc.fully_specified);
+        // No header at all; `toe` (no dofs) absent; blank lines and tabs.
+        let amc = parse("\n\t\n7\nroot 1 2 3 4 5 6\n\nhip 1 2 3\nknee 1 2\n8\nroot 1 2 3 4 5 6\nhip 1 2 3\nknee 1 2\ntoe\n");
+        assert_eq!((amc.frame_count, amc.first_frame_number, amc.angle), (2, Some(7), AngleUnit::Degrees));
+        assert!(amc.warnings.is_empty(), "{:?}", amc.warnings);
+        assert!(sniff_amc(b"# c\n\n1\nroot 0 0 0\n"));
+        assert!(sniff_amc(b":radians\n"));
+        assert!(!sniff_amc(b":root\n order TX\n"));
+        assert!(!sniff_amc(b"HIERARCHY\n"));
+        assert!(!sniff_amc(b"1\n2\n"));
+        assert!(!sniff_amc(b""));
+    }
+
+    #[test]
+    fn header_warnings_and_frame_number_gaps() {
+        let amc = parse(":FULLY-SPECIFIED\n:SOMETHING else\n1\nroot 1 2 3 4 5 6\nhip 1 2 3\nknee 1 2\n3\n:DEGREES\n4\n9\n");
+        assert_eq!(amc.frame_count, 4);
+        let got: Vec<(Option<u32>, bool)> = amc.warnings.iter().map(|w| (w.line, w.message.contains("not consecutive: expected 2, found 3 (2 jumps in all)"))).collect();
+        assert_eq!(got, vec![(Some(2), false), (Some(8), false), (Some(7), false), (Some(7), true)], "{:?}", amc.warnings);
+        assert!(amc.warnings[2].message.contains("bone `root` is missing from frame 3"));
+        assert!(amc.warnings[0].message.contains("unknown header line `:SOMETHING`"));
+        assert!(amc.warnings[1].message.contains("after the first frame"));
+        let amc = parse(":FULLY-SPECIFIED\n");
+        assert_eq!((amc.frame_count, amc.data.len(), amc.first_frame_number), (0, 0, None));
+        assert_eq!(amc.warnings.len(), 1);
+    }
+
+    #[test]
+    fn empty_layout_and_non_finite_values() {
+        let amc = parse_amc(b"1\n2\n", &[]).unwrap();
+        assert_eq!((amc.frame_count, amc.width, amc.data.len()), (2, 0, 0));
+        let amc = parse("1\nroot nan inf -inf 0 0 0\nhip 1 2 3\nknee 1 2\n");
+        assert!(amc.data[0].is_nan() && amc.data[1] == f32::INFINITY && amc.data[2] == f32::NEG_INFINITY);
+        assert_eq!(amc.warnings.len(), 1);
+        assert_eq!(amc.warnings[0].line, Some(2));
+    }
+
+    #[test]
+    fn fast_number_path_matches_the_standard_parser() {
+        let mut cases: Vec<String> = vec![
+            "0", "-0", "+1", "1.", ".5", "-.5", "16777216", "16777217", "0.1", "0.2", "0.3", "9.37216", "-17.3198", "3.64024e-015", "-7.62852e-016", "1e3", "123456789.123456789", "0.0000001", "00000000000000000001.5", "1e-50", "3.4e38",
+        ]
+        .into_iter()
+        .map(String::from)
+        .collect();
+        // A spread of values written with 0 to 9 decimals.
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        for _ in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = (x % 2_000_000_000) as f64 / 10f64.powi((x >> 40) as i32 % 10) - 1000.0;
+            cases.push(format!("{v:.*}", ((x >> 50) % 10) as usize));
+        }
+        for case in &cases {
+            let want: f32 = case.parse().unwrap_or_else(|_| panic!("{case}"));
+            let (got, used) = parse_value(case.as_bytes());
+            assert_eq!(used, case.len(), "{case}");
+            assert_eq!(got.to_bits(), want.to_bits(), "{case}: {got} vs {want}");
+            // Followed by a separator, as in a file.
+            assert_eq!(parse_value(format!("{case} 1").as_bytes()), (got, case.len()), "{case}");
+        }
+        assert_eq!(parse_value(b"x").1, 0);
+        assert_eq!(parse_value(b"-").1, 0);
+    }
+
+    #[test]
+    fn large_generated_file() {
+        // 2,000 frames with the bones in changing order: checks every value.
+        let mut src = String::from(":FULLY-SPECIFIED\n:DEGREES\n");
+        for f in 0..2000u32 {
+            src.push_str(&format!("{}\r\n", f + 1));
+            let lines = [
+                format!("root {f} 1.5 -2.25 3.64024e-015 {}.5 6", f % 7),
+                format!("hip {}.25 -{f} 9", f % 3),
+                format!("knee {f}.125 -0.5"),
+            ];
+            let order: &[usize] = if f % 5 == 0 { &[2, 0, 1] } else { &[0, 1, 2] };
+            for &i in order {
+                src.push_str(&lines[i]);
+                src.push_str("\r\n");
+            }
+        }
+        let amc = parse(&src);
+        assert_eq!(amc.frame_count, 2000);
+        for f in 0..2000u32 {
+            let x = f as f32;
+            let want = [x, 1.5, -2.25, 3.64024e-15, (f % 7) as f32 + 0.5, 6.0, (f % 3) as f32 + 0.25, -x, 9.0, x + 0.125, -0.5];
+            assert_eq!(amc.frame(f as usize), Some(&want[..]), "frame {f}");
+        }
+    }
+}
