@@ -140,6 +140,36 @@ mod tests {
         assert_eq!(motion.data[6], 45.0);
     }
 
+    /// Every prefix and many one-byte edits of valid files: errors, never panics.
+    #[test]
+    fn truncated_and_edited_inputs_do_not_panic() {
+        let asf: &[u8] = b"# c\r\n:version 1\n:units\n angle rad\n:documentation\n doc\n:root\n order TX RX\n axis XYZ\n position 0 0 0\n orientation 0 0 0\n\
+:bonedata\n begin\n  id 1\n  name a\n  direction 0 1 0\n  length 1\n  axis 0 0 0 XYZ\n  dof rx l\n  limits (-1 1)\n (-inf inf)\n end\n\
+ begin\n  name b\n  dof ry\n end\n:hierarchy\n begin\n  root a\n  a b\n end\n";
+        let amc: &[u8] = b":FULLY-SPECIFIED\r\n:DEGREES\r\n1\r\nroot 1 2\r\na 3 4e-015\r\nb 5\r\n2\r\nb 6\r\nroot 7 8\r\n";
+        let layout = [("root", 2), ("a", 2), ("b", 1)];
+        let edits: [&[u8]; 8] = [b"", b" ", b"\n", b"\r", b"(", b")", b":", b"#"];
+        let mut buf = Vec::new();
+        for src in [asf, amc] {
+            for cut in 0..=src.len() {
+                let head = src.get(..cut).unwrap_or(src);
+                let _ = parse_asf(head);
+                let _ = parse_amc(head, &layout);
+                let _ = (sniff_asf(head), sniff_amc(head));
+                for edit in edits {
+                    buf.clear();
+                    buf.extend_from_slice(head);
+                    buf.extend_from_slice(edit);
+                    buf.extend_from_slice(src.get(cut + 1..).unwrap_or(&[]));
+                    let _ = parse_asf(&buf);
+                    let _ = parse_amc(&buf, &layout);
+                }
+            }
+        }
+        assert!(parse_asf(asf).is_ok());
+        assert_eq!(parse_amc(amc, &layout).map(|m| m.frame_count), Ok(2));
+    }
+
     #[test]
     fn dof_and_axis_names() {
         assert_eq!(Dof::from_name(b"TX"), Some(Dof::Tx));
