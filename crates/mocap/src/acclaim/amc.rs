@@ -1,0 +1,696 @@
+//! The AMC motion reader: a byte scanner over lines that writes each value straight
+//! into one row-major `f32` matrix.
+
+use super::text::{binary_kind, bom_len, is_blank, is_eol, parse_i64, show_bytes};
+use super::AngleUnit;
+use crate::error::{ParseError, Warning};
+use std::collections::HashMap;
+
+/// A parsed AMC motion.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Amc {
+    /// `:DEGREES` or `:RADIANS`; degrees when the file says neither.
+    pub angle: AngleUnit,
+    /// Whether the file has a `:FULLY-SPECIFIED` line.
+    pub fully_specified: bool,
+    /// Number of frames.
+    pub frame_count: usize,
+    /// Values per frame: the sum of the layout's counts.
+    pub width: usize,
+    /// `frame_count × width` values, row-major, columns in layout order.
+    pub data: Vec<f32>,
+    /// The number written before the first frame, when there is a frame.
+    pub first_frame_number: Option<i64>,
+    /// Non-fatal problems.
+    pub warnings: Vec<Warning>,
+}
+
+impl Amc {
+    /// The values of frame `frame`, or `None` past the end.
+    pub fn frame(&self, frame: usize) -> Option<&[f32]> {
+        let start = frame.checked_mul(self.width)?;
+        self.data.get(start..start.checked_add(self.width)?)
+    }
+}
+
+/// True when `bytes` look like an AMC motion: the first line that is not blank or a
+/// `#` comment starts with `:FULLY-SPECIFIED`, `:DEGREES` or `:RADIANS` (any case), or
+/// holds only an integer and is followed by a line starting with a letter.
+pub fn sniff_amc(bytes: &[u8]) -> bool {
+    let head = bytes.get(..4096).unwrap_or(bytes);
+    let head = head.get(bom_len(head)..).unwrap_or(&[]);
+    let mut lines = head.split(|&b| is_eol(b)).map(super::text::trim_blanks).filter(|l| !l.is_empty() && !l.starts_with(b"#"));
+    let Some(first) = lines.next() else { return false };
+    if first.starts_with(b":") {
+        let word = first.split(|&b| is_blank(b)).next().unwrap_or(&[]);
+        return [&b":FULLY-SPECIFIED"[..], b":DEGREES", b":RADIANS"].iter().any(|k| word.eq_ignore_ascii_case(k));
+    }
+    is_frame_number(first) && lines.next().and_then(|l| l.first()).is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_')
+}
+
+/// An optional sign and one or more ASCII digits.
+fn is_frame_number(token: &[u8]) -> bool {
+    let digits = match token {
+        [b'-' | b'+', rest @ ..] => rest,
+        _ => token,
+    };
+    !digits.is_empty() && digits.iter().all(u8::is_ascii_digit)
+}
+
+/// Powers of ten exactly representable in `f32`.
+const POW10: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
+
+/// Parses the number at the start of `s`: the value and the bytes used (0 when there
+/// is no number). Fast path for `[+-]digits[.digits]` whose digits fit in 24 bits:
+/// an exact integer divided by an exact power of ten is correctly rounded. Everything
+/// else (exponents, long mantissas, `inf`) goes to `fast_float2`.
+#[inline]
+fn parse_value(s: &[u8]) -> (f32, usize) {
+    let (neg, mut i) = match s.first() {
+        Some(b'-') => (true, 1),
+        Some(b'+') => (false, 1),
+        _ => (false, 0),
+    };
+    let mut m: u64 = 0;
+    let mut digits = 0u32;
+    while let Some(&b) = s.get(i) {
+        let d = b.wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        m = m.wrapping_mul(10).wrapping_add(u64::from(d));
+        digits += 1;
+        i += 1;
+    }
+    let mut frac = 0usize;
+    if s.get(i) == Some(&b'.') {
+        i += 1;
+        while let Some(&b) = s.get(i) {
+            let d = b.wrapping_sub(b'0');
+            if d > 9 {
+                break;
+            }
+            m = m.wrapping_mul(10).wrapping_add(u64::from(d));
+            digits += 1;
+            frac += 1;
+            i += 1;
+        }
+    }
+    let ends = s.get(i).is_none_or(|&b| is_blank(b) || is_eol(b));
+    if ends && digits > 0 && digits <= 18 && m <= 1 << 24 {
+        if let Some(&p) = POW10.get(frac) {
+            #[allow(clippy::cast_precision_loss)] // m ≤ 2^24: exact
+            let v = m as f32 / p;
+            return (if neg { -v } else { v }, i);
+        }
+    }
+    match fast_float2::parse_partial::<f32, _>(s) {
+        Ok((v, used)) => (v, used),
+        Err(_) => (0.0, 0),
+    }
+}
+
+const NONE: usize = usize::MAX;
+
+/// The scanner's state.
+struct Scanner<'a, 'l> {
+    src: &'a [u8],
+    pos: usize,
+    line: u32,
+    line_start: usize,
+    layout: &'l [(&'l str, usize)],
+    offsets: Vec<usize>,
+    width: usize,
+    names: HashMap<&'l [u8], usize>,
+    /// Non-zero-dof bones, in layout order.
+    nonzero: Vec<usize>,
+    /// The bone that followed each bone the last time it appeared (prediction).
+    next_after: Vec<usize>,
+    /// First bone of the previous frame, and of the current one.
+    first_bone: usize,
+    current_first: usize,
+    last_bone: usize,
+    /// For each bone, the frame (1-based count) it last appeared in, and the line.
+    seen: Vec<usize>,
+    seen_line: Vec<u32>,
+    /// Non-zero-dof bones seen in the current frame.
+    seen_count: usize,
+    data: Vec<f32>,
+    frame_count: usize,
+    row: usize,
+    frame_line: u32,
+    frame_number: i64,
+    last_number: Option<i64>,
+    amc: Amc,
+    /// First missing bone: (frame line, bone, frame number); frames affected; bones affected.
+    missing: Option<(u32, usize, i64)>,
+    missing_frames: usize,
+    missing_bones: Vec<bool>,
+    missing_bone_count: usize,
+    /// First non-consecutive frame number: (line, expected, found), and how many.
+    gap: Option<(u32, i64, i64)>,
+    gap_count: usize,
+    non_finite: Option<u32>,
+}
+
+/// Parses an AMC motion. `layout` is the row layout of the skeleton: (bone name,
+/// number of values) in column order, the root named `"root"` (see
+/// [`super::Asf::amc_layout`]). Bones may come in any order within a frame; a bone
+/// missing from a frame keeps its value from the previous frame (zeros in the first),
+/// with one warning for the whole file.
+pub fn parse_amc(bytes: &[u8], layout: &[(&str, usize)]) -> Result<Amc, ParseError> {
+    if let Some(kind) = binary_kind(bytes) {
+        return Err(ParseError::new(1, 1, format!("not an Acclaim motion file: {kind}")));
+    }
+    let mut offsets = Vec::with_capacity(layout.len());
+    let mut width = 0usize;
+    let mut names = HashMap::with_capacity(layout.len());
+    let mut nonzero = Vec::new();
+    for (i, &(name, count)) in layout.iter().enumerate() {
+        offsets.push(width);
+        width = width.saturating_add(count);
+        names.entry(name.as_bytes()).or_insert(i);
+        if count > 0 {
+            nonzero.push(i);
+        }
+    }
+    let start = bom_len(bytes);
+    let mut s = Scanner {
+        src: bytes,
+        pos: start,
+        line: 1,
+        line_start: start,
+        layout,
+        offsets,
+        width,
+        names,
+        nonzero,
+        next_after: vec![NONE; layout.len()],
+        first_bone: NONE,
+        current_first: NONE,
+        last_bone: NONE,
+        seen: vec![0; layout.len()],
+        seen_line: vec![0; layout.len()],
+        seen_count: 0,
+        // An estimate from the bytes present, never from the file's numbers.
+        data: Vec::with_capacity(bytes.len() / 10),
+        frame_count: 0,
+        row: 0,
+        frame_line: 0,
+        frame_number: 0,
+        last_number: None,
+        amc: Amc { width, ..Amc::default() },
+        missing: None,
+        missing_frames: 0,
+        missing_bones: vec![false; layout.len()],
+        missing_bone_count: 0,
+        gap: None,
+        gap_count: 0,
+        non_finite: None,
+    };
+    s.run()?;
+    Ok(s.finish())
+}
+
+fn plural(n: usize, one: &str, many: &str) -> String {
+    if n == 1 {
+        format!("1 {one}")
+    } else {
+        format!("{n} {many}")
+    }
+}
+
+impl<'a, 'l> Scanner<'a, 'l> {
+    fn column(&self, at: usize) -> u32 {
+        u32::try_from(at.saturating_sub(self.line_start) + 1).unwrap_or(u32::MAX)
+    }
+
+    fn error(&self, at: usize, message: impl Into<String>) -> ParseError {
+        ParseError::new(self.line, self.column(at), message)
+    }
+
+    /// The end of the line holding `at` (the position of its line break, or the end).
+    fn eol_from(&self, at: usize) -> usize {
+        let rest = self.src.get(at..).unwrap_or(&[]);
+        at + memchr::memchr2(b'\n', b'\r', rest).unwrap_or(rest.len())
+    }
+
+    /// Consumes the line break at `self.pos`, if any, and starts the next line.
+    fn line_break(&mut self) {
+        match self.src.get(self.pos) {
+            Some(b'\n') => self.pos += 1,
+            Some(b'\r') => {
+                self.pos += 1;
+                if self.src.get(self.pos) == Some(&b'\n') {
+                    self.pos += 1;
+                }
+            }
+            _ => {}
+        }
+        self.line = self.line.saturating_add(1);
+    }
+
+    /// Skips blanks from `at`.
+    #[inline]
+    fn skip_blanks(&self, mut at: usize) -> usize {
+        while self.src.get(at).is_some_and(|&b| is_blank(b)) {
+            at += 1;
+        }
+        at
+    }
+
+    /// The end of the token starting at `at`.
+    #[inline]
+    fn token_end(&self, mut at: usize) -> usize {
+        while self.src.get(at).is_some_and(|&b| !is_blank(b) && !is_eol(b)) {
+            at += 1;
+        }
+        at
+    }
+
+    fn run(&mut self) -> Result<(), ParseError> {
+        while self.pos < self.src.len() {
+            self.line_start = self.pos;
+            let p = self.skip_blanks(self.pos);
+            match self.src.get(p) {
+                None => break,
+                Some(&b) if is_eol(b) => self.pos = p,
+                Some(b'#') => self.pos = self.eol_from(p),
+                Some(b':') => {
+                    self.header(p);
+                    self.pos = self.eol_from(p);
+                }
+                Some(_) => {
+                    let e = self.token_end(p);
+                    let token = self.src.get(p..e).unwrap_or(&[]);
+                    let after = self.skip_blanks(e);
+                    let alone = self.src.get(after).is_none_or(|&b| is_eol(b) || b == b'#');
+                    if alone && is_frame_number(token) {
+                        self.new_frame(token, p)?;
+                        self.pos = self.eol_from(after);
+                    } else {
+                        self.bone_line(p, e)?;
+                    }
+                }
+            }
+            self.line_break();
+        }
+        Ok(())
+    }
+
+    fn header(&mut self, p: usize) {
+        let e = self.token_end(p);
+        let word = self.src.get(p..e).unwrap_or(&[]);
+        let known = [&b":FULLY-SPECIFIED"[..], b":DEGREES", b":RADIANS"].iter().any(|k| word.eq_ignore_ascii_case(k));
+        if self.frame_count > 0 {
+            self.amc.warnings.push(Warning { line: Some(self.line), message: format!("header line `{}` after the first frame ignored", show_bytes(word)) });
+        } else if word.eq_ignore_ascii_case(b":FULLY-SPECIFIED") {
+            self.amc.fully_specified = true;
+        } else if word.eq_ignore_ascii_case(b":DEGREES") {
+            self.amc.angle = AngleUnit::Degrees;
+        } else if word.eq_ignore_ascii_case(b":RADIANS") {
+            self.amc.angle = AngleUnit::Radians;
+        } else if !known {
+            self.amc.warnings.push(Warning { line: Some(self.line), message: format!("unknown header line `{}` ignored", show_bytes(word)) });
+        }
+    }
+
+    fn new_frame(&mut self, token: &[u8], p: usize) -> Result<(), ParseError> {
+        let number = parse_i64(token).ok_or_else(|| self.error(p, format!("frame number `{}` is out of range", show_bytes(token))))?;
+        if self.frame_count > 0 {
+            self.finish_frame();
+        }
+        self.frame_count += 1;
+        if self.frame_count == 1 {
+            self.data.resize(self.width, 0.0);
+            self.row = 0;
+            self.amc.first_frame_number = Some(number);
+        } else {
+            let previous = self.row;
+            self.row = self.data.len();
+            self.data.extend_from_within(previous..self.row);
+        }
+        if let Some(last) = self.last_number {
+            if last.checked_add(1) != Some(number) {
+                self.gap_count += 1;
+                if self.gap.is_none() {
+                    self.gap = Some((self.line, last.saturating_add(1), number));
+                }
+            }
+        }
+        self.last_number = Some(number);
+        self.frame_line = self.line;
+        self.frame_number = number;
+        self.seen_count = 0;
+        if self.current_first != NONE {
+            self.first_bone = self.current_first;
+        }
+        self.current_first = NONE;
+        self.last_bone = NONE;
+        Ok(())
+    }
+
+    /// Notes the bones the frame that just ended did not give.
+    fn finish_frame(&mut self) {
+        if self.seen_count >= self.nonzero.len() {
+            return;
+        }
+        self.missing_frames += 1;
+        for &b in &self.nonzero {
+            if self.seen.get(b) != Some(&self.frame_count) {
+                if let Some(flag) = self.missing_bones.get_mut(b) {
+                    if !*flag {
+                        *flag = true;
+                        self.missing_bone_count += 1;
+                    }
+                }
+                if self.missing.is_none() {
+                    self.missing = Some((self.frame_line, b, self.frame_number));
+                }
+            }
+        }
+    }
+
+    fn bone_name(&self, bone: usize) -> &'l str {
+        self.layout.get(bone).map_or("", |&(name, _)| name)
+    }
+
+    /// A `bonename v1 v2 …` line; the name spans `p..e`. Leaves `pos` at the line end.
+    fn bone_line(&mut self, p: usize, e: usize) -> Result<(), ParseError> {
+        let name = self.src.get(p..e).unwrap_or(&[]);
+        if self.frame_count == 0 {
+            return Err(self.error(p, format!("values for `{}` before the first frame number: expected a line holding only the frame number (e.g. `1`)", show_bytes(name))));
+        }
+        let predicted = if self.last_bone == NONE { self.first_bone } else { self.next_after.get(self.last_bone).copied().unwrap_or(NONE) };
+        let bone = if self.layout.get(predicted).is_some_and(|&(n, _)| n.as_bytes() == name) {
+            predicted
+        } else {
+            match self.names.get(name) {
+                Some(&b) => b,
+                None => return Err(self.error(p, format!("bone `{}` is not in the skeleton", show_bytes(name)))),
+            }
+        };
+        let count = self.layout.get(bone).map_or(0, |&(_, c)| c);
+        if self.seen.get(bone) == Some(&self.frame_count) {
+            let first = self.seen_line.get(bone).copied().unwrap_or(0);
+            return Err(self.error(p, format!("bone `{}` appears twice in frame {} (first at line {first})", self.bone_name(bone), self.frame_number)));
+        }
+        if let (Some(s), Some(l)) = (self.seen.get_mut(bone), self.seen_line.get_mut(bone)) {
+            *s = self.frame_count;
+            *l = self.line;
+        }
+        if count > 0 {
+            self.seen_count += 1;
+        }
+        if self.last_bone == NONE {
+            self.current_first = bone;
+        } else if let Some(next) = self.next_after.get_mut(self.last_bone) {
+            *next = bone;
+        }
+        self.last_bone = bone;
+
+        let base = self.row + self.offsets.get(bone).copied().unwrap_or(0);
+        let mut q = e;
+        for k in 0..count {
+            q = self.skip_blanks(q);
+            if self.src.get(q).is_none_or(|&b| is_eol(b) || b == b'#') {
+                return Err(self.count_error(q, bone, count, k));
+            }
+            let rest = self.src.get(q..).unwrap_or(&[]);
+            let (v, used) = parse_value(rest);
+            let end = q + used;
+            if used == 0 || self.src.get(end).is_some_and(|&b| !is_blank(b) && !is_eol(b)) {
+                let bad = self.src.get(q..self.token_end(q)).unwrap_or(&[]);
+                return Err(self.error(q, format!("expected value {} of bone `{}` (a number), found `{}`", k + 1, self.bone_name(bone), show_bytes(bad))));
+            }
+            if !v.is_finite() && self.non_finite.is_none() {
+                self.non_finite = Some(self.line);
+            }
+            if let Some(slot) = self.data.get_mut(base + k) {
+                *slot = v;
+            }
+            q = end;
+        }
+        q = self.skip_blanks(q);
+        if self.src.get(q).is_some_and(|&b| !is_eol(b) && b != b'#') {
+            // Count what is left for the message.
+            let mut extra = 0;
+            let mut r = q;
+            while self.src.get(r).is_some_and(|&b| !is_eol(b) && b != b'#') {
+                r = self.skip_blanks(self.token_end(r));
+                extra += 1;
+            }
+            return Err(self.count_error(q, bone, count, count + extra));
+        }
+        self.pos = self.eol_from(q);
+        Ok(())
+    }
+
+    fn count_error(&self, at: usize, bone: usize, count: usize, given: usize) -> ParseError {
+        self.error(
+            at,
+            format!(
+                "bone `{}` has {}; this line gives {}",
+                self.bone_name(bone),
+                plural(count, "degree of freedom", "degrees of freedom"),
+                plural(given, "value", "values")
+            ),
+        )
+    }
+
+    fn finish(mut self) -> Amc {
+        if self.frame_count > 0 {
+            self.finish_frame();
+        } else {
+            self.amc.warnings.push(Warning { line: None, message: "the motion has no frames".into() });
+        }
+        if let Some((line, bone, number)) = self.missing {
+            let more = if self.missing_frames > 1 || self.missing_bone_count > 1 {
+                format!("; {} lack some bone ({} in all)", plural(self.missing_frames, "frame", "frames"), plural(self.missing_bone_count, "bone", "bones"))
+            } else {
+                String::new()
+            };
+            self.amc.warnings.push(Warning {
+                line: Some(line),
+                message: format!("bone `{}` is missing from frame {number}: it keeps its previous value (zeros in the first frame){more}", self.bone_name(bone)),
+            });
+        }
+        if let Some((line, expected, found)) = self.gap {
+            self.amc.warnings.push(Warning {
+                line: Some(line),
+                message: format!("frame numbers are not consecutive: expected {expected}, found {found} ({} in all); frames are read in file order", plural(self.gap_count, "jump", "jumps")),
+            });
+        }
+        if let Some(line) = self.non_finite {
+            self.amc.warnings.push(Warning { line: Some(line), message: "the motion holds NaN or infinite values".into() });
+        }
+        self.amc.frame_count = self.frame_count;
+        self.amc.data = self.data;
+        self.amc
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const LAYOUT: [(&str, usize); 4] = [("root", 6), ("hip", 3), ("toe", 0), ("knee", 2)];
+
+    fn parse(src: &str) -> Amc {
+        parse_amc(src.as_bytes(), &LAYOUT).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    fn fail(src: &str) -> ParseError {
+        match parse_amc(src.as_bytes(), &LAYOUT) {
+            Ok(amc) => panic!("expected an error, parsed {amc:?}"),
+            Err(e) => e,
+        }
+    }
+
+    fn at(e: &ParseError, line: u32, column: u32, words: &str) {
+        assert_eq!((e.line, e.column), (line, column), "{e}");
+        assert!(e.message.contains(words), "`{}` does not say `{words}`", e.message);
+    }
+
+    const TWO_FRAMES: &str = "#!OML:ASF test.asf
+:FULLY-SPECIFIED
+:DEGREES
+1
+root 1 2 3 4 5 6
+hip 7 8 9
+knee 10 11
+2
+knee -1e0 3.64024e-015
+root 0.5 -0.25 +2 1.5E+002 -6.75868e-015 0
+toe
+hip\t-7\t-8.5\t-9
+";
+
+    #[test]
+    fn frames_with_bones_in_any_order() {
+        let amc = parse(TWO_FRAMES);
+        assert!(amc.fully_specified);
+        assert_eq!(amc.angle, AngleUnit::Degrees);
+        assert_eq!((amc.frame_count, amc.width, amc.first_frame_number), (2, 11, Some(1)));
+        assert_eq!(amc.frame(0), Some(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0][..]));
+        assert_eq!(amc.frame(1), Some(&[0.5, -0.25, 2.0, 150.0, -6.75868e-15, 0.0, -7.0, -8.5, -9.0, -1.0, 3.64024e-15][..]));
+        assert_eq!(amc.frame(2), None);
+        assert!(amc.warnings.is_empty(), "{:?}", amc.warnings);
+        assert!(sniff_amc(TWO_FRAMES.as_bytes()));
+        // The same with CRLF, lone CR and a byte-order mark.
+        for text in [TWO_FRAMES.replace('\n', "\r\n"), TWO_FRAMES.replace('\n', "\r"), format!("\u{feff}{TWO_FRAMES}")] {
+            assert_eq!(parse(&text), amc);
+            assert!(sniff_amc(text.as_bytes()));
+        }
+    }
+
+    #[test]
+    fn missing_bone_keeps_previous_value_with_one_warning() {
+        let amc = parse("1\nroot 1 2 3 4 5 6\nhip 7 8 9\n2\nroot 0 0 0 0 0 0\n3\nroot 1 1 1 1 1 1\nknee 5 6\n4\nroot 1 1 1 1 1 1\nhip 1 2 3\nknee 7 8\n");
+        assert_eq!(amc.frame_count, 4);
+        assert_eq!(amc.frame(0).map(|f| &f[6..]), Some(&[7.0, 8.0, 9.0, 0.0, 0.0][..]));
+        assert_eq!(amc.frame(1).map(|f| &f[6..]), Some(&[7.0, 8.0, 9.0, 0.0, 0.0][..]));
+        assert_eq!(amc.frame(2).map(|f| &f[6..]), Some(&[7.0, 8.0, 9.0, 5.0, 6.0][..]));
+        assert_eq!(amc.frame(3).map(|f| &f[6..]), Some(&[1.0, 2.0, 3.0, 7.0, 8.0][..]));
+        assert_eq!(amc.warnings.len(), 1, "{:?}", amc.warnings);
+        assert_eq!(amc.warnings[0].line, Some(1));
+        let message = &amc.warnings[0].message;
+        assert!(message.contains("bone `knee` is missing from frame 1") && message.contains("3 frames lack some bone (2 bones in all)"), "{message}");
+    }
+
+    #[test]
+    fn unknown_bone() {
+        let e = fail("1\nroot 1 2 3 4 5 6\n  lfemur 1 2 3\n");
+        assert_eq!(e, ParseError::new(3, 3, "bone `lfemur` is not in the skeleton"));
+    }
+
+    #[test]
+    fn wrong_number_of_values() {
+        let e = fail("1\nroot 1 2 3 4 5 6\nhip 1 2\n");
+        at(&e, 3, 8, "bone `hip` has 3 degrees of freedom; this line gives 2 values");
+        let e = fail("1\nroot 1 2 3 4 5 6\nhip 1 2 3 4 5\n");
+        at(&e, 3, 11, "bone `hip` has 3 degrees of freedom; this line gives 5 values");
+        let e = fail("1\ntoe 1\n");
+        at(&e, 2, 5, "bone `toe` has 0 degrees of freedom; this line gives 1 value");
+        let e = fail("1\nknee 1 # two values\n");
+        at(&e, 2, 8, "has 2 degrees of freedom; this line gives 1 value");
+    }
+
+    #[test]
+    fn not_a_number() {
+        let e = fail("1\nroot 1 2 3 4 5 6\nhip 1 x2 3\n");
+        at(&e, 3, 7, "expected value 2 of bone `hip` (a number), found `x2`");
+        let e = fail("1\nknee 1 2.5.5\n");
+        at(&e, 2, 8, "found `2.5.5`");
+        let e = fail("1\nknee 1,5 2\n");
+        at(&e, 2, 6, "found `1,5`");
+    }
+
+    #[test]
+    fn other_errors() {
+        let e = fail(":DEGREES\nroot 1 2 3 4 5 6\n1\n");
+        at(&e, 2, 1, "before the first frame number");
+        let e = fail("1\nknee 1 2\nhip 1 2 3\nknee 3 4\n");
+        at(&e, 4, 1, "bone `knee` appears twice in frame 1 (first at line 2)");
+        let e = fail("99999999999999999999\nroot 1 2 3 4 5 6\n");
+        at(&e, 1, 1, "out of range");
+        let e = parse_amc(b"\x30\x26\xB2\x75\x8E\x66\xCF\x11\xA6\xD9\x00\xAA\x00\x62\xCE\x6C", &LAYOUT).unwrap_err();
+        at(&e, 1, 1, "not an Acclaim motion file");
+    }
+
+    #[test]
+    fn radians_no_header_and_zero_dof_bones() {
+        let amc = parse(":RADIANS\n1\nroot 1 2 3 4 5 6\nhip 1 2 3\nknee 1 2\n");
+        assert_eq!(amc.angle, AngleUnit::Radians);
+        assert!(!amc.fully_specified);
+        // No header at all; `toe` (no dofs) absent; blank lines and tabs.
+        let amc = parse("\n\t\n7\nroot 1 2 3 4 5 6\n\nhip 1 2 3\nknee 1 2\n8\nroot 1 2 3 4 5 6\nhip 1 2 3\nknee 1 2\ntoe\n");
+        assert_eq!((amc.frame_count, amc.first_frame_number, amc.angle), (2, Some(7), AngleUnit::Degrees));
+        assert!(amc.warnings.is_empty(), "{:?}", amc.warnings);
+        assert!(sniff_amc(b"# c\n\n1\nroot 0 0 0\n"));
+        assert!(sniff_amc(b":radians\n"));
+        assert!(!sniff_amc(b":root\n order TX\n"));
+        assert!(!sniff_amc(b"HIERARCHY\n"));
+        assert!(!sniff_amc(b"1\n2\n"));
+        assert!(!sniff_amc(b""));
+    }
+
+    #[test]
+    fn header_warnings_and_frame_number_gaps() {
+        let amc = parse(":FULLY-SPECIFIED\n:SOMETHING else\n1\nroot 1 2 3 4 5 6\nhip 1 2 3\nknee 1 2\n3\n:DEGREES\n4\n9\n");
+        assert_eq!(amc.frame_count, 4);
+        let got: Vec<(Option<u32>, bool)> = amc.warnings.iter().map(|w| (w.line, w.message.contains("not consecutive: expected 2, found 3 (2 jumps in all)"))).collect();
+        assert_eq!(got, vec![(Some(2), false), (Some(8), false), (Some(7), false), (Some(7), true)], "{:?}", amc.warnings);
+        assert!(amc.warnings[2].message.contains("bone `root` is missing from frame 3"));
+        assert!(amc.warnings[0].message.contains("unknown header line `:SOMETHING`"));
+        assert!(amc.warnings[1].message.contains("after the first frame"));
+        let amc = parse(":FULLY-SPECIFIED\n");
+        assert_eq!((amc.frame_count, amc.data.len(), amc.first_frame_number), (0, 0, None));
+        assert_eq!(amc.warnings.len(), 1);
+    }
+
+    #[test]
+    fn empty_layout_and_non_finite_values() {
+        let amc = parse_amc(b"1\n2\n", &[]).unwrap();
+        assert_eq!((amc.frame_count, amc.width, amc.data.len()), (2, 0, 0));
+        let amc = parse("1\nroot nan inf -inf 0 0 0\nhip 1 2 3\nknee 1 2\n");
+        assert!(amc.data[0].is_nan() && amc.data[1] == f32::INFINITY && amc.data[2] == f32::NEG_INFINITY);
+        assert_eq!(amc.warnings.len(), 1);
+        assert_eq!(amc.warnings[0].line, Some(2));
+    }
+
+    #[test]
+    fn fast_number_path_matches_the_standard_parser() {
+        let mut cases: Vec<String> = vec![
+            "0", "-0", "+1", "1.", ".5", "-.5", "16777216", "16777217", "0.1", "0.2", "0.3", "9.37216", "-17.3198", "3.64024e-015", "-7.62852e-016", "1e3", "123456789.123456789", "0.0000001", "00000000000000000001.5", "1e-50", "3.4e38",
+        ]
+        .into_iter()
+        .map(String::from)
+        .collect();
+        // A spread of values written with 0 to 9 decimals.
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        for _ in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = (x % 2_000_000_000) as f64 / 10f64.powi((x >> 40) as i32 % 10) - 1000.0;
+            cases.push(format!("{v:.*}", ((x >> 50) % 10) as usize));
+        }
+        for case in &cases {
+            let want: f32 = case.parse().unwrap_or_else(|_| panic!("{case}"));
+            let (got, used) = parse_value(case.as_bytes());
+            assert_eq!(used, case.len(), "{case}");
+            assert_eq!(got.to_bits(), want.to_bits(), "{case}: {got} vs {want}");
+            // Followed by a separator, as in a file.
+            assert_eq!(parse_value(format!("{case} 1").as_bytes()), (got, case.len()), "{case}");
+        }
+        assert_eq!(parse_value(b"x").1, 0);
+        assert_eq!(parse_value(b"-").1, 0);
+    }
+
+    #[test]
+    fn large_generated_file() {
+        // 2,000 frames with the bones in changing order: checks every value.
+        let mut src = String::from(":FULLY-SPECIFIED\n:DEGREES\n");
+        for f in 0..2000u32 {
+            src.push_str(&format!("{}\r\n", f + 1));
+            let lines = [
+                format!("root {f} 1.5 -2.25 3.64024e-015 {}.5 6", f % 7),
+                format!("hip {}.25 -{f} 9", f % 3),
+                format!("knee {f}.125 -0.5"),
+            ];
+            let order: &[usize] = if f % 5 == 0 { &[2, 0, 1] } else { &[0, 1, 2] };
+            for &i in order {
+                src.push_str(&lines[i]);
+                src.push_str("\r\n");
+            }
+        }
+        let amc = parse(&src);
+        assert_eq!(amc.frame_count, 2000);
+        for f in 0..2000u32 {
+            let x = f as f32;
+            let want = [x, 1.5, -2.25, 3.64024e-15, (f % 7) as f32 + 0.5, 6.0, (f % 3) as f32 + 0.25, -x, 9.0, x + 0.125, -0.5];
+            assert_eq!(amc.frame(f as usize), Some(&want[..]), "frame {f}");
+        }
+    }
+}
