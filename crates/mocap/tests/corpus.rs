@@ -1,12 +1,10 @@
 //! Every BVH file of ../shared/corpus: parses as its MANIFEST says, FK gives finite
-//! positions, and write → parse is exact. Skips (with a note) when the corpus is absent.
+//! positions, and write → parse is exact. Fails when the corpus is absent unless MOCAP_SKIP_CORPUS=1.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-fn corpus_dir() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
-    dir.join("MANIFEST.tsv").is_file().then_some(dir)
-}
+mod common;
+use common::corpus_dir;
 
 struct Entry {
     path: String,
@@ -43,7 +41,7 @@ fn corpus_bvh_files_parse_as_the_manifest_says() {
     assert!(entries.len() >= 20, "manifest lists {} BVH files", entries.len());
     for e in &entries {
         let bytes = std::fs::read(dir.join(&e.path)).unwrap();
-        let result = mocap::load(&e.path, &bytes);
+        let result = mocap::load_one(&e.path, &bytes);
         if e.notes.contains("MALFORMED") {
             let err = result.err().unwrap_or_else(|| panic!("{}: malformed file parsed", e.path));
             let text = err.to_string();

@@ -211,6 +211,15 @@ fn dos_eof_and_nul_padding_and_float_frame_count() {
 }
 
 #[test]
+fn end_site_with_a_glued_suffix_is_a_named_end_site() {
+    let src = "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\nEnd Site4\n{\nOFFSET 0 1 0\n}\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n5\n";
+    let clip = parse(src.as_bytes()).unwrap();
+    assert!(clip.skeleton().is_end_site(1));
+    assert_eq!(clip.skeleton().joints()[1].name, "Site4");
+    assert!(err("HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nEnd Sight\n{\nOFFSET 0 1 0\n}\n}\n").message.contains("expected `Site` after `End`"));
+}
+
+#[test]
 fn utf8_bom_and_leading_blank_lines() {
     let src = format!("\u{feff}\n\n{}", one_joint("CHANNELS 1 Xposition", "1\n", 1));
     assert_eq!(parse(src.as_bytes()).unwrap().frame_count(), 1);
@@ -218,10 +227,16 @@ fn utf8_bom_and_leading_blank_lines() {
 
 #[test]
 fn load_dispatch_and_error_display() {
-    let e = mocap::load("bad.bvh", b"HIERARCHY\nROOT A\n{\nOFFSET 0 q 0\n").unwrap_err();
+    let e = mocap::load_one("bad.bvh", b"HIERARCHY\nROOT A\n{\nOFFSET 0 q 0\n").unwrap_err();
     assert_eq!(e.to_string(), "bad.bvh:4:10: expected the y value of OFFSET (a number), found `q`");
-    assert!(matches!(mocap::load("x.png", b"\x89PNG"), Err(mocap::LoadError::UnknownFormat { .. })));
-    assert!(mocap::load("noext", one_joint("CHANNELS 0", "", 0).as_bytes()).is_ok());
+    assert!(matches!(mocap::load_one("x.png", b"\x89PNG"), Err(mocap::LoadError::UnknownFormat { .. })));
+    assert!(mocap::load_one("noext", one_joint("CHANNELS 0", "", 0).as_bytes()).is_ok());
+    // The content decides, not the extension.
+    assert_eq!(mocap::load_one("walk.txt", one_joint("CHANNELS 1 Xposition", "1\n", 1).as_bytes()).unwrap().frame_count(), 1);
+    assert_eq!(mocap::Format::detect("x.bvh", b"Segment: a\n"), Some(mocap::Format::Bva));
+    assert_eq!(mocap::Format::detect("x.bvh", b":version 1.10\n"), Some(mocap::Format::Asf));
+    assert_eq!(mocap::Format::detect("take.bvh", b"# c\n:FULLY-SPECIFIED\n:DEGREES\n1\nroot 0\n"), Some(mocap::Format::Amc));
+    assert_eq!(mocap::Format::detect("x.amc", b"HIERARCHY\n"), Some(mocap::Format::Bvh));
 }
 
 #[test]

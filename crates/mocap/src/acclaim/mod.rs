@@ -23,20 +23,15 @@ mod amc;
 mod asf;
 mod text;
 
+mod model;
+
 pub use amc::{parse_amc, sniff_amc, Amc};
+pub use model::{axis_frame, skeleton, AcclaimSkeleton, AMC_FRAME_TIME};
 pub use asf::{parse_asf, sniff_asf, Asf, AsfBone, AsfRoot, AsfUnits};
 
 pub use crate::error::{ParseError, Warning};
 
-/// Angle unit of a file.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum AngleUnit {
-    /// Degrees (the default in both ASF and AMC).
-    #[default]
-    Degrees,
-    /// Radians.
-    Radians,
-}
+pub use crate::channel::AngleUnit;
 
 /// One Acclaim degree of freedom, as in `dof` and `order` lines.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
