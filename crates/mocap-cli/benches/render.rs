@@ -10,7 +10,7 @@
 //! build the primitives, draw (shadow map + scene, 4× MSAA) and wait for the GPU.
 //! "+ readback" adds copying the pixels back to memory, as `mocap render` does.
 
-use mocap_cli::render::{Gpu, Offscreen, Orbit, Stage};
+use mocap_cli::render::{Gpu, Offscreen, Orbit, StageView};
 use mocap_render::DrawMode;
 use std::path::Path;
 use std::time::Instant;
@@ -31,7 +31,7 @@ fn main() {
             return;
         }
     };
-    let joints = clip.skeleton().joints().iter().filter(|j| !j.is_end_site()).count();
+    let joints = clip.skeleton().joint_count();
     println!("adapter: {}   skeleton: {joints} joints (+ End Sites), 1280x720, 4x MSAA, shadows on", gpu.adapter_name());
     let mut offscreen = Offscreen::new(&gpu, [1280, 720]);
     for mode in [DrawMode::Capsules, DrawMode::Sticks] {
@@ -50,7 +50,7 @@ fn main() {
 
 /// Times whole frames of `count` characters and prints one line.
 fn measure(gpu: &Gpu, offscreen: &mut Offscreen, clip: &mocap::Clip, mode: DrawMode, count: usize, shadows: bool) {
-    let stage = Stage::new(vec![clip; count]).with_mode(mode);
+    let stage = StageView::new(vec![("clip".to_owned(), clip.clone()); count]).with_mode(mode);
     let camera = stage.camera(Orbit::default(), offscreen.size());
     let mut scene = mocap_render::Scene::default();
     let pose = |f: usize, scene: &mut mocap_render::Scene| {

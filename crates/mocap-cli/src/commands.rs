@@ -1,15 +1,77 @@
 //! The subcommands. Each returns an exit code or a message for stderr.
 
-use mocap::Clip;
+use mocap::{Clip, Format, Input, Loaded};
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-/// Reads and parses a file; errors read `FILE:LINE:COL: message`.
-fn read_clip(path: &Path) -> Result<Clip, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-    mocap::load(&path.display().to_string(), &bytes).map_err(|e| e.to_string())
+fn read(path: &Path) -> Result<Vec<u8>, String> {
+    std::fs::read(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem().map(|s| s.to_string_lossy().to_ascii_lowercase()).unwrap_or_default()
+}
+
+/// The skeleton of an Acclaim motion given alone: in its folder, the `.asf` its
+/// name starts with (`01_01.amc` → `01.asf`, the longest such), else the only
+/// `.asf` there, else an error that says what is needed.
+pub fn find_skeleton(amc: &Path) -> Result<PathBuf, String> {
+    let dir = amc.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let mut skeletons: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| format!("{}: cannot list {} to find its skeleton: {e}", amc.display(), dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("asf")))
+        .collect();
+    skeletons.sort();
+    let motion = stem(amc);
+    let by_name = skeletons.iter().filter(|s| motion.starts_with(&stem(s))).max_by_key(|s| stem(s).len());
+    match (by_name, skeletons.as_slice()) {
+        (Some(s), _) => Ok(s.clone()),
+        (None, [only]) => Ok(only.clone()),
+        (None, []) => Err(format!("{}: an Acclaim motion needs its skeleton, and {} has no .asf file; give it too: mocap … SKELETON.asf {}", amc.display(), dir.display(), amc.display())),
+        (None, _) => Err(format!(
+            "{}: an Acclaim motion needs its skeleton: no .asf in {} starts its name, and there are {}; give the right one too: mocap … SKELETON.asf {}",
+            amc.display(),
+            dir.display(),
+            skeletons.len(),
+            amc.display()
+        )),
+    }
+}
+
+/// Reads a set of files as the viewer does (formats from content, Acclaim motions
+/// paired with skeletons); an `.amc` with no `.asf` in the set finds its skeleton
+/// with [`find_skeleton`]. Errors read `FILE:LINE:COL: message`.
+pub fn read_set(paths: &[PathBuf]) -> Result<Vec<Loaded>, String> {
+    let mut files: Vec<(PathBuf, Vec<u8>)> = paths.iter().map(|p| read(p).map(|b| (p.clone(), b))).collect::<Result<_, _>>()?;
+    let formats: Vec<Option<Format>> = files.iter().map(|(p, b)| Format::detect(&p.display().to_string(), b)).collect();
+    if !formats.contains(&Some(Format::Asf)) {
+        if let Some((amc, _)) = files.iter().zip(&formats).find(|(_, f)| **f == Some(Format::Amc)).map(|(f, _)| f) {
+            let skeleton = find_skeleton(amc)?;
+            let bytes = read(&skeleton)?;
+            files.insert(0, (skeleton, bytes));
+        }
+    }
+    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    let inputs: Vec<Input> = files.iter().zip(&names).map(|((_, bytes), name)| Input { name, bytes }).collect();
+    mocap::load(&inputs).into_iter().map(|r| r.map_err(|e| e.to_string())).collect()
+}
+
+/// Reads the files of one clip (a motion file, or an Acclaim skeleton with one motion).
+fn read_clip(paths: &[PathBuf]) -> Result<Clip, String> {
+    let mut set = read_set(paths)?;
+    let shown: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+    match set.len() {
+        1 => Ok(set.remove(0).clip),
+        0 => Err(format!("{}: no clip in these files", shown.join(" "))),
+        n => Err(format!("{}: these files hold {n} clips; give one motion (an .asf skeleton with one .amc, or one .bvh/.bva)", shown.join(" "))),
+    }
+}
+
+fn shown(paths: &[PathBuf]) -> String {
+    paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(" ")
 }
 
 /// An f32 as a JSON number with its shortest round-trip digits (not f64 noise).
@@ -29,18 +91,19 @@ fn print_json(value: &Value) -> Result<ExitCode, String> {
 }
 
 /// `mocap info`.
-pub fn info(path: &Path, as_json: bool) -> Result<ExitCode, String> {
-    let clip = read_clip(path)?;
-    let skeleton = &clip.skeleton();
-    let roots: Vec<&str> = skeleton.roots().filter_map(|r| skeleton.joints.get(r)).map(|j| j.name.as_str()).collect();
-    let joints = skeleton.joints.iter().filter(|j| !j.is_end_site()).count();
+pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
+    let clip = read_clip(paths)?;
+    let path = shown(paths);
+    let skeleton = clip.skeleton();
+    let roots: Vec<&str> = skeleton.roots().filter_map(|r| skeleton.joints().get(r)).map(|j| j.name.as_str()).collect();
+    let joints = skeleton.joint_count();
     let end_sites = skeleton.len() - joints;
     let bounds = clip.bounds();
     let units = clip.units();
     let warnings: Vec<String> = clip.warnings.iter().map(ToString::to_string).collect();
     if as_json {
         return print_json(&json!({
-            "file": path.display().to_string(),
+            "file": path,
             "skeletons": roots.len(),
             "roots": roots,
             "joints": joints,
@@ -52,11 +115,13 @@ pub fn info(path: &Path, as_json: bool) -> Result<ExitCode, String> {
             "duration": clip.duration(),
             "bounds": { "min": vec3(bounds.min), "max": vec3(bounds.max) },
             "units": units.name(),
+            "angle_unit": clip.motion().angle_unit().name(),
+            "metadata": clip.metadata.iter().map(|(k, v)| json!([k, v])).collect::<Vec<_>>(),
             "warnings": warnings,
         }));
     }
     let mut out = std::io::stdout().lock();
-    let _ = writeln!(out, "file:       {}", path.display());
+    let _ = writeln!(out, "file:       {path}");
     let _ = writeln!(out, "skeletons:  {} ({})", roots.len(), roots.join(", "));
     let _ = writeln!(out, "joints:     {joints} (+{end_sites} End Sites)");
     let _ = writeln!(out, "channels:   {}", skeleton.channel_count());
@@ -65,6 +130,9 @@ pub fn info(path: &Path, as_json: bool) -> Result<ExitCode, String> {
     let _ = writeln!(out, "duration:   {:.3} s", clip.duration());
     let _ = writeln!(out, "bounds:     min {:?} max {:?}", bounds.min.to_array(), bounds.max.to_array());
     let _ = writeln!(out, "units:      {} (guessed from a first-pose height of {:.3})", units.name(), clip.pose_height());
+    for (k, v) in &clip.metadata {
+        let _ = writeln!(out, "{:<11} {}", format!("{k}:"), v.replace('\n', "\n            "));
+    }
     for w in &warnings {
         let _ = writeln!(out, "warning:    {w}");
     }
@@ -72,32 +140,44 @@ pub fn info(path: &Path, as_json: bool) -> Result<ExitCode, String> {
 }
 
 /// `mocap pose`.
-pub fn pose(path: &Path, frame: usize) -> Result<ExitCode, String> {
-    let clip = read_clip(path)?;
+pub fn pose(paths: &[PathBuf], frame: usize) -> Result<ExitCode, String> {
+    let clip = read_clip(paths)?;
     if frame >= clip.frame_count().max(1) {
-        return Err(format!("{}: frame {frame} is out of range (the clip has {} frames)", path.display(), clip.frame_count()));
+        return Err(format!("{}: frame {frame} is out of range (the clip has {} frames)", shown(paths), clip.frame_count()));
     }
     let mut positions = Vec::new();
     clip.world_positions_into(frame, &mut positions);
     let joints: Vec<Value> = clip
-        .skeleton
-        .joints
+        .skeleton()
+        .joints()
         .iter()
         .zip(&positions)
         .map(|(j, p)| json!({ "name": j.name, "parent": j.parent, "end_site": j.is_end_site(), "position": vec3(*p) }))
         .collect();
-    let time = mocap::sample::time_of_frame(frame, clip.frame_time());
+    let time = clip.timeline().time_of(frame);
     print_json(&json!({ "frame": frame, "time": time, "joints": joints }))
 }
 
-/// `mocap convert`.
-pub fn convert(input: &Path, output: &Path) -> Result<ExitCode, String> {
+/// `mocap convert`: to BVH (general clips baked, every position kept) or BVA (each
+/// joint's world transform a segment). What the target cannot keep is said on stderr.
+pub fn convert(inputs: &[PathBuf], output: &Path) -> Result<ExitCode, String> {
     let ext = output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    if ext.as_deref() != Some("bvh") {
-        return Err(format!("{}: can only write .bvh files", output.display()));
+    let clip = read_clip(inputs)?;
+    let (text, warnings) = match ext.as_deref() {
+        Some("bvh") => {
+            let (baked, warnings) = mocap::bake::to_bvh(&clip);
+            (mocap::bvh::write(&baked), warnings)
+        }
+        Some("bva") => {
+            let (bva, warnings) = mocap::bva::from_clip(&clip);
+            (mocap::bva::write(&bva), warnings)
+        }
+        _ => return Err(format!("{}: can write .bvh or .bva files", output.display())),
+    };
+    for w in warnings {
+        eprintln!("{}: warning: {w}", output.display());
     }
-    let clip = read_clip(input)?;
-    std::fs::write(output, mocap::bvh::write(&clip)).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+    std::fs::write(output, text).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -121,7 +201,7 @@ fn collect(path: &Path, explicit: bool, out: &mut Vec<PathBuf>) {
 }
 
 fn is_motion_file(path: &Path) -> bool {
-    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("bvh"))
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| Format::EXTENSIONS.iter().any(|x| e.eq_ignore_ascii_case(x)))
 }
 
 /// `mocap validate`.
@@ -135,7 +215,7 @@ pub fn validate(paths: &[PathBuf]) -> Result<ExitCode, String> {
     }
     let mut failed = 0;
     for file in &files {
-        match read_clip(file) {
+        match read_clip(std::slice::from_ref(file)) {
             Ok(clip) => {
                 let warn = if clip.warnings.is_empty() { String::new() } else { format!(", {} warnings", clip.warnings.len()) };
                 println!("ok   {}: {} joints, {} frames{warn}", file.display(), clip.skeleton().len(), clip.frame_count());
@@ -181,18 +261,18 @@ pub fn render(files: &[PathBuf], shot: Shot, out: &Path, size: &str, mode: &str,
     let mode = mocap_render::DrawMode::from_name(mode).ok_or_else(|| format!("--mode {mode}: expected `capsules` or `sticks`"))?;
     let size = crate::render::parse_size(size)?;
     let orbit = camera.map(crate::render::parse_orbit).transpose()?.unwrap_or_default();
-    let clips = files.iter().map(|f| read_clip(f)).collect::<Result<Vec<_>, _>>()?;
-    let stage = crate::render::Stage::new(clips.iter().collect()).with_mode(mode);
+    let clips = read_set(files)?.into_iter().map(|l| (l.name, l.clip)).collect();
+    let stage = crate::render::StageView::new(clips).with_mode(mode);
     let gpu = crate::render::Gpu::new()?;
     let mut scene = mocap_render::Scene::default();
-    let dt = stage.frame_time();
+    let timeline = stage.timeline();
     match shot {
         Shot::Frame(_) | Shot::Time(_) => {
             let time = match shot {
                 Shot::Time(t) if t.is_finite() => t.max(0.0),
                 Shot::Time(_) => return Err("--time must be a number of seconds".into()),
-                Shot::Frame(f) if f < stage.frame_count() => mocap::sample::time_of_frame(f, dt),
-                Shot::Frame(f) => return Err(format!("frame {f} is out of range (the clip has {} frames)", stage.frame_count())),
+                Shot::Frame(f) if f < timeline.frames().max(1) => timeline.time_of(f),
+                Shot::Frame(f) => return Err(format!("frame {f} is out of range (the clip has {} frames)", timeline.frames())),
                 _ => 0.0,
             };
             let mut offscreen = crate::render::Offscreen::new(&gpu, size);
@@ -202,15 +282,15 @@ pub fn render(files: &[PathBuf], shot: Shot, out: &Path, size: &str, mode: &str,
         }
         Shot::Sequence(range) => {
             let (a, b, step) = parse_range(&range)?;
-            let last = stage.frame_count().saturating_sub(1);
+            let last = timeline.last();
             if a > last {
-                return Err(format!("--frames {range}: the clip has {} frames", stage.frame_count()));
+                return Err(format!("--frames {range}: the clip has {} frames", timeline.frames()));
             }
             std::fs::create_dir_all(out).map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
             let mut offscreen = crate::render::Offscreen::new(&gpu, size);
             let camera = stage.camera(orbit, offscreen.size());
             for frame in (a..=b.min(last)).step_by(step) {
-                stage.scene_at(mocap::sample::time_of_frame(frame, dt), &mut scene);
+                stage.scene_at(timeline.time_of(frame), &mut scene);
                 let pixels = offscreen.draw(&gpu, &scene, &camera)?;
                 crate::render::write_png(&out.join(format!("frame_{frame:05}.png")), offscreen.size(), &pixels)?;
             }

@@ -17,18 +17,21 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Skeletons, joints, channels, frames, timing, bounding box, units and warnings.
+    /// Skeletons, joints, channels, frames, timing, bounding box, units, what the
+    /// file says about itself and warnings.
     Info {
-        /// The motion file.
-        file: PathBuf,
+        /// The motion file (BVH, BVA, ASF, or an AMC: its .asf is found beside it, or give both).
+        #[arg(required = true, num_args = 1..=2)]
+        files: Vec<PathBuf>,
         /// Print JSON instead of text.
         #[arg(long)]
         json: bool,
     },
     /// World positions of every joint (End Sites included) at one frame.
     Pose {
-        /// The motion file.
-        file: PathBuf,
+        /// The motion file (an AMC finds its .asf, or give both).
+        #[arg(required = true, num_args = 1..=2)]
+        files: Vec<PathBuf>,
         /// Frame index, 0-based.
         #[arg(long, default_value_t = 0)]
         frame: usize,
@@ -36,17 +39,18 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Converts a motion file to BVH.
+    /// Converts a motion to BVH (every joint position kept) or BVA (each joint's world transform a segment).
     Convert {
-        /// Input file.
-        input: PathBuf,
-        /// Output file (.bvh).
+        /// Input file(s): one motion file, or an Acclaim skeleton and motion (`SKEL.asf TAKE.amc`).
+        #[arg(required = true, num_args = 1..=2)]
+        inputs: Vec<PathBuf>,
+        /// Output file (.bvh or .bva).
         #[arg(short, long)]
         output: PathBuf,
     },
     /// Renders clips to PNG headlessly (wgpu on Vulkan; Mesa lavapipe without a GPU).
     Render {
-        /// One or more motion files, drawn side by side.
+        /// One or more motion files, drawn side by side (Acclaim: skeleton and motions).
         #[arg(required = true)]
         files: Vec<PathBuf>,
         /// Frame to render (in the first file's frame time; default 0).
@@ -88,9 +92,9 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Info { file, json } => commands::info(&file, json),
-        Command::Pose { file, frame, json: _ } => commands::pose(&file, frame),
-        Command::Convert { input, output } => commands::convert(&input, &output),
+        Command::Info { files, json } => commands::info(&files, json),
+        Command::Pose { files, frame, json: _ } => commands::pose(&files, frame),
+        Command::Convert { inputs, output } => commands::convert(&inputs, &output),
         Command::Validate { paths } => commands::validate(&paths),
         Command::Render { files, frame, time, frames, sheet, columns, out, size, mode, camera } => {
             let shot = match (frame, time, frames, sheet) {
