@@ -1,8 +1,8 @@
 //! The motion-capture viewer: an egui app with a timeline, a joint hierarchy, an
 //! inspector and a 3D view drawn by `mocap-render`.
 //!
-//! Data flows one way: bytes → [`mocap::Clip`] ([`Document`]) → a [`Character`]
-//! on the [`Stage`] (colour, visibility, placement in metres) → playhead
+//! Data flows one way: bytes → [`mocap::Clip`] (the core's loader) → a
+//! [`Character`] on the [`Stage`] (colour, visibility, placement in metres) → playhead
 //! ([`Playback`], one clock for all) → world transforms → scene primitives
 //! ([`pose_scene`]) → GPU ([`viewport`]). [`Viewer`] holds the state; on the web,
 //! [`app::ViewerApp`] runs it inside eframe.
@@ -13,7 +13,6 @@
 pub mod app;
 pub mod camera;
 pub mod character;
-pub mod document;
 pub mod keys;
 pub mod layout;
 pub mod panels;
@@ -29,8 +28,7 @@ pub mod view_state;
 pub mod viewport;
 
 pub use camera::{OrbitCamera, Waypoint};
-pub use character::Character;
-pub use document::Document;
+pub use character::{Character, Look};
 pub use layout::Layout;
 pub use panels::Panels;
 pub use playback::Playback;

@@ -24,30 +24,8 @@ impl Default for Playback {
     }
 }
 
-/// The timing facts playback needs from a clip.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Timing {
-    /// Number of frames.
-    pub frames: usize,
-    /// Seconds per frame (positive).
-    pub frame_time: f64,
-}
-
-impl Timing {
-    /// Last valid frame index.
-    pub fn last(self) -> usize {
-        self.frames.saturating_sub(1)
-    }
-
-    /// Time of a frame's sample.
-    pub fn time_of(self, frame: usize) -> f64 {
-        frame as f64 * self.frame_time
-    }
-
-    fn frame_time(self) -> f64 {
-        if self.frame_time.is_finite() && self.frame_time > 0.0 { self.frame_time } else { 1.0 / 30.0 }
-    }
-}
+/// The timeline playback runs on: the core's one time↔frame rule.
+pub use mocap::Timeline as Timing;
 
 impl Playback {
     /// The loop range clamped to the clip, in frames (inclusive, start ≤ end).
@@ -62,15 +40,14 @@ impl Playback {
         }
     }
 
-    /// Current frame: the last frame whose time is not after the playhead.
+    /// Current frame: the frame shown at the playhead ([`Timing::frame_at`]).
     pub fn frame(&self, timing: Timing) -> usize {
-        let f = (self.time / timing.frame_time() + 1e-6).floor();
-        if f.is_finite() && f > 0.0 { (f as usize).min(timing.last()) } else { 0 }
+        timing.frame_at(self.time)
     }
 
     /// Advances the playhead by `dt` wall-clock seconds when playing.
     pub fn advance(&mut self, dt: f64, timing: Timing) {
-        if !self.playing || timing.frames == 0 {
+        if !self.playing || timing.frames() == 0 {
             return;
         }
         let (a, b) = self.frame_range(timing);
@@ -115,7 +92,7 @@ impl Playback {
 mod tests {
     use super::*;
 
-    const T: Timing = Timing { frames: 11, frame_time: 0.1 };
+    const T: Timing = Timing::new(0.1, 11);
 
     #[test]
     fn advances_in_real_time_and_loops() {
@@ -169,7 +146,7 @@ mod tests {
     #[test]
     fn empty_clip_is_harmless() {
         let mut p = Playback::default();
-        let t = Timing { frames: 0, frame_time: 0.0 };
+        let t = Timing::new(0.0, 0);
         p.advance(1.0, t);
         p.step(1, t);
         assert_eq!(p.frame(t), 0);

@@ -1,7 +1,7 @@
 //! Turns posed characters into renderer primitives: bones (capsules or sticks), joints, axes, floor.
 //! This is the only place that does; [`character_primitives`] draws one character.
 
-use crate::document::Document;
+use crate::character::Character;
 use crate::selection::Selection;
 use crate::settings::ViewSettings;
 use crate::stage::Stage;
@@ -12,17 +12,17 @@ use mocap_render::{FigureStyle, Grid, HIGHLIGHT_COLOR, JOINT_COLOR, Line, Scene,
 const AXES: [[u8; 4]; 3] = [[235, 60, 60, 255], [60, 210, 80, 255], [70, 120, 255, 255]];
 
 /// Fills `scene` with the floor grid and every visible character in its last pose
-/// ([`crate::character::Character::pose_at`]); empty without characters.
+/// ([`crate::character::pose_at`]); empty without characters.
 pub fn build_scene(stage: &Stage, settings: &ViewSettings, selected: Option<Selection>, scene: &mut Scene) {
     scene.clear();
-    if stage.characters.is_empty() {
+    if stage.actors.is_empty() {
         return;
     }
     scene.grid = Some(floor_grid(stage));
     scene.shadows = settings.shadows;
     for (i, c) in stage.visible() {
         let joint = selected.filter(|s| s.character == i).map(|s| s.joint);
-        character_primitives(&c.document, c.pose(), c.color, settings, joint, scene);
+        character_primitives(c, &c.extra.pose, c.extra.color, settings, joint, scene);
     }
 }
 
@@ -31,14 +31,14 @@ pub fn build_scene(stage: &Stage, settings: &ViewSettings, selected: Option<Sele
 /// `selected`. `transforms` are its world transforms in metres, already placed (one
 /// per joint of `doc`, in joint order).
 pub fn character_primitives(
-    doc: &Document,
+    doc: &Character,
     transforms: &[Transform],
     color: [u8; 4],
     settings: &ViewSettings,
     selected: Option<usize>,
     scene: &mut Scene,
 ) {
-    let size = doc.extent * doc.meters_per_unit();
+    let size = doc.world_extent();
     let style = FigureStyle {
         mode: settings.mode,
         color,
@@ -47,10 +47,10 @@ pub fn character_primitives(
         show_joints: settings.show_joints,
         highlight: selected.map(|j| (j, HIGHLIGHT_COLOR)),
     };
-    push_figure(scene, &doc.figure, transforms, &style);
+    push_figure(scene, &doc.extra.figure, transforms, &style);
     if settings.show_axes {
-        for (joint, t) in doc.clip.skeleton().joints().iter().zip(transforms) {
-            if !joint.is_end_site() {
+        for (joint, t) in doc.extra.figure.iter().zip(transforms) {
+            if joint.marker {
                 push_axes(t, size * 0.06, scene);
             }
         }

@@ -27,15 +27,15 @@ pub struct ClipSummary {
 impl ClipSummary {
     /// The summary of one character.
     pub fn of(c: &Character) -> ClipSummary {
-        let d = &c.document;
+        let d = c;
         ClipSummary {
             name: d.name.clone(),
             frames: d.clip.frame_count(),
             frame_time: d.clip.frame_time(),
-            joints: d.joint_count(),
+            joints: d.clip.skeleton().joint_count(),
             joint_names: d.clip.skeleton().joints().iter().map(|j| j.name.clone()).collect(),
             visible: c.visible,
-            color: c.color,
+            color: c.extra.color,
             offset: c.placement().to_array(),
         }
     }
@@ -82,7 +82,7 @@ impl Snapshot {
     /// The state of `v`, with what only the viewer's private parts know passed in.
     pub fn of(v: &Viewer, tree_labels: Vec<String>, frames_rendered: u64, backend: Option<String>) -> Snapshot {
         Snapshot {
-            clips: v.stage.characters.iter().map(ClipSummary::of).collect(),
+            clips: v.stage.actors.iter().map(ClipSummary::of).collect(),
             frame: v.frame(),
             time: v.playback.time,
             playing: v.playback.playing,

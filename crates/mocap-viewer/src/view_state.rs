@@ -112,11 +112,11 @@ impl ViewState {
             parts.push(if number == 1 { format!("sel={name}") } else { format!("sel={number}:{name}") });
         }
         parts.push(format!("layout={}", viewer.stage.layout.name()));
-        let hidden: Vec<String> = viewer.stage.characters.iter().enumerate().filter(|(_, c)| !c.visible).map(|(i, _)| (i + 1).to_string()).collect();
+        let hidden: Vec<String> = viewer.stage.actors.iter().enumerate().filter(|(_, c)| !c.visible).map(|(i, _)| (i + 1).to_string()).collect();
         if !hidden.is_empty() {
             parts.push(format!("hide={}", hidden.join(",")));
         }
-        let moved: Vec<String> = (viewer.stage.characters.iter().enumerate())
+        let moved: Vec<String> = (viewer.stage.actors.iter().enumerate())
             .filter(|(_, c)| c.offset != Vec3::ZERO)
             .map(|(i, c)| format!("{}:{},{},{}", i + 1, c.offset.x, c.offset.y, c.offset.z))
             .collect();
@@ -140,12 +140,12 @@ impl ViewState {
             viewer.stage.set_layout(layout);
         }
         if let Some(hidden) = &self.hidden {
-            for (i, c) in viewer.stage.characters.iter_mut().enumerate() {
+            for (i, c) in viewer.stage.actors.iter_mut().enumerate() {
                 c.visible = !hidden.contains(&i);
             }
         }
         if let Some(offsets) = &self.offsets {
-            for (i, c) in viewer.stage.characters.iter_mut().enumerate() {
+            for (i, c) in viewer.stage.actors.iter_mut().enumerate() {
                 c.offset = offsets.iter().find(|(n, _)| *n == i).map_or(Vec3::ZERO, |(_, o)| *o);
             }
         }

@@ -2,7 +2,7 @@
 //! the frame loop that ties them to the UI.
 
 use crate::camera::OrbitCamera;
-use crate::document::Document;
+use crate::character::{self, Character};
 use crate::keys::{self, Action};
 use crate::layout::Layout;
 use crate::panels::Panels;
@@ -49,53 +49,81 @@ pub struct Viewer {
     pub share_requested: bool,
     /// Which panels are shown.
     pub panels: Panels,
+    /// Reads dropped files; remembers the last Acclaim skeleton for motions dropped alone.
+    pub loader: mocap::Loader,
     viewport: Viewport,
     scene: Scene,
+    pose_scratch: mocap::stage::PoseScratch,
     last_time: Option<f64>,
     actions: Vec<Action>,
     tree_labels: Vec<String>,
 }
 
 impl Viewer {
-    /// Parses `bytes` and replaces everything open with it. On error what was open
-    /// stays and the error is kept for display; the message is also returned.
+    /// Reads `bytes` (any supported format) and replaces everything open with it.
+    /// On error what was open stays and the error is kept for display; the message
+    /// is also returned.
     pub fn load(&mut self, file_name: &str, bytes: &[u8]) -> Result<(), String> {
-        let doc = self.parse(file_name, bytes)?;
-        self.open(doc);
-        Ok(())
+        self.open_files(&[(file_name, bytes)], OpenMode::Replace).into_iter().next().map_or(Ok(()), Err)
     }
 
-    /// Parses `bytes` and adds it as one more character. On error what was open
+    /// Reads `bytes` and adds it as one more character. On error what was open
     /// stays and the error is kept for display; the message is also returned.
     pub fn add(&mut self, file_name: &str, bytes: &[u8]) -> Result<(), String> {
-        let doc = self.parse(file_name, bytes)?;
-        self.add_document(doc);
-        Ok(())
+        self.open_files(&[(file_name, bytes)], OpenMode::Add).into_iter().next().map_or(Ok(()), Err)
     }
 
-    /// Opens one document in place of everything open (see [`Viewer::open_all`]).
-    pub fn open(&mut self, doc: Document) {
-        self.open_all(vec![doc]);
+    /// Opens a set of dropped, picked or linked files through the core's loader
+    /// (formats from content; an Acclaim skeleton with its motions makes one
+    /// character per motion; a motion alone uses the last skeleton read). With
+    /// [`OpenMode::Replace`] what opened replaces everything open; when nothing
+    /// opens, what was open stays. Returns every error (also shown in the banner).
+    pub fn open_files(&mut self, files: &[(&str, &[u8])], mode: OpenMode) -> Vec<String> {
+        let inputs: Vec<mocap::Input> = files.iter().map(|&(name, bytes)| mocap::Input { name, bytes }).collect();
+        let mut clips = Vec::new();
+        let mut errors = Vec::new();
+        for result in self.loader.load(&inputs) {
+            match result {
+                Ok(loaded) => clips.push((loaded.name, loaded.clip)),
+                Err(e) => errors.push(e.to_string()),
+            }
+        }
+        if !clips.is_empty() {
+            match mode {
+                OpenMode::Replace => self.open_clips(clips),
+                OpenMode::Add => clips.into_iter().for_each(|(name, clip)| self.add_clip(&name, clip)),
+            }
+        }
+        if !errors.is_empty() {
+            self.error = Some(errors.join("\n"));
+        }
+        errors
     }
 
-    /// Replaces everything open with `docs`: time 0, play state kept, no loop range
-    /// or selection, camera framed on the motion. The first frame drawn afterwards
-    /// shows frame 0 (the clock restarts).
-    pub fn open_all(&mut self, docs: Vec<Document>) {
+    /// Replaces everything open with `clips` (name, clip): time 0, play state kept,
+    /// no loop range or selection, camera framed on the motion. The first frame drawn
+    /// afterwards shows frame 0 (the clock restarts).
+    pub fn open_clips(&mut self, clips: Vec<(String, mocap::Clip)>) {
         self.playback.time = 0.0;
         self.last_time = None;
         self.playback.range = None;
         self.selected = None;
         self.error = None;
-        self.stage.replace(docs);
+        let mut characters: Vec<Character> = Vec::with_capacity(clips.len());
+        for (name, clip) in clips {
+            let c = character::new_character(&name, clip, &characters);
+            characters.push(c);
+        }
+        self.stage.replace(characters);
         self.camera.frame(self.stage.bounds());
     }
 
     /// Adds a character, keeping the playhead, selection and play state; the
     /// camera frames everything visible.
-    pub fn add_document(&mut self, doc: Document) {
+    pub fn add_clip(&mut self, name: &str, clip: mocap::Clip) {
         self.error = None;
-        self.stage.add(doc);
+        let c = character::new_character(name, clip, &self.stage.actors);
+        self.stage.add(c);
         self.camera.frame(self.stage.bounds());
     }
 
@@ -135,15 +163,15 @@ impl Viewer {
         self.selected.map_or(0, |s| s.character)
     }
 
-    /// The current character's document (see [`Viewer::current`]), if any is open.
-    pub fn document(&self) -> Option<&Document> {
-        let stage = &self.stage.characters;
-        stage.get(self.current()).or(stage.first()).map(|c| &c.document)
+    /// The current character (see [`Viewer::current`]), if any is open.
+    pub fn current_character(&self) -> Option<&Character> {
+        let stage = &self.stage.actors;
+        stage.get(self.current()).or(stage.first())
     }
 
     /// The shared timeline: the longest clip, in frames of the current character.
     pub fn timing(&self) -> Option<Timing> {
-        self.stage.timing(self.current())
+        self.stage.timeline(self.current())
     }
 
     /// Moves to a frame of the timeline (clamped); keeps the play state.
@@ -168,13 +196,13 @@ impl Viewer {
 
     /// Selects joint `joint` of character `character`, or nothing when either is out of range.
     pub fn select_in(&mut self, character: usize, joint: Option<usize>) {
-        let valid = |j: &usize| self.stage.characters.get(character).is_some_and(|c| *j < c.document.clip.skeleton().joints().len());
+        let valid = |j: &usize| self.stage.actors.get(character).is_some_and(|c| *j < c.clip.skeleton().joints().len());
         self.selected = joint.filter(valid).map(|joint| Selection { character, joint });
     }
 
     /// Selects the first joint called `name` in character `character`; returns whether one exists.
     pub fn select_named(&mut self, character: usize, name: &str) -> bool {
-        let joint = self.stage.characters.get(character).and_then(|c| c.document.clip.skeleton().joints().iter().position(|j| j.name == name));
+        let joint = self.stage.actors.get(character).and_then(|c| c.clip.skeleton().joints().iter().position(|j| j.name == name));
         self.select_in(character, joint);
         joint.is_some()
     }
@@ -182,7 +210,7 @@ impl Viewer {
     /// The selected joint's name.
     pub fn selected_name(&self) -> Option<&str> {
         let s = self.selected?;
-        let joint = self.stage.characters.get(s.character)?.document.clip.skeleton().joints().get(s.joint)?;
+        let joint = self.stage.actors.get(s.character)?.clip.skeleton().joints().get(s.joint)?;
         Some(joint.name.as_str())
     }
 
@@ -239,7 +267,7 @@ impl Viewer {
             self.viewport.show(ui, render_state, &mut self.camera, &self.scene);
             ui::overlay::show(ui, self);
         });
-        if self.playback.playing && !self.stage.characters.is_empty() {
+        if self.playback.playing && !self.stage.actors.is_empty() {
             ui.ctx().request_repaint();
         }
     }
@@ -281,17 +309,6 @@ impl Viewer {
         self.camera.frame(self.stage.bounds());
     }
 
-    fn parse(&mut self, file_name: &str, bytes: &[u8]) -> Result<Document, String> {
-        match mocap::load(file_name, bytes) {
-            Ok(clip) => Ok(Document::new(file_name, clip)),
-            Err(e) => {
-                let message = e.to_string();
-                self.error = Some(message.clone());
-                Err(message)
-            }
-        }
-    }
-
     fn advance_clock(&mut self, ctx: &egui::Context) {
         let now = ctx.input(|i| i.time);
         let dt = self.last_time.map_or(0.0, |t| (now - t).clamp(0.0, MAX_STEP));
@@ -304,12 +321,12 @@ impl Viewer {
     /// Poses every visible character at the playhead and rebuilds the scene primitives.
     pub fn pose(&mut self) {
         let smooth = self.playback.playing && self.settings.interpolate;
-        for c in self.stage.characters.iter_mut().filter(|c| c.visible) {
-            c.pose_at(&self.playback, smooth);
+        for c in self.stage.actors.iter_mut().filter(|c| c.visible) {
+            character::pose_at(c, self.playback.time, smooth, &mut self.pose_scratch);
         }
-        let current = self.stage.characters.get(self.current()).filter(|c| c.visible);
+        let current = self.stage.actors.get(self.current()).filter(|c| c.visible);
         if self.settings.follow_root
-            && let Some(root) = current.and_then(|c| c.pose().first())
+            && let Some(root) = current.and_then(|c| c.extra.pose.first())
         {
             self.camera.target.x = root.translation.x;
             self.camera.target.z = root.translation.z;

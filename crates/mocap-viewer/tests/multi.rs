@@ -39,13 +39,13 @@ fn timeline_spans_the_longest_clip_in_the_first_clips_frames() {
     assert_eq!(s.clips.len(), 2);
     assert_eq!((s.clips[0].frames, s.clips[1].frames), (67, 600));
     let t = v.timing().unwrap();
-    assert_eq!(t.frame_time, s.clips[0].frame_time);
-    assert_eq!(t.frames, 151, "4.99 s at 30 fps, rounded up to a whole frame");
+    assert_eq!(t.frame_time(), s.clips[0].frame_time);
+    assert_eq!(t.frames(), 151, "4.99 s at 30 fps, rounded up to a whole frame");
     v.seek(10_000);
     assert_eq!(v.frame(), 150);
     // Selecting a joint of the 120 fps clip counts the timeline in its frames.
     v.select_in(1, Some(0));
-    assert_eq!(v.timing().unwrap().frames, 600);
+    assert_eq!(v.timing().unwrap().frames(), 600);
 }
 
 #[test]
@@ -53,22 +53,22 @@ fn clips_of_different_frame_rates_are_sampled_at_the_same_time() {
     let mut v = two();
     v.seek(30); // 1.0 s
     v.pose();
-    let (walk, fast) = (&v.stage.characters[0], &v.stage.characters[1]);
-    assert_eq!(walk.frame(&v.playback), 30);
-    assert_eq!(fast.frame(&v.playback), 120);
-    let x = fast.pose()[0].translation.x - fast.placement().x;
+    let (walk, fast) = (&v.stage.actors[0], &v.stage.actors[1]);
+    assert_eq!(walk.frame_at(v.playback.time), 30);
+    assert_eq!(fast.frame_at(v.playback.time), 120);
+    let x = fast.extra.pose[0].translation.x - fast.placement().x;
     assert!((x - 1.2).abs() < 1e-4, "root at 1.2 m after 1 s: {x}");
     // After its end the shorter clip holds its last pose.
     v.seek(150);
     v.pose();
-    assert_eq!(v.stage.characters[0].frame(&v.playback), 66);
-    assert_eq!(v.stage.characters[1].frame(&v.playback), 599);
+    assert_eq!(v.stage.actors[0].frame_at(v.playback.time), 66);
+    assert_eq!(v.stage.actors[1].frame_at(v.playback.time), 599);
     // Playing (interpolated) samples both at the playhead time.
     v.set_playing(true);
     v.playback.time = 0.5;
     v.pose();
-    let fast = &v.stage.characters[1];
-    let x = fast.pose()[0].translation.x - fast.placement().x;
+    let fast = &v.stage.actors[1];
+    let x = fast.extra.pose[0].translation.x - fast.placement().x;
     assert!((x - 0.6).abs() < 1e-4, "root at 0.6 m after 0.5 s: {x}");
 }
 
@@ -76,12 +76,12 @@ fn clips_of_different_frame_rates_are_sampled_at_the_same_time() {
 fn centimetres_and_metres_stand_at_the_same_size_side_by_side() {
     let mut v = two();
     v.pose();
-    let (walk, fast) = (&v.stage.characters[0], &v.stage.characters[1]);
+    let (walk, fast) = (&v.stage.actors[0], &v.stage.actors[1]);
     assert_eq!(walk.scale(), 0.01);
     assert_eq!(fast.scale(), 1.0);
-    let (hw, hf) = (walk.bounds().size().y, fast.bounds().size().y);
+    let (hw, hf) = (walk.world_bounds().size().y, fast.world_bounds().size().y);
     assert!((1.0..2.5).contains(&hw) && (1.0..2.5).contains(&hf), "heights {hw} {hf} m");
-    assert!(walk.bounds().max.x < fast.bounds().min.x, "spread: lanes do not overlap");
+    assert!(walk.world_bounds().max.x < fast.world_bounds().min.x, "spread: lanes do not overlap");
     let centre = v.stage.bounds().center().x;
     assert!(centre.abs() < 1e-3, "the row is centred on x = 0: {centre}");
     assert!((v.scene().grid.unwrap().cell - 0.5).abs() < 1e-6);
@@ -90,8 +90,8 @@ fn centimetres_and_metres_stand_at_the_same_size_side_by_side() {
     assert!(v.stage.bounds().min.x < target.x && target.x < v.stage.bounds().max.x);
 
     v.set_layout(Layout::Overlay);
-    assert!(v.stage.characters.iter().all(|c| c.layout_offset == mocap::glam::Vec3::ZERO));
-    v.stage.characters[1].offset.x = 2.0;
+    assert!(v.stage.actors.iter().all(|c| c.layout_offset == mocap::glam::Vec3::ZERO));
+    v.stage.actors[1].offset.x = 2.0;
     assert_eq!(v.snapshot().clips[1].offset, [2.0, 0.0, 0.0]);
 }
 
@@ -100,7 +100,7 @@ fn hidden_characters_are_not_drawn_and_removal_shifts_the_selection() {
     let mut v = two();
     v.pose();
     let all = v.scene().capsules.len();
-    let colors = (v.stage.characters[0].color, v.stage.characters[1].color);
+    let colors = (v.stage.actors[0].extra.color, v.stage.actors[1].extra.color);
     assert_ne!(colors.0, colors.1, "each character has its own colour");
     assert!(v.scene().capsules.iter().any(|l| l.color == colors.1));
     assert!(v.set_visible(1, false));
@@ -118,7 +118,7 @@ fn hidden_characters_are_not_drawn_and_removal_shifts_the_selection() {
     assert!(!v.remove(3));
     assert_eq!(v.selected, Some(Selection { character: 0, joint: 2 }));
     assert_eq!(v.snapshot().clips.len(), 1);
-    assert_eq!(v.timing().unwrap().frames, 600);
+    assert_eq!(v.timing().unwrap().frames(), 600);
     assert!(v.remove(0));
     assert_eq!(v.selected, None);
     v.pose();
@@ -140,7 +140,7 @@ fn a_failed_add_keeps_the_others_and_load_replaces_all() {
     assert_eq!((v.snapshot().clips.len(), v.frame(), v.snapshot().error), (3, 20, None));
     v.load("walk.bvh", WALK).unwrap();
     assert_eq!((v.snapshot().clips.len(), v.frame()), (1, 0));
-    assert_eq!(v.stage.characters[0].color, mocap_viewer::character::PALETTE[0]);
+    assert_eq!(v.stage.actors[0].extra.color, mocap_viewer::character::PALETTE[0]);
 }
 
 #[test]
@@ -155,7 +155,7 @@ fn fragment_round_trips_layout_hidden_and_selection_with_a_character() {
     v.set_visible(1, false);
     v.select_named(2, "mix:Head");
     v.seek(7);
-    v.stage.characters[2].offset = mocap::glam::Vec3::new(0.25, 0.0, -1.1);
+    v.stage.actors[2].offset = mocap::glam::Vec3::new(0.25, 0.0, -1.1);
     let fragment = v.view_fragment();
     assert!(fragment.contains("layout=overlay"), "{fragment}");
     assert!(fragment.contains("hide=2&") || fragment.ends_with("hide=2"), "{fragment}");
@@ -167,7 +167,7 @@ fn fragment_round_trips_layout_hidden_and_selection_with_a_character() {
     assert_eq!(w.view_fragment(), fragment);
     assert_eq!(w.selected, v.selected);
     assert_eq!(w.stage.layout, Layout::Overlay);
-    assert!(!w.stage.characters[1].visible && w.stage.characters[0].visible);
+    assert!(!w.stage.actors[1].visible && w.stage.actors[0].visible);
     assert_eq!(w.frame(), 7);
     assert_eq!(w.camera, v.camera);
     assert_eq!(w.snapshot().clips, v.snapshot().clips, "visibility, colours, offsets");
@@ -175,7 +175,7 @@ fn fragment_round_trips_layout_hidden_and_selection_with_a_character() {
     // `sel=Name` is the first character; `hide=none` shows all again.
     w.apply_fragment("sel=Hips&hide=none&layout=spread");
     assert_eq!(w.selected, Some(Selection { character: 0, joint: 0 }));
-    assert!(w.stage.characters.iter().all(|c| c.visible));
+    assert!(w.stage.actors.iter().all(|c| c.visible));
     assert_eq!(w.stage.layout, Layout::Spread);
     w.apply_fragment("sel=2:Head");
     assert_eq!(w.selected, Some(Selection { character: 1, joint: 2 }));
@@ -183,9 +183,9 @@ fn fragment_round_trips_layout_hidden_and_selection_with_a_character() {
     w.apply_fragment("sel=3%3Amix%253AHead"); // as URLSearchParams writes 3:mix%3AHead
     assert_eq!(w.selected, Some(Selection { character: 2, joint: 2 }));
     w.apply_fragment("offset=none");
-    assert!(w.stage.characters.iter().all(|c| c.offset == mocap::glam::Vec3::ZERO));
+    assert!(w.stage.actors.iter().all(|c| c.offset == mocap::glam::Vec3::ZERO));
     w.apply_fragment("offset=1:1,2,nan;2:1,1,1");
-    assert!(w.stage.characters.iter().all(|c| c.offset == mocap::glam::Vec3::ZERO), "unreadable offsets are ignored");
+    assert!(w.stage.actors.iter().all(|c| c.offset == mocap::glam::Vec3::ZERO), "unreadable offsets are ignored");
     w.apply_fragment("sel=9:Head&hide=x&layout=bogus");
     assert_eq!(w.selected, None);
     assert_eq!(w.stage.layout, Layout::Spread);
@@ -198,14 +198,14 @@ fn more_than_eight_characters_wrap_into_rows_and_colours_cycle() {
     for i in 0..9 {
         v.add(&format!("c{i}.bvh"), &clip).unwrap();
     }
-    let zs: std::collections::BTreeSet<i64> = v.stage.characters.iter().map(|c| (c.placement().z * 1000.0).round() as i64).collect();
+    let zs: std::collections::BTreeSet<i64> = v.stage.actors.iter().map(|c| (c.placement().z * 1000.0).round() as i64).collect();
     assert_eq!(zs.len(), 3, "three rows of three: {zs:?}");
-    let xs: std::collections::BTreeSet<i64> = v.stage.characters.iter().map(|c| (c.placement().x * 1000.0).round() as i64).collect();
+    let xs: std::collections::BTreeSet<i64> = v.stage.actors.iter().map(|c| (c.placement().x * 1000.0).round() as i64).collect();
     assert_eq!(xs.len(), 3, "three lanes per row: {xs:?}");
     let palette = mocap_viewer::character::PALETTE;
-    assert_eq!(v.stage.characters[6].color, palette[0], "colours cycle after {}", palette.len());
+    assert_eq!(v.stage.actors[6].extra.color, palette[0], "colours cycle after {}", palette.len());
     // Removing one frees its colour for the next character.
     v.remove(2);
     v.add("c9.bvh", &clip).unwrap();
-    assert_eq!(v.stage.characters.last().map(|c| c.color), Some(palette[2]));
+    assert_eq!(v.stage.actors.last().map(|c| c.extra.color), Some(palette[2]));
 }

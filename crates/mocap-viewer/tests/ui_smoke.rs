@@ -66,3 +66,38 @@ fn ui_draws_several_characters() {
     frame(&ctx, &mut v, 0.2, vec![]);
     assert_eq!(v.snapshot().tree_labels.iter().filter(|l| *l == "Hips").count(), 1);
 }
+
+/// A valid BVH whose joints nest `depth` levels deep (a chain), one frame.
+fn deep_bvh(depth: usize) -> Vec<u8> {
+    let mut s = String::from("HIERARCHY\nROOT j0\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n");
+    for i in 1..depth {
+        s.push_str(&format!("JOINT j{i}\n{{\nOFFSET 0 0.01 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n"));
+    }
+    s.push_str("End Site\n{\nOFFSET 0 0.01 0\n}\n");
+    s.push_str(&"}\n".repeat(depth));
+    s.push_str("MOTION\nFrames: 1\nFrame Time: 0.033333\n");
+    s.push_str(&"1 2 3 ".repeat(depth));
+    s.push('\n');
+    s.into_bytes()
+}
+
+#[test]
+fn a_200000_level_deep_skeleton_opens_draws_and_a_good_file_follows() {
+    // Run on a thread with a small stack (as a wasm page has): nothing may recurse on depth.
+    let worker = std::thread::Builder::new().stack_size(1 << 20).spawn(|| {
+        let ctx = egui::Context::default();
+        let mut v = Viewer::default();
+        v.load("deep.bvh", &deep_bvh(200_000)).expect("a deep file is valid");
+        v.select_named(0, "j199999");
+        frame(&ctx, &mut v, 0.0, vec![]);
+        frame(&ctx, &mut v, 0.1, vec![key(egui::Key::ArrowRight)]);
+        let s = v.snapshot();
+        assert_eq!(s.clips[0].joints, 200_000);
+        assert_eq!(s.selected_joint.as_deref(), Some("j199999"));
+        assert!(s.tree_labels.len() >= 1000, "the tree lists the chain: {}", s.tree_labels.len());
+        v.load("walk.bvh", WALK).expect("a good file after the deep one");
+        frame(&ctx, &mut v, 0.2, vec![]);
+        assert!(v.snapshot().tree_labels.iter().any(|l| l == "LeftForeArm"));
+    });
+    worker.unwrap().join().expect("no stack overflow");
+}

@@ -46,14 +46,14 @@ impl MocapViewer {
     /// `file_name`, in place of everything open.
     #[wasm_bindgen(js_name = loadClip)]
     pub fn load_clip(&self, clip: &crate::MotionClip, file_name: &str) {
-        let doc = mocap_viewer::Document::new(file_name, clip.clip().clone());
+        let doc = mocap_viewer::Character::new(file_name, clip.clip().clone());
         self.with_viewer(|v| v.open(doc));
     }
 
     /// Adds a clip from `parseMotion` (copying it) as one more character named `file_name`.
     #[wasm_bindgen(js_name = addClip)]
     pub fn add_clip(&self, clip: &crate::MotionClip, file_name: &str) {
-        let doc = mocap_viewer::Document::new(file_name, clip.clip().clone());
+        let doc = mocap_viewer::Character::new(file_name, clip.clip().clone());
         self.with_viewer(|v| v.add_document(doc));
     }
 

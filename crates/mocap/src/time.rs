@@ -38,9 +38,9 @@ pub struct Timeline {
 impl Timeline {
     /// `frames` frames `frame_time` seconds apart; an unusable frame time (zero,
     /// negative, not finite) counts as [`DEFAULT_FRAME_TIME`].
-    pub fn new(frame_time: f64, frames: usize) -> Timeline {
+    pub const fn new(frame_time: f64, frames: usize) -> Timeline {
         let frame_time = if frame_time.is_finite() && frame_time > 0.0 { frame_time } else { DEFAULT_FRAME_TIME };
-        Timeline { frame_time, frames: frames.min(MAX_FRAMES) }
+        Timeline { frame_time, frames: if frames < MAX_FRAMES { frames } else { MAX_FRAMES } }
     }
 
     /// Seconds between frames (positive, finite).

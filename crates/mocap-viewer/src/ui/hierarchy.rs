@@ -1,33 +1,95 @@
-//! Left panel: one collapsible entry per character (colour, visibility, name,
-//! remove, offset) holding its joint tree; clicking a joint selects it.
+//! Left panel: one entry per character (colour, visibility, name, remove, offset)
+//! holding its joint tree; clicking a joint selects it.
+//!
+//! The tree is a flat list of rows built by one iterative depth-first pass (no
+//! recursion, in this code or in egui's nested containers), drawn with
+//! `ScrollArea::show_rows` so only the rows on screen cost anything: a file can
+//! hold a 200,000-level-deep skeleton. Deep rows stop indenting at
+//! [`MAX_INDENT_LEVELS`] and show their depth instead.
 
 use crate::character::Character;
 use crate::selection::Selection;
 use crate::viewer::Viewer;
+use std::collections::HashSet;
 
-/// Shows the hierarchy panel; records the label of every joint drawn in `labels`.
+/// Indentation stops growing past this depth (the depth is shown as a number).
+pub const MAX_INDENT_LEVELS: usize = 32;
+/// At most this many joint names are recorded for [`crate::Snapshot::tree_labels`].
+pub const MAX_LABELS: usize = 10_000;
+/// Pixels per indentation level.
+const INDENT: f32 = 10.0;
+
+/// One row of the panel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Row {
+    /// A character's header: colour, visibility, name, remove.
+    Header(usize),
+    /// A character's hand-set offset.
+    Offset(usize),
+    /// A joint of a character at a depth (roots are 0).
+    Joint { character: usize, joint: usize, depth: usize },
+}
+
+/// What is folded: characters and joints (per character) whose rows are hidden.
+#[derive(Clone, Debug, Default)]
+struct Folded {
+    characters: HashSet<usize>,
+    joints: HashSet<(usize, usize)>,
+}
+
+/// Shows the hierarchy panel; records the label of every listed joint in `labels`.
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
     egui::Panel::left("hierarchy").resizable(true).default_size(240.0).show(ui, |ui| {
         ui.heading("Characters");
-        ui.spacing_mut().indent = 10.0;
-        let mut remove = None;
+        let folded_id = egui::Id::unique("hierarchy-folded");
+        let mut folded: Folded = ui.ctx().data(|d| d.get_temp(folded_id)).unwrap_or_default();
         let mut selected = viewer.selected;
-        // A selection made elsewhere (a link, JavaScript) scrolls its row into view once.
+        // A selection made elsewhere (a link, JavaScript) is unfolded and scrolled to once.
         let shown_id = egui::Id::unique("hierarchy-shown-selection");
         let shown: Option<Selection> = ui.ctx().data(|d| d.get_temp(shown_id)).flatten();
         let reveal = selected.filter(|s| Some(*s) != shown);
-        // The scroll area fills the panel even when empty, so the panel keeps its width.
-        egui::ScrollArea::both().auto_shrink([false, false]).show(ui, |ui| {
-            if viewer.stage.characters.is_empty() {
-                ui.label("No clip open");
-            }
-            for (index, c) in viewer.stage.characters.iter_mut().enumerate() {
-                if character_entry(ui, index, c, Tree { selected: &mut selected, reveal, labels }) {
-                    remove = Some(index);
+        if let Some(s) = reveal {
+            unfold_to(&mut folded, &viewer.stage.actors, s);
+        }
+        let rows = rows(&viewer.stage.actors, &folded);
+        record_labels(&rows, &viewer.stage.actors, labels);
+        let row_height = ui.spacing().interact_size.y;
+        let mut area = egui::ScrollArea::both().auto_shrink([false, false]);
+        if let Some(index) = reveal.and_then(|s| rows.iter().position(|r| *r == Row::Joint { character: s.character, joint: s.joint, depth: depth_of(&rows, s) })) {
+            let pitch = row_height + ui.spacing().item_spacing.y;
+            area = area.vertical_scroll_offset((index as f32 * pitch - ui.available_height() * 0.5).max(0.0));
+        }
+        let mut remove = None;
+        if viewer.stage.actors.is_empty() {
+            ui.label("No clip open");
+        }
+        area.show_rows(ui, row_height, rows.len(), |ui, range| {
+            for row in rows.get(range).unwrap_or(&[]) {
+                match *row {
+                    Row::Header(c) => {
+                        if let Some(character) = viewer.stage.actors.get_mut(c) {
+                            if header_row(ui, c, character, &mut folded) {
+                                remove = Some(c);
+                            }
+                        }
+                    }
+                    Row::Offset(c) => {
+                        if let Some(character) = viewer.stage.actors.get_mut(c) {
+                            offset_row(ui, character);
+                        }
+                    }
+                    Row::Joint { character, joint, depth } => {
+                        if let Some(c) = viewer.stage.actors.get(character) {
+                            joint_row(ui, c, Selection { character, joint }, depth, &mut selected, &mut folded);
+                        }
+                    }
                 }
             }
         });
-        ui.ctx().data_mut(|d| d.insert_temp(shown_id, selected));
+        ui.ctx().data_mut(|d| {
+            d.insert_temp(shown_id, selected);
+            d.insert_temp(folded_id, folded);
+        });
         if selected != viewer.selected {
             viewer.selected = selected;
         }
@@ -37,33 +99,92 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
     });
 }
 
-/// What the joint rows read and write: the selection, the row to scroll to, the labels drawn.
-struct Tree<'a> {
-    selected: &'a mut Option<Selection>,
-    reveal: Option<Selection>,
-    labels: &'a mut Vec<String>,
+/// The depth of a selected joint among the rows (0 when it is not listed).
+fn depth_of(rows: &[Row], s: Selection) -> usize {
+    rows.iter()
+        .find_map(|r| match *r {
+            Row::Joint { character, joint, depth } if character == s.character && joint == s.joint => Some(depth),
+            _ => None,
+        })
+        .unwrap_or(0)
 }
 
-/// One character: header row, offset row and joint tree. Returns whether "remove" was pressed.
-fn character_entry(ui: &mut egui::Ui, index: usize, c: &mut Character, mut tree: Tree<'_>) -> bool {
-    let mut remove = false;
-    let id = ui.make_persistent_id(("character", index));
-    egui::collapsing_header::CollapsingState::load_with_default_open(ui.ctx(), id, true)
-        .show_header(ui, |ui| {
-            swatch(ui, c.color);
-            ui.checkbox(&mut c.visible, "").on_hover_text("Show this character");
-            let name = egui::RichText::new(format!("{}. {}", index + 1, c.document.name)).strong();
-            ui.label(if c.visible { name } else { name.weak() }).on_hover_text(&c.document.name);
-            remove = ui.small_button("✕").on_hover_text("Close this character").clicked();
-        })
-        .body(|ui| {
-            offset_row(ui, c);
-            let joints = &c.document.clip.skeleton().joints();
-            let roots = joints.iter().enumerate().filter(|(_, j)| j.parent.is_none()).map(|(i, _)| i);
-            for root in roots {
-                joint_row(ui, c, index, root, &mut tree);
+/// Every row shown, in order: per character its header, then (unless folded) its
+/// offset and its joints depth-first, skipping the children of folded joints.
+fn rows(characters: &[Character], folded: &Folded) -> Vec<Row> {
+    let mut rows = Vec::new();
+    let mut stack: Vec<(usize, usize)> = Vec::new();
+    for (c, character) in characters.iter().enumerate() {
+        rows.push(Row::Header(c));
+        if folded.characters.contains(&c) {
+            continue;
+        }
+        rows.push(Row::Offset(c));
+        let children = &character.extra.children;
+        stack.clear();
+        stack.extend(character.clip.skeleton().roots().collect::<Vec<_>>().into_iter().rev().map(|r| (r, 0)));
+        while let Some((joint, depth)) = stack.pop() {
+            rows.push(Row::Joint { character: c, joint, depth });
+            if folded.joints.contains(&(c, joint)) {
+                continue;
             }
-        });
+            if let Some(kids) = children.get(joint) {
+                stack.extend(kids.iter().rev().map(|&k| (k, depth + 1)));
+            }
+        }
+    }
+    rows
+}
+
+/// Unfolds the character and every ancestor of the selected joint.
+fn unfold_to(folded: &mut Folded, characters: &[Character], s: Selection) {
+    folded.characters.remove(&s.character);
+    let Some(c) = characters.get(s.character) else { return };
+    let joints = c.clip.skeleton().joints();
+    let mut at = joints.get(s.joint).and_then(|j| j.parent);
+    while let Some(p) = at {
+        folded.joints.remove(&(s.character, p));
+        at = joints.get(p).and_then(|j| j.parent).filter(|&q| q < p);
+    }
+}
+
+/// Names of the listed joints, in row order (at most [`MAX_LABELS`]).
+fn record_labels(rows: &[Row], characters: &[Character], labels: &mut Vec<String>) {
+    let names = rows.iter().filter_map(|r| match *r {
+        Row::Joint { character, joint, .. } => characters.get(character)?.clip.skeleton().joints().get(joint).map(|j| j.name.clone()),
+        _ => None,
+    });
+    labels.extend(names.take(MAX_LABELS));
+}
+
+/// A small triangle that folds or unfolds; returns whether it was clicked.
+fn fold_toggle(ui: &mut egui::Ui, open: bool) -> bool {
+    let (rect, response) = ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::click());
+    let color = ui.visuals().widgets.style(&response).fg_stroke.color;
+    let c = rect.center();
+    let points = if open {
+        vec![c + egui::vec2(-4.0, -2.0), c + egui::vec2(4.0, -2.0), c + egui::vec2(0.0, 3.0)]
+    } else {
+        vec![c + egui::vec2(-2.0, -4.0), c + egui::vec2(3.0, 0.0), c + egui::vec2(-2.0, 4.0)]
+    };
+    ui.painter().add(egui::Shape::convex_polygon(points, color, egui::Stroke::NONE));
+    response.on_hover_text(if open { "Fold" } else { "Unfold" }).clicked()
+}
+
+/// One character's header row. Returns whether "remove" was pressed.
+fn header_row(ui: &mut egui::Ui, index: usize, c: &mut Character, folded: &mut Folded) -> bool {
+    let mut remove = false;
+    ui.horizontal(|ui| {
+        let open = !folded.characters.contains(&index);
+        if fold_toggle(ui, open) && !folded.characters.remove(&index) {
+            folded.characters.insert(index);
+        }
+        swatch(ui, c.extra.color);
+        ui.checkbox(&mut c.visible, "").on_hover_text("Show this character");
+        let name = egui::RichText::new(format!("{}. {}", index + 1, c.name)).strong();
+        ui.label(if c.visible { name } else { name.weak() }).on_hover_text(&c.name);
+        remove = ui.small_button("✕").on_hover_text("Close this character").clicked();
+    });
     remove
 }
 
@@ -77,6 +198,7 @@ fn swatch(ui: &mut egui::Ui, color: [u8; 4]) {
 /// The hand-set offset in metres (on top of the layout's).
 fn offset_row(ui: &mut egui::Ui, c: &mut Character) {
     ui.horizontal(|ui| {
+        ui.add_space(INDENT);
         ui.label("offset").on_hover_text("Moves this character (metres), on top of the layout");
         for (value, axis) in [(&mut c.offset.x, "x "), (&mut c.offset.y, "y "), (&mut c.offset.z, "z ")] {
             ui.add(egui::DragValue::new(value).speed(0.01).max_decimals(2).prefix(axis));
@@ -84,33 +206,27 @@ fn offset_row(ui: &mut egui::Ui, c: &mut Character) {
     });
 }
 
-fn joint_row(ui: &mut egui::Ui, c: &Character, character: usize, index: usize, tree: &mut Tree<'_>) {
-    let doc = &c.document;
-    let Some(joint) = doc.clip.skeleton().joints().get(index) else { return };
-    tree.labels.push(joint.name.clone());
-    let children = doc.children.get(index).map_or(&[][..], Vec::as_slice);
-    let here = Selection { character, joint: index };
-    let is_selected = *tree.selected == Some(here);
-    let text = if joint.is_end_site() { egui::RichText::new(&joint.name).weak() } else { egui::RichText::new(&joint.name) };
-    let label = |ui: &mut egui::Ui, tree: &mut Tree<'_>| {
-        let response = ui.selectable_label(is_selected, text.clone());
-        if response.clicked() {
-            *tree.selected = Some(here);
+/// One joint row: indentation, fold toggle (when it has children), selectable name.
+fn joint_row(ui: &mut egui::Ui, c: &Character, here: Selection, depth: usize, selected: &mut Option<Selection>, folded: &mut Folded) {
+    let Some(joint) = c.clip.skeleton().joints().get(here.joint) else { return };
+    let has_children = c.extra.children.get(here.joint).is_some_and(|k| !k.is_empty());
+    ui.horizontal(|ui| {
+        ui.add_space(INDENT * (1 + depth.min(MAX_INDENT_LEVELS)) as f32);
+        if depth > MAX_INDENT_LEVELS {
+            ui.label(egui::RichText::new(format!("{depth}")).weak().small()).on_hover_text("Depth in the tree");
         }
-        if tree.reveal == Some(here) {
-            response.scroll_to_me(Some(egui::Align::Center));
-        }
-    };
-    if children.is_empty() {
-        label(ui, tree);
-        return;
-    }
-    let id = ui.make_persistent_id(("joint", character, index));
-    egui::collapsing_header::CollapsingState::load_with_default_open(ui.ctx(), id, true)
-        .show_header(ui, |ui| label(ui, tree))
-        .body(|ui| {
-            for &child in children {
-                joint_row(ui, c, character, child, tree);
+        let key = (here.character, here.joint);
+        if has_children {
+            let open = !folded.joints.contains(&key);
+            if fold_toggle(ui, open) && !folded.joints.remove(&key) {
+                folded.joints.insert(key);
             }
-        });
+        } else {
+            ui.add_space(12.0 + ui.spacing().item_spacing.x);
+        }
+        let text = if joint.is_end_site() { egui::RichText::new(&joint.name).weak() } else { egui::RichText::new(&joint.name) };
+        if ui.selectable_label(*selected == Some(here), text).clicked() {
+            *selected = Some(here);
+        }
+    });
 }

@@ -1,10 +1,11 @@
 //! Clip facts of the current character: file name, joints, frames, fps, duration,
-//! units, reader warnings.
+//! units, what the file says about itself (Acclaim name, version, units,
+//! documentation), reader warnings.
 
-use crate::document::Document;
+use crate::character::Character;
 
 /// Shows the info section for `doc`, one of `count` open characters.
-pub fn show(ui: &mut egui::Ui, doc: Option<&Document>, count: usize) {
+pub fn show(ui: &mut egui::Ui, doc: Option<&Character>, count: usize) {
     ui.heading("Clip").on_hover_text("The selected joint's character, else the first one");
     let Some(doc) = doc else {
         ui.label("No clip open");
@@ -21,12 +22,22 @@ pub fn show(ui: &mut egui::Ui, doc: Option<&Document>, count: usize) {
         if count > 1 {
             row("Open", format!("{count} characters"));
         }
-        row("Joints", format!("{} (+{} End Sites)", doc.joint_count(), clip.skeleton().joints().len().saturating_sub(doc.joint_count())));
+        let joints = clip.skeleton().joint_count();
+        row("Joints", format!("{joints} (+{} End Sites)", clip.skeleton().len().saturating_sub(joints)));
         row("Frames", clip.frame_count().to_string());
         row("FPS", format!("{:.2}", clip.fps()));
         row("Duration", format!("{:.3} s", clip.duration()));
-        row("Units", format!("{} (guessed; × {} to metres)", doc.units.name(), doc.meters_per_unit()));
+        row("Units", format!("{} (guessed; × {} to metres)", doc.units.name(), doc.scale()));
+        row("Angles", clip.motion().angle_unit().name().to_owned());
+        for (key, value) in clip.metadata.iter().filter(|(k, _)| k != "documentation") {
+            row(key, value.clone());
+        }
     });
+    if let Some((_, text)) = clip.metadata.iter().find(|(k, _)| k == "documentation") {
+        egui::CollapsingHeader::new("Documentation").id_salt("documentation").show(ui, |ui| {
+            ui.label(text.as_str());
+        });
+    }
     if !clip.warnings.is_empty() {
         egui::CollapsingHeader::new(format!("{} warnings", clip.warnings.len())).id_salt("warnings").show(ui, |ui| {
             for w in clip.warnings.iter().take(100) {

@@ -1,14 +1,14 @@
 //! The selected joint: offset, channels with current values, and a plot of its
 //! channels over the whole clip with the playhead.
 
-use crate::document::Document;
+use crate::character::Character;
 
 /// Most points per plotted channel (longer clips are decimated for drawing).
 const MAX_PLOT_POINTS: usize = 4000;
 
 /// Shows the inspector section for joint `index` of `doc` (the selection), at the
 /// clip's own `frame` and the playhead `time`.
-pub fn show(ui: &mut egui::Ui, selected: Option<(&Document, usize)>, frame: usize, time: f64) {
+pub fn show(ui: &mut egui::Ui, selected: Option<(&Character, usize)>, frame: usize, time: f64) {
     ui.heading("Joint");
     let Some((doc, index)) = selected else {
         ui.label("Click a joint in the hierarchy to inspect it.");
@@ -30,10 +30,25 @@ pub fn show(ui: &mut egui::Ui, selected: Option<(&Document, usize)>, frame: usiz
         ui.label("Offset");
         ui.monospace(format!("{:.3} {:.3} {:.3}", joint.offset.x, joint.offset.y, joint.offset.z));
         ui.end_row();
+        if joint.rest_rotation != mocap::glam::Quat::IDENTITY {
+            let (x, y, z) = joint.rest_rotation.to_euler(mocap::glam::EulerRot::XYZ);
+            ui.label("Rest rotation").on_hover_text("Relative to the parent (Acclaim axis), XYZ degrees");
+            ui.monospace(format!("{:.2} {:.2} {:.2}", x.to_degrees(), y.to_degrees(), z.to_degrees()));
+            ui.end_row();
+        }
         for (k, channel) in joint.channels.iter().enumerate() {
-            ui.label(channel.to_string());
+            let label = ui.label(channel.to_string());
+            if let Some(limit) = joint.limits.get(k) {
+                label.on_hover_text(format!("limits {} … {}", limit.min, limit.max));
+            }
             let v = values.get(joint.first_channel() + k).copied().unwrap_or(f32::NAN);
             ui.monospace(format!("{v:10.4}"));
+            ui.end_row();
+        }
+        if !joint.limits.is_empty() {
+            ui.label("Limits");
+            let text: Vec<String> = joint.limits.iter().map(|l| format!("[{}, {}]", l.min, l.max)).collect();
+            ui.monospace(text.join(" "));
             ui.end_row();
         }
     });
@@ -42,7 +57,7 @@ pub fn show(ui: &mut egui::Ui, selected: Option<(&Document, usize)>, frame: usiz
     }
 }
 
-fn plot(ui: &mut egui::Ui, doc: &Document, joint: &mocap::Joint, time: f64) {
+fn plot(ui: &mut egui::Ui, doc: &Character, joint: &mocap::Joint, time: f64) {
     let clip = &doc.clip;
     let frames = clip.frame_count();
     let step = frames.div_ceil(MAX_PLOT_POINTS).max(1);

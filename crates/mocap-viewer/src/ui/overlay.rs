@@ -16,13 +16,13 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                         viewer.error = None;
                     }
                 });
-                if !viewer.stage.characters.is_empty() {
+                if !viewer.stage.actors.is_empty() {
                     ui.colored_label(egui::Color32::LIGHT_GRAY, "What was open is still open.");
                 }
             });
         });
     }
-    if viewer.stage.characters.is_empty() {
+    if viewer.stage.actors.is_empty() {
         ui.painter().text(rect.center(), egui::Align2::CENTER_CENTER, "Drop .bvh files here", egui::FontId::proportional(20.0), egui::Color32::GRAY);
     }
 }

@@ -6,11 +6,11 @@ use crate::viewer::Viewer;
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     egui::Panel::right("side").resizable(true).default_size(280.0).show(ui, |ui| {
         egui::ScrollArea::vertical().auto_shrink([false, false]).show(ui, |ui| {
-            let current = viewer.stage.characters.get(viewer.current());
-            super::info::show(ui, current.map(|c| &c.document), viewer.stage.characters.len());
+            let current = viewer.stage.actors.get(viewer.current());
+            super::info::show(ui, current, viewer.stage.actors.len());
             ui.separator();
-            let selected = viewer.selected.and_then(|s| Some((&viewer.stage.characters.get(s.character)?.document, s.joint)));
-            let frame = selected.map_or(0, |(doc, _)| viewer.playback.frame(doc.timing()));
+            let selected = viewer.selected.and_then(|s| Some((viewer.stage.actors.get(s.character)?, s.joint)));
+            let frame = selected.map_or(0, |(c, _)| c.frame_at(viewer.playback.time));
             super::inspector::show(ui, selected, frame, viewer.playback.time);
         });
     });

@@ -20,10 +20,10 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             if ui.button("Share").on_hover_text("Copy a link that reproduces this view").clicked() {
                 viewer.share_requested = true;
             }
-            match viewer.stage.characters.as_slice() {
+            match viewer.stage.actors.as_slice() {
                 [] => {}
                 [one] => {
-                    ui.strong(&one.document.name);
+                    ui.strong(&one.name);
                 }
                 many => {
                     ui.strong(format!("{} characters", many.len()));
