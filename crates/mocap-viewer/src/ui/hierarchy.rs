@@ -55,7 +55,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
         record_labels(&rows, &viewer.stage.actors, labels);
         let row_height = ui.spacing().interact_size.y;
         let mut area = egui::ScrollArea::both().auto_shrink([false, false]);
-        if let Some(index) = reveal.and_then(|s| rows.iter().position(|r| *r == Row::Joint { character: s.character, joint: s.joint, depth: depth_of(&rows, s) })) {
+        if let Some(index) = reveal.and_then(|s| row_of(&rows, s)) {
             let pitch = row_height + ui.spacing().item_spacing.y;
             area = area.vertical_scroll_offset((index as f32 * pitch - ui.available_height() * 0.5).max(0.0));
         }
@@ -99,14 +99,9 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
     });
 }
 
-/// The depth of a selected joint among the rows (0 when it is not listed).
-fn depth_of(rows: &[Row], s: Selection) -> usize {
-    rows.iter()
-        .find_map(|r| match *r {
-            Row::Joint { character, joint, depth } if character == s.character && joint == s.joint => Some(depth),
-            _ => None,
-        })
-        .unwrap_or(0)
+/// The row of a selected joint, when it is listed.
+fn row_of(rows: &[Row], s: Selection) -> Option<usize> {
+    rows.iter().position(|r| matches!(*r, Row::Joint { character, joint, .. } if character == s.character && joint == s.joint))
 }
 
 /// Every row shown, in order: per character its header, then (unless folded) its
