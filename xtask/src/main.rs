@@ -1,6 +1,7 @@
 //! Project tasks: `cargo xtask <command>`.
 //!
-//! - `gen-walk`            regenerate `data/walk.bvh` (our procedural walk cycle)
+//! - `gen-walk`            regenerate `data/walk.bvh` (our procedural walk cycle) and
+//!                         `data/walk.bva` (the same walk converted by `mocap`)
 //! - `dist [--fast]`        build the web viewer into `dist/` (static, relative URLs)
 //! - `serve [--port P]`    build, then serve `dist/` on http://127.0.0.1:P (default 8080)
 //! - `test`                `cargo test --workspace`, then the headless browser tests
@@ -40,8 +41,10 @@ fn main() -> ExitCode {
 }
 
 fn gen_walk() -> Result<(), String> {
-    let path = util::root().join("data/walk.bvh");
-    std::fs::write(&path, walk::walk_bvh()).map_err(|e| format!("{}: {e}", path.display()))?;
-    println!("wrote {}", path.display());
+    for (name, text) in [("data/walk.bvh", walk::walk_bvh()), ("data/walk.bva", walk::walk_bva()?)] {
+        let path = util::root().join(name);
+        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! Generates the default clip, `data/walk.bvh`: a procedural walk cycle written by
-//! this project (centimetres, Y up, walking along +Z, 30 fps).
+//! this project (centimetres, Y up, walking along +Z, 30 fps), and `data/walk.bva`,
+//! the same walk converted by the core (`mocap`): BVH text → clip → BVA segments.
 
 use std::f64::consts::TAU;
 use std::fmt::Write;
@@ -133,11 +134,49 @@ pub fn walk_bvh() -> String {
     out
 }
 
+/// The walk as BVA text, made by the shipped code: [`walk_bvh`] parsed with
+/// `mocap::bvh::parse`, converted with `mocap::bva::from_clip`, written with
+/// `mocap::bva::write`.
+pub fn walk_bva() -> Result<String, String> {
+    let clip = mocap::bvh::parse(walk_bvh().as_bytes()).map_err(|e| format!("walk.bvh does not parse: {e}"))?;
+    let (bva, _warnings) = mocap::bva::from_clip(&clip);
+    Ok(mocap::bva::write(&bva))
+}
+
 #[cfg(test)]
 mod tests {
+    const STALE: &str = "run `cargo xtask gen-walk`";
+
     #[test]
     fn committed_default_clip_matches_the_generator() {
         let committed = std::fs::read_to_string(crate::util::root().join("data/walk.bvh")).unwrap_or_default();
-        assert!(committed == super::walk_bvh(), "data/walk.bvh is stale: run `cargo xtask gen-walk`");
+        assert!(committed == super::walk_bvh(), "data/walk.bvh is stale: {STALE}");
+        let committed = std::fs::read(crate::util::root().join("data/walk.bva")).unwrap_or_default();
+        let expected = super::walk_bva().expect("walk.bva");
+        assert!(committed == expected.as_bytes(), "data/walk.bva is missing or stale: {STALE}");
+    }
+
+    #[test]
+    fn walk_bva_segments_stand_where_the_bvh_joints_are() {
+        let bvh = mocap::bvh::parse(super::walk_bvh().as_bytes()).expect("walk.bvh parses");
+        let bytes = std::fs::read(crate::util::root().join("data/walk.bva")).unwrap_or_else(|e| panic!("data/walk.bva: {e}: {STALE}"));
+        let bva = mocap::load_one("walk.bva", &bytes).expect("walk.bva loads");
+        let joints: Vec<usize> = (0..bvh.skeleton().len()).filter(|&j| !bvh.skeleton().joints()[j].is_end_site()).collect();
+        let height = bvh.pose_height();
+        assert!(height > 100.0, "figure height {height} cm");
+        assert_eq!(bva.frame_count(), bvh.frame_count());
+        assert_eq!(bva.frame_time(), bvh.frame_time());
+        // Each segment is a root joint followed by its End Site in the loaded clip.
+        assert_eq!(bva.skeleton().len(), 2 * joints.len());
+        for frame in 0..bvh.frame_count() {
+            let want = bvh.world_positions(frame);
+            let got = bva.world_positions(frame);
+            for (k, &j) in joints.iter().enumerate() {
+                let name = &bvh.skeleton().joints()[j].name;
+                assert_eq!(&bva.skeleton().joints()[2 * k].name, name);
+                let error = (got[2 * k] - want[j]).length();
+                assert!(error <= 1e-3 * height, "frame {frame}, {name}: segment at {} but joint at {} ({error} cm)", got[2 * k], want[j]);
+            }
+        }
     }
 }

@@ -4,6 +4,9 @@
 //! The input is made at run time by repeating the motion rows of
 //! `../shared/corpus/bvh/assimp_cmu/01_01.bvh` to 36,000 frames (~27 MB). Figures are
 //! the best of several runs on one thread and with the default thread count.
+//!
+//! The Acclaim path: `../shared/corpus/asf_amc/cmu/01_06.amc` (~4 MB) read for the
+//! skeleton of `01.asf` (parsed once), then FK over every frame of that clip.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::hint::black_box;
@@ -149,4 +152,38 @@ fn main() {
     // What `mocap info` does: parse, then FK over every frame for the bounding box.
     let info = best(5, || mocap::bvh::parse(&input).expect("parse").bounds());
     println!("parse + bounds (info)   {:>8.1} ms", info.as_secs_f64() * 1e3);
+
+    acclaim();
+}
+
+/// AMC parse throughput and FK on the Acclaim path (CMU 01_06 for 01.asf).
+fn acclaim() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/asf_amc/cmu");
+    let (Ok(asf_bytes), Ok(amc_bytes)) = (std::fs::read(dir.join("01.asf")), std::fs::read(dir.join("01_06.amc"))) else {
+        println!("skipping Acclaim: {} not found (the corpus lives in ../shared)", dir.join("01_06.amc").display());
+        return;
+    };
+    let asf = mocap::acclaim::parse_asf(&asf_bytes).expect("01.asf parses");
+    let skeleton = mocap::acclaim::skeleton(&asf).expect("01.asf skeleton");
+    let mb = amc_bytes.len() as f64 / 1e6;
+    let amc = best(10, || skeleton.motion_clip(&amc_bytes).expect("01_06.amc"));
+    println!("acclaim motion_clip     {:>8.1} ms  {:>7.0} MB/s  (01_06.amc, {mb:.1} MB, skeleton from 01.asf parsed once)", amc.as_secs_f64() * 1e3, mb / amc.as_secs_f64());
+
+    let clip = skeleton.motion_clip(&amc_bytes).expect("01_06.amc");
+    let transforms = (clip.frame_count() * clip.skeleton().len()) as f64;
+    let mut world = Vec::new();
+    let fk = best(5, || {
+        for f in 0..clip.frame_count() {
+            clip.world_transforms_into(f, &mut world);
+        }
+        world.len()
+    });
+    println!("acclaim FK transforms   {:>8.1} ms  {:>7.1} M joint transforms/s ({} joints × {} frames, 1 thread)", fk.as_secs_f64() * 1e3, transforms / fk.as_secs_f64() / 1e6, clip.skeleton().len(), clip.frame_count());
+
+    let batch = best(5, || {
+        let mut sum = 0.0f32;
+        clip.for_each_frame_positions(|_, p| sum += p[p.len() - 1].x);
+        sum
+    });
+    println!("acclaim FK batched      {:>8.1} ms  {:>7.1} M joint transforms/s (1 thread)", batch.as_secs_f64() * 1e3, transforms / batch.as_secs_f64() / 1e6);
 }
