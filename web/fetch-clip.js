@@ -45,15 +45,6 @@ async function failureKind(url) {
   }
 }
 
-/** True when the bytes start (after a BOM and whitespace) with the BVH keyword. */
-export function looksLikeBvh(bytes) {
-  let i = 0;
-  if (bytes[0] === 0xef && bytes[1] === 0xbb && bytes[2] === 0xbf) i = 3;
-  while (i < bytes.length && i < 4096 && (bytes[i] <= 0x20 || bytes[i] === 0x1a)) i += 1;
-  const head = new TextDecoder('latin1').decode(bytes.subarray(i, i + 9));
-  return head.toUpperCase() === 'HIERARCHY';
-}
-
 /**
  * Fetches `url` (a URL from resolveClipUrl). `onProgress(received, total|null)` runs
  * as bytes arrive. Resolves with a Uint8Array; rejects with a ClipError whose message
@@ -108,8 +99,6 @@ export async function fetchClip(url, { limit = DEFAULT_LIMIT, onProgress = () =>
     bytes.set(c, at);
     at += c.length;
   }
-  if (!looksLikeBvh(bytes)) {
-    throw new ClipError(`${where}: not a motion file (a BVH file starts with HIERARCHY).`);
-  }
+  // What the file is, the core decides (from its content), not this page.
   return bytes;
 }

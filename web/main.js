@@ -1,5 +1,5 @@
 // Page glue: feature check, start the wasm viewer, `?url=` links with progress (each
-// link one character), the view state in the fragment, Share, `?embed=1`, file drop
+// motion one character; an Acclaim skeleton and its motions pair up), the view state in the fragment, Share, `?embed=1`, file drop
 // (several files replace what is open; with Shift held they are added) / Open… / Add…,
 // loading message.
 import init, { start } from '../pkg/mocap_web.js';
@@ -39,13 +39,14 @@ function showProgress(name, received, total) {
   status.hidden = false;
 }
 
-// Loads the clip of one `?url=` link and adds it as a character; errors go to the
-// viewer's banner. Resolves with the error message, or null when it opened.
-async function loadUrl(viewer, raw, limit) {
+// Downloads the file of one `?url=` link with its progress bar. Resolves with
+// { name, bytes }, or with null after reporting the error (record and banner).
+async function fetchUrl(viewer, raw, limit) {
   const t0 = performance.now();
   const record = { url: raw, name: null, bytes: 0, progressEvents: 0, error: null };
   window.mocapUrlLoad = record;
   window.mocapUrlLoads.push(record);
+  let fetched = null;
   try {
     const url = resolveClipUrl(raw);
     const name = fileNameOf(url);
@@ -66,12 +67,7 @@ async function loadUrl(viewer, raw, limit) {
       },
     });
     hideStatus();
-    const error = viewer.add(name, bytes);
-    if (error) {
-      record.error = error;
-    } else {
-      source = { kind: 'url', urls: [...source.urls, raw], name };
-    }
+    fetched = { name, bytes, raw, record };
   } catch (e) {
     hideStatus();
     const message = e instanceof ClipError ? e.message : `${raw}: ${e && e.message ? e.message : e}`;
@@ -79,19 +75,34 @@ async function loadUrl(viewer, raw, limit) {
     viewer.showError(message);
   }
   record.ms = performance.now() - t0;
-  record.done = true;
-  return record.error;
+  return fetched;
 }
 
-// Loads every `?url=` link in order, one character each; with several failures the
-// banner lists them all.
+// Loads every `?url=` link: downloads them in order, then hands all of them to the
+// viewer at once, so that an Acclaim skeleton and its motions (url=a.asf&url=b.amc)
+// pair up; the core decides what each file is. Each link records its own error; with
+// several failures the banner lists them all.
 async function loadUrls(viewer, urls, limit) {
   source = { kind: 'url', urls: [], name: null };
   const errors = [];
+  const fetched = [];
   for (const raw of urls) {
-    const error = await loadUrl(viewer, raw, limit);
-    if (error) errors.push(error);
+    const f = await fetchUrl(viewer, raw, limit);
+    if (f) fetched.push(f); else errors.push(window.mocapUrlLoad.error);
   }
+  if (fetched.length > 0) {
+    const failures = viewer.openFiles(fetched.map((f) => f.name), fetched.map((f) => f.bytes), true);
+    for (const f of fetched) {
+      const error = failures.find((m) => m.startsWith(`${f.name}:`));
+      if (error) {
+        f.record.error = error;
+        errors.push(error);
+      } else {
+        source = { kind: 'url', urls: [...source.urls, f.raw], name: f.name };
+      }
+    }
+  }
+  for (const record of window.mocapUrlLoads) record.done = true;
   if (errors.length > 0) viewer.showError(errors.join('\n'));
 }
 
@@ -120,8 +131,9 @@ function nextRenderedFrame(viewer, since) {
   });
 }
 
-// Opens dropped or picked files: with `add` they join what is open, else the first
-// that parses replaces it and the rest join it. What fails is reported (all of it)
+// Opens dropped or picked files, all at once (the core pairs an Acclaim skeleton
+// with its motions and decides each file's format from its content): with `add` they
+// join what is open, else what opens replaces it. What fails is reported (all of it)
 // and changes nothing.
 async function loadFiles(viewer, files, add, t0) {
   const size = files.reduce((n, f) => n + f.size, 0);
@@ -131,24 +143,15 @@ async function loadFiles(viewer, files, add, t0) {
     showStatus(`Loading ${names.join(', ')} (${(size / 1048576).toFixed(1)} MB)…`);
     await afterPaint();
   }
-  const errors = [];
-  let parseMs = 0;
-  let opened = add;
-  for (const file of files) {
-    const bytes = new Uint8Array(await file.arrayBuffer());
-    const tParse = performance.now();
-    const error = opened ? viewer.add(file.name, bytes) : viewer.load(file.name, bytes);
-    parseMs += performance.now() - tParse;
-    if (error) {
-      errors.push(error);
-    } else {
-      // A link cannot carry a local file; the links of clips still open are kept for the record.
-      source = { kind: 'local', urls: opened ? source.urls : [], name: file.name };
-      opened = true;
-    }
+  const contents = [];
+  for (const file of files) contents.push(new Uint8Array(await file.arrayBuffer()));
+  const tParse = performance.now();
+  const errors = viewer.openFiles(names, contents, add);
+  const parseMs = performance.now() - tParse;
+  if (errors.length < files.length) {
+    // A link cannot carry a local file; the links of clips still open are kept for the record.
+    source = { kind: 'local', urls: add ? source.urls : [], name: names[names.length - 1] };
   }
-  // A later file that opened cleared the banner: show every failure again.
-  if (errors.length > 0) viewer.showError(errors.join('\n'));
   const tLoaded = performance.now();
   if (big) hideStatus();
   const rendered = viewer.state().framesRendered;

@@ -19,9 +19,53 @@ fn corpus_dir() -> Option<PathBuf> {
     dir.is_dir().then(|| dir.canonicalize().unwrap_or(dir))
 }
 
+/// The corpus, required: missing, it is an error unless `MOCAP_SKIP_CORPUS=1` opts out.
+fn required_corpus() -> Result<Option<PathBuf>, String> {
+    match corpus_dir() {
+        Some(dir) => Ok(Some(dir)),
+        None if std::env::var("MOCAP_SKIP_CORPUS").is_ok_and(|v| v == "1") => {
+            eprintln!("xtask: ../shared/corpus not found; corpus tests skipped (MOCAP_SKIP_CORPUS=1)");
+            Ok(None)
+        }
+        None => Err("../shared/corpus not found: put the shared folder beside the repository, or opt out with MOCAP_SKIP_CORPUS=1".into()),
+    }
+}
+
+/// The Acclaim pair the browser drops, relative to the corpus root.
+const ACCLAIM_PAIR: (&str, &str) = ("asf_amc/cmu/02.asf", "asf_amc/cmu/02_01.amc");
+/// The joint whose position the browser test checks.
+const ACCLAIM_JOINT: &str = "ltibia";
+
+/// Writes `acclaim.json` for formats.mjs: the pair's paths, frame count and one
+/// joint's frame-0 position, from the core loader (what the page must agree with).
+fn expected_acclaim(out: &Path, corpus: &Path) -> Result<PathBuf, String> {
+    let (asf, amc) = (corpus.join(ACCLAIM_PAIR.0), corpus.join(ACCLAIM_PAIR.1));
+    let read = |p: &Path| std::fs::read(p).map_err(|e| format!("{}: {e}", p.display()));
+    let (asf_bytes, amc_bytes) = (read(&asf)?, read(&amc)?);
+    let inputs = [mocap::Input { name: "02.asf", bytes: &asf_bytes }, mocap::Input { name: "02_01.amc", bytes: &amc_bytes }];
+    let clip = mocap::load(&inputs).pop().ok_or("no clip")?.map_err(|e| e.to_string())?.clip;
+    let joint = clip.skeleton().find(ACCLAIM_JOINT).ok_or("no ltibia")?;
+    let p = clip.world_positions(0).get(joint).copied().ok_or("no position")?;
+    let json = format!(
+        "{{\"corpus\":{:?},\"asf\":{:?},\"amc\":{:?},\"frames\":{},\"joint\":{:?},\"position\":[{},{},{}]}}",
+        corpus.display().to_string(),
+        asf.display().to_string(),
+        amc.display().to_string(),
+        clip.frame_count(),
+        ACCLAIM_JOINT,
+        p.x,
+        p.y,
+        p.z
+    );
+    let path = out.join("acclaim.json");
+    std::fs::write(&path, json).map_err(|e| e.to_string())?;
+    Ok(path)
+}
+
 /// Runs every test: `cargo test --workspace`, then the browser suite in WebGL2 and WebGPU modes.
 pub fn test_all(args: &[String]) -> Result<(), String> {
     let fast = args.iter().any(|a| a == "--fast");
+    let corpus = required_corpus()?;
     if !args.iter().any(|a| a == "--browser-only") {
         setup::vulkan_driver();
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
@@ -33,6 +77,7 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
     let out = root().join("tests/browser/out");
     std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
     let expected = expected_frames(&out)?;
+    let acclaim = corpus.as_deref().map(|c| expected_acclaim(&out, c)).transpose()?;
     let url = spawn_server(dist.clone())?;
     let mut failures = Vec::new();
     for mode in ["webgl2", "webgpu"] {
@@ -53,6 +98,11 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
         }
         if let Err(e) = run(&mut multi) {
             failures.push(format!("{mode} several characters: {e}"));
+        }
+        if let Some(acclaim) = &acclaim {
+            if let Err(e) = run(node("formats.mjs").args([url.as_str(), mode]).arg(&out).arg(&chromium).arg(acclaim)) {
+                failures.push(format!("{mode} formats: {e}"));
+            }
         }
     }
     if let Err(e) = run(node("api.mjs").arg(&url).arg(&dist).arg(&out).arg(&chromium)) {

@@ -1,5 +1,6 @@
 //! A minimal static file server for `dist/` (std only). `/data/…` falls back to the
-//! repository's `data/`, so `?url=data/walk.bvh` works out of the box.
+//! repository's `data/`, so `?url=data/walk.bvh` works out of the box, and
+//! `/corpus/…` to `../shared/corpus` when it is there (`?url=corpus/asf_amc/cmu/01.asf&url=corpus/asf_amc/cmu/01_01.amc`).
 
 use crate::util::root;
 use std::io::{BufRead, BufReader, Write};
@@ -41,7 +42,9 @@ fn handle(mut stream: TcpStream, dir: &Path) -> std::io::Result<()> {
     }
     let path = request.split_whitespace().nth(1).unwrap_or("/");
     let path = path.split(['?', '#']).next().unwrap_or("/");
-    let file = resolve(dir, path).or_else(|| resolve(&root().join("data"), path.strip_prefix("/data/")?));
+    let file = resolve(dir, path)
+        .or_else(|| resolve(&root().join("data"), path.strip_prefix("/data/")?))
+        .or_else(|| resolve(&root().join("../shared/corpus"), path.strip_prefix("/corpus/")?));
     match file.and_then(|f| std::fs::read(&f).ok().map(|b| (f, b))) {
         Some((f, body)) => {
             let head = format!(

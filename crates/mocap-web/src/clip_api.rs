@@ -11,10 +11,23 @@ pub struct MotionClip {
     scratch: Vec<Vec3>,
 }
 
-/// Parses a motion file (BVH); throws an `Error` whose message is `file:line:col: message`.
+/// Parses a motion file (BVH, BVA, or an Acclaim ASF alone: its rest pose; the
+/// format comes from the content). For an Acclaim `.amc` motion pass its `.asf`
+/// skeleton's bytes as `skeleton`. Throws an `Error` whose message is
+/// `file:line:col: message`.
 #[wasm_bindgen(js_name = parseMotion)]
-pub fn parse_motion(bytes: &[u8], file_name: &str) -> Result<MotionClip, JsError> {
-    let clip = mocap::load(file_name, bytes).map_err(|e| JsError::new(&e.to_string()))?;
+pub fn parse_motion(bytes: &[u8], file_name: &str, skeleton: Option<Vec<u8>>) -> Result<MotionClip, JsError> {
+    let mut files = Vec::new();
+    if let Some(asf) = skeleton.as_deref() {
+        files.push(mocap::Input { name: "skeleton.asf", bytes: asf });
+    }
+    files.push(mocap::Input { name: file_name, bytes });
+    let last = mocap::load(&files).pop();
+    let clip = match last {
+        Some(Ok(loaded)) => loaded.clip,
+        Some(Err(e)) => return Err(JsError::new(&e.to_string())),
+        None => return Err(JsError::new(&format!("{file_name}: no motion in this file"))),
+    };
     Ok(MotionClip { clip, scratch: Vec::new() })
 }
 

@@ -30,7 +30,7 @@ impl MocapViewer {
         }
     }
 
-    /// Parses a file and opens it in place of everything open; returns the error text
+    /// Reads a file (BVH, BVA, ASF; an AMC with the last skeleton opened) and opens it in place of everything open; returns the error text
     /// (and shows it) when it cannot, keeping what was open. Returns `undefined` on success.
     pub fn load(&self, file_name: &str, bytes: &[u8]) -> Option<String> {
         self.with_viewer(|v| v.load(file_name, bytes)).map_or_else(|| Some("viewer busy".to_owned()), Result::err)
@@ -42,19 +42,45 @@ impl MocapViewer {
         self.with_viewer(|v| v.add(file_name, bytes)).map_or_else(|| Some("viewer busy".to_owned()), Result::err)
     }
 
+    /// Opens a set of files together (`names[i]` names `contents[i]`, a
+    /// `Uint8Array`): the core detects each format from its content and pairs an
+    /// Acclaim `.asf` with its `.amc` motions (one character per motion; a motion
+    /// alone uses the last skeleton opened). With `add` they join what is open, else
+    /// they replace it (when none opens, what was open stays). Returns every error
+    /// message (also shown in the banner); empty when all opened.
+    #[wasm_bindgen(js_name = openFiles)]
+    pub fn open_files(&self, names: Vec<String>, contents: Vec<js_sys::Uint8Array>, add: bool) -> Vec<String> {
+        let bytes: Vec<Vec<u8>> = contents.iter().map(js_sys::Uint8Array::to_vec).collect();
+        let files: Vec<(&str, &[u8])> = names.iter().map(String::as_str).zip(bytes.iter().map(Vec::as_slice)).collect();
+        let mode = if add { mocap_viewer::OpenMode::Add } else { mocap_viewer::OpenMode::Replace };
+        self.with_viewer(|v| v.open_files(&files, mode)).unwrap_or_else(|| vec!["viewer busy".to_owned()])
+    }
+
+    /// Position `[x, y, z]` of joint `name` of character `character` (0-based) at the
+    /// frame shown, in the clip's own units and model space (no layout offset, no
+    /// scale to metres), as `mocap pose` prints it; `undefined` when there is none.
+    #[wasm_bindgen(js_name = jointPosition)]
+    pub fn joint_position(&self, character: u32, name: &str) -> Option<Vec<f32>> {
+        let v = self.viewer.try_borrow().ok()?;
+        let c = v.stage.actors.get(character as usize)?;
+        let joint = c.clip.skeleton().find(name)?;
+        let frame = c.frame_at(v.playback.time);
+        c.clip.world_positions(frame).get(joint).map(|p| p.to_array().to_vec())
+    }
+
     /// Opens a clip from `parseMotion` (copying it; `clip` stays usable) under
     /// `file_name`, in place of everything open.
     #[wasm_bindgen(js_name = loadClip)]
     pub fn load_clip(&self, clip: &crate::MotionClip, file_name: &str) {
-        let doc = mocap_viewer::Character::new(file_name, clip.clip().clone());
-        self.with_viewer(|v| v.open(doc));
+        let clip = clip.clip().clone();
+        self.with_viewer(|v| v.open_clips(vec![(file_name.to_owned(), clip)]));
     }
 
     /// Adds a clip from `parseMotion` (copying it) as one more character named `file_name`.
     #[wasm_bindgen(js_name = addClip)]
     pub fn add_clip(&self, clip: &crate::MotionClip, file_name: &str) {
-        let doc = mocap_viewer::Character::new(file_name, clip.clip().clone());
-        self.with_viewer(|v| v.add_document(doc));
+        let clip = clip.clip().clone();
+        self.with_viewer(|v| v.add_clip(file_name, clip));
     }
 
     /// Shows or hides character `index` (0-based, as in `state().clips`); returns whether it exists.

@@ -43,6 +43,14 @@ impl LocalPose {
         self.translation.is_empty()
     }
 
+    /// Sizes the arrays to `n` joints (rest values where they grow).
+    fn resize(&mut self, n: usize) {
+        self.translation.resize(n, Vec3::ZERO);
+        self.rotation.resize(n, Quat::IDENTITY);
+        self.scale.resize(n, Vec3::ONE);
+        self.stretch.resize(n, 0.0);
+    }
+
     fn clear(&mut self, capacity: usize) {
         self.translation.clear();
         self.rotation.clear();
@@ -95,18 +103,33 @@ pub fn axis_rotation(axis: usize, angle: f32, unit: AngleUnit) -> Quat {
 /// - scale: 1, each scale channel sets its component.
 pub fn from_row(skeleton: &Skeleton, row: &[f32], unit: AngleUnit, out: &mut LocalPose) {
     let half = unit.radians_per_unit() * 0.5;
-    let extrinsic = skeleton.euler() == EulerConvention::Extrinsic;
-    out.clear(skeleton.len());
-    for joint in skeleton.joints() {
+    out.resize(skeleton.len());
+    // One body, specialised: BVH skeletons skip the Acclaim-only work.
+    match (skeleton.euler() == EulerConvention::Extrinsic, skeleton.has_length_channels()) {
+        (false, false) => fill::<false, false>(skeleton, row, half, out),
+        (false, true) => fill::<false, true>(skeleton, row, half, out),
+        (true, false) => fill::<true, false>(skeleton, row, half, out),
+        (true, true) => fill::<true, true>(skeleton, row, half, out),
+    }
+}
+
+/// The body of [`from_row`] for one Euler convention, with or without bone-length
+/// channels; `out` is already sized.
+#[inline(always)]
+fn fill<const EXTRINSIC: bool, const STRETCH: bool>(skeleton: &Skeleton, row: &[f32], half: f32, out: &mut LocalPose) {
+    let joints = skeleton.joints();
+    for (i, joint) in joints.iter().enumerate() {
         let mut t = joint.offset.to_array();
-        if let Some(&d) = joint.parent.and_then(|p| out.stretch.get(p)) {
-            if d != 0.0 {
-                let dir = joint.offset.normalize_or_zero() * d;
-                t = [t[0] + dir.x, t[1] + dir.y, t[2] + dir.z];
+        if STRETCH {
+            if let Some(&d) = joint.parent.and_then(|p| out.stretch.get(p)) {
+                if d != 0.0 {
+                    let dir = joint.offset.normalize_or_zero() * d;
+                    t = [t[0] + dir.x, t[1] + dir.y, t[2] + dir.z];
+                }
             }
         }
         let rest = joint.rest_rotation.to_array();
-        let mut r = if extrinsic { [0.0, 0.0, 0.0, 1.0] } else { rest };
+        let mut r = if EXTRINSIC { [0.0, 0.0, 0.0, 1.0] } else { rest };
         let mut s = [1.0f32; 3];
         let mut stretch = 0.0;
         let values = row.get(joint.columns()).unwrap_or(&[]);
@@ -116,7 +139,7 @@ pub fn from_row(skeleton: &Skeleton, row: &[f32], unit: AngleUnit, out: &mut Loc
             match channel.kind() {
                 ChannelKind::Rotation => {
                     let (sn, cs) = sin_cos(v * half);
-                    r = if extrinsic { pre_rotate(r, axis, sn, cs) } else { post_rotate(r, axis, sn, cs) };
+                    r = if EXTRINSIC { pre_rotate(r, axis, sn, cs) } else { post_rotate(r, axis, sn, cs) };
                 }
                 ChannelKind::Translation => {
                     if let Some(slot) = t.get_mut(axis) {
@@ -131,13 +154,23 @@ pub fn from_row(skeleton: &Skeleton, row: &[f32], unit: AngleUnit, out: &mut Loc
                 ChannelKind::Length => stretch = v,
             }
         }
-        if extrinsic {
+        if EXTRINSIC {
             r = quat_mul(rest, r);
         }
-        out.translation.push(Vec3::from_array(t));
-        out.rotation.push(Quat::from_array(r));
-        out.scale.push(Vec3::from_array(s));
-        out.stretch.push(stretch);
+        if let Some(slot) = out.translation.get_mut(i) {
+            *slot = Vec3::from_array(t);
+        }
+        if let Some(slot) = out.rotation.get_mut(i) {
+            *slot = Quat::from_array(r);
+        }
+        if let Some(slot) = out.scale.get_mut(i) {
+            *slot = Vec3::from_array(s);
+        }
+        if STRETCH {
+            if let Some(slot) = out.stretch.get_mut(i) {
+                *slot = stretch;
+            }
+        }
     }
 }
 

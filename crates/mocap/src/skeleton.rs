@@ -110,6 +110,7 @@ pub struct Skeleton {
     joints: Vec<Joint>,
     euler: EulerConvention,
     channel_count: usize,
+    has_length: bool,
 }
 
 impl Skeleton {
@@ -137,7 +138,8 @@ impl Skeleton {
             joint.first_channel = next;
             next += joint.channels.len();
         }
-        Ok(Skeleton { joints, euler, channel_count: next })
+        let has_length = joints.iter().any(|j| j.channels.contains(&Channel::Length));
+        Ok(Skeleton { joints, euler, channel_count: next, has_length })
     }
 
     /// All joints, parent-before-child; End Sites included.
@@ -173,6 +175,11 @@ impl Skeleton {
     /// Total number of channels, i.e. the width of a motion row.
     pub fn channel_count(&self) -> usize {
         self.channel_count
+    }
+
+    /// True when some joint has a bone-length channel.
+    pub fn has_length_channels(&self) -> bool {
+        self.has_length
     }
 
     /// True when some joint has a scale or length channel, or a rest rotation.
