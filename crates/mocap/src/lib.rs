@@ -31,6 +31,7 @@ pub mod pose;
 pub mod sample;
 pub mod skeleton;
 pub mod stage;
+mod text;
 pub mod time;
 
 pub use channel::{AngleUnit, Channel, ChannelKind};

@@ -1,6 +1,8 @@
 //! Shared text helpers for the Acclaim readers: a token cursor with line and column,
 //! number parsing, name decoding and binary-data detection.
 
+pub(crate) use crate::text::{decode_name, show_bytes};
+
 /// One whitespace-separated token.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Token<'a> {
@@ -21,24 +23,6 @@ impl Token<'_> {
     /// The token as text for messages, shortened and with odd bytes escaped.
     pub fn show(&self) -> String {
         show_bytes(self.text)
-    }
-}
-
-/// Bytes as text for an error message: at most 40 bytes, control characters escaped.
-pub(crate) fn show_bytes(bytes: &[u8]) -> String {
-    let text = String::from_utf8_lossy(bytes.get(..40).unwrap_or(bytes));
-    let mut out: String = text.chars().flat_map(|c| c.escape_debug()).collect();
-    if bytes.len() > 40 {
-        out.push('…');
-    }
-    out
-}
-
-/// Decodes a name: UTF-8 when valid, otherwise Latin-1 (every byte is a character).
-pub(crate) fn decode_name(bytes: &[u8]) -> String {
-    match std::str::from_utf8(bytes) {
-        Ok(s) => s.to_owned(),
-        Err(_) => bytes.iter().map(|&b| char::from(b)).collect(),
     }
 }
 

@@ -1,6 +1,8 @@
 //! Lines and whitespace-separated words of a BVA file, with line numbers and byte
 //! columns, plus the keyword matcher for the segment header lines.
 
+pub(crate) use crate::text::{decode_name as decode, show_bytes};
+
 /// True for the bytes that separate words on one line: space, tab, vertical tab,
 /// form feed, and the NUL and Ctrl-Z (DOS end-of-file) padding some old files end with.
 #[inline]
@@ -163,24 +165,6 @@ pub(crate) fn keyword(text: &[u8], words: &[&str]) -> Option<usize> {
     }
     let after = skip_blanks(i);
     Some(if text.get(after) == Some(&b':') { after + 1 } else { i })
-}
-
-/// Bytes as text for an error message: at most 40 bytes, control characters escaped.
-pub(crate) fn show_bytes(bytes: &[u8]) -> String {
-    let text = String::from_utf8_lossy(bytes.get(..bytes.len().min(40)).unwrap_or(bytes));
-    let mut out: String = text.chars().flat_map(|c| c.escape_debug()).collect();
-    if bytes.len() > 40 {
-        out.push('…');
-    }
-    out
-}
-
-/// Decodes a name or unit: UTF-8 when valid, otherwise Latin-1.
-pub(crate) fn decode(bytes: &[u8]) -> String {
-    match std::str::from_utf8(bytes) {
-        Ok(s) => s.to_owned(),
-        Err(_) => bytes.iter().map(|&b| char::from(b)).collect(),
-    }
 }
 
 /// Parses a whole word as an f32 (exponents, `+`, `-0`, `nan`, `inf` accepted).

@@ -2,23 +2,10 @@
 //! shortest round-trip float formatting (so write → parse gives bit-identical f32
 //! values and frame times).
 
+use crate::text::push_f32;
+
 use super::{Bva, Segment, CHANNEL_COUNT};
 use std::fmt::Write as _;
-
-/// Appends a float in its shortest form that reads back to the same bits.
-fn push_f32(out: &mut String, buffer: &mut ryu::Buffer, v: f32) {
-    if v.is_finite() {
-        let s = buffer.format_finite(v);
-        // "1.0" → "1": shorter, and both forms read back identically.
-        out.push_str(s.strip_suffix(".0").unwrap_or(s));
-    } else if v.is_nan() {
-        out.push_str("nan");
-    } else if v > 0.0 {
-        out.push_str("inf");
-    } else {
-        out.push_str("-inf");
-    }
-}
 
 /// A name that reads back as itself where possible: line breaks become spaces,
 /// surrounding blanks go, and an empty name becomes `unnamed`.

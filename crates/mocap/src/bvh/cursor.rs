@@ -1,6 +1,8 @@
 //! A byte cursor for the BVH header: whitespace-separated tokens with line and column,
 //! braces as tokens of their own, and "rest of the line" names.
 
+pub(crate) use crate::text::show_bytes;
+
 /// One token of the header.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Token<'a> {
@@ -24,16 +26,6 @@ impl Token<'_> {
     pub fn show(&self) -> String {
         show_bytes(self.text)
     }
-}
-
-/// Bytes as text for an error message: at most 40 characters, control bytes escaped.
-pub(crate) fn show_bytes(bytes: &[u8]) -> String {
-    let text = String::from_utf8_lossy(&bytes[..bytes.len().min(40)]);
-    let mut out: String = text.chars().flat_map(|c| c.escape_debug()).collect();
-    if bytes.len() > 40 {
-        out.push('…');
-    }
-    out
 }
 
 /// True for the bytes that separate tokens on one line: space, tab, vertical tab,

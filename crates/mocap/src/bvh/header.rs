@@ -1,5 +1,7 @@
 //! The BVH header: the HIERARCHY section and the MOTION lines before the rows.
 
+pub(crate) use crate::text::decode_name;
+
 use super::cursor::{Cursor, Token};
 use crate::channel::Channel;
 use crate::error::{ParseError, Warning};
@@ -29,14 +31,6 @@ fn error_at(token: &Token, message: impl Into<String>) -> ParseError {
 fn end_of_file(cursor: &Cursor, what: &str) -> ParseError {
     let (line, column) = cursor.position();
     ParseError::new(line, column, format!("unexpected end of file: expected {what}"))
-}
-
-/// Decodes a name: UTF-8 when valid, otherwise Latin-1 (every byte is a character).
-pub(crate) fn decode_name(bytes: &[u8]) -> String {
-    match std::str::from_utf8(bytes) {
-        Ok(s) => s.to_owned(),
-        Err(_) => bytes.iter().map(|&b| char::from(b)).collect(),
-    }
 }
 
 /// Parses one float token (exponents, leading `+`, `-0` accepted).

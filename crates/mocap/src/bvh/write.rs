@@ -2,24 +2,11 @@
 //! frame, and shortest round-trip float formatting (so parse → write → parse gives
 //! bit-identical f32 values).
 
+use crate::text::push_f32;
+
 use crate::clip::Clip;
 use crate::skeleton::Skeleton;
 use std::fmt::Write as _;
-
-/// Appends a float in its shortest form that reads back to the same bits.
-fn push_f32(out: &mut String, buffer: &mut ryu::Buffer, v: f32) {
-    if v.is_finite() {
-        let s = buffer.format_finite(v);
-        // "1.0" → "1", keep it short and plain; both forms read back identically.
-        out.push_str(s.strip_suffix(".0").unwrap_or(s));
-    } else if v.is_nan() {
-        out.push_str("nan");
-    } else if v > 0.0 {
-        out.push_str("inf");
-    } else {
-        out.push_str("-inf");
-    }
-}
 
 /// Deeper levels are not indented further, so output stays linear in the input
 /// even for absurdly deep hierarchies.
