@@ -128,3 +128,84 @@ fn validate_walks_directories_and_fails_on_any_bad_file() {
     assert_eq!(text.lines().count(), 3);
     assert!(text.contains("c.bvh:4:1: unexpected end of file"), "{text}");
 }
+
+/// A root and two bones (the second with an axis), and a two-frame motion.
+const ASF: &str = ":version 1.10\n:name T\n:units\n  mass 1.0\n  length 1.0\n  angle deg\n:documentation\n  two bones\n:root\n  order TX TY TZ RX RY RZ\n  axis XYZ\n  position 0 0 0\n  orientation 0 0 0\n:bonedata\n  begin\n    id 1\n    name up\n    direction 0 1 0\n    length 10\n    axis 0 0 30 XYZ\n    dof rx ry rz\n  end\n  begin\n    id 2\n    name side\n    direction 1 0 0\n    length 5\n    axis 0 0 0 XYZ\n    dof rx rz\n  end\n:hierarchy\n  begin\n    root up\n    up side\n  end\n";
+const AMC: &str = ":FULLY-SPECIFIED\n:DEGREES\n1\nroot 1 2 3 0 0 0\nup 10 20 30\nside 5 6\n2\nroot 1 2 3 0 90 0\nup -10 0 45\nside 0 0\n";
+
+fn positions(json: &Value) -> Vec<[f64; 3]> {
+    json["joints"].as_array().unwrap().iter().map(|j| {
+        let p = j["position"].as_array().unwrap();
+        [p[0].as_f64().unwrap(), p[1].as_f64().unwrap(), p[2].as_f64().unwrap()]
+    }).collect()
+}
+
+#[test]
+fn an_amc_alone_finds_its_skeleton_and_converts_to_bvh_and_bva() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_temp(d, "07.asf", ASF);
+    write_temp(d, "other.asf", ASF);
+    let amc = write_temp(d, "07_01.amc", AMC);
+    let info = mocap(&["info", amc.to_str().unwrap(), "--json"]);
+    assert!(info.status.success(), "{}", stderr(&info));
+    let v: Value = serde_json::from_str(&stdout(&info)).unwrap();
+    assert_eq!(v["frames"], 2);
+    assert_eq!(v["joints"], 3);
+    assert!(v["metadata"].to_string().contains("two bones"), "{}", v["metadata"]);
+    // Both files given explicitly work too; pose agrees either way.
+    let pose_alone = mocap(&["pose", amc.to_str().unwrap(), "--frame", "1", "--json"]);
+    let asf = d.join("07.asf");
+    let pose_pair = mocap(&["pose", asf.to_str().unwrap(), amc.to_str().unwrap(), "--frame", "1", "--json"]);
+    assert_eq!(stdout(&pose_alone), stdout(&pose_pair));
+    let expected = positions(&serde_json::from_str(&stdout(&pose_pair)).unwrap());
+    // ASF + AMC → BVH keeps every position.
+    let bvh = d.join("out.bvh");
+    let out = mocap(&["convert", asf.to_str().unwrap(), amc.to_str().unwrap(), "-o", bvh.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let back = positions(&serde_json::from_str(&stdout(&mocap(&["pose", bvh.to_str().unwrap(), "--frame", "1", "--json"]))).unwrap());
+    assert_eq!(back.len(), expected.len());
+    for (a, b) in expected.iter().zip(&back) {
+        assert!((0..3).all(|k| (a[k] - b[k]).abs() < 1e-4), "{a:?} vs {b:?}");
+    }
+    // → BVA: each joint a segment at its position.
+    let bva = d.join("out.bva");
+    let out = mocap(&["convert", amc.to_str().unwrap(), "-o", bva.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let segs = positions(&serde_json::from_str(&stdout(&mocap(&["pose", bva.to_str().unwrap(), "--frame", "1", "--json"]))).unwrap());
+    for (j, seg) in [(0, 0), (1, 2), (2, 4)] {
+        assert!((0..3).all(|k| (expected[j][k] - segs[seg][k]).abs() < 1e-3), "joint {j}: {:?} vs {:?}", expected[j], segs[seg]);
+    }
+    // BVA → BVH says that scale is dropped.
+    let again = d.join("again.bvh");
+    let out = mocap(&["convert", bva.to_str().unwrap(), "-o", again.to_str().unwrap()]);
+    assert!(out.status.success() && stderr(&out).contains("scale"), "{}", stderr(&out));
+}
+
+#[test]
+fn an_amc_without_a_skeleton_says_what_it_needs() {
+    let dir = tempfile::tempdir().unwrap();
+    let amc = write_temp(dir.path(), "take.amc", AMC);
+    let out = mocap(&["info", amc.to_str().unwrap()]);
+    assert!(!out.status.success());
+    assert!(stderr(&out).contains("needs its skeleton") && stderr(&out).contains(".asf"), "{}", stderr(&out));
+    write_temp(dir.path(), "a.asf", ASF);
+    write_temp(dir.path(), "b.asf", ASF);
+    let out = mocap(&["info", amc.to_str().unwrap()]);
+    assert!(!out.status.success() && stderr(&out).contains("give the right one"), "{}", stderr(&out));
+    // A Windows Media file named .asf is refused clearly.
+    let wm = dir.path().join("movie.asf");
+    std::fs::write(&wm, [0x30, 0x26, 0xB2, 0x75, 0x8E, 0x66, 0xCF, 0x11, 0xA6, 0xD9, 0x00, 0xAA, 0x00, 0x62, 0xCE, 0x6C, 0, 0, 0, 1]).unwrap();
+    let out = mocap(&["validate", wm.to_str().unwrap()]);
+    assert!(!out.status.success() && stdout(&out).contains("movie.asf:1:1: not an Acclaim skeleton"), "{}", stdout(&out));
+}
+
+#[test]
+fn render_frame_counts_use_the_shared_timeline_even_for_absurd_frame_times() {
+    let dir = tempfile::tempdir().unwrap();
+    let tiny = write_temp(dir.path(), "tiny.bvh", &SIMPLE.replace("Frame Time: 0.5", "Frame Time: 1e-300"));
+    let png = dir.path().join("x.png");
+    // Frame 5 of a 3-frame clip is out of range; the count must not overflow.
+    let out = mocap(&["render", tiny.to_str().unwrap(), "--frame", "5", "--out", png.to_str().unwrap()]);
+    assert!(!out.status.success() && stderr(&out).contains("out of range"), "{}", stderr(&out));
+}
