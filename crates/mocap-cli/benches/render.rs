@@ -54,7 +54,7 @@ fn measure(gpu: &Gpu, offscreen: &mut Offscreen, clip: &mocap::Clip, mode: DrawM
     let camera = stage.camera(Orbit::default(), offscreen.size());
     let mut scene = mocap_render::Scene::default();
     let pose = |f: usize, scene: &mut mocap_render::Scene| {
-        stage.scene_at(f as f64 * clip.frame_time(), scene);
+        stage.scene_at(clip.timeline().time_of(f), scene);
         scene.shadows = shadows;
     };
     // Warm up (pipelines, buffer growth), then time whole frames.

@@ -15,7 +15,7 @@ pub const DEFAULT_FRAME_TIME: f64 = 1.0 / 30.0;
 
 /// Most frames a timeline spans (times beyond are clamped), so absurd frame times
 /// and durations give bounded counts.
-pub const MAX_FRAMES: usize = 1 << 32;
+pub const MAX_FRAMES: usize = 1 << 30;
 
 /// Where a time falls between two frames.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -70,7 +70,7 @@ fn plot(ui: &mut egui::Ui, doc: &Character, joint: &mocap::Joint, time: f64) {
                 let c = joint.first_channel() + k;
                 let points: Vec<[f64; 2]> = (0..frames)
                     .step_by(step)
-                    .map(|f| [f as f64 * clip.frame_time(), f64::from(clip.motion().value(f, c))])
+                    .map(|f| [clip.timeline().time_of(f), f64::from(clip.motion().value(f, c))])
                     .collect();
                 plot_ui.line(egui_plot::Line::new(channel.to_string(), points));
             }
