@@ -30,7 +30,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
             set(&o, "joints", c.joints as f64);
             set(&o, "jointNames", strings(&c.joint_names));
             set(&o, "visible", c.visible);
-            let [r, g, b, _] = c.extra.color;
+            let [r, g, b, _] = c.color;
             set(&o, "color", format!("#{r:02x}{g:02x}{b:02x}"));
             let offset: Array = c.offset.iter().map(|x| JsValue::from_f64(f64::from(*x))).collect();
             set(&o, "offset", offset);
