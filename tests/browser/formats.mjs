@@ -35,6 +35,7 @@ try {
     check(d < 1e-4, `${acclaim.joint} at frame 0 is at [${p}], the core says [${acclaim.position}]`);
     await view3d(page, shot('acclaim'));
     await page.screenshot({ path: shot('acclaim-page') });
+    await page.evaluate(() => window.mocapViewer.play());
   });
 
   await step('a motion dropped alone uses the last skeleton opened', async () => {

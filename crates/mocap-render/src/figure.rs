@@ -91,6 +91,49 @@ pub fn bone_radius(length: f32, size: f32) -> f32 {
     (length * 0.2).clamp(size * 0.008, size * 0.04)
 }
 
+/// Figures with more bones than this are drawn simplified (see [`figure_stride`]),
+/// so that a file with a 200,000-joint chain stays drawable on a software GPU.
+pub const MAX_FIGURE_BONES: usize = 16_384;
+
+/// The simplification of a figure of `joints` joints: 1 (every joint drawn) up to
+/// [`MAX_FIGURE_BONES`], else every `stride`-th level of the tree is kept (with the
+/// roots, the leaves and the highlighted joint), each kept joint joined to its
+/// nearest kept ancestor.
+pub fn figure_stride(joints: usize) -> usize {
+    joints.div_ceil(MAX_FIGURE_BONES).max(1)
+}
+
+/// For a figure over [`MAX_FIGURE_BONES`]: per joint, `None` when it is not drawn,
+/// else the joint its bone starts from (its nearest drawn ancestor; `Some(None)`
+/// for a root). One linear pass; `None` overall when every joint is drawn.
+fn simplified_parents(joints: &[FigureJoint], keep: Option<usize>) -> Option<Vec<Option<Option<usize>>>> {
+    let stride = figure_stride(joints.len());
+    if stride == 1 {
+        return None;
+    }
+    let mut leaf = vec![true; joints.len()];
+    for j in joints {
+        if let Some(flag) = j.parent.and_then(|p| leaf.get_mut(p)) {
+            *flag = false;
+        }
+    }
+    let mut depth = vec![0usize; joints.len()];
+    let mut anchor = vec![0usize; joints.len()];
+    let mut out = Vec::with_capacity(joints.len());
+    for (i, j) in joints.iter().enumerate() {
+        let parent = j.parent.filter(|&p| p < i);
+        let d = parent.and_then(|p| depth.get(p)).map_or(0, |d| d + 1);
+        let kept = parent.is_none() || d % stride == 0 || leaf.get(i).copied().unwrap_or(true) || keep == Some(i);
+        let from = parent.and_then(|p| anchor.get(p).copied());
+        if let (Some(slot), Some(a)) = (depth.get_mut(i), anchor.get_mut(i)) {
+            *slot = d;
+            *a = if kept { i } else { from.unwrap_or(i) };
+        }
+        out.push(kept.then_some(from));
+    }
+    Some(out)
+}
+
 /// Appends the figure posed at `positions` (world space, one per joint of `joints`:
 /// points, or anything that converts to its position, such as a world transform)
 /// to `scene`. Joints with non-finite positions and their bones are skipped.
@@ -99,7 +142,13 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
     let joint_radius = size * 0.012;
     let highlight = style.highlight.map(|(j, _)| j);
     let at = |i: usize| positions.get(i).map(|&p| p.into()).filter(|p: &Vec3| p.is_finite());
+    let simplified = simplified_parents(joints, highlight);
     for (i, joint) in joints.iter().enumerate() {
+        let parent_joint = match simplified.as_ref().and_then(|s| s.get(i)) {
+            None => joint.parent,
+            Some(None) => continue,
+            Some(Some(from)) => *from,
+        };
         let Some(p) = at(i) else {
             continue;
         };
@@ -108,7 +157,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
             Some((j, c)) if j == i => c,
             _ => style.color,
         };
-        let parent = joint.parent.and_then(at);
+        let parent = parent_joint.and_then(at);
         match style.mode {
             DrawMode::Capsules => {
                 if let Some(q) = parent {
@@ -185,6 +234,24 @@ mod tests {
         push_figure(&mut scene, &joints, &positions, &style(DrawMode::Capsules));
         assert_eq!(scene.capsules.len(), 1, "only the root remains");
         assert!(DrawMode::from_name("Sticks") == Some(DrawMode::Sticks) && DrawMode::from_name("x").is_none());
+    }
+
+    #[test]
+    fn a_huge_chain_is_drawn_simplified_from_end_to_end() {
+        let n: usize = 200_000;
+        let joints: Vec<FigureJoint> = (0..n).map(|i| FigureJoint { parent: i.checked_sub(1), marker: i + 1 < n }).collect();
+        let positions: Vec<Vec3> = (0..n).map(|i| Vec3::new(0.0, i as f32, 0.0)).collect();
+        let mut scene = Scene::default();
+        let mut s = style(DrawMode::Capsules);
+        s.highlight = Some((12_345, [9; 4]));
+        push_figure(&mut scene, &joints, &positions, &s);
+        let bones: Vec<&Capsule> = scene.capsules.iter().filter(|c| c.a != c.b).collect();
+        assert!(bones.len() <= MAX_FIGURE_BONES + 2, "{} bones", bones.len());
+        let covered: f32 = bones.iter().map(|c| c.a.distance(c.b)).sum();
+        assert!((covered - (n - 1) as f32).abs() < 1e-3 * n as f32, "the bones still span the chain: {covered}");
+        assert!(scene.capsules.iter().any(|c| c.color == [9; 4]), "the highlighted joint is drawn");
+        // Small figures are drawn joint by joint.
+        assert_eq!(figure_stride(1000), 1);
     }
 
     #[test]

@@ -67,7 +67,13 @@ pub fn to_clip(bva: &Bva) -> Result<Clip, ParseError> {
     let mut clip = Clip::new(skeleton, motion).map_err(|e| ParseError::new(1, 1, e.to_string()))?;
     clip.warnings = bva.warnings.clone();
     if let Some(first) = bva.segments.first() {
-        clip.metadata.push(("units".into(), first.units.join(" ")));
+        let mut words: Vec<&str> = Vec::new();
+        for unit in &first.units {
+            if !words.contains(&unit.as_str()) {
+                words.push(unit);
+            }
+        }
+        clip.metadata.push(("units".into(), words.join(", ")));
     }
     Ok(clip)
 }
