@@ -4,7 +4,7 @@
 use std::cell::RefCell;
 
 use crate::error::Warning;
-use crate::fk::{local_to_model, rest_positions, Transform};
+use crate::fk::{local_to_model, model_from_row, rest_positions, Transform};
 use crate::motion::Motion;
 use crate::pose::{self, LocalPose};
 use crate::sample::{sample, Interpolation, SampleScratch};
@@ -228,19 +228,17 @@ impl Clip {
     }
 
     /// Model transforms of every joint (End Sites included) at a frame, into `out`:
-    /// the frame's local pose through [`local_to_model`].
+    /// the frame's local pose through the local-to-model pass ([`model_from_row`]).
     pub fn world_transforms_into(&self, frame: usize, out: &mut Vec<Transform>) {
         SCRATCH.with_borrow_mut(|(local, _, _)| {
-            self.local_pose_into(frame, local);
-            local_to_model(&self.skeleton, local, out);
+            model_from_row(&self.skeleton, self.motion.row(frame), self.motion.angle_unit(), local, out);
         });
     }
 
     /// Model positions of every joint at a frame, into `out` (no allocation once sized).
     pub fn world_positions_into(&self, frame: usize, out: &mut Vec<Vec3>) {
         SCRATCH.with_borrow_mut(|(local, _, model)| {
-            self.local_pose_into(frame, local);
-            local_to_model(&self.skeleton, local, model);
+            model_from_row(&self.skeleton, self.motion.row(frame), self.motion.angle_unit(), local, model);
             out.clear();
             out.extend(model.iter().map(|t| t.translation));
         });

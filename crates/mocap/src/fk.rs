@@ -3,7 +3,8 @@
 //! project; [`crate::batch`] runs the same arithmetic on several frames at once and
 //! a test checks the two agree.
 
-use crate::pose::LocalPose;
+use crate::channel::AngleUnit;
+use crate::pose::{plain_joint_local, LocalPose};
 use crate::skeleton::Skeleton;
 use glam::{Quat, Vec3};
 
@@ -104,18 +105,63 @@ fn compose_arrays(pr: [f32; 4], pt: [f32; 3], ps: [f32; 3], cr: [f32; 4], ct: [f
 /// Local to model: `out[i] = out[parent(i)] ∘ local[i]`, roots as they are.
 ///
 /// Inputs: the skeleton (parent indices, parents first) and a local pose with one
-/// entry per joint (missing entries count as the identity). Output: one model-space
-/// transform per joint, in joint order; `out` is reused without allocating once sized.
+/// entry per joint (a shorter pose leaves the remaining joints out). Output: one
+/// model-space transform per joint, in joint order; `out` is reused without
+/// allocating once sized.
 pub fn local_to_model(skeleton: &Skeleton, local: &LocalPose, out: &mut Vec<Transform>) {
-    out.clear();
-    out.reserve(skeleton.len());
-    let (ts, rs, ss) = (local.translation.as_slice(), local.rotation.as_slice(), local.scale.as_slice());
-    for (i, joint) in skeleton.joints().iter().enumerate() {
+    let n = skeleton.len().min(local.len());
+    let (ts, rs, ss) = (&local.translation, &local.rotation, &local.scale);
+    let entry = |i: usize| {
         let t = ts.get(i).map_or([0.0; 3], |v| v.to_array());
         let r = rs.get(i).map_or([0.0, 0.0, 0.0, 1.0], |q| q.to_array());
         let s = ss.get(i).map_or([1.0; 3], |v| v.to_array());
+        (t, r, s)
+    };
+    // One body; skeletons without scale channels skip composing unit scales.
+    if skeleton.has_scale_channels() {
+        compose_each::<true>(skeleton, n, entry, out);
+    } else {
+        compose_each::<false>(skeleton, n, entry, out);
+    }
+}
+
+/// Model transforms of a plain skeleton ([`Skeleton::is_plain`], e.g. every BVH
+/// file) straight from a motion row: [`crate::pose::from_row`]'s per-joint rule fed
+/// to the same local-to-model pass, without storing the local pose in between
+/// (that store and reload costs a fifth of the time). Other skeletons go through
+/// `scratch`: `from_row` then [`local_to_model`]. Either way the result equals
+/// `from_row` followed by `local_to_model` (a test checks it bit for bit).
+pub fn model_from_row(skeleton: &Skeleton, row: &[f32], unit: AngleUnit, scratch: &mut LocalPose, out: &mut Vec<Transform>) {
+    if skeleton.is_plain() {
+        let half = unit.radians_per_unit() * 0.5;
+        let joints = skeleton.joints();
+        let entry = |i: usize| {
+            let (t, r) = joints.get(i).map_or(([0.0; 3], [0.0, 0.0, 0.0, 1.0]), |j| plain_joint_local(j, row, half));
+            (t, r, [1.0; 3])
+        };
+        compose_each::<false>(skeleton, skeleton.len(), entry, out);
+    } else {
+        crate::pose::from_row(skeleton, row, unit, scratch);
+        local_to_model(skeleton, scratch, out);
+    }
+}
+
+/// The one local-to-model loop: joint `i`'s local (translation, rotation, scale)
+/// comes from `local(i)`, its model transform is its parent's composed with it.
+#[inline(always)]
+fn compose_each<const SCALED: bool>(skeleton: &Skeleton, n: usize, local: impl Fn(usize) -> ([f32; 3], [f32; 4], [f32; 3]), out: &mut Vec<Transform>) {
+    out.clear();
+    out.reserve(n);
+    for (i, joint) in skeleton.joints().iter().enumerate().take(n) {
+        let (t, r, s) = local(i);
+        let s = if SCALED { s } else { [1.0; 3] };
         let (r, t, s) = match joint.parent.and_then(|p| out.get(p)) {
-            Some(p) => compose_arrays(p.rotation.to_array(), p.translation.to_array(), p.scale.to_array(), r, t, s),
+            Some(p) if SCALED => compose_arrays(p.rotation.to_array(), p.translation.to_array(), p.scale.to_array(), r, t, s),
+            Some(p) => {
+                let (pr, pt) = (p.rotation.to_array(), p.translation.to_array());
+                let moved = quat_rotate(pr, t);
+                (quat_mul(pr, r), [pt[0] + moved[0], pt[1] + moved[1], pt[2] + moved[2]], s)
+            }
             None => (r, t, s),
         };
         out.push(Transform { rotation: Quat::from_array(r), translation: Vec3::from_array(t), scale: Vec3::from_array(s) });
@@ -128,4 +174,22 @@ pub fn rest_positions(skeleton: &Skeleton) -> Vec<Vec3> {
     let mut model = Vec::new();
     local_to_model(skeleton, &LocalPose::rest(skeleton), &mut model);
     model.into_iter().map(|t| t.translation).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn model_from_row_equals_from_row_then_local_to_model_bit_for_bit() {
+        let src = "HIERARCHY\nROOT R\n{\nOFFSET 1 2 3\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\nJOINT C\n{\nOFFSET 0 1 0\nCHANNELS 4 Yrotation Xposition Xrotation Zrotation\nEnd Site\n{\nOFFSET 1 0.5 0\n}\n}\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0.5 -1 2 33 -71 150 12 0.25 -8 95\n";
+        let clip = crate::bvh::parse(src.as_bytes()).unwrap();
+        assert!(clip.skeleton().is_plain());
+        let (mut local, mut a, mut b) = (LocalPose::default(), Vec::new(), Vec::new());
+        crate::pose::from_row(clip.skeleton(), clip.channel_values(0), AngleUnit::Degrees, &mut local);
+        local_to_model(clip.skeleton(), &local, &mut a);
+        model_from_row(clip.skeleton(), clip.channel_values(0), AngleUnit::Degrees, &mut local, &mut b);
+        let bits = |v: &[Transform]| v.iter().flat_map(|t| t.rotation.to_array().into_iter().chain(t.translation.to_array()).chain(t.scale.to_array())).map(f32::to_bits).collect::<Vec<_>>();
+        assert_eq!(bits(&a), bits(&b));
+    }
 }

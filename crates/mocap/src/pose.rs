@@ -104,6 +104,9 @@ pub fn axis_rotation(axis: usize, angle: f32, unit: AngleUnit) -> Quat {
 pub fn from_row(skeleton: &Skeleton, row: &[f32], unit: AngleUnit, out: &mut LocalPose) {
     let half = unit.radians_per_unit() * 0.5;
     out.resize(skeleton.len());
+    if skeleton.is_plain() {
+        return fill_plain(skeleton, row, half, out);
+    }
     // One body, specialised: BVH skeletons skip the Acclaim-only work.
     match (skeleton.euler() == EulerConvention::Extrinsic, skeleton.has_length_channels()) {
         (false, false) => fill::<false, false>(skeleton, row, half, out),
@@ -111,6 +114,41 @@ pub fn from_row(skeleton: &Skeleton, row: &[f32], unit: AngleUnit, out: &mut Loc
         (true, false) => fill::<true, false>(skeleton, row, half, out),
         (true, true) => fill::<true, true>(skeleton, row, half, out),
     }
+}
+
+/// The body of [`from_row`] for plain skeletons (BVH's: intrinsic rotations,
+/// translation and rotation channels only, no rest rotations): the same rules as
+/// [`fill`] with nothing to skip at run time.
+#[inline(always)]
+fn fill_plain(skeleton: &Skeleton, row: &[f32], half: f32, out: &mut LocalPose) {
+    let slots = out.translation.iter_mut().zip(out.rotation.iter_mut()).zip(out.scale.iter_mut());
+    for (joint, ((t_out, r_out), s_out)) in skeleton.joints().iter().zip(slots) {
+        let (t, r) = plain_joint_local(joint, row, half);
+        *t_out = Vec3::from_array(t);
+        *r_out = Quat::from_array(r);
+        *s_out = Vec3::ONE;
+    }
+}
+
+/// One joint of a plain skeleton ([`Skeleton::is_plain`]): its local translation
+/// and rotation (`[x, y, z, w]`) for a row, `half` being half a radian per angle
+/// unit. The per-joint rule of [`from_row`] for such skeletons, shared with
+/// [`crate::fk::model_from_row`].
+#[inline(always)]
+pub(crate) fn plain_joint_local(joint: &crate::skeleton::Joint, row: &[f32], half: f32) -> ([f32; 3], [f32; 4]) {
+    let mut t = joint.offset.to_array();
+    let mut r = [0.0, 0.0, 0.0, 1.0];
+    let values = row.get(joint.columns()).unwrap_or(&[]);
+    for (k, channel) in joint.channels.iter().enumerate() {
+        let v = values.get(k).copied().unwrap_or(0.0);
+        if channel.is_rotation() {
+            let (sn, cs) = sin_cos(v * half);
+            r = post_rotate(r, channel.axis(), sn, cs);
+        } else if let Some(slot) = t.get_mut(channel.axis()) {
+            *slot = v;
+        }
+    }
+    (t, r)
 }
 
 /// The body of [`from_row`] for one Euler convention, with or without bone-length

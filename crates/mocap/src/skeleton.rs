@@ -111,6 +111,8 @@ pub struct Skeleton {
     euler: EulerConvention,
     channel_count: usize,
     has_length: bool,
+    has_scale: bool,
+    plain: bool,
 }
 
 impl Skeleton {
@@ -139,7 +141,9 @@ impl Skeleton {
             next += joint.channels.len();
         }
         let has_length = joints.iter().any(|j| j.channels.contains(&Channel::Length));
-        Ok(Skeleton { joints, euler, channel_count: next, has_length })
+        let has_scale = joints.iter().any(|j| j.channels.iter().any(|c| c.kind() == crate::channel::ChannelKind::Scale));
+        let plain = euler == EulerConvention::Intrinsic && joints.iter().all(|j| j.rest_rotation == Quat::IDENTITY && j.channels.iter().all(|c| c.is_bvh()));
+        Ok(Skeleton { joints, euler, channel_count: next, has_length, has_scale, plain })
     }
 
     /// All joints, parent-before-child; End Sites included.
@@ -180,6 +184,17 @@ impl Skeleton {
     /// True when some joint has a bone-length channel.
     pub fn has_length_channels(&self) -> bool {
         self.has_length
+    }
+
+    /// True for skeletons BVH can hold as they are: intrinsic rotations, only
+    /// translation and rotation channels, no rest rotations.
+    pub fn is_plain(&self) -> bool {
+        self.plain
+    }
+
+    /// True when some joint has a scale channel.
+    pub fn has_scale_channels(&self) -> bool {
+        self.has_scale
     }
 
     /// True when some joint has a scale or length channel, or a rest rotation.

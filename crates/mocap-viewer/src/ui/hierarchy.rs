@@ -13,7 +13,7 @@ use crate::viewer::Viewer;
 use std::collections::HashSet;
 
 /// Indentation stops growing past this depth (the depth is shown as a number).
-pub const MAX_INDENT_LEVELS: usize = 32;
+pub const MAX_INDENT_LEVELS: usize = 12;
 /// At most this many joint names are recorded for [`crate::Snapshot::tree_labels`].
 pub const MAX_LABELS: usize = 10_000;
 /// Pixels per indentation level.
