@@ -30,13 +30,31 @@ await step('parseMotion in Node on the built package', async () => {
     message = e.message;
   }
   check(/^bad\.bvh:\d+:\d+/.test(message ?? ''), `a bad file throws with its position: ${message}`);
+  // Other formats: the core decides from the content (the name says .txt).
+  const bva = pkg.parseMotion(fs.readFileSync(new URL('../../data/walk.bva', import.meta.url)), 'walk.txt');
+  check(bva.frameCount === 67 && bva.jointNames.includes('Hips_End'), `a BVA opens as segments (${bva.frameCount} frames)`);
+  const asf = new TextEncoder().encode(':version 1.10\n:name T\n:units\n  length 1\n  angle deg\n:root\n  order TX TY TZ RX RY RZ\n  axis XYZ\n  position 0 0 0\n  orientation 0 0 0\n:bonedata\n  begin\n    id 1\n    name b\n    direction 1 0 0\n    length 2\n    axis 0 0 0 XYZ\n    dof rz\n  end\n:hierarchy\n  begin\n    root b\n  end\n');
+  const amc = new TextEncoder().encode(':FULLY-SPECIFIED\n:DEGREES\n1\nroot 0 0 0 0 0 0\nb 90\n');
+  const take = pkg.parseMotion(amc, 'take.amc', asf);
+  const tip = take.worldPositions(0).slice(6, 9);
+  check(take.frameCount === 1 && Math.abs(tip[0]) < 1e-5 && Math.abs(tip[1] - 2) < 1e-5, `an AMC with its skeleton: rz 90 turns the +X bone up (${Array.from(tip)})`);
+  let missing = null;
+  try {
+    pkg.parseMotion(amc, 'take.amc');
+  } catch (e) {
+    missing = e.message;
+  }
+  check(/take\.amc: .*needs its skeleton/.test(missing ?? ''), `an AMC without its skeleton says so: ${missing}`);
   clip.free();
   again.free();
+  bva.free();
+  take.free();
 });
 
 await step('TypeScript types', async () => {
   const dts = fs.readFileSync(path.join(dist, 'pkg/mocap_web.d.ts'), 'utf8');
-  for (const needle of ['export function parseMotion(bytes: Uint8Array | number[], file_name: string): MotionClip',
+  for (const needle of ['export function parseMotion(bytes: Uint8Array | number[], file_name: string, skeleton?: Uint8Array | number[] | null): MotionClip',
+    'openFiles(names: string[], contents: Uint8Array[], add: boolean): string[]', 'jointPosition(character: number, name: string): Float32Array | undefined',
     'export function startViewer(canvas: HTMLCanvasElement, options?: ViewerOptions): Promise<MocapViewer>',
     'addClip(clip: MotionClip, file_name: string): void', 'loadClip(clip: MotionClip, file_name: string): void',
     'add(file_name: string, bytes: Uint8Array | number[]): string | undefined', 'setVisible(index: number, visible: boolean): boolean',

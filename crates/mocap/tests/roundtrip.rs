@@ -122,6 +122,27 @@ proptest! {
     }
 
     #[test]
+    fn loading_never_panics_on_mutated_bva_asf_or_amc(bytes in prop::collection::vec(any::<u8>(), 0..200), cut in 0usize..700, which in 0usize..3) {
+        let bva = b"Segment: Hips\nFrames: 2\nFrame Time: 0.1\nXTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE\nINCHES INCHES INCHES DEGREES DEGREES DEGREES INCHES INCHES INCHES\n1 2 3 4 5 6 7 8 9\n1 2 3 4 5 6 7 8 9\n".to_vec();
+        let asf = b":version 1.10\n:name T\n:units\n mass 1\n length 1\n angle deg\n:root\n order TX TY TZ RX RY RZ\n axis XYZ\n position 0 0 0\n orientation 0 0 0\n:bonedata\n begin\n id 1\n name b\n direction 1 0 0\n length 2\n axis 0 0 30 XYZ\n dof rx ry rz l\n limits (-1 1) (-inf inf) (0 2) (0 1)\n end\n:hierarchy\n begin\n root b\n end\n".to_vec();
+        let amc = b":FULLY-SPECIFIED\n:DEGREES\n1\nroot 0 1 2 3 4 5\nb 1 2 3 0.5\n2\nroot 0 1 2 3 4 5\nb 1 2 3 0.5\n".to_vec();
+        let mut files = [bva, asf, amc];
+        let target = &mut files[which];
+        target.truncate(cut.min(target.len()));
+        target.extend_from_slice(&bytes);
+        let inputs = [
+            mocap::Input { name: "a.bva", bytes: &files[0] },
+            mocap::Input { name: "t.asf", bytes: &files[1] },
+            mocap::Input { name: "t.amc", bytes: &files[2] },
+        ];
+        for loaded in mocap::load(&inputs).into_iter().flatten() {
+            let _ = loaded.clip.bounds();
+            let _ = mocap::bvh::write(&loaded.clip);
+            let _ = mocap::bva::write(&mocap::bva::from_clip(&loaded.clip).0);
+        }
+    }
+
+    #[test]
     fn parse_never_panics_on_mutated_input(bytes in prop::collection::vec(any::<u8>(), 0..400), cut in 0usize..400) {
         let base = b"HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 1 0\n}\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n1 2 3\n4 5 6\n";
         let mut input = base[..cut.min(base.len())].to_vec();
