@@ -1,5 +1,37 @@
-//! Text helpers every reader and writer shares: error-message quoting, name
-//! decoding and shortest round-trip float formatting.
+//! Text helpers every reader and writer shares: tokens with their position,
+//! error-message quoting, name decoding and shortest round-trip float formatting.
+
+/// One whitespace-separated token of a text file.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Token<'a> {
+    /// The token's bytes.
+    pub text: &'a [u8],
+    /// Byte offset of the token in the file.
+    pub start: usize,
+    /// 1-based line.
+    pub line: u32,
+    /// 1-based byte column.
+    pub column: u32,
+}
+
+impl Token<'_> {
+    /// Case-insensitive keyword comparison.
+    pub fn is(&self, keyword: &str) -> bool {
+        self.text.eq_ignore_ascii_case(keyword.as_bytes())
+    }
+
+    /// The token as text for messages, shortened and with odd bytes escaped.
+    pub fn show(&self) -> String {
+        show_bytes(self.text)
+    }
+}
+
+/// True for the bytes that separate tokens on one line: space, tab, vertical tab,
+/// form feed, and the NUL and Ctrl-Z (DOS end-of-file) padding some old files end with.
+#[inline]
+pub(crate) fn is_blank(b: u8) -> bool {
+    matches!(b, b' ' | b'\t' | 0x0b | 0x0c | 0x00 | 0x1a)
+}
 
 /// Bytes as text for an error message: at most 40 bytes, control characters escaped.
 pub(crate) fn show_bytes(bytes: &[u8]) -> String {

@@ -1,37 +1,8 @@
 //! Shared text helpers for the Acclaim readers: a token cursor with line and column,
 //! number parsing, name decoding and binary-data detection.
 
-pub(crate) use crate::text::{decode_name, show_bytes};
+pub(crate) use crate::text::{decode_name, is_blank, show_bytes, Token};
 
-/// One whitespace-separated token.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Token<'a> {
-    /// The token's bytes.
-    pub text: &'a [u8],
-    /// 1-based line.
-    pub line: u32,
-    /// 1-based byte column.
-    pub column: u32,
-}
-
-impl Token<'_> {
-    /// Case-insensitive keyword comparison.
-    pub fn is(&self, keyword: &str) -> bool {
-        self.text.eq_ignore_ascii_case(keyword.as_bytes())
-    }
-
-    /// The token as text for messages, shortened and with odd bytes escaped.
-    pub fn show(&self) -> String {
-        show_bytes(self.text)
-    }
-}
-
-/// True for the bytes that separate tokens on one line: space, tab, vertical tab,
-/// form feed, and the NUL and Ctrl-Z (DOS end-of-file) padding of some old files.
-#[inline]
-pub(crate) fn is_blank(b: u8) -> bool {
-    matches!(b, b' ' | b'\t' | 0x0b | 0x0c | 0x00 | 0x1a)
-}
 
 /// True for a byte that ends a line (LF or CR).
 #[inline]
@@ -170,7 +141,7 @@ impl<'a> Cursor<'a> {
             }
         }
         self.pos = end;
-        Some(Token { text: self.src.get(start..end).unwrap_or(&[]), line: self.line, column: self.column_at(start) })
+        Some(Token { text: self.src.get(start..end).unwrap_or(&[]), start, line: self.line, column: self.column_at(start) })
     }
 
     /// The next token without consuming it.

@@ -1,39 +1,8 @@
 //! A byte cursor for the BVH header: whitespace-separated tokens with line and column,
 //! braces as tokens of their own, and "rest of the line" names.
 
-pub(crate) use crate::text::show_bytes;
+pub(crate) use crate::text::{is_blank, show_bytes, Token};
 
-/// One token of the header.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Token<'a> {
-    /// The token's bytes.
-    pub text: &'a [u8],
-    /// Byte offset of the token in the file.
-    pub start: usize,
-    /// 1-based line.
-    pub line: u32,
-    /// 1-based byte column.
-    pub column: u32,
-}
-
-impl Token<'_> {
-    /// Case-insensitive keyword comparison.
-    pub fn is(&self, keyword: &str) -> bool {
-        self.text.eq_ignore_ascii_case(keyword.as_bytes())
-    }
-
-    /// The token as text for messages, shortened and with odd bytes escaped.
-    pub fn show(&self) -> String {
-        show_bytes(self.text)
-    }
-}
-
-/// True for the bytes that separate tokens on one line: space, tab, vertical tab,
-/// form feed, and the NUL and Ctrl-Z (DOS end-of-file) padding some old files end with.
-#[inline]
-pub(crate) fn is_blank(b: u8) -> bool {
-    matches!(b, b' ' | b'\t' | 0x0b | 0x0c | 0x00 | 0x1a)
-}
 
 /// Walks the header, keeping line and column.
 #[derive(Clone)]
