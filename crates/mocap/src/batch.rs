@@ -2,8 +2,8 @@
 //! [`crate::pose::from_row`] followed by [`crate::fk::local_to_model`], but each
 //! step works on `LANES` frames held side by side (structure of arrays), so the
 //! compiler turns it into SIMD. Used for whole-clip passes (bounds, exports,
-//! statistics). Skeletons with scale or length channels or extrinsic rotations
-//! take the scalar path frame by frame; a test checks both agree.
+//! statistics). Skeletons with scale or length channels take the scalar path
+//! frame by frame; a test checks both agree.
 
 use crate::fastmath::sin_cos;
 use crate::fk::{local_to_model, Transform};
@@ -79,6 +79,9 @@ fn compose(parent: &JointLanes, local: &JointLanes) -> JointLanes {
 /// the CPU has (AVX2 when detected at run time; SSE2 otherwise). Both versions run
 /// the same IEEE operations in the same order, so results are identical.
 fn fk_block_dispatch(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
+    if skeleton.euler() == EulerConvention::Extrinsic {
+        return fk_block_any::<true>(skeleton, rows, half, world);
+    }
     #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
@@ -86,6 +89,12 @@ fn fk_block_dispatch(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, wor
         return;
     }
     fk_block(skeleton, rows, half, world);
+}
+
+/// [`fk_block`] for either Euler convention (extrinsic skeletons are rare and
+/// not dispatched to AVX2).
+fn fk_block_any<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
+    fk_block_with::<EXTRINSIC>(skeleton, rows, half, world);
 }
 
 #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
@@ -97,20 +106,33 @@ fn fk_block_avx2(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: 
 /// One block of `LANES` frames: local transforms from the rows, then parent ∘ local.
 #[inline(always)]
 fn fk_block(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
+    fk_block_with::<false>(skeleton, rows, half, world);
+}
+
+/// The block body. Extrinsic rotations in file order are intrinsic ones in reverse
+/// order (`rx ry rz` extrinsic is `Rz·Ry·Rx`), so `EXTRINSIC` walks the channels
+/// backwards; translation channels do not depend on the order.
+#[inline(always)]
+fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
     for (j, joint) in skeleton.joints().iter().enumerate() {
         let [rx, ry, rz, rw] = joint.rest_rotation.to_array();
         let mut local = JointLanes {
             q: [[rx; LANES], [ry; LANES], [rz; LANES], [rw; LANES]],
             t: [[joint.offset.x; LANES], [joint.offset.y; LANES], [joint.offset.z; LANES]],
         };
-        for (k, channel) in joint.channels.iter().enumerate() {
+        let mut apply = |k: usize, channel: &crate::Channel| {
             let column = joint.first_channel() + k;
             let values: Lanes = std::array::from_fn(|l| rows[l].get(column).copied().unwrap_or(0.0));
             if channel.is_rotation() {
                 rotate_about_axis(&mut local.q, channel.axis(), &values, half);
-            } else {
-                local.t[channel.axis()] = values;
+            } else if let Some(slot) = local.t.get_mut(channel.axis()) {
+                *slot = values;
             }
+        };
+        if EXTRINSIC {
+            joint.channels.iter().enumerate().rev().for_each(|(k, c)| apply(k, c));
+        } else {
+            joint.channels.iter().enumerate().for_each(|(k, c)| apply(k, c));
         }
         let result = match joint.parent.filter(|&p| p < j).and_then(|p| world.get(p)) {
             Some(parent) => compose(parent, &local),
@@ -127,7 +149,7 @@ fn fk_block(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut 
 pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, mut visit: impl FnMut(usize, &[Vec3])) {
     let frames = motion.frame_count();
     let joints = skeleton.len();
-    let simple = skeleton.euler() == EulerConvention::Intrinsic && skeleton.joints().iter().all(|j| j.channels.iter().all(|c| c.is_bvh()));
+    let simple = skeleton.joints().iter().all(|j| j.channels.iter().all(|c| c.is_bvh()));
     if !simple {
         let (mut local, mut model, mut positions) = (LocalPose::default(), Vec::<Transform>::new(), Vec::new());
         for frame in 0..frames {
@@ -208,7 +230,9 @@ mod tests {
     fn rest_rotations_radians_and_the_general_channels_agree_with_scalar_fk() {
         // Batch lanes (intrinsic, translation and rotation channels).
         agrees_with_scalar(&general_clip(EulerConvention::Intrinsic, vec![Channel::Yposition, Channel::Yrotation, Channel::Xrotation]));
-        // Scalar fallback (extrinsic, scale and length channels).
+        // Batch lanes, extrinsic (Acclaim) with a translation among the rotations.
+        agrees_with_scalar(&general_clip(EulerConvention::Extrinsic, vec![Channel::Zrotation, Channel::Xposition, Channel::Xrotation]));
+        // Scalar fallback (scale and length channels).
         agrees_with_scalar(&general_clip(EulerConvention::Extrinsic, vec![Channel::Yrotation, Channel::Xscale, Channel::Length]));
     }
 }
