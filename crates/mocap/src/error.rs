@@ -57,10 +57,12 @@ pub enum LoadError {
         file: String,
     },
     /// An Acclaim motion with no skeleton to read it with.
-    #[error("{file}: an Acclaim motion (.amc) needs its skeleton: open it together with its .asf file")]
+    #[error("{file}: an Acclaim motion (.amc) needs its skeleton: open it together with its .asf file{}", named.as_ref().map(|n| format!(" (the motion names {n})")).unwrap_or_default())]
     MissingSkeleton {
         /// The motion file's name.
         file: String,
+        /// The skeleton file the motion's header names (`#!OML:ASF …`), if any.
+        named: Option<String>,
     },
     /// The skeleton an Acclaim motion needs could not be read.
     #[error("{file}: its skeleton could not be read: {skeleton}")]

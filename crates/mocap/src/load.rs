@@ -124,7 +124,7 @@ impl Loader {
                     match chosen.skeleton {
                         Some(Ok(skeleton)) => skeleton.motion_clip(file.bytes).map_err(|e| parse_error(file, e)),
                         Some(Err(e)) => Err(LoadError::SkeletonFailed { file: file.name.to_owned(), skeleton: Box::new(e) }),
-                        None => Err(LoadError::MissingSkeleton { file: file.name.to_owned() }),
+                        None => Err(LoadError::MissingSkeleton { file: file.name.to_owned(), named: named_skeleton(file.bytes) }),
                     }
                 }
             };
@@ -163,6 +163,16 @@ impl Loader {
 struct Chosen<'s> {
     index: Option<usize>,
     skeleton: Option<Result<&'s AcclaimSkeleton, LoadError>>,
+}
+
+/// The skeleton file an AMC names in its `#!OML:ASF <path>` header line (its base
+/// name), if it has one.
+fn named_skeleton(amc: &[u8]) -> Option<String> {
+    let head = amc.get(..amc.len().min(1024)).unwrap_or(amc);
+    let line = head.split(|&b| b == b'\n' || b == b'\r').find(|l| l.starts_with(b"#!OML:ASF"))?;
+    let path = String::from_utf8_lossy(line.get(9..)?).trim().to_owned();
+    let base = path.rsplit(['/', '\\']).next().unwrap_or(&path).trim().to_owned();
+    (!base.is_empty()).then_some(base)
 }
 
 fn parse_error(file: &Input<'_>, error: crate::error::ParseError) -> LoadError {

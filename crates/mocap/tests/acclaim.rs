@@ -81,6 +81,8 @@ fn a_motion_needs_its_skeleton_and_a_loader_remembers_the_last_one() {
     let err = loaded(&[("t.amc", amc)]).pop().unwrap().unwrap_err();
     assert!(matches!(err, LoadError::MissingSkeleton { .. }));
     assert!(err.to_string().contains("t.amc") && err.to_string().contains(".asf"), "{err}");
+    let named = loaded(&[("x.amc", b"#!OML:ASF H:\\Terrain\\JustinFriday.ASF\n:FULLY-SPECIFIED\n1\nroot 0 0 0 0 0 0\n")]).pop().unwrap().unwrap_err();
+    assert!(named.to_string().ends_with("(the motion names JustinFriday.ASF)"), "{named}");
     let mut loader = Loader::default();
     let asf = two_bones([0.0; 3]);
     assert!(loader.load(&[Input { name: "t.asf", bytes: asf.as_bytes() }])[0].is_ok());
