@@ -14,6 +14,8 @@
 //! assert_eq!(positions[1], mocap::glam::Vec3::new(1.0, 3.0, 3.0));
 //! ```
 
+#![warn(missing_docs)]
+
 pub mod acclaim;
 pub mod arrange;
 pub mod bake;
