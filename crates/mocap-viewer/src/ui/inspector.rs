@@ -41,8 +41,10 @@ pub fn show(ui: &mut egui::Ui, selected: Option<(&Character, usize)>, frame: usi
             if let Some(limit) = joint.limits.get(k) {
                 label.on_hover_text(format!("limits {} … {}", limit.min, limit.max));
             }
-            let v = values.get(joint.first_channel() + k).copied().unwrap_or(f32::NAN);
-            ui.monospace(format!("{v:10.4}"));
+            match values.get(joint.first_channel() + k) {
+                Some(v) => ui.monospace(format!("{v:10.4}")),
+                None => ui.weak("rest pose (no frames)"),
+            };
             ui.end_row();
         }
         if !joint.limits.is_empty() {
