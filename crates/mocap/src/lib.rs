@@ -28,6 +28,7 @@ pub mod error;
 mod fastmath;
 pub mod fk;
 pub mod load;
+pub mod md2;
 pub mod motion;
 pub mod pose;
 pub mod sample;
