@@ -15,7 +15,7 @@
 //!
 //! **Errors.** A malformed file gives a [`ParseError`] whose message starts with the
 //! 0-based byte offset of the offending field (`byte 56: ofs_frames 9999 + 1 frames ×
-//! 1240 bytes runs past the end of the file (256 bytes)`). Binary files have no lines:
+//! 1240 bytes (num_frames) runs past the end of the file (256 bytes)`). Binary files have no lines:
 //! the error's `line` is always 1 and its `column` the same offset, 1-based. The
 //! caller adds the file name.
 //!
@@ -424,7 +424,8 @@ impl Md2 {
     /// Positions between frames `a` and `b` (Y-up, file units): `pa + (pb − pa) · t`, per
     /// vertex, into `out` (cleared first). `t` is normally in `[0, 1]` and is not clamped.
     ///
-    /// Panics if `a` or `b` is out of range.
+    /// Panics if `a` or `b` is out of range, or if a frame has fewer than
+    /// [`Md2::vertex_count`] vertices (never the case for a parsed model).
     pub fn interpolated_positions(&self, a: usize, b: usize, t: f32, out: &mut Vec<[f32; 3]>) {
         let (fa, fb) = (&self.frames[a], &self.frames[b]);
         out.clear();
@@ -445,6 +446,8 @@ impl Md2 {
 
     /// Height of frame 0 in file units: the extent of its vertices along Y (Quake's Z),
     /// for guessing the unit (a Quake 2 player is about 56 units tall).
+    ///
+    /// Panics if there are no frames (never the case for a parsed model).
     pub fn height(&self) -> f32 {
         let f = &self.frames[0];
         let (lo, hi) = (0..f.vertices.len())
