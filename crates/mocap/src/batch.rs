@@ -120,7 +120,10 @@ fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LAN
             q: [[rx; LANES], [ry; LANES], [rz; LANES], [rw; LANES]],
             t: [[joint.offset.x; LANES], [joint.offset.y; LANES], [joint.offset.z; LANES]],
         };
-        let mut apply = |k: usize, channel: &crate::Channel| {
+        let count = joint.channels.len();
+        for step in 0..count {
+            let k = if EXTRINSIC { count - 1 - step } else { step };
+            let Some(channel) = joint.channels.get(k) else { continue };
             let column = joint.first_channel() + k;
             let values: Lanes = std::array::from_fn(|l| rows[l].get(column).copied().unwrap_or(0.0));
             if channel.is_rotation() {
@@ -128,11 +131,6 @@ fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LAN
             } else if let Some(slot) = local.t.get_mut(channel.axis()) {
                 *slot = values;
             }
-        };
-        if EXTRINSIC {
-            joint.channels.iter().enumerate().rev().for_each(|(k, c)| apply(k, c));
-        } else {
-            joint.channels.iter().enumerate().for_each(|(k, c)| apply(k, c));
         }
         let result = match joint.parent.filter(|&p| p < j).and_then(|p| world.get(p)) {
             Some(parent) => compose(parent, &local),
