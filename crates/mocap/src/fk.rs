@@ -5,7 +5,7 @@
 
 use crate::channel::AngleUnit;
 use crate::pose::{plain_joint_local, LocalPose};
-use crate::skeleton::Skeleton;
+use crate::skeleton::{Joint, Skeleton};
 use glam::{Quat, Vec3};
 
 /// A transform: scale, then rotate, then translate.
@@ -111,7 +111,7 @@ fn compose_arrays(pr: [f32; 4], pt: [f32; 3], ps: [f32; 3], cr: [f32; 4], ct: [f
 pub fn local_to_model(skeleton: &Skeleton, local: &LocalPose, out: &mut Vec<Transform>) {
     let n = skeleton.len().min(local.len());
     let (ts, rs, ss) = (&local.translation, &local.rotation, &local.scale);
-    let entry = |i: usize| {
+    let entry = |i: usize, _: &Joint| {
         let t = ts.get(i).map_or([0.0; 3], |v| v.to_array());
         let r = rs.get(i).map_or([0.0, 0.0, 0.0, 1.0], |q| q.to_array());
         let s = ss.get(i).map_or([1.0; 3], |v| v.to_array());
@@ -134,9 +134,8 @@ pub fn local_to_model(skeleton: &Skeleton, local: &LocalPose, out: &mut Vec<Tran
 pub fn model_from_row(skeleton: &Skeleton, row: &[f32], unit: AngleUnit, scratch: &mut LocalPose, out: &mut Vec<Transform>) {
     if skeleton.is_plain() {
         let half = unit.radians_per_unit() * 0.5;
-        let joints = skeleton.joints();
-        let entry = |i: usize| {
-            let (t, r) = joints.get(i).map_or(([0.0; 3], [0.0, 0.0, 0.0, 1.0]), |j| plain_joint_local(j, row, half));
+        let entry = |_: usize, joint: &Joint| {
+            let (t, r) = plain_joint_local(joint, row, half);
             (t, r, [1.0; 3])
         };
         compose_each::<false>(skeleton, skeleton.len(), entry, out);
@@ -147,13 +146,13 @@ pub fn model_from_row(skeleton: &Skeleton, row: &[f32], unit: AngleUnit, scratch
 }
 
 /// The one local-to-model loop: joint `i`'s local (translation, rotation, scale)
-/// comes from `local(i)`, its model transform is its parent's composed with it.
+/// comes from `local(i, joint)`, its model transform is its parent's composed with it.
 #[inline(always)]
-fn compose_each<const SCALED: bool>(skeleton: &Skeleton, n: usize, local: impl Fn(usize) -> ([f32; 3], [f32; 4], [f32; 3]), out: &mut Vec<Transform>) {
+fn compose_each<const SCALED: bool>(skeleton: &Skeleton, n: usize, local: impl Fn(usize, &Joint) -> ([f32; 3], [f32; 4], [f32; 3]), out: &mut Vec<Transform>) {
     out.clear();
     out.reserve(n);
     for (i, joint) in skeleton.joints().iter().enumerate().take(n) {
-        let (t, r, s) = local(i);
+        let (t, r, s) = local(i, joint);
         let s = if SCALED { s } else { [1.0; 3] };
         let (r, t, s) = match joint.parent.and_then(|p| out.get(p)) {
             Some(p) if SCALED => compose_arrays(p.rotation.to_array(), p.translation.to_array(), p.scale.to_array(), r, t, s),
