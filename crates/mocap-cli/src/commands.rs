@@ -90,8 +90,56 @@ fn print_json(value: &Value) -> Result<ExitCode, String> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// A Quake 2 model, when `paths` is one `.md2` file (by content).
+fn read_model(paths: &[PathBuf]) -> Result<Option<mocap::md2::Md2>, String> {
+    let [path] = paths else { return Ok(None) };
+    let bytes = read(path)?;
+    if !mocap::md2::sniff(&bytes) {
+        return Ok(None);
+    }
+    mocap::md2::parse(&bytes).map(Some).map_err(|e| format!("{}:{e}", path.display()))
+}
+
+/// `mocap info` for an MD2 model: frames, vertices, triangles, texture
+/// coordinates, skins, animations (`frames` is the same key as for motion files).
+fn info_model(path: &Path, model: &mocap::md2::Md2, as_json: bool) -> Result<ExitCode, String> {
+    let units = mocap::Units::guess(model.height());
+    let animations: Vec<Value> = model.animations.iter().map(|a| json!({ "name": a.name, "first": a.first, "last": a.last })).collect();
+    if as_json {
+        return print_json(&json!({
+            "file": path.display().to_string(),
+            "format": "md2",
+            "frames": model.frames.len(),
+            "vertices": model.vertex_count,
+            "triangles": model.triangles.len(),
+            "tex_coords": model.tex_coords.len(),
+            "skin_size": [model.skin_width, model.skin_height],
+            "skins": model.skins,
+            "animations": animations,
+            "height": num(model.height()),
+            "units": units.name(),
+        }));
+    }
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(out, "file:       {}", path.display());
+    let _ = writeln!(out, "format:     Quake 2 MD2 model");
+    let _ = writeln!(out, "frames:     {}", model.frames.len());
+    let _ = writeln!(out, "vertices:   {}", model.vertex_count);
+    let _ = writeln!(out, "triangles:  {}", model.triangles.len());
+    let _ = writeln!(out, "tex coords: {} (skin {}×{})", model.tex_coords.len(), model.skin_width, model.skin_height);
+    let _ = writeln!(out, "skins:      {}", if model.skins.is_empty() { "(none named)".to_owned() } else { model.skins.join(", ") });
+    let _ = writeln!(out, "units:      {} (guessed from a first-frame height of {:.3})", units.name(), model.height());
+    for a in &model.animations {
+        let _ = writeln!(out, "animation:  {} (frames {}–{})", a.name, a.first, a.last);
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 /// `mocap info`.
 pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
+    if let (Some(model), [path]) = (read_model(paths)?, paths) {
+        return info_model(path, &model, as_json);
+    }
     let clip = read_clip(paths)?;
     let path = shown(paths);
     let skeleton = clip.skeleton();
@@ -201,7 +249,8 @@ fn collect(path: &Path, explicit: bool, out: &mut Vec<PathBuf>) {
 }
 
 fn is_motion_file(path: &Path) -> bool {
-    path.extension().and_then(|e| e.to_str()).is_some_and(|e| Format::EXTENSIONS.iter().any(|x| e.eq_ignore_ascii_case(x)))
+    let known = |e: &str| Format::EXTENSIONS.iter().any(|x| e.eq_ignore_ascii_case(x)) || e.eq_ignore_ascii_case("md2");
+    path.extension().and_then(|e| e.to_str()).is_some_and(known)
 }
 
 /// `mocap validate`.
@@ -215,6 +264,18 @@ pub fn validate(paths: &[PathBuf]) -> Result<ExitCode, String> {
     }
     let mut failed = 0;
     for file in &files {
+        match read_model(std::slice::from_ref(file)) {
+            Ok(Some(model)) => {
+                println!("ok   {}: MD2 model, {} vertices, {} frames", file.display(), model.vertex_count, model.frames.len());
+                continue;
+            }
+            Err(message) => {
+                failed += 1;
+                println!("FAIL {message}");
+                continue;
+            }
+            Ok(None) => {}
+        }
         match read_clip(std::slice::from_ref(file)) {
             Ok(clip) => {
                 let warn = if clip.warnings.is_empty() { String::new() } else { format!(", {} warnings", clip.warnings.len()) };

@@ -20,7 +20,7 @@ enum Command {
     /// Skeletons, joints, channels, frames, timing, bounding box, units, what the
     /// file says about itself and warnings.
     Info {
-        /// The motion file (BVH, BVA, ASF, or an AMC: its .asf is found beside it, or give both).
+        /// The motion file (BVH, BVA, ASF, or an AMC: its .asf is found beside it, or give both), or a Quake 2 .md2 model.
         #[arg(required = true, num_args = 1..=2)]
         files: Vec<PathBuf>,
         /// Print JSON instead of text.

@@ -209,3 +209,33 @@ fn render_frame_counts_use_the_shared_timeline_even_for_absurd_frame_times() {
     let out = mocap(&["render", tiny.to_str().unwrap(), "--frame", "5", "--out", png.to_str().unwrap()]);
     assert!(!out.status.success() && stderr(&out).contains("out of range"), "{}", stderr(&out));
 }
+
+/// `../shared/corpus`, required unless `MOCAP_SKIP_CORPUS=1`.
+fn corpus() -> Option<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
+    if dir.join("MANIFEST.tsv").is_file() {
+        return Some(dir);
+    }
+    assert!(std::env::var("MOCAP_SKIP_CORPUS").is_ok_and(|v| v == "1"), "{}: corpus not found (opt out with MOCAP_SKIP_CORPUS=1)", dir.display());
+    None
+}
+
+#[test]
+fn info_and_validate_read_md2_models() {
+    let Some(corpus) = corpus() else { return };
+    let faerie = corpus.join("md2/irrlicht_faerie/faerie.md2");
+    let out = mocap(&["info", faerie.to_str().unwrap(), "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!((v["frames"].as_u64(), v["vertices"].as_u64(), v["triangles"].as_u64(), v["tex_coords"].as_u64()), (Some(198), Some(366), Some(654), Some(487)));
+    assert_eq!(v["skin_size"], serde_json::json!([220, 193]));
+    assert_eq!(v["animations"][0]["name"], "stand");
+    let text = stdout(&mocap(&["info", faerie.to_str().unwrap()]));
+    assert!(text.contains("Quake 2 MD2 model") && text.contains("animation:  stand (frames 0–"), "{text}");
+    let bad = corpus.join("md2/assimp_malformed/malformed_zero_numvertices.md2");
+    let out = mocap(&["validate", corpus.join("md2").to_str().unwrap()]);
+    assert!(!out.status.success());
+    let lines = stdout(&out);
+    assert_eq!(lines.lines().filter(|l| l.starts_with("ok ")).count(), 4, "{lines}");
+    assert!(lines.contains(&format!("FAIL {}:byte 24: num_xyz is 0", bad.display())), "{lines}");
+}

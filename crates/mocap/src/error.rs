@@ -2,13 +2,15 @@
 
 use std::fmt;
 
-/// A reader error with its position in the file (1-based line and byte column).
+/// A reader error with its position in the file: 1-based line and byte column in
+/// text formats (shown `line:column: message`); in binary formats line 0 and a
+/// message that starts with the byte offset (shown `byte N: message`).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{line}:{column}: {message}")]
+#[error("{}{message}", if *line == 0 { String::new() } else { format!("{line}:{column}: ") })]
 pub struct ParseError {
-    /// 1-based line.
+    /// 1-based line; 0 in binary formats (the message gives the byte offset).
     pub line: u32,
-    /// 1-based column (bytes).
+    /// 1-based column (bytes); 0 in binary formats.
     pub column: u32,
     /// What was wrong, and what was expected.
     pub message: String,
@@ -18,6 +20,11 @@ impl ParseError {
     /// Builds an error at a position.
     pub fn new(line: u32, column: u32, message: impl Into<String>) -> ParseError {
         ParseError { line, column, message: message.into() }
+    }
+
+    /// An error in a binary file at byte `offset` (0-based): shown `byte N: message`.
+    pub fn at_byte(offset: usize, message: impl std::fmt::Display) -> ParseError {
+        ParseError { line: 0, column: 0, message: format!("byte {offset}: {message}") }
     }
 }
 

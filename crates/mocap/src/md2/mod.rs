@@ -171,8 +171,7 @@ pub fn group_animations<'a>(names: impl IntoIterator<Item = &'a str>) -> Vec<Ani
 }
 
 fn err(offset: usize, message: impl std::fmt::Display) -> ParseError {
-    let column = u32::try_from(offset.saturating_add(1)).unwrap_or(u32::MAX);
-    ParseError::new(1, column, format!("byte {offset}: {message}"))
+    ParseError::at_byte(offset, message)
 }
 
 fn i32_at(bytes: &[u8], offset: usize) -> i32 {
