@@ -27,6 +27,7 @@ pub mod clip;
 pub mod error;
 mod fastmath;
 pub mod fk;
+pub mod image;
 pub mod load;
 pub mod md2;
 pub mod motion;

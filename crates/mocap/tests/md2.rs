@@ -455,3 +455,21 @@ mod md2 {
         assert!(e.message.starts_with("byte 24:"), "{e}");
     }
 }
+
+#[test]
+fn quake_pcx_skins_decode_to_the_known_pixels() {
+    let Some(dir) = common::corpus_dir() else { return };
+    // Reference values from an independent decoder (Pillow 11).
+    let skin = mocap::image::pcx::decode(&std::fs::read(dir.join("md2/waste/waste.pcx")).unwrap()).unwrap();
+    assert_eq!((skin.width, skin.height), (308, 175), "the size tris.md2's header gives");
+    assert_eq!(skin.pixel(0, 0), Some([0, 0, 0, 255]));
+    assert_eq!(skin.pixel(10, 20), Some([167, 139, 119, 255]));
+    assert_eq!(skin.pixel(100, 50), Some([107, 107, 107, 255]));
+    assert_eq!(skin.pixel(307, 174), Some([0, 0, 0, 255]));
+    let weapon = mocap::image::pcx::decode(&std::fs::read(dir.join("md2/waste/weapon.PCX")).unwrap()).unwrap();
+    assert_eq!((weapon.width, weapon.height), (136, 59));
+    assert_eq!(weapon.pixel(0, 0), Some([15, 15, 15, 255]));
+    assert_eq!(weapon.pixel(10, 20), Some([0, 0, 0, 255]));
+    assert_eq!(weapon.pixel(100, 50), Some([15, 15, 15, 255]));
+    assert_eq!(weapon.pixel(135, 58), Some([23, 23, 23, 255]));
+}
