@@ -49,12 +49,46 @@ await step('parseMotion in Node on the built package', async () => {
   again.free();
   bva.free();
   take.free();
+
+  // A Quake 2 MD2 model built here: 3 vertices, 1 triangle, 2 frames (run1, run2).
+  const md2 = (() => {
+    const frameSize = 40 + 4 * 3;
+    const ofsSt = 68, ofsTris = ofsSt + 3 * 4, ofsFrames = ofsTris + 12, ofsEnd = ofsFrames + 2 * frameSize;
+    const b = new DataView(new ArrayBuffer(ofsEnd));
+    [0x49, 0x44, 0x50, 0x32].forEach((c, i) => b.setUint8(i, c));
+    const header = [8, 64, 64, frameSize, 0, 3, 3, 1, 0, 2, 68, ofsSt, ofsTris, ofsFrames, ofsEnd, ofsEnd];
+    header.forEach((v, i) => b.setInt32(4 + 4 * i, v, true));
+    [0, 0, 63, 0, 0, 63].forEach((v, i) => b.setInt16(ofsSt + 2 * i, v, true));
+    [0, 1, 2, 0, 1, 2].forEach((v, i) => b.setUint16(ofsTris + 2 * i, v, true));
+    for (let f = 0; f < 2; f++) {
+      const at = ofsFrames + f * frameSize;
+      [1, 1, 1, 0, 0, f * 10].forEach((v, i) => b.setFloat32(at + 4 * i, v, true));
+      [...`run${f + 1}`].forEach((c, i) => b.setUint8(at + 24 + i, c.charCodeAt(0)));
+      [[0, 0, 0], [10, 0, 0], [0, 0, 20]].forEach((p, v) => p.concat([0]).forEach((x, k) => b.setUint8(at + 40 + 4 * v + k, x)));
+    }
+    return new Uint8Array(b.buffer);
+  })();
+  const model = pkg.parseModel(md2, 'tiny.md2');
+  check(model.vertexCount === 3 && model.frameCount === 2 && model.triangleCount === 1, `parseModel: counts (${model.vertexCount}, ${model.frameCount}, ${model.triangleCount})`);
+  check(model.animationNames.join() === 'run' && model.animationFirst[0] === 0 && model.animationLast[0] === 1, `parseModel: one animation run 0–1 (${model.animationNames})`);
+  const half = model.positions(0, 0.5);
+  // Quake z → Y up: vertex 2 is at z = 20 (+ translate 0 then 10): Y = 20, then 25 halfway.
+  check(half instanceof Float32Array && half.length === 9 && Math.abs(half[7] - 25) < 1e-5 && Math.abs(half[1] - 5) < 1e-5, `positions(0, 0.5) interpolates (${Array.from(half)})`);
+  let broken = null;
+  try {
+    pkg.parseModel(md2.slice(0, 40), 'cut.md2');
+  } catch (e) {
+    broken = e.message;
+  }
+  check(/^cut\.md2:byte \d+: /.test(broken ?? ''), `a truncated model throws with its byte: ${broken}`);
+  model.free();
 });
 
 await step('TypeScript types', async () => {
   const dts = fs.readFileSync(path.join(dist, 'pkg/mocap_web.d.ts'), 'utf8');
   for (const needle of ['export function parseMotion(bytes: Uint8Array | number[], file_name: string, skeleton?: Uint8Array | number[] | null): MotionClip',
-    'openFiles(names: string[], contents: Uint8Array[], add: boolean): string[]', 'jointPosition(character: number, name: string): Float32Array | undefined',
+    'openFiles(names: string[], contents: Uint8Array[], add: boolean): string[]',
+    'export function parseModel(bytes: Uint8Array | number[], file_name: string): ModelMesh', 'positions(frame: number, t: number): Float32Array', 'jointPosition(character: number, name: string): Float32Array | undefined',
     'export function startViewer(canvas: HTMLCanvasElement, options?: ViewerOptions): Promise<MocapViewer>',
     'addClip(clip: MotionClip, file_name: string): void', 'loadClip(clip: MotionClip, file_name: string): void',
     'add(file_name: string, bytes: Uint8Array | number[]): string | undefined', 'setVisible(index: number, visible: boolean): boolean',

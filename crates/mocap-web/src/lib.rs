@@ -1,6 +1,7 @@
 //! WebAssembly entry point: starts the viewer on a canvas and hands JavaScript a
 //! [`MocapViewer`] handle (the page stores it as `window.mocapViewer`), and exposes
-//! the core library as `parseMotion(bytes, fileName)` for pages without the viewer.
+//! the core library as `parseMotion(bytes, fileName)` and `parseModel(bytes, fileName)`
+//! (Quake 2 MD2) for pages without the viewer.
 //!
 //! This crate only connects the core and the viewer to JavaScript; it holds no logic.
 
@@ -13,12 +14,16 @@ mod handle;
 #[cfg(target_arch = "wasm32")]
 mod js_state;
 #[cfg(target_arch = "wasm32")]
+mod model_api;
+#[cfg(target_arch = "wasm32")]
 mod start;
 
 #[cfg(target_arch = "wasm32")]
 pub use clip_api::{MotionClip, parse_motion};
 #[cfg(target_arch = "wasm32")]
 pub use handle::MocapViewer;
+#[cfg(target_arch = "wasm32")]
+pub use model_api::{ModelMesh, parse_model};
 #[cfg(target_arch = "wasm32")]
 pub use start::{start, start_viewer};
 
