@@ -14,10 +14,7 @@ use glam::{EulerRot, Quat, Vec3};
 
 /// True when BVH can hold the clip as it is.
 pub fn is_bvh_ready(clip: &Clip) -> bool {
-    let skeleton = clip.skeleton();
-    skeleton.euler() == EulerConvention::Intrinsic
-        && clip.motion().angle_unit() == AngleUnit::Degrees
-        && skeleton.joints().iter().all(|j| j.rest_rotation == Quat::IDENTITY && j.channels.iter().all(|c| c.is_bvh()))
+    clip.skeleton().is_plain() && clip.motion().angle_unit() == AngleUnit::Degrees
 }
 
 /// What each joint gets in the baked clip.

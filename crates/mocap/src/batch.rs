@@ -147,7 +147,7 @@ fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LAN
 pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, mut visit: impl FnMut(usize, &[Vec3])) {
     let frames = motion.frame_count();
     let joints = skeleton.len();
-    let simple = skeleton.joints().iter().all(|j| j.channels.iter().all(|c| c.is_bvh()));
+    let simple = !skeleton.has_scale_channels() && !skeleton.has_length_channels();
     if !simple {
         let (mut local, mut model, mut positions) = (LocalPose::default(), Vec::<Transform>::new(), Vec::new());
         for frame in 0..frames {

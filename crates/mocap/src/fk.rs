@@ -40,30 +40,6 @@ impl Default for Transform {
 impl Transform {
     /// No rotation, no translation, unit scale.
     pub const IDENTITY: Transform = Transform { rotation: Quat::IDENTITY, translation: Vec3::ZERO, scale: Vec3::ONE };
-
-    /// A rotation and a translation with unit scale.
-    pub fn from_rotation_translation(rotation: Quat, translation: Vec3) -> Transform {
-        Transform { rotation, translation, scale: Vec3::ONE }
-    }
-
-    /// `self ∘ child`: the child's transform expressed in `self`'s parent space.
-    #[inline]
-    pub fn compose(&self, child: &Transform) -> Transform {
-        let (r, t, s) = compose_arrays(
-            self.rotation.to_array(),
-            self.translation.to_array(),
-            self.scale.to_array(),
-            child.rotation.to_array(),
-            child.translation.to_array(),
-            child.scale.to_array(),
-        );
-        Transform { rotation: Quat::from_array(r), translation: Vec3::from_array(t), scale: Vec3::from_array(s) }
-    }
-
-    /// A point in this transform's local space, in its parent's space.
-    pub fn transform_point(&self, p: Vec3) -> Vec3 {
-        self.translation + self.rotation * (self.scale * p)
-    }
 }
 
 // The hot path works on plain arrays with scalar math: glam's SIMD types carry a

@@ -197,11 +197,6 @@ impl Skeleton {
         self.has_scale
     }
 
-    /// True when some joint has a scale or length channel, or a rest rotation.
-    pub fn uses_general_channels(&self) -> bool {
-        self.joints.iter().any(|j| j.rest_rotation != Quat::IDENTITY || j.channels.iter().any(|c| !c.is_bvh()))
-    }
-
     /// Indices of the root joints, one per skeleton in the file.
     pub fn roots(&self) -> impl Iterator<Item = usize> + '_ {
         self.joints.iter().enumerate().filter(|(_, j)| j.parent.is_none()).map(|(i, _)| i)
