@@ -179,12 +179,6 @@ impl Offscreen {
     }
 }
 
-/// The figure the renderer draws for a skeleton: parents, and joint markers on
-/// every joint but End Sites.
-pub fn figure(skeleton: &mocap::Skeleton) -> Vec<FigureJoint> {
-    skeleton.joints().iter().map(|j| FigureJoint { parent: j.parent, marker: !j.is_end_site() }).collect()
-}
-
 /// How `mocap render` draws the shared [`Stage`] (the one the viewer uses: clips
 /// in metres by their guessed units, side by side in lanes, one timeline over all).
 pub struct StageView {
@@ -197,7 +191,7 @@ impl StageView {
     /// Places `clips` (name, clip) in lanes.
     pub fn new(clips: Vec<(String, Clip)>) -> StageView {
         let actors = clips.into_iter().map(|(name, clip)| {
-            let figure = figure(clip.skeleton());
+            let figure = mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site())));
             Actor::new(&name, clip, figure)
         });
         StageView { stage: Stage::new(actors.collect(), Layout::Spread), mode: DrawMode::default(), scratch: Default::default() }

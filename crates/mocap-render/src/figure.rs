@@ -49,13 +49,14 @@ impl DrawMode {
     }
 }
 
-/// One joint of a figure: its parent (earlier in the list) and whether it is an
-/// end point (a BVH End Site), which gets a bone but no joint marker.
+/// One joint of a figure: its parent (earlier in the list; its bone runs from
+/// there) and whether it gets a joint marker (end points such as End Sites get a
+/// bone but no marker). Build figures with [`figure`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FigureJoint {
     /// Index of the parent joint, `None` for a root.
     pub parent: Option<usize>,
-    /// An end point: no joint marker.
+    /// Draw a joint marker (ball, axes) here.
     pub marker: bool,
 }
 
@@ -91,47 +92,44 @@ pub fn bone_radius(length: f32, size: f32) -> f32 {
     (length * 0.2).clamp(size * 0.008, size * 0.04)
 }
 
-/// Figures with more bones than this are drawn simplified (see [`figure_stride`]),
-/// so that a file with a 200,000-joint chain stays drawable on a software GPU.
+/// Figures with more bones than this are simplified by [`figure`], so that a file
+/// with a 200,000-joint chain stays drawable on a software GPU.
 pub const MAX_FIGURE_BONES: usize = 16_384;
 
-/// The simplification of a figure of `joints` joints: 1 (every joint drawn) up to
-/// [`MAX_FIGURE_BONES`], else every `stride`-th level of the tree is kept (with the
-/// roots, the leaves and the highlighted joint), each kept joint joined to its
-/// nearest kept ancestor.
-pub fn figure_stride(joints: usize) -> usize {
-    joints.div_ceil(MAX_FIGURE_BONES).max(1)
-}
-
-/// For a figure over [`MAX_FIGURE_BONES`]: per joint, `None` when it is not drawn,
-/// else the joint its bone starts from (its nearest drawn ancestor; `Some(None)`
-/// for a root). One linear pass; `None` overall when every joint is drawn.
-fn simplified_parents(joints: &[FigureJoint], keep: Option<usize>) -> Option<Vec<Option<Option<usize>>>> {
-    let stride = figure_stride(joints.len());
+/// The figure of a skeleton, from each joint's parent (earlier in the list) and
+/// whether it gets a joint marker (not an End Site). Built once per skeleton.
+///
+/// Up to [`MAX_FIGURE_BONES`] joints every joint is drawn. Past that the figure is
+/// simplified here, not per frame: every k-th level of the tree is kept (k =
+/// joints / [`MAX_FIGURE_BONES`], rounded up), with the roots and the leaves, each
+/// kept joint hanging from its nearest kept ancestor; a joint left out gets neither
+/// a parent nor a marker, so nothing is drawn for it. One linear pass.
+pub fn figure(joints: impl IntoIterator<Item = (Option<usize>, bool)>) -> Vec<FigureJoint> {
+    let mut out: Vec<FigureJoint> = joints.into_iter().map(|(parent, marker)| FigureJoint { parent, marker }).collect();
+    let stride = out.len().div_ceil(MAX_FIGURE_BONES).max(1);
     if stride == 1 {
-        return None;
+        return out;
     }
-    let mut leaf = vec![true; joints.len()];
-    for j in joints {
+    let mut leaf = vec![true; out.len()];
+    for j in &out {
         if let Some(flag) = j.parent.and_then(|p| leaf.get_mut(p)) {
             *flag = false;
         }
     }
-    let mut depth = vec![0usize; joints.len()];
-    let mut anchor = vec![0usize; joints.len()];
-    let mut out = Vec::with_capacity(joints.len());
-    for (i, j) in joints.iter().enumerate() {
-        let parent = j.parent.filter(|&p| p < i);
+    let mut depth = vec![0usize; out.len()];
+    let mut anchor = vec![0usize; out.len()];
+    for i in 0..out.len() {
+        let parent = out.get(i).and_then(|j| j.parent).filter(|&p| p < i);
         let d = parent.and_then(|p| depth.get(p)).map_or(0, |d| d + 1);
-        let kept = parent.is_none() || d % stride == 0 || leaf.get(i).copied().unwrap_or(true) || keep == Some(i);
+        let kept = parent.is_none() || d % stride == 0 || leaf.get(i).copied().unwrap_or(true);
         let from = parent.and_then(|p| anchor.get(p).copied());
-        if let (Some(slot), Some(a)) = (depth.get_mut(i), anchor.get_mut(i)) {
+        if let (Some(slot), Some(a), Some(joint)) = (depth.get_mut(i), anchor.get_mut(i), out.get_mut(i)) {
             *slot = d;
             *a = if kept { i } else { from.unwrap_or(i) };
+            *joint = if kept { FigureJoint { parent: from, marker: joint.marker } } else { FigureJoint { parent: None, marker: false } };
         }
-        out.push(kept.then_some(from));
     }
-    Some(out)
+    out
 }
 
 /// Appends the figure posed at `positions` (world space, one per joint of `joints`:
@@ -142,13 +140,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
     let joint_radius = size * 0.012;
     let highlight = style.highlight.map(|(j, _)| j);
     let at = |i: usize| positions.get(i).map(|&p| p.into()).filter(|p: &Vec3| p.is_finite());
-    let simplified = simplified_parents(joints, highlight);
     for (i, joint) in joints.iter().enumerate() {
-        let parent_joint = match simplified.as_ref().and_then(|s| s.get(i)) {
-            None => joint.parent,
-            Some(None) => continue,
-            Some(Some(from)) => *from,
-        };
         let Some(p) = at(i) else {
             continue;
         };
@@ -157,7 +149,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
             Some((j, c)) if j == i => c,
             _ => style.color,
         };
-        let parent = parent_joint.and_then(at);
+        let parent = joint.parent.and_then(at);
         match style.mode {
             DrawMode::Capsules => {
                 if let Some(q) = parent {
@@ -239,7 +231,7 @@ mod tests {
     #[test]
     fn a_huge_chain_is_drawn_simplified_from_end_to_end() {
         let n: usize = 200_000;
-        let joints: Vec<FigureJoint> = (0..n).map(|i| FigureJoint { parent: i.checked_sub(1), marker: i + 1 < n }).collect();
+        let joints = figure((0..n).map(|i| (i.checked_sub(1), i + 1 < n)));
         let positions: Vec<Vec3> = (0..n).map(|i| Vec3::new(0.0, i as f32, 0.0)).collect();
         let mut scene = Scene::default();
         let mut s = style(DrawMode::Capsules);
@@ -251,7 +243,8 @@ mod tests {
         assert!((covered - (n - 1) as f32).abs() < 1e-3 * n as f32, "the bones still span the chain: {covered}");
         assert!(scene.capsules.iter().any(|c| c.color == [9; 4]), "the highlighted joint is drawn");
         // Small figures are drawn joint by joint.
-        assert_eq!(figure_stride(1000), 1);
+        let small = figure((0..1000usize).map(|i| (i.checked_sub(1), true)));
+        assert!(small.iter().enumerate().all(|(i, j)| j.parent == i.checked_sub(1) && j.marker));
     }
 
     #[test]

@@ -40,7 +40,7 @@ mod renderer;
 
 pub use camera::Camera;
 pub use color::srgb_to_linear;
-pub use figure::{DrawMode, FigureJoint, FigureStyle, HELPER_BONE, HIGHLIGHT_COLOR, JOINT_COLOR, MAX_FIGURE_BONES, PALETTE, bone_radius, figure_stride, push_figure};
+pub use figure::{DrawMode, FigureJoint, FigureStyle, HELPER_BONE, HIGHLIGHT_COLOR, JOINT_COLOR, MAX_FIGURE_BONES, PALETTE, bone_radius, figure, push_figure};
 pub use grid::Grid;
 pub use renderer::SceneRenderer;
 pub use scene::{Capsule, Line, Scene, Sphere};

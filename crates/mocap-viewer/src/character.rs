@@ -26,15 +26,11 @@ pub struct Look {
 /// A clip on the viewer's stage.
 pub type Character = Actor<Look>;
 
-/// The figure the renderer draws for a skeleton: joint markers on every joint but End Sites.
-pub fn figure(skeleton: &mocap::Skeleton) -> Vec<FigureJoint> {
-    skeleton.joints().iter().map(|j| FigureJoint { parent: j.parent, marker: !j.is_end_site() }).collect()
-}
-
 /// A visible character named `name`, in the first palette colour no character in
 /// `open` uses.
 pub fn new_character(name: &str, clip: Clip, open: &[Character]) -> Character {
-    let look = Look { color: next_color(open), figure: figure(clip.skeleton()), children: clip.skeleton().children(), pose: Vec::new() };
+    let figure = mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site())));
+    let look = Look { color: next_color(open), figure, children: clip.skeleton().children(), pose: Vec::new() };
     Actor::new(name, clip, look)
 }
 

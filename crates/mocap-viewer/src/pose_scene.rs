@@ -49,9 +49,8 @@ pub fn character_primitives(
     };
     push_figure(scene, &doc.extra.figure, transforms, &style);
     if settings.show_axes {
-        // Huge figures get axes on every stride-th joint only, as their bones are simplified.
-        let stride = mocap_render::figure_stride(doc.extra.figure.len());
-        for (joint, t) in doc.extra.figure.iter().zip(transforms).step_by(stride) {
+        // Joints the figure leaves out (End Sites, simplified huge figures) have no marker.
+        for (joint, t) in doc.extra.figure.iter().zip(transforms) {
             if joint.marker {
                 push_axes(t, size * 0.06, scene);
             }
