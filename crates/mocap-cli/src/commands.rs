@@ -45,7 +45,15 @@ pub fn find_skeleton(amc: &Path) -> Result<PathBuf, String> {
 /// paired with skeletons); an `.amc` with no `.asf` in the set finds its skeleton
 /// with [`find_skeleton`]. Errors read `FILE:LINE:COL: message`.
 pub fn read_set(paths: &[PathBuf]) -> Result<Vec<Loaded>, String> {
-    let mut files: Vec<(PathBuf, Vec<u8>)> = paths.iter().map(|p| read(p).map(|b| (p.clone(), b))).collect::<Result<_, _>>()?;
+    load_files(read_all(paths)?)
+}
+
+fn read_all(paths: &[PathBuf]) -> Result<Vec<(PathBuf, Vec<u8>)>, String> {
+    paths.iter().map(|p| read(p).map(|b| (p.clone(), b))).collect()
+}
+
+/// [`read_set`] on files already read.
+fn load_files(mut files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<Loaded>, String> {
     let formats: Vec<Option<Format>> = files.iter().map(|(p, b)| Format::detect(&p.display().to_string(), b)).collect();
     if !formats.contains(&Some(Format::Asf)) {
         if let Some((amc, _)) = files.iter().zip(&formats).find(|(_, f)| **f == Some(Format::Amc)).map(|(f, _)| f) {
@@ -61,7 +69,11 @@ pub fn read_set(paths: &[PathBuf]) -> Result<Vec<Loaded>, String> {
 
 /// Reads the files of one clip (a motion file, or an Acclaim skeleton with one motion).
 fn read_clip(paths: &[PathBuf]) -> Result<Clip, String> {
-    let mut set = read_set(paths)?;
+    one_clip(read_set(paths)?, paths)
+}
+
+/// The one clip of a set read from `paths`, or an error saying what to give.
+fn one_clip(mut set: Vec<Loaded>, paths: &[PathBuf]) -> Result<Clip, String> {
     let shown: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
     match set.len() {
         1 => Ok(set.remove(0).clip),
@@ -90,24 +102,31 @@ fn print_json(value: &Value) -> Result<ExitCode, String> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// A Quake 2 model, when `paths` is one `.md2` file (by content).
-fn read_model(paths: &[PathBuf]) -> Result<Option<mocap::md2::Md2>, String> {
-    let [path] = paths else { return Ok(None) };
-    let bytes = read(path)?;
-    if !mocap::md2::sniff(&bytes) {
-        return Ok(None);
+/// What the files of one command hold: a Quake 2 model (one `.md2`, told by its
+/// content) or clips. Each file is read once.
+enum Contents {
+    Model(mocap::md2::Md2),
+    Clips(Vec<Loaded>),
+}
+
+fn read_contents(paths: &[PathBuf]) -> Result<Contents, String> {
+    let files = read_all(paths)?;
+    if let [(path, bytes)] = files.as_slice()
+        && mocap::md2::sniff(bytes)
+    {
+        return mocap::md2::parse(bytes).map(Contents::Model).map_err(|e| format!("{}:{e}", path.display()));
     }
-    mocap::md2::parse(&bytes).map(Some).map_err(|e| format!("{}:{e}", path.display()))
+    load_files(files).map(Contents::Clips)
 }
 
 /// `mocap info` for an MD2 model: frames, vertices, triangles, texture
 /// coordinates, skins, animations (`frames` is the same key as for motion files).
-fn info_model(path: &Path, model: &mocap::md2::Md2, as_json: bool) -> Result<ExitCode, String> {
+fn info_model(path: &str, model: &mocap::md2::Md2, as_json: bool) -> Result<ExitCode, String> {
     let units = mocap::Units::guess(model.height());
     let animations: Vec<Value> = model.animations.iter().map(|a| json!({ "name": a.name, "first": a.first, "last": a.last })).collect();
     if as_json {
         return print_json(&json!({
-            "file": path.display().to_string(),
+            "file": path,
             "format": "md2",
             "frames": model.frames.len(),
             "vertices": model.vertex_count,
@@ -121,7 +140,7 @@ fn info_model(path: &Path, model: &mocap::md2::Md2, as_json: bool) -> Result<Exi
         }));
     }
     let mut out = std::io::stdout().lock();
-    let _ = writeln!(out, "file:       {}", path.display());
+    let _ = writeln!(out, "file:       {path}");
     let _ = writeln!(out, "format:     Quake 2 MD2 model");
     let _ = writeln!(out, "frames:     {}", model.frames.len());
     let _ = writeln!(out, "vertices:   {}", model.vertex_count);
@@ -137,10 +156,10 @@ fn info_model(path: &Path, model: &mocap::md2::Md2, as_json: bool) -> Result<Exi
 
 /// `mocap info`.
 pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
-    if let (Some(model), [path]) = (read_model(paths)?, paths) {
-        return info_model(path, &model, as_json);
-    }
-    let clip = read_clip(paths)?;
+    let clip = match read_contents(paths)? {
+        Contents::Model(model) => return info_model(&shown(paths), &model, as_json),
+        Contents::Clips(set) => one_clip(set, paths)?,
+    };
     let path = shown(paths);
     let skeleton = clip.skeleton();
     let roots: Vec<&str> = skeleton.roots().filter_map(|r| skeleton.joints().get(r)).map(|j| j.name.as_str()).collect();
@@ -253,6 +272,19 @@ fn is_motion_file(path: &Path) -> bool {
     path.extension().and_then(|e| e.to_str()).is_some_and(known)
 }
 
+/// One line on what a valid file holds, or why it is not valid.
+fn describe(file: &Path) -> Result<String, String> {
+    let one = [file.to_path_buf()];
+    Ok(match read_contents(&one)? {
+        Contents::Model(model) => format!("MD2 model, {} vertices, {} frames", model.vertex_count, model.frames.len()),
+        Contents::Clips(set) => {
+            let clip = one_clip(set, &one)?;
+            let warn = if clip.warnings.is_empty() { String::new() } else { format!(", {} warnings", clip.warnings.len()) };
+            format!("{} joints, {} frames{warn}", clip.skeleton().len(), clip.frame_count())
+        }
+    })
+}
+
 /// `mocap validate`.
 pub fn validate(paths: &[PathBuf]) -> Result<ExitCode, String> {
     let mut files = Vec::new();
@@ -264,23 +296,8 @@ pub fn validate(paths: &[PathBuf]) -> Result<ExitCode, String> {
     }
     let mut failed = 0;
     for file in &files {
-        match read_model(std::slice::from_ref(file)) {
-            Ok(Some(model)) => {
-                println!("ok   {}: MD2 model, {} vertices, {} frames", file.display(), model.vertex_count, model.frames.len());
-                continue;
-            }
-            Err(message) => {
-                failed += 1;
-                println!("FAIL {message}");
-                continue;
-            }
-            Ok(None) => {}
-        }
-        match read_clip(std::slice::from_ref(file)) {
-            Ok(clip) => {
-                let warn = if clip.warnings.is_empty() { String::new() } else { format!(", {} warnings", clip.warnings.len()) };
-                println!("ok   {}: {} joints, {} frames{warn}", file.display(), clip.skeleton().len(), clip.frame_count());
-            }
+        match describe(file) {
+            Ok(line) => println!("ok   {}: {line}", file.display()),
             Err(message) => {
                 failed += 1;
                 println!("FAIL {message}");
