@@ -33,6 +33,28 @@ pub(crate) fn is_blank(b: u8) -> bool {
     matches!(b, b' ' | b'\t' | 0x0b | 0x0c | 0x00 | 0x1a)
 }
 
+/// The length of a UTF-8 byte-order mark at the start of `bytes` (0 or 3).
+pub(crate) fn bom_len(bytes: &[u8]) -> usize {
+    if bytes.starts_with(&[0xEF, 0xBB, 0xBF]) { 3 } else { 0 }
+}
+
+/// The length of the line break at `at`: 1 for LF or a lone CR, 2 for CRLF, 0 when
+/// there is none.
+pub(crate) fn line_break_len(src: &[u8], at: usize) -> usize {
+    match src.get(at) {
+        Some(b'\n') => 1,
+        Some(b'\r') if src.get(at + 1) == Some(&b'\n') => 2,
+        Some(b'\r') => 1,
+        _ => 0,
+    }
+}
+
+/// Where the line holding `at` ends: the position of its line break, or the end.
+pub(crate) fn line_end(src: &[u8], at: usize) -> usize {
+    let rest = src.get(at..).unwrap_or(&[]);
+    at + memchr::memchr2(b'\n', b'\r', rest).unwrap_or(rest.len())
+}
+
 /// Bytes as text for an error message: at most 40 bytes, control characters escaped.
 pub(crate) fn show_bytes(bytes: &[u8]) -> String {
     let text = String::from_utf8_lossy(bytes.get(..40).unwrap_or(bytes));

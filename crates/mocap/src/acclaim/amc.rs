@@ -1,7 +1,7 @@
 //! The AMC motion reader: a byte scanner over lines that writes each value straight
 //! into one row-major `f32` matrix.
 
-use super::text::{binary_kind, bom_len, is_blank, is_eol, parse_i64, show_bytes};
+use super::text::{binary_kind, bom_len, is_blank, is_eol, line_break_len, line_end, parse_i64, show_bytes};
 use super::AngleUnit;
 use crate::error::{ParseError, Warning};
 use std::collections::HashMap;
@@ -231,22 +231,12 @@ impl<'a, 'l> Scanner<'a, 'l> {
 
     /// The end of the line holding `at` (the position of its line break, or the end).
     fn eol_from(&self, at: usize) -> usize {
-        let rest = self.src.get(at..).unwrap_or(&[]);
-        at + memchr::memchr2(b'\n', b'\r', rest).unwrap_or(rest.len())
+        line_end(self.src, at)
     }
 
     /// Consumes the line break at `self.pos`, if any, and starts the next line.
     fn line_break(&mut self) {
-        match self.src.get(self.pos) {
-            Some(b'\n') => self.pos += 1,
-            Some(b'\r') => {
-                self.pos += 1;
-                if self.src.get(self.pos) == Some(&b'\n') {
-                    self.pos += 1;
-                }
-            }
-            _ => {}
-        }
+        self.pos += line_break_len(self.src, self.pos);
         self.line = self.line.saturating_add(1);
     }
 

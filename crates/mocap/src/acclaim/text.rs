@@ -1,22 +1,13 @@
 //! Shared text helpers for the Acclaim readers: a token cursor with line and column,
 //! number parsing, name decoding and binary-data detection.
 
-pub(crate) use crate::text::{decode_name, is_blank, show_bytes, Token};
+pub(crate) use crate::text::{bom_len, decode_name, is_blank, line_break_len, line_end, show_bytes, Token};
 
 
 /// True for a byte that ends a line (LF or CR).
 #[inline]
 pub(crate) fn is_eol(b: u8) -> bool {
     b == b'\n' || b == b'\r'
-}
-
-/// The length of a UTF-8 byte-order mark at the start of `bytes` (0 or 3).
-pub(crate) fn bom_len(bytes: &[u8]) -> usize {
-    if bytes.starts_with(&[0xEF, 0xBB, 0xBF]) {
-        3
-    } else {
-        0
-    }
 }
 
 /// The 16-byte header GUID of a Windows Media (ASF container) file.
@@ -90,15 +81,9 @@ impl<'a> Cursor<'a> {
 
     /// Consumes one line break at the current position, if there is one.
     fn line_break(&mut self) -> bool {
-        match self.src.get(self.pos) {
-            Some(b'\n') => self.pos += 1,
-            Some(b'\r') => {
-                self.pos += 1;
-                if self.src.get(self.pos) == Some(&b'\n') {
-                    self.pos += 1;
-                }
-            }
-            _ => return false,
+        match line_break_len(self.src, self.pos) {
+            0 => return false,
+            n => self.pos += n,
         }
         self.line = self.line.saturating_add(1);
         self.line_start = self.pos;
@@ -107,8 +92,7 @@ impl<'a> Cursor<'a> {
 
     /// Moves to the end of the current line (not past its line break).
     fn skip_to_eol(&mut self) {
-        let rest = self.src.get(self.pos..).unwrap_or(&[]);
-        self.pos += memchr::memchr2(b'\n', b'\r', rest).unwrap_or(rest.len());
+        self.pos = line_end(self.src, self.pos);
     }
 
     /// Skips blanks, line breaks and comments.

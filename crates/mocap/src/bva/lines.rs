@@ -103,7 +103,7 @@ pub(crate) struct Lines<'a> {
 impl<'a> Lines<'a> {
     /// Starts at the beginning of `src`.
     pub fn new(src: &'a [u8]) -> Lines<'a> {
-        let bom = if src.starts_with(&[0xEF, 0xBB, 0xBF]) { 3 } else { 0 };
+        let bom = crate::text::bom_len(src);
         Lines { src, pos: bom, number: 1, column_offset: bom as u32 }
     }
 

@@ -1,7 +1,7 @@
 //! A byte cursor for the BVH header: whitespace-separated tokens with line and column,
 //! braces as tokens of their own, and "rest of the line" names.
 
-pub(crate) use crate::text::{is_blank, show_bytes, Token};
+pub(crate) use crate::text::{bom_len, is_blank, line_break_len, show_bytes, Token};
 
 
 /// Walks the header, keeping line and column.
@@ -16,7 +16,7 @@ pub(crate) struct Cursor<'a> {
 impl<'a> Cursor<'a> {
     /// Starts at the beginning, skipping a UTF-8 byte-order mark.
     pub fn new(src: &'a [u8]) -> Cursor<'a> {
-        let pos = if src.starts_with(&[0xEF, 0xBB, 0xBF]) { 3 } else { 0 };
+        let pos = bom_len(src);
         Cursor { src, pos, line: 1, line_start: 0 }
     }
 
@@ -38,15 +38,8 @@ impl<'a> Cursor<'a> {
     pub fn skip_whitespace(&mut self) {
         while let Some(&b) = self.src.get(self.pos) {
             match b {
-                b'\n' => {
-                    self.pos += 1;
-                    self.newline();
-                }
-                b'\r' => {
-                    self.pos += 1;
-                    if self.src.get(self.pos) == Some(&b'\n') {
-                        self.pos += 1;
-                    }
+                b'\n' | b'\r' => {
+                    self.pos += line_break_len(self.src, self.pos);
                     self.newline();
                 }
                 b if is_blank(b) => self.pos += 1,

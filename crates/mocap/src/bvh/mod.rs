@@ -23,7 +23,7 @@ pub const DEFAULT_FRAME_TIME: f64 = 1.0 / 30.0;
 
 /// True when `bytes` look like BVH (the first word is HIERARCHY, any case).
 pub fn sniff(bytes: &[u8]) -> bool {
-    let text = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(bytes);
+    let text = bytes.get(crate::text::bom_len(bytes)..).unwrap_or(bytes);
     let start = text.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(text.len());
     text.get(start..start + 9).is_some_and(|w| w.eq_ignore_ascii_case(b"HIERARCHY"))
 }
