@@ -43,7 +43,7 @@ fn expected_acclaim(out: &Path, corpus: &Path) -> Result<PathBuf, String> {
     let read = |p: &Path| std::fs::read(p).map_err(|e| format!("{}: {e}", p.display()));
     let (asf_bytes, amc_bytes) = (read(&asf)?, read(&amc)?);
     let inputs = [mocap::Input { name: "02.asf", bytes: &asf_bytes }, mocap::Input { name: "02_01.amc", bytes: &amc_bytes }];
-    let clip = mocap::load(&inputs).pop().ok_or("no clip")?.map_err(|e| e.to_string())?.clip;
+    let clip = mocap::load(&inputs).pop().ok_or("no clip")?.map_err(|e| e.to_string())?.into_clip().ok_or("not a clip")?;
     let joint = clip.skeleton().find(ACCLAIM_JOINT).ok_or("no ltibia")?;
     let p = clip.world_positions(0).get(joint).copied().ok_or("no position")?;
     let json = format!(

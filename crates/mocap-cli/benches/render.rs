@@ -6,6 +6,11 @@
 //! Then the same for capsules without shadows, and without shadows or MSAA, to
 //! show where the time goes on a software rasteriser.
 //!
+//! Then 1, 16 and 64 textured MD2 characters (`md2/waste/tris.md2` with its PCX
+//! skin, running; frames blended on the GPU), and the time to load the largest
+//! corpus model (`md2/irrlicht_faerie/faerie.md2` with its BMP skin: parse, build
+//! the drawing mesh, decode the skin).
+//!
 //! "frame" is a whole frame as a window would show it: pose every character,
 //! build the primitives, draw (shadow map + scene, 4× MSAA) and wait for the GPU.
 //! "+ readback" adds copying the pixels back to memory, as `mocap render` does.
@@ -18,12 +23,13 @@ use std::time::Instant;
 const FRAMES: usize = 20;
 
 fn main() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/bvh/animated_drawings/jesse_dance.bvh");
+    let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus");
+    let path = corpus.join("bvh/animated_drawings/jesse_dance.bvh");
     let Ok(bytes) = std::fs::read(&path) else {
         println!("skipping: {} not found", path.display());
         return;
     };
-    let clip = mocap::bvh::parse(&bytes).expect("parse");
+    let clip = mocap::Asset::Clip(mocap::bvh::parse(&bytes).expect("parse"));
     let gpu = match Gpu::new() {
         Ok(gpu) => gpu,
         Err(e) => {
@@ -31,7 +37,7 @@ fn main() {
             return;
         }
     };
-    let joints = clip.skeleton().joint_count();
+    let joints = clip.clip().map_or(0, |c| c.skeleton().joint_count());
     println!("adapter: {}   skeleton: {joints} joints (+ End Sites), 1280x720, 4x MSAA, shadows on", gpu.adapter_name());
     let mut offscreen = Offscreen::new(&gpu, [1280, 720]);
     for mode in [DrawMode::Capsules, DrawMode::Sticks] {
@@ -46,15 +52,36 @@ fn main() {
             measure(&gpu, &mut offscreen, &clip, DrawMode::Capsules, count, false);
         }
     }
+    let read = |p: &str| std::fs::read(corpus.join(p)).expect("corpus MD2 file");
+    let (model, skin) = (read("md2/waste/tris.md2"), read("md2/waste/waste.pcx"));
+    let files = [mocap::Input { name: "tris.md2", bytes: &model }, mocap::Input { name: "waste.pcx", bytes: &skin }];
+    let Some(Ok(loaded)) = mocap::load(&files).pop() else { panic!("tris.md2 loads") };
+    let mut waste = loaded.asset;
+    if let Some(m) = waste.model_mut() {
+        m.set_animation_by_name("run");
+    }
+    println!("MD2 tris.md2 + waste.pcx (running, textured, blended on the GPU), shadows on:");
+    for count in [1usize, 16, 64] {
+        measure(&gpu, &mut offscreen, &waste, DrawMode::Capsules, count, true);
+    }
+    let (model, skin) = (read("md2/irrlicht_faerie/faerie.md2"), read("md2/irrlicht_faerie/faerie2.bmp"));
+    let files = [mocap::Input { name: "faerie.md2", bytes: &model }, mocap::Input { name: "faerie2.bmp", bytes: &skin }];
+    let runs = 50;
+    let start = Instant::now();
+    for _ in 0..runs {
+        std::hint::black_box(mocap::load(std::hint::black_box(&files)));
+    }
+    let load_ms = start.elapsed().as_secs_f64() * 1e3 / runs as f64;
+    println!("load faerie.md2 ({} KB) + faerie2.bmp: {load_ms:.2} ms (parse, drawing mesh, skin decode)", model.len() / 1024);
 }
 
 /// Times whole frames of `count` characters and prints one line.
-fn measure(gpu: &Gpu, offscreen: &mut Offscreen, clip: &mocap::Clip, mode: DrawMode, count: usize, shadows: bool) {
+fn measure(gpu: &Gpu, offscreen: &mut Offscreen, clip: &mocap::Asset, mode: DrawMode, count: usize, shadows: bool) {
     let stage = StageView::new(vec![("clip".to_owned(), clip.clone()); count]).with_mode(mode);
     let camera = stage.camera(Orbit::default(), offscreen.size());
     let mut scene = mocap_render::Scene::default();
     let pose = |f: usize, scene: &mut mocap_render::Scene| {
-        stage.scene_at(clip.timeline().time_of(f), scene);
+        stage.scene_at(clip.timeline().time_of(f % clip.frame_count().max(1)), scene);
         scene.shadows = shadows;
     };
     // Warm up (pipelines, buffer growth), then time whole frames.
@@ -73,11 +100,12 @@ fn measure(gpu: &Gpu, offscreen: &mut Offscreen, clip: &mocap::Clip, mode: DrawM
     }
     let readback_ms = start.elapsed().as_secs_f64() * 1e3 / FRAMES as f64;
     println!(
-        "{:<8} {count:>3} characters: frame {frame_ms:>7.2} ms, + readback {readback_ms:>7.2} ms  ({} capsules, {} lines, {} spheres; draw calls per frame: {})",
-        mode.name(),
+        "{:<8} {count:>3} characters: frame {frame_ms:>7.2} ms, + readback {readback_ms:>7.2} ms  ({} capsules, {} lines, {} spheres, {} meshes; draw calls per frame: {})",
+        if clip.model().is_some() { "md2" } else { mode.name() },
         scene.capsules.len(),
         scene.lines.len(),
         scene.spheres.len(),
+        scene.meshes.len(),
         offscreen.draw_calls(),
     );
 }

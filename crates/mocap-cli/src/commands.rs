@@ -1,6 +1,6 @@
 //! The subcommands. Each returns an exit code or a message for stderr.
 
-use mocap::{Clip, Format, Input, Loaded};
+use mocap::{Asset, Clip, Format, Input, Loaded, Model};
 use serde_json::{json, Value};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -69,16 +69,18 @@ fn load_files(mut files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<Loaded>, String>
 
 /// Reads the files of one clip (a motion file, or an Acclaim skeleton with one motion).
 fn read_clip(paths: &[PathBuf]) -> Result<Clip, String> {
-    one_clip(read_set(paths)?, paths)
+    match one_asset(read_set(paths)?, paths)? {
+        Asset::Clip(clip) => Ok(clip),
+        Asset::Model(_) => Err(format!("{}: a model has no skeleton or motion; give a motion file (.bvh, .bva, or .asf with .amc)", shown(paths))),
+    }
 }
 
-/// The one clip of a set read from `paths`, or an error saying what to give.
-fn one_clip(mut set: Vec<Loaded>, paths: &[PathBuf]) -> Result<Clip, String> {
-    let shown: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+/// The one asset of a set read from `paths`, or an error saying what to give.
+fn one_asset(mut set: Vec<Loaded>, paths: &[PathBuf]) -> Result<Asset, String> {
     match set.len() {
-        1 => Ok(set.remove(0).clip),
-        0 => Err(format!("{}: no clip in these files", shown.join(" "))),
-        n => Err(format!("{}: these files hold {n} clips; give one motion (an .asf skeleton with one .amc, or one .bvh/.bva)", shown.join(" "))),
+        1 => Ok(set.remove(0).asset),
+        0 => Err(format!("{}: no clip or model in these files", shown(paths))),
+        n => Err(format!("{}: these files hold {n} clips or models; give one (an .asf skeleton with one .amc, one .bvh/.bva, or one .md2 with its skin)", shown(paths))),
     }
 }
 
@@ -102,53 +104,43 @@ fn print_json(value: &Value) -> Result<ExitCode, String> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// What the files of one command hold: a Quake 2 model (one `.md2`, told by its
-/// content) or clips. Each file is read once.
-enum Contents {
-    Model(mocap::md2::Md2),
-    Clips(Vec<Loaded>),
-}
-
-fn read_contents(paths: &[PathBuf]) -> Result<Contents, String> {
-    let files = read_all(paths)?;
-    if let [(path, bytes)] = files.as_slice()
-        && mocap::md2::sniff(bytes)
-    {
-        return mocap::md2::parse(bytes).map(Contents::Model).map_err(|e| format!("{}:{e}", path.display()));
-    }
-    load_files(files).map(Contents::Clips)
-}
-
 /// `mocap info` for an MD2 model: frames, vertices, triangles, texture
 /// coordinates, skins, animations (`frames` is the same key as for motion files).
-fn info_model(path: &str, model: &mocap::md2::Md2, as_json: bool) -> Result<ExitCode, String> {
-    let units = mocap::Units::guess(model.height());
-    let animations: Vec<Value> = model.animations.iter().map(|a| json!({ "name": a.name, "first": a.first, "last": a.last })).collect();
+fn info_model(path: &str, model: &Model, as_json: bool) -> Result<ExitCode, String> {
+    let mesh = &model.mesh;
+    let units = mesh.units();
+    let counts = mesh.source_counts;
+    let animations: Vec<Value> = mesh.animations().iter().map(|a| json!({ "name": a.name, "first": a.first, "last": a.last })).collect();
+    let skin = model.skin.as_ref().map(|s| s.name.clone());
     if as_json {
         return print_json(&json!({
             "file": path,
             "format": "md2",
-            "frames": model.frames.len(),
-            "vertices": model.vertex_count,
-            "triangles": model.triangles.len(),
-            "tex_coords": model.tex_coords.len(),
-            "skin_size": [model.skin_width, model.skin_height],
-            "skins": model.skins,
+            "frames": mesh.frame_count(),
+            "vertices": counts.vertices,
+            "triangles": counts.triangles,
+            "tex_coords": counts.tex_coords,
+            "skin_size": mesh.skin_size,
+            "skins": mesh.skins,
+            "skin": skin,
             "animations": animations,
-            "height": num(model.height()),
+            "height": num(mesh.height()),
             "units": units.name(),
         }));
     }
     let mut out = std::io::stdout().lock();
     let _ = writeln!(out, "file:       {path}");
     let _ = writeln!(out, "format:     Quake 2 MD2 model");
-    let _ = writeln!(out, "frames:     {}", model.frames.len());
-    let _ = writeln!(out, "vertices:   {}", model.vertex_count);
-    let _ = writeln!(out, "triangles:  {}", model.triangles.len());
-    let _ = writeln!(out, "tex coords: {} (skin {}×{})", model.tex_coords.len(), model.skin_width, model.skin_height);
-    let _ = writeln!(out, "skins:      {}", if model.skins.is_empty() { "(none named)".to_owned() } else { model.skins.join(", ") });
-    let _ = writeln!(out, "units:      {} (guessed from a first-frame height of {:.3})", units.name(), model.height());
-    for a in &model.animations {
+    let _ = writeln!(out, "frames:     {}", mesh.frame_count());
+    let _ = writeln!(out, "vertices:   {}", counts.vertices);
+    let _ = writeln!(out, "triangles:  {}", counts.triangles);
+    let _ = writeln!(out, "tex coords: {} (skin {}×{})", counts.tex_coords, mesh.skin_size[0], mesh.skin_size[1]);
+    let _ = writeln!(out, "skins:      {}", if mesh.skins.is_empty() { "(none named)".to_owned() } else { mesh.skins.join(", ") });
+    if let Some(skin) = &skin {
+        let _ = writeln!(out, "skin used:  {skin}");
+    }
+    let _ = writeln!(out, "units:      {} (guessed from a first-frame height of {:.3})", units.name(), mesh.height());
+    for a in mesh.animations() {
         let _ = writeln!(out, "animation:  {} (frames {}–{})", a.name, a.first, a.last);
     }
     Ok(ExitCode::SUCCESS)
@@ -156,9 +148,9 @@ fn info_model(path: &str, model: &mocap::md2::Md2, as_json: bool) -> Result<Exit
 
 /// `mocap info`.
 pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
-    let clip = match read_contents(paths)? {
-        Contents::Model(model) => return info_model(&shown(paths), &model, as_json),
-        Contents::Clips(set) => one_clip(set, paths)?,
+    let clip = match one_asset(read_set(paths)?, paths)? {
+        Asset::Model(model) => return info_model(&shown(paths), &model, as_json),
+        Asset::Clip(clip) => clip,
     };
     let path = shown(paths);
     let skeleton = clip.skeleton();
@@ -268,17 +260,16 @@ fn collect(path: &Path, explicit: bool, out: &mut Vec<PathBuf>) {
 }
 
 fn is_motion_file(path: &Path) -> bool {
-    let known = |e: &str| Format::EXTENSIONS.iter().any(|x| e.eq_ignore_ascii_case(x)) || e.eq_ignore_ascii_case("md2");
+    let known = |e: &str| Format::EXTENSIONS.iter().any(|x| e.eq_ignore_ascii_case(x));
     path.extension().and_then(|e| e.to_str()).is_some_and(known)
 }
 
 /// One line on what a valid file holds, or why it is not valid.
 fn describe(file: &Path) -> Result<String, String> {
     let one = [file.to_path_buf()];
-    Ok(match read_contents(&one)? {
-        Contents::Model(model) => format!("MD2 model, {} vertices, {} frames", model.vertex_count, model.frames.len()),
-        Contents::Clips(set) => {
-            let clip = one_clip(set, &one)?;
+    Ok(match one_asset(read_set(&one)?, &one)? {
+        Asset::Model(model) => format!("MD2 model, {} vertices, {} frames", model.mesh.source_counts.vertices, model.mesh.frame_count()),
+        Asset::Clip(clip) => {
             let warn = if clip.warnings.is_empty() { String::new() } else { format!(", {} warnings", clip.warnings.len()) };
             format!("{} joints, {} frames{warn}", clip.skeleton().len(), clip.frame_count())
         }
@@ -334,13 +325,31 @@ fn parse_range(text: &str) -> Result<(usize, usize, usize), String> {
     Ok((a, b, step))
 }
 
-/// `mocap render`.
-pub fn render(files: &[PathBuf], shot: Shot, out: &Path, size: &str, mode: &str, camera: Option<&str>) -> Result<ExitCode, String> {
+/// What `mocap render` draws besides the files: how, from where, and which
+/// model animation.
+pub struct RenderOptions<'a> {
+    /// Draw mode name (`capsules`, `sticks`).
+    pub mode: &'a str,
+    /// Camera `yaw,pitch[,distance]`.
+    pub camera: Option<&'a str>,
+    /// Animation the models play (`all` for every frame).
+    pub animation: Option<&'a str>,
+}
+
+/// `mocap render`: `files` may hold models with their skins (`--skin` files are
+/// added to the set).
+pub fn render(files: &[PathBuf], shot: Shot, out: &Path, size: &str, options: &RenderOptions) -> Result<ExitCode, String> {
+    let mode = options.mode;
     let mode = mocap_render::DrawMode::from_name(mode).ok_or_else(|| format!("--mode {mode}: expected `capsules` or `sticks`"))?;
     let size = crate::render::parse_size(size)?;
-    let orbit = camera.map(crate::render::parse_orbit).transpose()?.unwrap_or_default();
-    let clips = read_set(files)?.into_iter().map(|l| (l.name, l.clip)).collect();
-    let stage = crate::render::StageView::new(clips).with_mode(mode);
+    let orbit = options.camera.map(crate::render::parse_orbit).transpose()?.unwrap_or_default();
+    let assets = read_set(files)?.into_iter().map(|l| (l.name, l.asset)).collect();
+    let mut stage = crate::render::StageView::new(assets).with_mode(mode);
+    if let Some(name) = options.animation {
+        if !stage.set_animation(name) {
+            return Err(format!("--animation {name}: no model in {} has that animation", shown(files)));
+        }
+    }
     let gpu = crate::render::Gpu::new()?;
     let mut scene = mocap_render::Scene::default();
     let timeline = stage.timeline();

@@ -48,11 +48,17 @@ enum Command {
         #[arg(short, long)]
         output: PathBuf,
     },
-    /// Renders clips to PNG headlessly (wgpu on Vulkan; Mesa lavapipe without a GPU).
+    /// Renders clips and models to PNG headlessly (wgpu on Vulkan; Mesa lavapipe without a GPU).
     Render {
-        /// One or more motion files, drawn side by side (Acclaim: skeleton and motions).
+        /// One or more motion or model files, drawn side by side (Acclaim: skeleton and motions; MD2: the model and its skin image).
         #[arg(required = true)]
         files: Vec<PathBuf>,
+        /// A skin image (PCX, BMP, PNG, JPEG) for the MD2 model(s); same as giving it among the files.
+        #[arg(long)]
+        skin: Vec<PathBuf>,
+        /// The animation MD2 models play (`run`, `stand`, …; default `all`, every frame in file order).
+        #[arg(long)]
+        animation: Option<String>,
         /// Frame to render (in the first file's frame time; default 0).
         #[arg(long, conflicts_with_all = ["time", "frames", "sheet"])]
         frame: Option<usize>,
@@ -96,14 +102,16 @@ fn main() -> ExitCode {
         Command::Pose { files, frame, json: _ } => commands::pose(&files, frame),
         Command::Convert { inputs, output } => commands::convert(&inputs, &output),
         Command::Validate { paths } => commands::validate(&paths),
-        Command::Render { files, frame, time, frames, sheet, columns, out, size, mode, camera } => {
+        Command::Render { mut files, skin, animation, frame, time, frames, sheet, columns, out, size, mode, camera } => {
+            files.extend(skin);
             let shot = match (frame, time, frames, sheet) {
                 (_, Some(t), _, _) => commands::Shot::Time(t),
                 (_, _, Some(range), _) => commands::Shot::Sequence(range),
                 (_, _, _, true) => commands::Shot::Sheet(columns),
                 (f, ..) => commands::Shot::Frame(f.unwrap_or(0)),
             };
-            commands::render(&files, shot, &out, &size, &mode, camera.as_deref())
+            let options = commands::RenderOptions { mode: &mode, camera: camera.as_deref(), animation: animation.as_deref() };
+            commands::render(&files, shot, &out, &size, &options)
         }
     };
     match result {

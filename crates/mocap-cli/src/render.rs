@@ -1,12 +1,14 @@
-//! `mocap render`: headless rendering of clips to PNG through wgpu (Vulkan; Mesa's
-//! lavapipe on a machine without a GPU), for stills, frame sequences and contact
-//! sheets. The scene is built from world positions; the renderer knows no formats.
+//! `mocap render`: headless rendering of clips and models to PNG through wgpu
+//! (Vulkan; Mesa's lavapipe on a machine without a GPU), for stills, frame
+//! sequences and contact sheets. The scene is built from world positions and mesh
+//! frames; the renderer knows no formats.
 
 use mocap::glam::Vec3;
 use mocap::stage::{Actor, Layout, PoseScratch, Stage};
-use mocap::{Clip, Interpolation, Timeline};
-use mocap_render::{Camera, DrawMode, FigureJoint, FigureStyle, Grid, RenderTarget, Scene, SceneRenderer, wgpu};
+use mocap::{Asset, Interpolation, Model, Timeline};
+use mocap_render::{Camera, DrawMode, FigureJoint, FigureStyle, Grid, MeshDraw, MorphMeshData, RenderTarget, Scene, SceneRenderer, SkinImage, wgpu};
 use std::path::Path;
+use std::sync::Arc;
 
 /// Colour format of the offscreen target (sRGB, read back as RGBA8).
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
@@ -179,22 +181,53 @@ impl Offscreen {
     }
 }
 
+/// What `mocap render` draws for one actor: a skeleton's figure or a model's mesh.
+pub enum Look {
+    /// The figure of a clip's skeleton.
+    Figure(Vec<FigureJoint>),
+    /// A model's mesh on the GPU (none when it cannot be drawn).
+    Mesh(Option<Arc<MorphMeshData>>),
+}
+
+/// The renderer's copy of a model's mesh and skin ([`MorphMeshData::from_frames`]).
+pub fn mesh_data(model: &Model) -> Option<Arc<MorphMeshData>> {
+    let m = &model.mesh;
+    let skin = model.skin.as_ref().map(|s| SkinImage { width: s.image.width, height: s.image.height, pixels: s.image.pixels.clone() });
+    MorphMeshData::from_frames(m.vertex_count(), m.positions(), m.normals(), m.tex_coords(), m.indices(), skin).ok().map(Arc::new)
+}
+
 /// How `mocap render` draws the shared [`Stage`] (the one the viewer uses: clips
-/// in metres by their guessed units, side by side in lanes, one timeline over all).
+/// and models in metres by their guessed units, side by side in lanes, one
+/// timeline over all).
 pub struct StageView {
-    stage: Stage<Vec<FigureJoint>>,
+    stage: Stage<Look>,
     mode: DrawMode,
     scratch: std::cell::RefCell<(PoseScratch, Vec<mocap::Transform>)>,
 }
 
 impl StageView {
-    /// Places `clips` (name, clip) in lanes.
-    pub fn new(clips: Vec<(String, Clip)>) -> StageView {
-        let actors = clips.into_iter().map(|(name, clip)| {
-            let figure = mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site())));
-            Actor::new(&name, clip, figure)
+    /// Places `assets` (name, clip or model) in lanes.
+    pub fn new(assets: Vec<(String, Asset)>) -> StageView {
+        let actors = assets.into_iter().map(|(name, asset)| {
+            let look = match &asset {
+                Asset::Clip(clip) => Look::Figure(mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site())))),
+                Asset::Model(model) => Look::Mesh(mesh_data(model)),
+            };
+            Actor::new(&name, asset, look)
         });
         StageView { stage: Stage::new(actors.collect(), Layout::Spread), mode: DrawMode::default(), scratch: Default::default() }
+    }
+
+    /// Plays animation `name` on every model that has it; false when none has.
+    pub fn set_animation(&mut self, name: &str) -> bool {
+        let mut found = false;
+        for actor in &mut self.stage.actors {
+            if let Some(model) = actor.asset.model_mut() {
+                found |= model.set_animation_by_name(name);
+            }
+        }
+        self.stage.arrange();
+        found
     }
 
     /// The same stage drawn in `mode`.
@@ -222,6 +255,17 @@ impl StageView {
         let mut scratch = self.scratch.borrow_mut();
         let (pose_scratch, pose) = &mut *scratch;
         for (n, actor) in self.stage.visible() {
+            let figure = match &actor.extra {
+                Look::Figure(figure) => figure,
+                Look::Mesh(mesh) => {
+                    if let (Some(mesh), Some(at)) = (mesh, actor.morph_at(time, Interpolation::Linear)) {
+                        let tint = if mesh.has_skin() { [255; 4] } else { mocap_render::NEUTRAL_TINT };
+                        let frames = [at.frame0, at.frame1].map(|f| u32::try_from(f).unwrap_or(u32::MAX));
+                        scene.meshes.push(MeshDraw { mesh: mesh.clone(), frames, blend: at.blend, transform: actor.world_matrix(), tint });
+                    }
+                    continue;
+                }
+            };
             actor.pose_at(time, Interpolation::Linear, pose_scratch, pose);
             let style = FigureStyle {
                 mode: self.mode,
@@ -231,7 +275,7 @@ impl StageView {
                 show_joints: true,
                 highlight: None,
             };
-            mocap_render::push_figure(scene, &actor.extra, pose, &style);
+            mocap_render::push_figure(scene, figure, pose, &style);
         }
     }
 

@@ -2,7 +2,8 @@
 //!
 //! It knows nothing of file formats or UI: callers hand it a [`Scene`] made of
 //! primitives (lit [`Capsule`]s, screen-space-wide [`Line`]s, shaded [`Sphere`]
-//! impostors and a floor [`Grid`] that receives a soft shadow from a key light)
+//! impostors, textured vertex-animated meshes ([`MeshDraw`]) and a floor [`Grid`]
+//! that receives a soft shadow from a key light)
 //! plus a [`Camera`], and it draws them into a [`RenderTarget`] with any wgpu
 //! `Device`/`Queue` (WebGPU, WebGL2, Vulkan, lavapipe, ...). [`push_figure`] turns
 //! a posed skeleton (parents and world positions) into primitives in a
@@ -30,6 +31,7 @@ mod color;
 mod figure;
 mod grid;
 mod lines;
+mod mesh;
 mod pipeline;
 mod scene;
 mod shadow;
@@ -42,6 +44,7 @@ pub use camera::Camera;
 pub use color::srgb_to_linear;
 pub use figure::{DrawMode, FigureJoint, FigureStyle, HELPER_BONE, HIGHLIGHT_COLOR, JOINT_COLOR, MAX_FIGURE_BONES, PALETTE, bone_radius, figure, push_figure};
 pub use grid::Grid;
+pub use mesh::{MeshDraw, MorphMeshData, MorphVertex, NEUTRAL_TINT, SkinImage};
 pub use renderer::SceneRenderer;
 pub use scene::{Capsule, Line, Scene, Sphere};
 pub use shadow::key_light_direction;

@@ -1,14 +1,16 @@
 //! The scene renderer: owns pipelines and buffers, draws a [`Scene`] into a [`RenderTarget`].
 //!
 //! A frame is two passes and at most eight draw calls, whatever the number of
-//! figures: the shadow map (every caster, instanced over a coarse capsule mesh),
-//! then the floor and its shadows, the capsules (instanced: a fine mesh for those that cover
-//! some pixels, a coarse one for the rest), the sphere impostors, the lines and
-//! the overlay lines (drawn over everything, e.g. bone axes inside capsules).
+//! figures, plus two per vertex-animated mesh: the shadow map (every caster,
+//! instanced over a coarse capsule mesh, and each mesh), then the floor and its
+//! shadows, the capsules (instanced: a fine mesh for those that cover some pixels,
+//! a coarse one for the rest), the meshes, the sphere impostors, the lines and the
+//! overlay lines (drawn over everything, e.g. bone axes inside capsules).
 
 use crate::buffer::GrowingBuffer;
 use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
 use crate::lines::{LINE_ATTRIBUTES, LineInstance};
+use crate::mesh::MeshCache;
 use crate::pipeline::{self, PipelineSpec, instances};
 use crate::shadow::{self, ShadowMap};
 use crate::spheres::{SPHERE_ATTRIBUTES, SphereInstance};
@@ -33,6 +35,7 @@ pub struct SceneRenderer {
     fine_capsules: GrowingBuffer,
     coarse_capsules: GrowingBuffer,
     casters: GrowingBuffer,
+    meshes: MeshCache,
     line_scratch: Vec<LineInstance>,
     sphere_scratch: Vec<SphereInstance>,
     fine_scratch: Vec<CapsuleInstance>,
@@ -85,6 +88,8 @@ struct Pipelines {
     spheres: wgpu::RenderPipeline,
     lines: wgpu::RenderPipeline,
     overlay_lines: wgpu::RenderPipeline,
+    morph: wgpu::RenderPipeline,
+    morph_shadow: wgpu::RenderPipeline,
 }
 
 /// Multiplies the colour below by the fragment's colour (floor shadows).
@@ -124,7 +129,8 @@ impl SceneRenderer {
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniforms.as_entire_binding() }],
         });
         let shadow = ShadowMap::new(device);
-        let pipelines = Pipelines::new(device, &frame_layout, &shadow.layout, format, sample_count);
+        let meshes = MeshCache::new(device);
+        let pipelines = Pipelines::new(device, &frame_layout, &shadow.layout, &meshes.skin_layout, format, sample_count);
         SceneRenderer {
             format,
             sample_count,
@@ -140,6 +146,7 @@ impl SceneRenderer {
             fine_capsules: GrowingBuffer::new("mocap capsules"),
             coarse_capsules: GrowingBuffer::new("mocap small capsules"),
             casters: GrowingBuffer::new("mocap shadow casters"),
+            meshes,
             line_scratch: Vec::new(),
             sphere_scratch: Vec::new(),
             fine_scratch: Vec::new(),
@@ -160,7 +167,7 @@ impl SceneRenderer {
         self.sample_count
     }
 
-    /// Draw calls recorded for the last frame (at most 8, whatever the scene).
+    /// Draw calls recorded for the last frame (at most 8 plus 2 per mesh drawn).
     pub fn draw_calls(&self) -> u32 {
         self.draw_calls
     }
@@ -221,6 +228,10 @@ impl SceneRenderer {
                 self.draw_calls += 1;
             }
         }
+        if self.meshes.has_draws() {
+            pass.set_pipeline(&self.pipelines.morph);
+            self.draw_calls += self.meshes.draw(&mut pass, true);
+        }
         if let Some((buffer, count)) = self.spheres.get() {
             pass.set_pipeline(&self.pipelines.spheres);
             pass.set_vertex_buffer(0, buffer.slice(..));
@@ -245,7 +256,6 @@ impl SceneRenderer {
     }
 
     fn encode_shadow_pass(&mut self, encoder: &mut wgpu::CommandEncoder) {
-        let Some((buffer, count)) = self.casters.get() else { return };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mocap shadow map"),
             color_attachments: &[],
@@ -259,9 +269,15 @@ impl SceneRenderer {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
-        pass.set_pipeline(&self.pipelines.shadow);
-        self.coarse_mesh.draw(&mut pass, buffer, count);
-        self.draw_calls += 1;
+        if let Some((buffer, count)) = self.casters.get() {
+            pass.set_pipeline(&self.pipelines.shadow);
+            self.coarse_mesh.draw(&mut pass, buffer, count);
+            self.draw_calls += 1;
+        }
+        if self.meshes.has_draws() {
+            pass.set_pipeline(&self.pipelines.morph_shadow);
+            self.draw_calls += self.meshes.draw(&mut pass, false);
+        }
     }
 
     /// Uploads instances and uniforms; returns whether the shadow pass is needed.
@@ -294,7 +310,10 @@ impl SceneRenderer {
             self.caster_scratch.extend(scene.shadow_casters.iter().map(CapsuleInstance::new));
         }
         let floor_y = scene.grid.as_ref().map(|g| g.center.y);
-        let light = caster_bounds(&self.caster_scratch).and_then(|(min, max)| shadow::fit_light(min, max, floor_y));
+        self.meshes.prepare(device, queue, &scene.meshes);
+        let mesh_bounds = scene.meshes.iter().filter(|_| scene.shadows).filter_map(|m| m.world_bounds());
+        let bounds = mesh_bounds.chain(caster_bounds(&self.caster_scratch)).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
+        let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y));
         let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light.as_ref());
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.spheres.upload(device, queue, &self.sphere_scratch);
@@ -324,9 +343,15 @@ impl Pipelines {
         device: &wgpu::Device,
         frame_layout: &wgpu::BindGroupLayout,
         shadow_layout: &wgpu::BindGroupLayout,
+        skin_layout: &wgpu::BindGroupLayout,
         format: wgpu::TextureFormat,
         sample_count: u32,
     ) -> Pipelines {
+        let textured_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap textured"),
+            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(skin_layout)],
+            immediate_size: 0,
+        });
         let lit_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("mocap lit"),
             bind_group_layouts: &[Some(frame_layout), Some(shadow_layout)],
@@ -347,6 +372,8 @@ impl Pipelines {
         let floor_shader = module("mocap floor", include_str!("shaders/floor.wgsl"));
         let sphere_shader = module("mocap spheres", include_str!("shaders/spheres.wgsl"));
         let line_shader = module("mocap lines", include_str!("shaders/lines.wgsl"));
+        let morph_shader = module("mocap meshes", include_str!("shaders/morph.wgsl"));
+        let morph_buffers = crate::mesh::buffer_layouts();
         let mesh = [
             Some(wgpu::VertexBufferLayout {
                 array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
@@ -445,6 +472,27 @@ impl Pipelines {
                 ..base
             },
         );
-        Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines, overlay_lines }
+        let morph = pipeline::build(
+            device,
+            &textured_layout,
+            &PipelineSpec { label: "mocap meshes", shader: &morph_shader, buffers: &morph_buffers, cull_back: false, ..base },
+        );
+        let morph_shadow = pipeline::build(
+            device,
+            &shadow_pass_layout,
+            &PipelineSpec {
+                label: "mocap mesh shadows",
+                shader: &morph_shader,
+                vertex_entry: "vs_shadow",
+                buffers: &morph_buffers,
+                color: None,
+                depth_format: shadow::FORMAT,
+                depth_bias: wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 },
+                cull_back: false,
+                sample_count: 1,
+                ..base
+            },
+        );
+        Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow }
     }
 }

@@ -1,6 +1,6 @@
 //! Scene primitives: what gets drawn, independent of where it came from.
 
-use crate::Grid;
+use crate::{Grid, MeshDraw};
 use glam::Vec3;
 
 /// A line segment drawn `width_px` pixels wide whatever its distance.
@@ -60,6 +60,8 @@ pub struct Scene {
     /// Capsules that only cast shadows and are not drawn (e.g. under stick figures,
     /// whose screen-space lines cast none).
     pub shadow_casters: Vec<Capsule>,
+    /// Vertex-animated meshes (lit, textured, shadow-casting), blended on the GPU.
+    pub meshes: Vec<MeshDraw>,
     /// Whether the floor receives the key light's soft shadow.
     pub shadows: bool,
 }
@@ -74,6 +76,7 @@ impl Default for Scene {
             spheres: Vec::new(),
             capsules: Vec::new(),
             shadow_casters: Vec::new(),
+            meshes: Vec::new(),
             shadows: true,
         }
     }
@@ -88,5 +91,6 @@ impl Scene {
         self.spheres.clear();
         self.capsules.clear();
         self.shadow_casters.clear();
+        self.meshes.clear();
     }
 }

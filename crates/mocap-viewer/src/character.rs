@@ -1,11 +1,13 @@
-//! One character on the stage: a clip placed in the shared world by the core's
-//! [`mocap::stage`], with what only the viewer keeps ([`Look`]): its colour, the
-//! figure the renderer draws, children lists for the joint tree, and its current
-//! pose.
+//! One character on the stage: a clip or a model placed in the shared world by the
+//! core's [`mocap::stage`], with what only the viewer keeps ([`Look`]): its colour,
+//! the figure or mesh the renderer draws, children lists for the joint tree, and
+//! its current pose (joint transforms, or the model's two key frames).
 
+use mocap::morph::MorphSample;
 use mocap::stage::{Actor, PoseScratch};
-use mocap::{Clip, Interpolation, Transform};
-use mocap_render::FigureJoint;
+use mocap::{Asset, Interpolation, Model, Transform};
+use mocap_render::{FigureJoint, MorphMeshData, SkinImage};
+use std::sync::Arc;
 
 /// Bone colours given to characters in turn (the renderer's palette).
 pub use mocap_render::PALETTE;
@@ -19,29 +21,53 @@ pub struct Look {
     pub figure: Vec<FigureJoint>,
     /// Children of each joint, in joint order (for the joint tree).
     pub children: Vec<Vec<usize>>,
-    /// World transforms of the last [`pose_at`] (metres, placed), in joint order.
+    /// World transforms of the last [`pose_at`] (metres, placed), in joint order
+    /// (empty for a model).
     pub pose: Vec<Transform>,
+    /// A model's mesh as the renderer draws it (`None` for a clip).
+    pub mesh: Option<Arc<MorphMeshData>>,
+    /// A model's key frames at the last [`pose_at`].
+    pub morph: Option<MorphSample>,
 }
 
-/// A clip on the viewer's stage.
+/// A clip or model on the viewer's stage.
 pub type Character = Actor<Look>;
 
 /// A visible character named `name`, in the first palette colour no character in
 /// `open` uses.
-pub fn new_character(name: &str, clip: Clip, open: &[Character]) -> Character {
-    let figure = mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site())));
-    let look = Look { color: next_color(open), figure, children: clip.skeleton().children(), pose: Vec::new() };
-    Actor::new(name, clip, look)
+pub fn new_character(name: &str, asset: Asset, open: &[Character]) -> Character {
+    let mut look = Look { color: next_color(open), ..Look::default() };
+    match &asset {
+        Asset::Clip(clip) => {
+            look.figure = mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site())));
+            look.children = clip.skeleton().children();
+        }
+        Asset::Model(model) => look.mesh = mesh_data(model),
+    }
+    Actor::new(name, asset, look)
+}
+
+/// The renderer's copy of a model's key frames and skin.
+fn mesh_data(model: &Model) -> Option<Arc<MorphMeshData>> {
+    let m = &model.mesh;
+    let skin = model.skin.as_ref().map(|s| SkinImage { width: s.image.width, height: s.image.height, pixels: s.image.pixels.clone() });
+    MorphMeshData::from_frames(m.vertex_count(), m.positions(), m.normals(), m.tex_coords(), m.indices(), skin).ok().map(Arc::new)
 }
 
 /// Poses the character at `time`: interpolated when `smooth`, else the frame shown
-/// at that time in its own frame time (the one rule of [`mocap::time`]). Past its
-/// end a clip holds its last pose. The transforms are in metres and placed.
+/// at that time in its own frame time (the one rule of [`mocap::time`]); a model
+/// not interpolating switches frames at the halfway point (Quake's nearest frame).
+/// Past its end a clip holds its last pose. The transforms are in metres and placed.
 pub fn pose_at(c: &mut Character, time: f64, smooth: bool, scratch: &mut PoseScratch) {
-    let interpolation = if smooth { Interpolation::Linear } else { Interpolation::Step };
+    let interpolation = match (smooth, c.model().is_some()) {
+        (true, _) => Interpolation::Linear,
+        (false, false) => Interpolation::Step,
+        (false, true) => Interpolation::Nearest,
+    };
     let mut pose = std::mem::take(&mut c.extra.pose);
     c.pose_at(time, interpolation, scratch, &mut pose);
     c.extra.pose = pose;
+    c.extra.morph = c.morph_at(time, interpolation);
 }
 
 /// The first palette colour no open character uses, or the palette cycled by count.

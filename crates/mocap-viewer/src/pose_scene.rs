@@ -7,7 +7,7 @@ use crate::settings::ViewSettings;
 use crate::stage::Stage;
 use mocap::Transform;
 use mocap::glam::Vec3;
-use mocap_render::{FigureStyle, Grid, HIGHLIGHT_COLOR, JOINT_COLOR, Line, Scene, push_figure};
+use mocap_render::{FigureStyle, Grid, HIGHLIGHT_COLOR, JOINT_COLOR, Line, MeshDraw, NEUTRAL_TINT, Scene, push_figure};
 
 const AXES: [[u8; 4]; 3] = [[235, 60, 60, 255], [60, 210, 80, 255], [70, 120, 255, 255]];
 
@@ -21,9 +21,22 @@ pub fn build_scene(stage: &Stage, settings: &ViewSettings, selected: Option<Sele
     scene.grid = Some(floor_grid(stage));
     scene.shadows = settings.shadows;
     for (i, c) in stage.visible() {
+        if c.model().is_some() {
+            mesh_primitive(c, scene);
+            continue;
+        }
         let joint = selected.filter(|s| s.character == i).map(|s| s.joint);
         character_primitives(c, &c.extra.pose, c.extra.color, settings, joint, scene);
     }
+}
+
+/// Appends a model at its last posed key frames: textured with its skin, or in the
+/// neutral material without one.
+pub fn mesh_primitive(c: &Character, scene: &mut Scene) {
+    let (Some(mesh), Some(at)) = (&c.extra.mesh, c.extra.morph) else { return };
+    let tint = if mesh.has_skin() { [255; 4] } else { NEUTRAL_TINT };
+    let frames = [at.frame0, at.frame1].map(|f| u32::try_from(f).unwrap_or(u32::MAX));
+    scene.meshes.push(MeshDraw { mesh: mesh.clone(), frames, blend: at.blend, transform: c.world_matrix(), tint });
 }
 
 /// Appends one character in the chosen draw mode ([`mocap_render::push_figure`]):

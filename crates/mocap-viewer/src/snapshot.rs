@@ -22,21 +22,35 @@ pub struct ClipSummary {
     pub color: [u8; 4],
     /// Where its origin stands in metres: layout offset plus the hand-set offset.
     pub offset: [f32; 3],
+    /// For a model: the animation playing (`all` for every frame).
+    pub animation: Option<String>,
+    /// For a model: its animations' names in file order.
+    pub animations: Vec<String>,
+    /// For a model: the key frame drawn (the first of the two blended) and its name.
+    pub model_frame: Option<(usize, String)>,
+    /// For a model: the skin file in use.
+    pub skin: Option<String>,
 }
 
 impl ClipSummary {
     /// The summary of one character.
     pub fn of(c: &Character) -> ClipSummary {
-        let d = c;
+        let timeline = c.asset.timeline();
+        let skeleton = c.clip().map(|clip| clip.skeleton());
+        let model = c.model();
         ClipSummary {
-            name: d.name.clone(),
-            frames: d.clip.frame_count(),
-            frame_time: d.clip.frame_time(),
-            joints: d.clip.skeleton().joint_count(),
-            joint_names: d.clip.skeleton().joints().iter().map(|j| j.name.clone()).collect(),
+            name: c.name.clone(),
+            frames: timeline.frames(),
+            frame_time: timeline.frame_time(),
+            joints: skeleton.map_or(0, |s| s.joint_count()),
+            joint_names: skeleton.map_or(Vec::new(), |s| s.joints().iter().map(|j| j.name.clone()).collect()),
             visible: c.visible,
             color: c.extra.color,
             offset: c.placement().to_array(),
+            animation: model.map(|m| m.animation_name().to_owned()),
+            animations: model.map_or(Vec::new(), |m| m.mesh.animations().iter().map(|a| a.name.clone()).collect()),
+            model_frame: model.zip(c.extra.morph).map(|(m, at)| (at.frame0, m.frame_name(at.frame0).to_owned())),
+            skin: model.and_then(|m| m.skin.as_ref()).map(|s| s.name.clone()),
         }
     }
 }

@@ -11,6 +11,8 @@
 //! like `sel`; `none` or absent when all are shown), `offset` the hand-set offsets in
 //! metres as `n:x,y,z` joined by `;` (`offset=2:0.5,0,-1`; characters not listed sit
 //! at zero; `none` or absent when all are zero), `mode` `capsules` or `sticks`,
+//! `anim` the animations models play as `n:name` joined by `;` (`anim=1:run`; models
+//! not listed play all their frames; `none` or absent when all do),
 //! `shadows` 0/1, `draw` a comma list of `joints`, `axes`, `follow`, `interp`, and `panels` a comma list of `tree`, `inspector` (or
 //! `none`). Timeline frames (`f`, `range`, the frame shown) count in the frame time
 //! of the selection's character, else the first one. Unknown keys and unreadable
@@ -45,6 +47,8 @@ pub struct ViewState {
     pub hidden: Option<Vec<usize>>,
     /// Hand-set offsets in metres by character (0-based; written 1-based); the rest are zero.
     pub offsets: Option<Vec<(usize, Vec3)>>,
+    /// Animations played by models (0-based character; written 1-based); the rest play all frames.
+    pub animations: Option<Vec<(usize, String)>>,
     /// Capsules or sticks.
     pub mode: Option<crate::settings::DrawMode>,
     /// Soft shadows on the floor.
@@ -66,6 +70,10 @@ impl ViewState {
             let (key, raw) = pair.split_once('=').unwrap_or((pair, ""));
             if key == "sel" {
                 s.selected = Some(parse_selection(raw));
+                continue;
+            }
+            if key == "anim" {
+                s.animations = parse_animations(raw);
                 continue;
             }
             let value = percent_decode(raw);
@@ -123,6 +131,14 @@ impl ViewState {
         if !moved.is_empty() {
             parts.push(format!("offset={}", moved.join(";")));
         }
+        let animations: Vec<String> = (viewer.stage.actors.iter().enumerate())
+            .filter_map(|(i, c)| Some((i, c.model()?)))
+            .filter(|(_, m)| m.animation().is_some())
+            .map(|(i, m)| format!("{}:{}", i + 1, percent_encode(m.animation_name())))
+            .collect();
+        if !animations.is_empty() {
+            parts.push(format!("anim={}", animations.join(";")));
+        }
         parts.push(format!("mode={}", st.mode.name()));
         parts.push(format!("shadows={}", u8::from(st.shadows)));
         let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate];
@@ -147,6 +163,12 @@ impl ViewState {
         if let Some(offsets) = &self.offsets {
             for (i, c) in viewer.stage.actors.iter_mut().enumerate() {
                 c.offset = offsets.iter().find(|(n, _)| *n == i).map_or(Vec3::ZERO, |(_, o)| *o);
+            }
+        }
+        if let Some(animations) = &self.animations {
+            for i in 0..viewer.stage.actors.len() {
+                let name = animations.iter().find(|(n, _)| *n == i).map_or("all", |(_, a)| a.as_str());
+                viewer.set_animation(i, name);
             }
         }
         if let Some(speed) = self.speed {
@@ -251,6 +273,15 @@ fn parse_hidden(v: &str) -> Option<Vec<usize>> {
     v.split(',').map(|n| n.trim().parse::<usize>().ok()?.checked_sub(1)).collect()
 }
 
+/// `none`, empty, or `n:name` items joined by `;` (`n` 1-based, 0-based out; the
+/// name percent-encoded), from the raw value.
+fn parse_animations(raw: &str) -> Option<Vec<(usize, String)>> {
+    if raw.is_empty() || raw == "none" {
+        return Some(Vec::new());
+    }
+    raw.split(';').map(|item| split_numbered(item).map(|(n, name)| (n, percent_decode(name)))).collect()
+}
+
 /// `none`, empty, or `n:x,y,z` items joined by `;` (`n` 1-based, 0-based out; finite numbers).
 fn parse_offsets(v: &str) -> Option<Vec<(usize, Vec3)>> {
     if v.is_empty() || v == "none" {
@@ -337,6 +368,14 @@ mod tests {
         assert_eq!((s.mode, s.shadows), (Some(crate::settings::DrawMode::Sticks), Some(false)));
         let s = ViewState::parse("mode=boxes&shadows=maybe");
         assert_eq!((s.mode, s.shadows), (None, None));
+    }
+
+    #[test]
+    fn animations_by_character() {
+        let s = ViewState::parse("anim=1:run;3:pain%31");
+        assert_eq!(s.animations, Some(vec![(0, "run".to_owned()), (2, "pain1".to_owned())]));
+        assert_eq!(ViewState::parse("anim=none").animations, Some(Vec::new()));
+        assert_eq!(ViewState::parse("anim=x:run").animations, None);
     }
 
     #[test]

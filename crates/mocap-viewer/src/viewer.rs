@@ -80,18 +80,18 @@ impl Viewer {
     /// opens, what was open stays. Returns every error (also shown in the banner).
     pub fn open_files(&mut self, files: &[(&str, &[u8])], mode: OpenMode) -> Vec<String> {
         let inputs: Vec<mocap::Input> = files.iter().map(|&(name, bytes)| mocap::Input { name, bytes }).collect();
-        let mut clips = Vec::new();
+        let mut assets = Vec::new();
         let mut errors = Vec::new();
         for result in self.loader.load(&inputs) {
             match result {
-                Ok(loaded) => clips.push((loaded.name, loaded.clip)),
+                Ok(loaded) => assets.push((loaded.name, loaded.asset)),
                 Err(e) => errors.push(e.to_string()),
             }
         }
-        if !clips.is_empty() {
+        if !assets.is_empty() {
             match mode {
-                OpenMode::Replace => self.open_clips(clips),
-                OpenMode::Add => clips.into_iter().for_each(|(name, clip)| self.add_clip(&name, clip)),
+                OpenMode::Replace => self.open_assets(assets),
+                OpenMode::Add => assets.into_iter().for_each(|(name, asset)| self.add_asset(&name, asset)),
             }
         }
         if !errors.is_empty() {
@@ -100,18 +100,18 @@ impl Viewer {
         errors
     }
 
-    /// Replaces everything open with `clips` (name, clip): time 0, play state kept,
-    /// no loop range or selection, camera framed on the motion. The first frame drawn
-    /// afterwards shows frame 0 (the clock restarts).
-    pub fn open_clips(&mut self, clips: Vec<(String, mocap::Clip)>) {
+    /// Replaces everything open with `assets` (name, clip or model): time 0, play
+    /// state kept, no loop range or selection, camera framed on the motion. The first
+    /// frame drawn afterwards shows frame 0 (the clock restarts).
+    pub fn open_assets(&mut self, assets: Vec<(String, mocap::Asset)>) {
         self.playback.time = 0.0;
         self.last_time = None;
         self.playback.range = None;
         self.selected = None;
         self.error = None;
-        let mut characters: Vec<Character> = Vec::with_capacity(clips.len());
-        for (name, clip) in clips {
-            let c = character::new_character(&name, clip, &characters);
+        let mut characters: Vec<Character> = Vec::with_capacity(assets.len());
+        for (name, asset) in assets {
+            let c = character::new_character(&name, asset, &characters);
             characters.push(c);
         }
         self.stage.replace(characters);
@@ -120,11 +120,25 @@ impl Viewer {
 
     /// Adds a character, keeping the playhead, selection and play state; the
     /// camera frames everything visible.
-    pub fn add_clip(&mut self, name: &str, clip: mocap::Clip) {
+    pub fn add_asset(&mut self, name: &str, asset: impl Into<mocap::Asset>) {
         self.error = None;
-        let c = character::new_character(name, clip, &self.stage.actors);
+        let c = character::new_character(name, asset.into(), &self.stage.actors);
         self.stage.add(c);
         self.camera.frame(self.stage.bounds());
+    }
+
+    /// Plays animation `name` (`all`: every frame) on model `index`; returns whether
+    /// that model has it. The playhead stays where it is, within the new timeline.
+    pub fn set_animation(&mut self, index: usize, name: &str) -> bool {
+        let Some(model) = self.stage.actors.get_mut(index).and_then(|c| c.asset.model_mut()) else { return false };
+        if !model.set_animation_by_name(name) {
+            return false;
+        }
+        self.playback.range = None;
+        if let Some(t) = self.timing() {
+            self.playback.time = self.playback.time.min(t.duration());
+        }
+        true
     }
 
     /// Closes character `index` (0-based); returns whether it existed.
@@ -196,13 +210,13 @@ impl Viewer {
 
     /// Selects joint `joint` of character `character`, or nothing when either is out of range.
     pub fn select_in(&mut self, character: usize, joint: Option<usize>) {
-        let valid = |j: &usize| self.stage.actors.get(character).is_some_and(|c| *j < c.clip.skeleton().joints().len());
+        let valid = |j: &usize| self.stage.actors.get(character).and_then(|c| c.clip()).is_some_and(|c| *j < c.skeleton().joints().len());
         self.selected = joint.filter(valid).map(|joint| Selection { character, joint });
     }
 
     /// Selects the first joint called `name` in character `character`; returns whether one exists.
     pub fn select_named(&mut self, character: usize, name: &str) -> bool {
-        let joint = self.stage.actors.get(character).and_then(|c| c.clip.skeleton().joints().iter().position(|j| j.name == name));
+        let joint = self.stage.actors.get(character).and_then(|c| c.clip()?.skeleton().joints().iter().position(|j| j.name == name));
         self.select_in(character, joint);
         joint.is_some()
     }
@@ -210,7 +224,7 @@ impl Viewer {
     /// The selected joint's name.
     pub fn selected_name(&self) -> Option<&str> {
         let s = self.selected?;
-        let joint = self.stage.actors.get(s.character)?.clip.skeleton().joints().get(s.joint)?;
+        let joint = self.stage.actors.get(s.character)?.clip()?.skeleton().joints().get(s.joint)?;
         Some(joint.name.as_str())
     }
 

@@ -70,7 +70,7 @@ fn pose_becomes_bones_joints_and_a_floor_in_metres() {
     v.select(Some(0));
     v.pose();
     let doc = v.current_character().unwrap();
-    let joints = doc.clip.skeleton().joints().len();
+    let joints = doc.clip().unwrap().skeleton().joints().len();
     let scene = v.scene();
     // Capsules (the default): one per bone, a ball at the root, and the
     // selected joint's highlight ball.
@@ -132,7 +132,7 @@ fn view_fragment_round_trips_exactly() {
     v.settings.show_axes = true;
     v.settings.show_joints = false;
     v.panels.inspector = false;
-    let joint = v.current_character().and_then(|d| d.clip.skeleton().joints().iter().position(|j| j.name == "LeftHand")).or(Some(3));
+    let joint = v.current_character().and_then(|d| d.clip()?.skeleton().joints().iter().position(|j| j.name == "LeftHand")).or(Some(3));
     v.select(joint);
     let fragment = v.view_fragment();
 
@@ -150,9 +150,9 @@ fn view_fragment_round_trips_exactly() {
 #[test]
 fn view_fragment_accepts_frames_names_and_junk() {
     let mut v = loaded();
-    let name = v.current_character().and_then(|d| d.clip.skeleton().joints().get(2)).map(|j| j.name.clone()).unwrap_or_default();
+    let name = v.current_character().and_then(|d| d.clip()?.skeleton().joints().get(2)).map(|j| j.name.clone()).unwrap_or_default();
     v.apply_fragment(&format!("f=9999&play=0&sel={}&speed=abc&cam=nan,1,1,1,1,1&panels=none", mocap_viewer::view_state::percent_encode(&name)));
-    let last = v.current_character().map_or(0, |d| d.clip.frame_count() - 1);
+    let last = v.current_character().map_or(0, |d| d.asset.frame_count() - 1);
     assert_eq!(v.frame(), last);
     assert!(!v.playback.playing);
     assert_eq!(v.snapshot().selected_joint.as_deref(), Some(name.as_str()));

@@ -24,7 +24,10 @@ pub fn parse_motion(bytes: &[u8], file_name: &str, skeleton: Option<Vec<u8>>) ->
     files.push(mocap::Input { name: file_name, bytes });
     let last = mocap::load(&files).pop();
     let clip = match last {
-        Some(Ok(loaded)) => loaded.clip,
+        Some(Ok(loaded)) => match loaded.into_clip() {
+            Some(clip) => clip,
+            None => return Err(JsError::new(&format!("{file_name}: a model, not a motion: read it with parseModel"))),
+        },
         Some(Err(e)) => return Err(JsError::new(&e.to_string())),
         None => return Err(JsError::new(&format!("{file_name}: no motion in this file"))),
     };

@@ -17,7 +17,8 @@ pub struct MocapViewer {
 
 #[wasm_bindgen]
 impl MocapViewer {
-    /// `{clips:[{name, frames, frameTime, joints, jointNames, visible, color, offset}],
+    /// `{clips:[{name, frames, frameTime, joints, jointNames, visible, color, offset,
+    /// animation, animations, modelFrame, frameName, skin}],
     /// frame, time, playing, speed, selectedJoint, selectedCharacter, layout, error,
     /// treeLabels, framesRendered, view, embed, backend}`. `color` is `#rrggbb`,
     /// `offset` `[x, y, z]` in metres (layout plus hand-set), `selectedCharacter` an
@@ -63,9 +64,10 @@ impl MocapViewer {
     pub fn joint_position(&self, character: u32, name: &str) -> Option<Vec<f32>> {
         let v = self.viewer.try_borrow().ok()?;
         let c = v.stage.actors.get(character as usize)?;
-        let joint = c.clip.skeleton().find(name)?;
+        let clip = c.clip()?;
+        let joint = clip.skeleton().find(name)?;
         let frame = c.frame_at(v.playback.time);
-        c.clip.world_positions(frame).get(joint).map(|p| p.to_array().to_vec())
+        clip.world_positions(frame).get(joint).map(|p| p.to_array().to_vec())
     }
 
     /// Opens a clip from `parseMotion` (copying it; `clip` stays usable) under
@@ -73,14 +75,21 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = loadClip)]
     pub fn load_clip(&self, clip: &crate::MotionClip, file_name: &str) {
         let clip = clip.clip().clone();
-        self.with_viewer(|v| v.open_clips(vec![(file_name.to_owned(), clip)]));
+        self.with_viewer(|v| v.open_assets(vec![(file_name.to_owned(), mocap::Asset::Clip(clip))]));
     }
 
     /// Adds a clip from `parseMotion` (copying it) as one more character named `file_name`.
     #[wasm_bindgen(js_name = addClip)]
     pub fn add_clip(&self, clip: &crate::MotionClip, file_name: &str) {
         let clip = clip.clip().clone();
-        self.with_viewer(|v| v.add_clip(file_name, clip));
+        self.with_viewer(|v| v.add_asset(file_name, clip));
+    }
+
+    /// Plays animation `name` (`'all'` for every frame in file order) on the model
+    /// that is character `index` (0-based); returns whether that model has it.
+    #[wasm_bindgen(js_name = setAnimation)]
+    pub fn set_animation(&self, index: u32, name: &str) -> bool {
+        self.with_viewer(|v| v.set_animation(index as usize, name)).unwrap_or(false)
     }
 
     /// Shows or hides character `index` (0-based, as in `state().clips`); returns whether it exists.

@@ -34,6 +34,11 @@ pub fn to_js(s: &Snapshot) -> JsValue {
             set(&o, "color", format!("#{r:02x}{g:02x}{b:02x}"));
             let offset: Array = c.offset.iter().map(|x| JsValue::from_f64(f64::from(*x))).collect();
             set(&o, "offset", offset);
+            set(&o, "animation", opt(&c.animation));
+            set(&o, "animations", strings(&c.animations));
+            set(&o, "modelFrame", c.model_frame.as_ref().map_or(JsValue::NULL, |(f, _)| JsValue::from_f64(*f as f64)));
+            set(&o, "frameName", c.model_frame.as_ref().map_or(JsValue::NULL, |(_, n)| JsValue::from_str(n)));
+            set(&o, "skin", opt(&c.skin));
             JsValue::from(o)
         })
         .collect();

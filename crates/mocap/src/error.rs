@@ -58,7 +58,7 @@ pub enum LoadError {
         error: ParseError,
     },
     /// Neither the extension nor the content matches a format we read.
-    #[error("{file}: not a motion file this viewer reads (BVH, BVA, or an Acclaim .asf skeleton with .amc motions)")]
+    #[error("{file}: not a file this viewer reads (BVH, BVA, an Acclaim .asf skeleton with .amc motions, or a Quake 2 .md2 model with its PCX, BMP, PNG or JPEG skin)")]
     UnknownFormat {
         /// The file name as given by the caller.
         file: String,
@@ -70,6 +70,12 @@ pub enum LoadError {
         file: String,
         /// The skeleton file the motion's header names (`#!OML:ASF …`), if any.
         named: Option<String>,
+    },
+    /// An image opened without a model to put it on.
+    #[error("{file}: an image is used as a model's skin: open it together with its .md2 model")]
+    LoneImage {
+        /// The image file's name.
+        file: String,
     },
     /// The skeleton an Acclaim motion needs could not be read.
     #[error("{file}: its skeleton could not be read: {skeleton}")]

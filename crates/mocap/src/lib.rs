@@ -1,8 +1,9 @@
 //! Motion-capture data: readers and writers for the classic formats (Biovision
-//! BVH and BVA, Acclaim ASF/AMC), one animation model for all of them, sampling and
-//! forward kinematics.
+//! BVH and BVA, Acclaim ASF/AMC, Quake 2 MD2 models and their skins), one animation
+//! model for all of them, sampling and forward kinematics.
 //!
-//! Data flows one way: bytes → [`Clip`] (skeleton + motion, [`load`]) → sampled
+//! Data flows one way: bytes → [`Asset`] ([`load`]: a [`Clip`], skeleton + motion, or
+//! a [`Model`], mesh + vertex frames + skin) → for clips, a sampled
 //! [`LocalPose`] ([`sample`]) → [later stages: layers, IK, edits] → model
 //! transforms ([`local_to_model`]). This crate touches no file system, GPU or browser: it takes
 //! bytes and returns data.
@@ -18,6 +19,7 @@
 
 pub mod acclaim;
 pub mod arrange;
+pub mod asset;
 pub mod bake;
 pub mod batch;
 pub mod bva;
@@ -30,6 +32,7 @@ pub mod fk;
 pub mod image;
 pub mod load;
 pub mod md2;
+pub mod morph;
 pub mod motion;
 pub mod pose;
 pub mod sample;
@@ -38,11 +41,13 @@ pub mod stage;
 mod text;
 pub mod time;
 
+pub use asset::Asset;
 pub use channel::{AngleUnit, Channel, ChannelKind};
 pub use clip::{Aabb, Clip, ClipError, Units};
 pub use error::{LoadError, ParseError, Warning};
 pub use fk::{local_to_model, Transform};
 pub use glam;
+pub use morph::{Model, MorphMesh};
 pub use motion::Motion;
 pub use pose::LocalPose;
 pub use sample::{Interpolation, SampleScratch};

@@ -1,10 +1,12 @@
-//! Several characters on one stage: each clip scaled to metres by its guessed
+//! Several characters on one stage: each asset (a clip or a model) scaled to metres by its guessed
 //! unit, placed by a layout (side by side or overlaid) plus a hand-set offset, and
 //! one timeline over all of them. Shared by the viewer and `mocap render`; each
 //! keeps what only it needs in an actor's `extra`.
 
 use crate::arrange::spread;
+use crate::asset::Asset;
 use crate::clip::{Aabb, Clip, Units};
+use crate::morph::{Model, MorphSample};
 use crate::fk::{local_to_model, Transform};
 use crate::pose::LocalPose;
 use crate::sample::{Interpolation, SampleScratch};
@@ -50,14 +52,14 @@ pub struct PoseScratch {
     sample: SampleScratch,
 }
 
-/// A clip placed in the shared world (metres, Y up), with what is derived from it
+/// An asset placed in the shared world (metres, Y up), with what is derived from it
 /// once, and `extra` for the caller.
 #[derive(Clone, Debug)]
 pub struct Actor<E> {
     /// File name as given when loading.
     pub name: String,
-    /// The clip.
-    pub clip: Clip,
+    /// The clip or model.
+    pub asset: Asset,
     /// Guessed length unit.
     pub units: Units,
     /// Bounds of all joints over all frames, file units.
@@ -76,14 +78,15 @@ pub struct Actor<E> {
 
 impl<E> Actor<E> {
     /// A visible actor at the origin.
-    pub fn new(name: &str, clip: Clip, extra: E) -> Actor<E> {
-        let extent = clip.pose_extent();
+    pub fn new(name: &str, asset: impl Into<Asset>, extra: E) -> Actor<E> {
+        let asset = asset.into();
+        let extent = asset.extent();
         let extent = if extent.is_finite() && extent > 0.0 { extent } else { 1.0 };
         Actor {
             name: name.to_owned(),
-            units: clip.units(),
-            bounds: clip.bounds(),
-            clip,
+            units: asset.units(),
+            bounds: asset.bounds(),
+            asset,
             extent,
             visible: true,
             offset: Vec3::ZERO,
@@ -102,6 +105,11 @@ impl<E> Actor<E> {
         self.layout_offset + self.offset
     }
 
+    /// File units to the world: the unit's scale, then the placement.
+    pub fn world_matrix(&self) -> glam::Mat4 {
+        glam::Mat4::from_scale_rotation_translation(Vec3::splat(self.scale()), glam::Quat::IDENTITY, self.placement())
+    }
+
     /// Bounds of the whole motion in metres, before placement.
     pub fn local_bounds(&self) -> Aabb {
         self.bounds.scaled(self.scale())
@@ -117,16 +125,38 @@ impl<E> Actor<E> {
         self.extent * self.scale()
     }
 
-    /// The frame of this clip shown at `time` (its own frame time; past its end the last).
+    /// The clip, when the actor is a skeleton.
+    pub fn clip(&self) -> Option<&Clip> {
+        self.asset.clip()
+    }
+
+    /// The model, when the actor is a mesh.
+    pub fn model(&self) -> Option<&Model> {
+        self.asset.model()
+    }
+
+    /// The frame of this asset shown at `time` (its own frame time; past its end the
+    /// last); for a model, counted from the first frame of its animation.
     pub fn frame_at(&self, time: f64) -> usize {
-        self.clip.timeline().frame_at(time)
+        self.asset.timeline().frame_at(time)
+    }
+
+    /// The model's key frames at `time` (`None` for a clip): the same rule and
+    /// interpolation choice as [`Actor::pose_at`].
+    pub fn morph_at(&self, time: f64, interpolation: Interpolation) -> Option<MorphSample> {
+        self.model().map(|m| m.frames_at(time, interpolation))
     }
 
     /// Model transforms at `time` in metres, placed: interpolated, or the frame
-    /// shown ([`Interpolation::Step`]). Past its end a clip holds its last pose.
+    /// shown ([`Interpolation::Step`]). Past its end a clip holds its last pose. A
+    /// model has no joints: `out` is left empty.
     pub fn pose_at(&self, time: f64, interpolation: Interpolation, scratch: &mut PoseScratch, out: &mut Vec<Transform>) {
-        self.clip.sample_local_into(time, interpolation, &mut scratch.sample, &mut scratch.local);
-        local_to_model(self.clip.skeleton(), &scratch.local, out);
+        let Some(clip) = self.clip() else {
+            out.clear();
+            return;
+        };
+        clip.sample_local_into(time, interpolation, &mut scratch.sample, &mut scratch.local);
+        local_to_model(clip.skeleton(), &scratch.local, out);
         let (scale, at) = (self.scale(), self.placement());
         for t in out.iter_mut() {
             t.translation = t.translation * scale + at;
@@ -224,21 +254,21 @@ impl<E> Stage<E> {
         if e.is_finite() && e > 0.0 { e } else { 1.0 }
     }
 
-    /// The longest clip's duration in seconds (hidden actors included).
+    /// The longest asset's duration in seconds (hidden actors included).
     pub fn duration(&self) -> f64 {
-        self.actors.iter().map(|c| c.clip.duration()).filter(|d| d.is_finite()).fold(0.0, f64::max)
+        self.actors.iter().map(|c| c.asset.duration()).filter(|d| d.is_finite()).fold(0.0, f64::max)
     }
 
     /// The shared timeline: frames in the frame time of actor `reference` (the first
     /// when out of range), as many as it takes to reach the end of the longest clip
     /// ([`Timeline::frames_to_reach`]). With one actor it is that clip's timeline.
     pub fn timeline(&self, reference: usize) -> Option<Timeline> {
-        let r = self.actors.get(reference).or(self.actors.first())?.clip.timeline();
+        let r = self.actors.get(reference).or(self.actors.first())?.asset.timeline();
         let duration = self.duration();
         let frames = if duration > 0.0 {
             r.frames_to_reach(duration)
         } else {
-            self.actors.iter().map(|c| c.clip.frame_count()).max().unwrap_or(0).min(1)
+            self.actors.iter().map(|c| c.asset.frame_count()).max().unwrap_or(0).min(1)
         };
         Some(Timeline::new(r.frame_time(), frames.max(r.frames())))
     }

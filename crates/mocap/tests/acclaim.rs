@@ -23,7 +23,7 @@ fn two_bones(axis: [f32; 3]) -> String {
 
 fn pose(asf: &str, amc: &str) -> Vec<Vec3> {
     let results = loaded(&[("t.asf", asf.as_bytes()), ("t.amc", amc.as_bytes())]);
-    let clip = results.into_iter().next().unwrap().unwrap().clip;
+    let clip = results.into_iter().next().unwrap().unwrap().into_clip().unwrap();
     clip.world_positions(0)
 }
 
@@ -65,7 +65,7 @@ fn a_bone_rotates_about_its_axis_frame() {
 #[test]
 fn limits_units_and_documentation_reach_the_model() {
     let results = loaded(&[("t.asf", two_bones([0.0; 3]).as_bytes())]);
-    let clip = results.into_iter().next().unwrap().unwrap().clip;
+    let clip = results.into_iter().next().unwrap().unwrap().into_clip().unwrap();
     assert_eq!(clip.frame_count(), 0, "an ASF alone is its rest pose");
     let b = &clip.skeleton().joints()[1];
     assert_eq!(b.limits.len(), 3);
@@ -88,7 +88,7 @@ fn a_motion_needs_its_skeleton_and_a_loader_remembers_the_last_one() {
     assert!(loader.load(&[Input { name: "t.asf", bytes: asf.as_bytes() }])[0].is_ok());
     let again = loader.load(&[Input { name: "later.amc", bytes: amc }]);
     assert_eq!(again.len(), 1);
-    assert_eq!(again[0].as_ref().unwrap().clip.frame_count(), 1);
+    assert_eq!(again[0].as_ref().unwrap().clip().unwrap().frame_count(), 1);
     assert_eq!(loader.skeleton_name(), Some("t.asf"));
 }
 
@@ -131,7 +131,7 @@ fn cmu_01_01_amc_agrees_with_its_bvh_conversion_on_every_frame() {
     let asf = std::fs::read(dir.join("asf_amc/cmu/01.asf")).unwrap();
     let amc = std::fs::read(dir.join("asf_amc/cmu/01_01.amc")).unwrap();
     let bvh = std::fs::read(dir.join("bvh/assimp_cmu/01_01.bvh")).unwrap();
-    let acclaim = loaded(&[("01.asf", &asf), ("01_01.amc", &amc)]).pop().unwrap().unwrap().clip;
+    let acclaim = loaded(&[("01.asf", &asf), ("01_01.amc", &amc)]).pop().unwrap().unwrap().into_clip().unwrap();
     let converted = mocap::bvh::parse(&bvh).unwrap();
     assert_eq!(acclaim.frame_count() + 1, converted.frame_count(), "the BVH has a T-pose first");
     let pairs: Vec<(usize, usize)> = CMU_BVH
@@ -164,7 +164,7 @@ fn asf_amc_to_bvh_keeps_every_position() {
     let Some(dir) = common::corpus_dir() else { return };
     let asf = std::fs::read(dir.join("asf_amc/cmu/02.asf")).unwrap();
     let amc = std::fs::read(dir.join("asf_amc/cmu/02_01.amc")).unwrap();
-    let clip = loaded(&[("02.asf", &asf), ("02_01.amc", &amc)]).pop().unwrap().unwrap().clip;
+    let clip = loaded(&[("02.asf", &asf), ("02_01.amc", &amc)]).pop().unwrap().unwrap().into_clip().unwrap();
     let back = mocap::bvh::parse(mocap::bvh::write(&clip).as_bytes()).unwrap();
     assert_eq!(back.frame_count(), clip.frame_count());
     let height = clip.pose_height();
@@ -194,15 +194,15 @@ fn every_corpus_acclaim_file_loads() {
         for ((result, name), n) in results.into_iter().zip(&amcs).zip(frames) {
             let l = result.unwrap();
             assert_eq!(&l.name, name);
-            assert_eq!(l.clip.frame_count(), n);
-            assert_eq!(l.clip.skeleton().joint_count(), 31);
-            assert_eq!(l.clip.units(), mocap::Units::CmuInches, "{name}: {}", l.clip.pose_height());
-            let b = l.clip.bounds();
+            assert_eq!(l.clip().unwrap().frame_count(), n);
+            assert_eq!(l.clip().unwrap().skeleton().joint_count(), 31);
+            assert_eq!(l.clip().unwrap().units(), mocap::Units::CmuInches, "{name}: {}", l.clip().unwrap().pose_height());
+            let b = l.clip().unwrap().bounds();
             assert!(b.min.is_finite() && b.max.is_finite());
         }
     }
     let simple = std::fs::read(dir.join("asf_amc/handmade/simple_test.asf")).unwrap();
-    let clip = loaded(&[("simple_test.asf", &simple)]).pop().unwrap().unwrap().clip;
+    let clip = loaded(&[("simple_test.asf", &simple)]).pop().unwrap().unwrap().into_clip().unwrap();
     assert_eq!(clip.skeleton().joint_count(), 2);
     let p = clip.world_positions(0);
     assert!(close(p[2], Vec3::new(0.0, 0.0, 2.0)), "the leaf bone ends 2 along +Z: {p:?}");

@@ -48,7 +48,7 @@ fn corpus_bvh_files_parse_as_the_manifest_says() {
             assert!(text.starts_with(&format!("{}:", e.path)) && text.matches(':').count() >= 3, "{text}");
             continue;
         }
-        let clip = result.unwrap_or_else(|err| panic!("{err}"));
+        let clip = result.unwrap_or_else(|err| panic!("{err}")).clip().cloned().unwrap_or_else(|| panic!("{}: not a clip", e.path));
         // Frames: "N", "" (no motion) or "N declared / M rows".
         let expected_frames: usize = match e.frames.split_once(" declared / ") {
             Some((_, rows)) => rows.trim_end_matches(" rows").parse().unwrap(),

@@ -473,3 +473,77 @@ fn quake_pcx_skins_decode_to_the_known_pixels() {
     assert_eq!(weapon.pixel(100, 50), Some([15, 15, 15, 255]));
     assert_eq!(weapon.pixel(135, 58), Some([23, 23, 23, 255]));
 }
+
+/// Loads corpus files (under `md2/`) as one dropped set.
+fn load_set(paths: &[&str]) -> Option<Vec<Result<mocap::Loaded, mocap::LoadError>>> {
+    let dir = common::corpus_dir()?.join("md2");
+    let bytes: Vec<(String, Vec<u8>)> = paths.iter().map(|p| (p.to_string(), std::fs::read(dir.join(p)).unwrap())).collect();
+    let inputs: Vec<mocap::Input> = bytes.iter().map(|(name, b)| mocap::Input { name, bytes: b }).collect();
+    Some(mocap::load(&inputs))
+}
+
+fn model(result: &Result<mocap::Loaded, mocap::LoadError>) -> &mocap::Model {
+    result.as_ref().unwrap_or_else(|e| panic!("{e}")).asset.model().expect("a model")
+}
+
+#[test]
+fn a_dropped_folder_pairs_models_with_their_skins() {
+    // The weapon names players/waste/weapon.pcx (the file is WEAPON.PCX in upper
+    // case); the player names none and takes the other image, even listed after.
+    let Some(set) = load_set(&["waste/weapon.PCX", "waste/waste.pcx", "waste/tris.md2", "waste/weapon.md2"]) else { return };
+    assert_eq!(set.len(), 2, "two models; images are not characters");
+    let (player, weapon) = (model(&set[0]), model(&set[1]));
+    assert_eq!(player.skin.as_ref().map(|s| s.name.as_str()), Some("waste/waste.pcx"));
+    assert_eq!(weapon.skin.as_ref().map(|s| s.name.as_str()), Some("waste/weapon.PCX"));
+    assert_eq!(player.mesh.frame_count(), 198);
+    assert_eq!(player.mesh.source_counts, mocap::morph::SourceCounts { vertices: 312, triangles: 596, tex_coords: 435 });
+    // Every MD2 model is in Quake units, read as inches: the player is about 1.4 m.
+    let height = player.mesh.height() * player.mesh.units().meters_per_unit();
+    assert!((1.2..1.6).contains(&height), "{height} m");
+    assert_eq!(weapon.mesh.units(), player.mesh.units());
+}
+
+#[test]
+fn embedded_skin_names_match_any_folder_and_bmp_skins_decode() {
+    let Some(set) = load_set(&["telias_dolphin/dolphin.md2", "irrlicht_faerie/faerie2.bmp", "telias_dolphin/dolphin_f.bmp"]) else { return };
+    let dolphin = model(&set[0]);
+    let skin = dolphin.skin.as_ref().expect("dolphin_f.bmp, named settings/elias1/desktop/frames/dolphin_f.bmp");
+    assert_eq!(skin.name, "telias_dolphin/dolphin_f.bmp");
+    // Reference values from an independent decoder (Pillow 11). The image is 480×92
+    // while the header says 256×256: coordinates still divide by the header's size.
+    assert_eq!((skin.image.width, skin.image.height), (480, 92));
+    assert_eq!(skin.image.pixel(100, 50), Some([92, 98, 117, 255]));
+    assert_eq!(dolphin.mesh.skin_size, [256, 256]);
+    assert!(dolphin.mesh.tex_coords().iter().all(|t| t.iter().all(|c| (0.0..=1.0).contains(c))));
+    let Some(set) = load_set(&["irrlicht_faerie/faerie.md2", "irrlicht_faerie/faerie2.bmp"]) else { return };
+    let faerie = model(&set[0]).skin.as_ref().expect("the only image of the set");
+    assert_eq!(faerie.image.pixel(10, 20), Some([105, 23, 0, 255]));
+    assert_eq!(faerie.image.pixel(219, 192), Some([0, 23, 26, 255]));
+}
+
+#[test]
+fn images_without_a_model_and_broken_images_are_errors() {
+    let Some(set) = load_set(&["waste/waste.pcx"]) else { return };
+    let e = set[0].as_ref().unwrap_err().to_string();
+    assert!(e.starts_with("waste/waste.pcx: an image is used as a model's skin"), "{e}");
+    let Some(dir) = common::corpus_dir() else { return };
+    let model_bytes = std::fs::read(dir.join("md2/waste/weapon.md2")).unwrap();
+    let set = mocap::load(&[mocap::Input { name: "weapon.md2", bytes: &model_bytes }, mocap::Input { name: "weapon.pcx", bytes: b"\x0a\x05\x01\x08" }]);
+    assert_eq!(set.len(), 2);
+    assert!(model(&set[0]).skin.is_none(), "an image that cannot be decoded gives the neutral material");
+    let e = set[1].as_ref().unwrap_err().to_string();
+    assert!(e.starts_with("weapon.pcx:byte "), "{e}");
+    let big_bmp = {
+        // A BMP header claiming 100000 × 100000 pixels in 60 bytes.
+        let mut b = vec![0u8; 60];
+        b[..2].copy_from_slice(b"BM");
+        b[14] = 40;
+        b[18..22].copy_from_slice(&100_000i32.to_le_bytes());
+        b[22..26].copy_from_slice(&100_000i32.to_le_bytes());
+        b[26] = 1;
+        b[28] = 24;
+        b
+    };
+    let set = mocap::load(&[mocap::Input { name: "weapon.md2", bytes: &model_bytes }, mocap::Input { name: "huge.bmp", bytes: &big_bmp }]);
+    assert!(set[1].as_ref().is_err_and(|e| e.to_string().starts_with("huge.bmp:")), "{:?}", set[1].as_ref().err());
+}

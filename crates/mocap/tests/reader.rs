@@ -229,7 +229,8 @@ fn utf8_bom_and_leading_blank_lines() {
 fn load_dispatch_and_error_display() {
     let e = mocap::load_one("bad.bvh", b"HIERARCHY\nROOT A\n{\nOFFSET 0 q 0\n").unwrap_err();
     assert_eq!(e.to_string(), "bad.bvh:4:10: expected the y value of OFFSET (a number), found `q`");
-    assert!(matches!(mocap::load_one("x.png", b"\x89PNG"), Err(mocap::LoadError::UnknownFormat { .. })));
+    assert!(matches!(mocap::load_one("x.png", b"\x89PNG"), Err(mocap::LoadError::LoneImage { .. })));
+    assert!(matches!(mocap::load_one("x.exe", b"MZ\x90\0"), Err(mocap::LoadError::UnknownFormat { .. })));
     assert!(mocap::load_one("noext", one_joint("CHANNELS 0", "", 0).as_bytes()).is_ok());
     // The content decides, not the extension.
     assert_eq!(mocap::load_one("walk.txt", one_joint("CHANNELS 1 Xposition", "1\n", 1).as_bytes()).unwrap().frame_count(), 1);

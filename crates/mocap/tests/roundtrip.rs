@@ -136,9 +136,9 @@ proptest! {
             mocap::Input { name: "t.amc", bytes: &files[2] },
         ];
         for loaded in mocap::load(&inputs).into_iter().flatten() {
-            let _ = loaded.clip.bounds();
-            let _ = mocap::bvh::write(&loaded.clip);
-            let _ = mocap::bva::write(&mocap::bva::from_clip(&loaded.clip).0);
+            let _ = loaded.asset.bounds();
+            let _ = mocap::bvh::write(loaded.clip().unwrap());
+            let _ = mocap::bva::write(&mocap::bva::from_clip(loaded.clip().unwrap()).0);
         }
     }
 

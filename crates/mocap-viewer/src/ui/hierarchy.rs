@@ -1,5 +1,5 @@
 //! Left panel: one entry per character (colour, visibility, name, remove, offset)
-//! holding its joint tree; clicking a joint selects it.
+//! holding its joint tree, or for a model its animation; clicking a joint selects it.
 //!
 //! The tree is a flat list of rows built by one iterative depth-first pass (no
 //! recursion, in this code or in egui's nested containers), drawn with
@@ -26,6 +26,8 @@ enum Row {
     Header(usize),
     /// A character's hand-set offset.
     Offset(usize),
+    /// A model's animation chooser.
+    Animation(usize),
     /// A joint of a character at a depth (roots are 0).
     Joint { character: usize, joint: usize, depth: usize },
 }
@@ -60,6 +62,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
             area = area.vertical_scroll_offset((index as f32 * pitch - ui.available_height() * 0.5).max(0.0));
         }
         let mut remove = None;
+        let mut animation = None;
         if viewer.stage.actors.is_empty() {
             ui.label("No clip open");
         }
@@ -78,6 +81,13 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
                             offset_row(ui, character);
                         }
                     }
+                    Row::Animation(c) => {
+                        if let Some(model) = viewer.stage.actors.get(c).and_then(|a| a.model()) {
+                            if let Some(name) = animation_row(ui, c, model) {
+                                animation = Some((c, name));
+                            }
+                        }
+                    }
                     Row::Joint { character, joint, depth } => {
                         if let Some(c) = viewer.stage.actors.get(character) {
                             joint_row(ui, c, Selection { character, joint }, depth, &mut selected, &mut folded);
@@ -92,6 +102,9 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
         });
         if selected != viewer.selected {
             viewer.selected = selected;
+        }
+        if let Some((index, name)) = animation {
+            viewer.set_animation(index, &name);
         }
         if let Some(index) = remove {
             viewer.remove(index);
@@ -115,9 +128,13 @@ fn rows(characters: &[Character], folded: &Folded) -> Vec<Row> {
             continue;
         }
         rows.push(Row::Offset(c));
+        let Some(clip) = character.clip() else {
+            rows.push(Row::Animation(c));
+            continue;
+        };
         let children = &character.extra.children;
         stack.clear();
-        stack.extend(character.clip.skeleton().roots().collect::<Vec<_>>().into_iter().rev().map(|r| (r, 0)));
+        stack.extend(clip.skeleton().roots().collect::<Vec<_>>().into_iter().rev().map(|r| (r, 0)));
         while let Some((joint, depth)) = stack.pop() {
             rows.push(Row::Joint { character: c, joint, depth });
             if folded.joints.contains(&(c, joint)) {
@@ -134,8 +151,8 @@ fn rows(characters: &[Character], folded: &Folded) -> Vec<Row> {
 /// Unfolds the character and every ancestor of the selected joint.
 fn unfold_to(folded: &mut Folded, characters: &[Character], s: Selection) {
     folded.characters.remove(&s.character);
-    let Some(c) = characters.get(s.character) else { return };
-    let joints = c.clip.skeleton().joints();
+    let Some(clip) = characters.get(s.character).and_then(|c| c.clip()) else { return };
+    let joints = clip.skeleton().joints();
     let mut at = joints.get(s.joint).and_then(|j| j.parent);
     while let Some(p) = at {
         folded.joints.remove(&(s.character, p));
@@ -146,7 +163,7 @@ fn unfold_to(folded: &mut Folded, characters: &[Character], s: Selection) {
 /// Names of the listed joints, in row order (at most [`MAX_LABELS`]).
 fn record_labels(rows: &[Row], characters: &[Character], labels: &mut Vec<String>) {
     let names = rows.iter().filter_map(|r| match *r {
-        Row::Joint { character, joint, .. } => characters.get(character)?.clip.skeleton().joints().get(joint).map(|j| j.name.clone()),
+        Row::Joint { character, joint, .. } => characters.get(character)?.clip()?.skeleton().joints().get(joint).map(|j| j.name.clone()),
         _ => None,
     });
     labels.extend(names.take(MAX_LABELS));
@@ -201,9 +218,33 @@ fn offset_row(ui: &mut egui::Ui, c: &mut Character) {
     });
 }
 
+/// A model's animation chooser: "all" (every frame in file order) or one named
+/// animation with its frames. Returns the name picked this frame, if any.
+fn animation_row(ui: &mut egui::Ui, index: usize, model: &mocap::Model) -> Option<String> {
+    let mut picked = None;
+    ui.horizontal(|ui| {
+        ui.add_space(INDENT);
+        ui.label("animation").on_hover_text("Which of the model's animations plays (looped on the timeline)");
+        let current = model.animation_name().to_owned();
+        egui::ComboBox::from_id_salt(("animation", index)).selected_text(&current).height(400.0).show_ui(ui, |ui| {
+            let frames = model.mesh.frame_count();
+            if ui.selectable_label(current == "all", format!("all (0–{})", frames.saturating_sub(1))).clicked() {
+                picked = Some("all".to_owned());
+            }
+            for a in model.mesh.animations() {
+                let label = format!("{} ({}–{})", a.name, a.first, a.last);
+                if ui.selectable_label(current == a.name, label).clicked() {
+                    picked = Some(a.name.clone());
+                }
+            }
+        });
+    });
+    picked
+}
+
 /// One joint row: indentation, fold toggle (when it has children), selectable name.
 fn joint_row(ui: &mut egui::Ui, c: &Character, here: Selection, depth: usize, selected: &mut Option<Selection>, folded: &mut Folded) {
-    let Some(joint) = c.clip.skeleton().joints().get(here.joint) else { return };
+    let Some(joint) = c.clip().and_then(|clip| clip.skeleton().joints().get(here.joint)) else { return };
     let has_children = c.extra.children.get(here.joint).is_some_and(|k| !k.is_empty());
     ui.horizontal(|ui| {
         ui.add_space(INDENT * (1 + depth.min(MAX_INDENT_LEVELS)) as f32);

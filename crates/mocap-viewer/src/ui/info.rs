@@ -11,7 +11,10 @@ pub fn show(ui: &mut egui::Ui, doc: Option<&Character>, count: usize) {
         ui.label("No clip open");
         return;
     };
-    let clip = &doc.clip;
+    let Some(clip) = doc.clip() else {
+        model_facts(ui, doc, count);
+        return;
+    };
     egui::Grid::new("info").num_columns(2).striped(true).show(ui, |ui| {
         let mut row = |k: &str, v: String| {
             ui.label(k);
@@ -48,4 +51,25 @@ pub fn show(ui: &mut egui::Ui, doc: Option<&Character>, count: usize) {
             }
         });
     }
+}
+
+/// The file facts of a model: name, frames and rate, units.
+fn model_facts(ui: &mut egui::Ui, doc: &Character, count: usize) {
+    let timeline = doc.asset.timeline();
+    egui::Grid::new("info").num_columns(2).striped(true).show(ui, |ui| {
+        let mut row = |k: &str, v: String| {
+            ui.label(k);
+            ui.label(v);
+            ui.end_row();
+        };
+        row("File", doc.name.clone());
+        row("Format", "Quake 2 MD2 model".to_owned());
+        if count > 1 {
+            row("Open", format!("{count} characters"));
+        }
+        row("Frames", format!("{} in this animation", timeline.frames()));
+        row("FPS", format!("{:.2} (Quake 2 models)", 1.0 / timeline.frame_time()));
+        row("Duration", format!("{:.3} s", timeline.duration()));
+        row("Units", format!("{} (Quake units; × {} to metres)", doc.units.name(), doc.scale()));
+    });
 }

@@ -14,8 +14,9 @@ pub fn show(ui: &mut egui::Ui, selected: Option<(&Character, usize)>, frame: usi
         ui.label("Click a joint in the hierarchy to inspect it.");
         return;
     };
-    let Some(joint) = doc.clip.skeleton().joints().get(index) else { return };
-    let values = doc.clip.channel_values(frame);
+    let Some(clip) = doc.clip() else { return };
+    let Some(joint) = clip.skeleton().joints().get(index) else { return };
+    let values = clip.channel_values(frame);
     egui::Grid::new("joint").num_columns(2).striped(true).show(ui, |ui| {
         ui.label("Name");
         ui.strong(&joint.name);
@@ -24,7 +25,7 @@ pub fn show(ui: &mut egui::Ui, selected: Option<(&Character, usize)>, frame: usi
         ui.label(&doc.name);
         ui.end_row();
         ui.label("Parent");
-        let parent = joint.parent.and_then(|p| doc.clip.skeleton().joints().get(p)).map_or("—", |p| p.name.as_str());
+        let parent = joint.parent.and_then(|p| clip.skeleton().joints().get(p)).map_or("—", |p| p.name.as_str());
         ui.label(parent);
         ui.end_row();
         ui.label("Offset");
@@ -54,13 +55,12 @@ pub fn show(ui: &mut egui::Ui, selected: Option<(&Character, usize)>, frame: usi
             ui.end_row();
         }
     });
-    if !joint.channels.is_empty() && doc.clip.frame_count() > 0 {
-        plot(ui, doc, joint, time);
+    if !joint.channels.is_empty() && clip.frame_count() > 0 {
+        plot(ui, clip, joint, time);
     }
 }
 
-fn plot(ui: &mut egui::Ui, doc: &Character, joint: &mocap::Joint, time: f64) {
-    let clip = &doc.clip;
+fn plot(ui: &mut egui::Ui, clip: &mocap::Clip, joint: &mocap::Joint, time: f64) {
     let frames = clip.frame_count();
     let step = frames.div_ceil(MAX_PLOT_POINTS).max(1);
     egui_plot::Plot::new("channels")

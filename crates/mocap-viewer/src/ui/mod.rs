@@ -3,6 +3,7 @@
 pub mod hierarchy;
 pub mod info;
 pub mod inspector;
+pub mod model_info;
 pub mod overlay;
 pub mod side;
 pub mod timeline;

@@ -9,6 +9,10 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             let current = viewer.stage.actors.get(viewer.current());
             super::info::show(ui, current, viewer.stage.actors.len());
             ui.separator();
+            if let Some((c, model)) = current.and_then(|c| Some((c, c.model()?))) {
+                super::model_info::show(ui, c, model);
+                return;
+            }
             let selected = viewer.selected.and_then(|s| Some((viewer.stage.actors.get(s.character)?, s.joint)));
             let frame = selected.map_or(0, |(c, _)| c.frame_at(viewer.playback.time));
             super::inspector::show(ui, selected, frame, viewer.playback.time);

@@ -32,7 +32,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             act(ui, ">|", "Last frame (End)", Action::Last);
         });
         ui.horizontal(|ui| {
-            let counted_in = viewer.current_character().map_or(String::new(), |d| format!("Frames of {} ({:.2} fps)", d.name, d.clip.fps()));
+            let counted_in = viewer.current_character().map_or(String::new(), |d| format!("Frames of {} ({:.2} fps)", d.name, 1.0 / d.asset.timeline().frame_time()));
             ui.monospace(format!("frame {frame:>5} / {}   {:>8.3} s", timing.last(), viewer.playback.time))
                 .on_hover_text(format!("{counted_in}: the selected joint's character, else the first. The timeline spans the longest clip; shorter ones hold their last pose."));
             ui.separator();
