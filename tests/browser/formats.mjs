@@ -5,10 +5,14 @@
 // - a motion dropped alone uses the last skeleton; ?url=skel.asf&url=take.amc pairs;
 // - a BVA file opens as segments;
 // - a 200,000-level-deep (valid) BVH opens without killing the page, and a good file
-//   opens after it.
+//   opens after it;
+// - a Quake 2 MD2 model dropped with its skin opens as one character with its
+//   animations; picking one plays it (the picture changes while it plays) and the
+//   skin's colours are on screen (not without the skin); ?url=model&url=skin#anim=
+//   opens the pair on that animation.
 import fs from 'node:fs';
 import path from 'node:path';
-import { launch, state, waitState, waitFrames, dropFiles, waitDropped, view3d, reporter } from './common.mjs';
+import { launch, state, waitState, waitFrames, changeAndRender, dropFiles, waitDropped, view3d, reporter } from './common.mjs';
 
 const [url, mode, outDir, chromiumPath, acclaimPath] = process.argv.slice(2);
 const acclaim = JSON.parse(fs.readFileSync(acclaimPath, 'utf8'));
@@ -17,7 +21,40 @@ const { check, step, finish } = reporter(`${mode} formats`);
 const read = (p) => fs.readFileSync(p);
 const base = (p) => path.basename(p);
 
-const { page, close, errors } = await launch(chromiumPath, mode);
+/** Pixel statistics of a PNG, and how many pixels differ from `other` (decoded in a blank page). */
+async function pixels(context, png, other) {
+  const page = await context.newPage();
+  try {
+    return await page.evaluate(async ([a, b]) => {
+      const decode = async (b64) => {
+        const img = new Image();
+        img.src = `data:image/png;base64,${b64}`;
+        await img.decode();
+        const c = new OffscreenCanvas(img.width, img.height);
+        const g = c.getContext('2d');
+        g.drawImage(img, 0, 0);
+        return g.getImageData(0, 0, img.width, img.height).data;
+      };
+      const d = await decode(a);
+      const r = b ? await decode(b) : null;
+      let saturated = 0;
+      let changed = 0;
+      for (let i = 0; i < d.length; i += 4) {
+        const hi = Math.max(d[i], d[i + 1], d[i + 2]);
+        const lo = Math.min(d[i], d[i + 1], d[i + 2]);
+        // Strong colour: the faerie skin's red wings and green dress, never the grey
+        // floor, the dark background or the neutral material.
+        if (hi - lo > 70) saturated += 1;
+        if (r && Math.abs(d[i] - r[i]) + Math.abs(d[i + 1] - r[i + 1]) + Math.abs(d[i + 2] - r[i + 2]) > 30) changed += 1;
+      }
+      return { saturated, changed };
+    }, [png.toString('base64'), other ? other.toString('base64') : null]);
+  } finally {
+    await page.close();
+  }
+}
+
+const { context, page, close, errors } = await launch(chromiumPath, mode);
 try {
   await page.goto(url);
   await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 2);
@@ -75,6 +112,58 @@ try {
     await dropFiles(page, [{ name: 'walk.bvh', bytes: read(walk) }]);
     const s3 = await waitDropped(page, 'walk.bvh');
     check(s3.error === null && s3.clips[0].name === 'walk.bvh' && s3.clips[0].frames === 67, 'a good file opens after the deep one');
+  });
+
+  const md2 = (p) => path.join(acclaim.corpus, 'md2', p);
+  await step('an MD2 model dropped without its skin is drawn in the neutral material', async () => {
+    await dropFiles(page, [{ name: 'faerie.md2', bytes: read(md2('irrlicht_faerie/faerie.md2')) }]);
+    const s = await waitDropped(page, 'faerie.md2');
+    check(s.error === null && s.clips.length === 1 && s.clips[0].skin === null, `faerie.md2 opens without a skin (${s.error})`);
+    await changeAndRender(page, (v) => { v.pause(); v.seek(0); });
+  });
+  const plain = await view3d(page, shot('md2-plain'));
+
+  await step('an MD2 model dropped with its skin opens with its animations; picking one plays it', async () => {
+    await dropFiles(page, [{ name: 'faerie.md2', bytes: read(md2('irrlicht_faerie/faerie.md2')) }, { name: 'faerie2.bmp', bytes: read(md2('irrlicht_faerie/faerie2.bmp')) }]);
+    const s = await waitDropped(page, 'faerie2.bmp');
+    const c = s.clips[0];
+    check(s.error === null && s.clips.length === 1, `one character, no error (${s.error})`);
+    check(c.skin === 'faerie2.bmp', `the dropped skin is used (${c.skin})`);
+    check(c.frames === 198 && c.animation === 'all' && c.joints === 0, `all 198 frames play at first (${c.frames}, ${c.animation})`);
+    check(c.animations.length === 20 && c.animations.includes('run') && c.animations.includes('death3'), `its animations are listed (${c.animations})`);
+    check(Math.abs(c.frameTime - 0.1) < 1e-9, `10 frames per second (${c.frameTime})`);
+    await changeAndRender(page, (v) => { v.pause(); v.seek(0); });
+    const still = await view3d(page, shot('md2-skin'));
+    const px = await pixels(context, still, plain);
+    const neutral = await pixels(context, plain);
+    check(px.saturated > 400 && px.saturated > 10 * (neutral.saturated + 1), `the skin's colours are on screen (${px.saturated} strongly coloured pixels, ${neutral.saturated} without the skin)`);
+    check(await page.evaluate(() => window.mocapViewer.setAnimation(0, 'run')), 'setAnimation(0, "run")');
+    check(!(await page.evaluate(() => window.mocapViewer.setAnimation(0, 'fly'))), 'an unknown animation is refused');
+    const r = await waitState(page, (s) => s.clips[0].animation === 'run');
+    check(r.clips[0].frames === 6 && r.view.includes('anim=1:run'), `run: 6 frames on the timeline, kept in the fragment (${r.clips[0].frames}, ${r.view})`);
+    await page.evaluate(() => { window.mocapViewer.seek(0); window.mocapViewer.play(); });
+    await waitFrames(page, 3);
+    const a = await view3d(page, shot('md2-run-a'));
+    const t0 = (await state(page)).time;
+    await page.waitForTimeout(250);
+    await waitFrames(page, 2);
+    const b = await view3d(page, shot('md2-run-b'));
+    const s2 = await state(page);
+    const moved = await pixels(context, a, b);
+    check(s2.playing && s2.time !== t0, `it plays (time ${t0} → ${s2.time}, frame ${s2.clips[0].modelFrame} ${s2.clips[0].frameName})`);
+    check(s2.clips[0].modelFrame >= 40 && s2.clips[0].modelFrame <= 45 && /^run/.test(s2.clips[0].frameName), 'the frames drawn are the run frames');
+    check(moved.changed > 100, `the picture changes while it plays (${moved.changed} pixels)`);
+    await page.screenshot({ path: shot('md2-page') });
+  });
+
+  await step('?url=model.md2&url=skin.pcx#anim=1:run opens the pair on that animation', async () => {
+    const rel = (p) => `corpus/md2/${p}`;
+    await page.goto(`${url}?url=${encodeURIComponent(rel('waste/tris.md2'))}&url=${encodeURIComponent(rel('waste/waste.pcx'))}#anim=1:run&play=0&t=0.2`);
+    const s = await waitState(page, (s) => s.clips.length === 1 && s.clips[0].name === 'tris.md2' && s.clips[0].modelFrame !== null && s.framesRendered > 2);
+    const c = s.clips[0];
+    check(s.error === null && c.skin === 'waste.pcx' && c.animation === 'run' && c.frames === 6, `linked model opens with its skin on run (${c.skin}, ${c.animation}, ${s.error})`);
+    check(c.modelFrame === 42 && c.frameName === 'run3', `t=0.2 shows run3, frame 42 (${c.modelFrame} ${c.frameName})`);
+    await view3d(page, shot('md2-link'));
   });
 
   await step('?url=skeleton.asf&url=motion.amc opens the pair', async () => {

@@ -97,19 +97,38 @@ fn differing_share(a: &[u8], b: &[u8], tolerance: u8) -> f64 {
 
 /// Renders with `args` (plus the figure file and --out) and checks against `name`.
 fn check_golden(name: &str, files: usize, args: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let figure = dir.path().join("figure.bvh");
+    std::fs::write(&figure, FIGURE).unwrap();
+    check_golden_files(name, &vec![figure; files], args);
+}
+
+/// `../shared/corpus` beside the repository (or `$MOCAP_CORPUS`); missing, a
+/// failure unless `MOCAP_SKIP_CORPUS=1` opts out (then `None`).
+fn corpus_dir() -> Option<PathBuf> {
+    let dir = std::env::var_os("MOCAP_CORPUS")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus"));
+    if dir.join("MANIFEST.tsv").is_file() {
+        return Some(dir);
+    }
+    if std::env::var("MOCAP_SKIP_CORPUS").is_ok_and(|v| v == "1") {
+        eprintln!("{}: corpus not found, skipped (MOCAP_SKIP_CORPUS=1)", dir.display());
+        return None;
+    }
+    panic!("{}: corpus not found (put ../shared beside the repository, or opt out with MOCAP_SKIP_CORPUS=1)", dir.display());
+}
+
+/// Renders `files` with `args` (plus --out) and checks against `name`.
+fn check_golden_files(name: &str, files: &[PathBuf], args: &[&str]) {
     if std::env::var_os("MOCAP_SKIP_GPU_TESTS").is_some() {
         eprintln!("MOCAP_SKIP_GPU_TESTS set: skipping golden image {name}");
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let figure = dir.path().join("figure.bvh");
-    std::fs::write(&figure, FIGURE).unwrap();
     let out = dir.path().join(name);
     let mut command = Command::new(env!("CARGO_BIN_EXE_mocap"));
-    command.arg("render");
-    for _ in 0..files {
-        command.arg(&figure);
-    }
+    command.arg("render").args(files);
     let output = command.args(args).arg("--out").arg(&out).output().unwrap();
     assert!(
         output.status.success(),
@@ -152,6 +171,49 @@ fn golden_two_characters_custom_camera() {
 #[test]
 fn golden_contact_sheet() {
     check_golden("figure_sheet.png", 1, &["--sheet", "--columns", "3", "--size", "480x180"]);
+}
+
+/// A textured Quake 2 model mid-run, frames blended on the GPU, lit and shadowed;
+/// its skin (`--skin`) is a PCX whose size is not a power of two.
+#[test]
+fn golden_textured_md2() {
+    let Some(corpus) = corpus_dir() else { return };
+    let model = corpus.join("md2/waste/tris.md2");
+    let skin = corpus.join("md2/waste/waste.pcx");
+    let skin = skin.to_str().unwrap();
+    check_golden_files("md2_waste_run.png", &[model], &["--skin", skin, "--animation", "run", "--time", "0.25", "--size", "320x240", "--camera", "35,12"]);
+}
+
+/// Without a skin the model gets the neutral material: the same frame, grey.
+#[test]
+fn md2_without_a_skin_is_drawn_neutral_and_differs_from_the_textured_one() {
+    if std::env::var_os("MOCAP_SKIP_GPU_TESTS").is_some() {
+        return;
+    }
+    let Some(corpus) = corpus_dir() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let render = |extra: &[&str], out: &Path| {
+        let model = corpus.join("md2/waste/tris.md2");
+        let status = Command::new(env!("CARGO_BIN_EXE_mocap"))
+            .arg("render")
+            .arg(&model)
+            .args(extra)
+            .args(["--animation", "run", "--time", "0.25", "--size", "160x120", "--camera", "35,12", "--out"])
+            .arg(out)
+            .output()
+            .unwrap();
+        assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
+        decode(out).1
+    };
+    let skin = corpus.join("md2/waste/waste.pcx");
+    let plain = render(&[], &dir.path().join("plain.png"));
+    let textured = render(&["--skin", skin.to_str().unwrap()], &dir.path().join("textured.png"));
+    let share = differing_share(&plain, &textured, 24);
+    assert!(share > 0.01, "the skin changes the picture ({:.3}% of pixels)", share * 100.0);
+    // The neutral material is grey: model pixels have nearly equal channels.
+    let background = [plain[0], plain[1], plain[2]];
+    let greyish = plain.chunks(4).filter(|p| p[..3] != background).all(|p| p[0].abs_diff(p[2]) < 40);
+    assert!(greyish);
 }
 
 #[test]
