@@ -221,12 +221,9 @@ impl StageView {
     /// Plays animation `name` on every model that has it; false when none has.
     pub fn set_animation(&mut self, name: &str) -> bool {
         let mut found = false;
-        for actor in &mut self.stage.actors {
-            if let Some(model) = actor.asset.model_mut() {
-                found |= model.set_animation_by_name(name);
-            }
+        for i in 0..self.stage.actors.len() {
+            found |= self.stage.set_animation(i, name);
         }
-        self.stage.arrange();
         found
     }
 

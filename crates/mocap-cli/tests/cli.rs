@@ -238,4 +238,18 @@ fn info_and_validate_read_md2_models() {
     let lines = stdout(&out);
     assert_eq!(lines.lines().filter(|l| l.starts_with("ok ")).count(), 4, "{lines}");
     assert!(lines.contains(&format!("FAIL {}:byte 24: num_xyz is 0", bad.display())), "{lines}");
+    // With its skin the info says which image is used; a skin alone is an error.
+    let weapon = corpus.join("md2/waste/weapon.md2");
+    let skin = corpus.join("md2/waste/weapon.PCX");
+    let out = mocap(&["info", weapon.to_str().unwrap(), skin.to_str().unwrap(), "--json"]);
+    let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(v["skin"], serde_json::json!(skin.to_str().unwrap()));
+    assert_eq!(v["units"], "in", "every MD2 model is in Quake units, the weapon too");
+    let out = mocap(&["info", skin.to_str().unwrap()]);
+    assert!(!out.status.success() && stderr(&out).contains("an image is used as a model's skin"), "{}", stderr(&out));
+    // A model has no motion to convert, and --animation must name one of its animations.
+    let out = mocap(&["convert", weapon.to_str().unwrap(), "-o", "/tmp/never.bvh"]);
+    assert!(!out.status.success() && stderr(&out).contains("a model has no skeleton or motion"), "{}", stderr(&out));
+    let out = mocap(&["render", weapon.to_str().unwrap(), "--animation", "fly", "--out", "/tmp/never.png"]);
+    assert!(!out.status.success() && stderr(&out).contains("--animation fly: no model"), "{}", stderr(&out));
 }

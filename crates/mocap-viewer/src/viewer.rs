@@ -130,8 +130,7 @@ impl Viewer {
     /// Plays animation `name` (`all`: every frame) on model `index`; returns whether
     /// that model has it. The playhead stays where it is, within the new timeline.
     pub fn set_animation(&mut self, index: usize, name: &str) -> bool {
-        let Some(model) = self.stage.actors.get_mut(index).and_then(|c| c.asset.model_mut()) else { return false };
-        if !model.set_animation_by_name(name) {
+        if !self.stage.set_animation(index, name) {
             return false;
         }
         self.playback.range = None;

@@ -77,11 +77,12 @@ impl Asset {
         }
     }
 
-    /// Bounds over the whole motion or every key frame (file units).
+    /// Bounds over the whole motion, or the key frames of the model's animation
+    /// (file units).
     pub fn bounds(&self) -> Aabb {
         match self {
             Asset::Clip(c) => c.bounds(),
-            Asset::Model(m) => m.mesh.bounds(),
+            Asset::Model(m) => m.bounds(),
         }
     }
 

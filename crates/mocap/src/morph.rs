@@ -286,6 +286,15 @@ impl Model {
         MorphSample { frame0: first + frame0, frame1: first + frame1, blend }
     }
 
+    /// Bounds of every vertex over the frames played (file units): the floor and
+    /// the camera follow the animation chosen, not the model's whole file.
+    pub fn bounds(&self) -> Aabb {
+        let (first, last) = self.range();
+        let start = first.saturating_mul(self.mesh.vertex_count);
+        let end = (last + 1).saturating_mul(self.mesh.vertex_count);
+        self.mesh.positions.get(start..end).map_or(self.mesh.bounds, bounds_of)
+    }
+
     /// The name of key frame `frame` (empty when out of range).
     pub fn frame_name(&self, frame: usize) -> &str {
         self.mesh.frame_names.get(frame).map_or("", String::as_str)
@@ -374,6 +383,7 @@ mod tests {
         assert_eq!(m.frames_at(0.06, Interpolation::Step), MorphSample { frame0: 0, frame1: 0, blend: 0.0 });
         assert_eq!(m.frames_at(0.06, Interpolation::Nearest), MorphSample { frame0: 1, frame1: 1, blend: 0.0 });
         assert_eq!(m.frame_name(1), "run2");
+        assert_eq!((m.bounds().min.y, m.bounds().max.y), (0.0, 22.0), "run's frames only");
         assert!(!m.set_animation(Some(9)) && !m.set_animation_by_name("walk"));
         assert_eq!(m.animation_name(), "run");
     }

@@ -210,6 +210,20 @@ impl<E> Stage<E> {
         true
     }
 
+    /// Plays animation `name` (`all`: every frame) on model `index`, with its bounds
+    /// (so the floor and lanes follow it); false (no change) when there is no such
+    /// model or animation.
+    pub fn set_animation(&mut self, index: usize, name: &str) -> bool {
+        let Some(actor) = self.actors.get_mut(index) else { return false };
+        let Some(model) = actor.asset.model_mut() else { return false };
+        if !model.set_animation_by_name(name) {
+            return false;
+        }
+        actor.bounds = actor.asset.bounds();
+        self.arrange();
+        true
+    }
+
     /// Shows or hides actor `index`; returns whether it exists.
     pub fn set_visible(&mut self, index: usize, visible: bool) -> bool {
         self.actors.get_mut(index).map(|c| c.visible = visible).is_some()
