@@ -145,3 +145,87 @@ fn a_shadow_falls_where_the_key_light_projects_its_caster() {
     let off = ((found[0] - expected[0]).powi(2) + (found[1] - expected[1]).powi(2)).sqrt();
     assert!(off < 3.0, "shadow centre at {found:?}, expected {expected:?}");
 }
+
+/// A square facing the camera (two triangles) at `x` for each frame, with a
+/// texture whose left half is red and right half blue.
+fn quad_mesh(xs: &[f32], skin: bool) -> std::sync::Arc<mocap_render::MorphMeshData> {
+    use mocap_render::{MorphMeshData, MorphVertex, SkinImage};
+    let corners = [(-0.3f32, 0.7f32, 0.0f32, 0.0f32), (0.3, 0.7, 1.0, 0.0), (0.3, 1.3, 1.0, 1.0), (-0.3, 1.3, 0.0, 1.0)];
+    let vertices = xs
+        .iter()
+        .flat_map(|x| corners.iter().map(move |&(cx, cy, _, _)| MorphVertex { position: [x + cx, cy, 0.0], normal: [0.0, 0.0, 1.0] }))
+        .collect();
+    let uvs = corners.iter().map(|&(_, _, u, v)| [u, v]).collect();
+    let half = |c: [u8; 4]| std::iter::repeat_n(c, 8).flatten();
+    let skin = skin.then(|| SkinImage { width: 16, height: 1, pixels: half([230, 20, 20, 255]).chain(half([20, 20, 230, 255])).collect() });
+    std::sync::Arc::new(MorphMeshData::new(4, vertices, uvs, vec![0, 1, 2, 0, 2, 3], skin).expect("a valid mesh"))
+}
+
+/// Columns of the image where pixels pass `f`.
+fn columns(pixels: &[u8], f: impl Fn(&[u8]) -> bool) -> Vec<usize> {
+    let mut cols: Vec<usize> = pixels.chunks(4).enumerate().filter(|(_, p)| f(p)).map(|(i, _)| i % SIZE as usize).collect();
+    cols.sort_unstable();
+    cols.dedup();
+    cols
+}
+
+#[test]
+fn meshes_blend_two_frames_on_the_gpu_and_show_their_skin() {
+    use mocap_render::glam::Mat4;
+    use mocap_render::{MeshDraw, NEUTRAL_TINT};
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    let background = [10, 20, 30, 255];
+    let camera = Camera::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.0);
+    let mesh = quad_mesh(&[-1.0, 1.0], true);
+    let draw = |frames: [u32; 2], blend: f32| MeshDraw { mesh: mesh.clone(), frames, blend, transform: Mat4::IDENTITY, tint: [255; 4] };
+    let mut scene = Scene { background, shadows: false, ..Scene::default() };
+    let mut centre = |frames, blend, scene: &mut Scene| {
+        scene.meshes = vec![draw(frames, blend)];
+        renderer.render(&device, &queue, &target, scene, &camera);
+        let px = read_pixels(&device, &queue, &target);
+        let cols = columns(&px, |p| p != background);
+        assert!(!cols.is_empty(), "frames {frames:?} at {blend}: the mesh is drawn");
+        (cols[0] + cols[cols.len() - 1]) as f32 / 2.0 / SIZE as f32
+    };
+    let (a, b, half) = (centre([0, 0], 0.0, &mut scene), centre([1, 1], 0.0, &mut scene), centre([0, 1], 0.5, &mut scene));
+    assert!(a < 0.4 && b > 0.6, "frame 0 on the left ({a}), frame 1 on the right ({b})");
+    assert!((half - 0.5).abs() < 0.03, "halfway between the frames is the middle ({half})");
+    let quarter = centre([0, 1], 0.25, &mut scene);
+    assert!((quarter - (a + (b - a) * 0.25)).abs() < 0.03, "a quarter of the way ({quarter})");
+    // The skin: red on the left half of the square, blue on the right.
+    scene.meshes = vec![draw([0, 1], 0.5)];
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let px = read_pixels(&device, &queue, &target);
+    let red = columns(&px, |p| p[0] > 120 && p[2] < 80);
+    let blue = columns(&px, |p| p[2] > 120 && p[0] < 80);
+    assert!(red.len() > 5 && blue.len() > 5 && red[red.len() - 1] < blue[0], "red left of blue: {red:?} {blue:?}");
+    // Without a skin: the neutral tint, grey.
+    scene.meshes = vec![MeshDraw { mesh: quad_mesh(&[0.0], false), frames: [0, 0], blend: 0.0, transform: Mat4::IDENTITY, tint: NEUTRAL_TINT }];
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let px = read_pixels(&device, &queue, &target);
+    let drawn: Vec<&[u8]> = px.chunks(4).filter(|p| *p != background).collect();
+    assert!(drawn.len() > 100 && drawn.iter().all(|p| p[0].abs_diff(p[2]) < 50), "a grey square");
+    assert_eq!(renderer.draw_calls(), 1, "one draw per mesh (no floor, no shadows)");
+}
+
+#[test]
+fn a_mesh_casts_a_shadow_on_the_floor() {
+    use mocap_render::glam::Mat4;
+    use mocap_render::MeshDraw;
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    let camera = Camera::look_at(Vec3::new(0.0, 3.0, 4.0), Vec3::new(0.0, 0.5, 0.0), 0.8, 1.0);
+    let mesh = quad_mesh(&[0.0], false);
+    // Turn the square to lie flat above the floor, so it shades a patch of it.
+    let flat = Mat4::from_translation(Vec3::new(0.0, 0.3, 0.0)) * Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2) * Mat4::from_translation(Vec3::new(0.0, -1.0, 0.0));
+    let mut scene = Scene { background: [10, 20, 30, 255], ..Scene::default() };
+    scene.grid = Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::new(2.0, 0.0, 2.0), 1.0, 0.5));
+    scene.meshes = vec![MeshDraw { mesh, frames: [0, 0], blend: 0.0, transform: flat, tint: [255; 4] }];
+    let mut shot = |shadows: bool| {
+        scene.shadows = shadows;
+        renderer.render(&device, &queue, &target, &scene, &camera);
+        read_pixels(&device, &queue, &target)
+    };
+    let (lit, shadowed) = (shot(false), shot(true));
+    let darker = lit.chunks(4).zip(shadowed.chunks(4)).filter(|(a, b)| u32::from(a[0]) + u32::from(a[1]) + u32::from(a[2]) > u32::from(b[0]) + u32::from(b[1]) + u32::from(b[2]) + 20).count();
+    assert!(darker > 50, "the floor under the mesh is darker with shadows ({darker} pixels)");
+}
