@@ -29,6 +29,7 @@ pub mod clip;
 pub mod error;
 mod fastmath;
 pub mod fk;
+pub mod ik;
 pub mod image;
 pub mod load;
 pub mod md2;

@@ -269,21 +269,27 @@ impl Model {
     /// The key frames to draw at `time` (seconds into the animation) and the blend
     /// between them: linear between neighbours, or the frame shown
     /// ([`Interpolation::Step`], "switch at the frame") or the nearest one
-    /// ([`Interpolation::Nearest`], "switch at the halfway point"). Past the end the
-    /// last frame holds.
+    /// ([`Interpolation::Nearest`], "switch at the halfway point"). The animation
+    /// loops: past its last frame it blends back into its first and starts again
+    /// (so beside a longer clip it keeps playing, as in the game).
     pub fn frames_at(&self, time: f64, interpolation: Interpolation) -> MorphSample {
-        let (first, _) = self.range();
-        let timeline = self.timeline();
-        let FramePosition { frame0, frame1, alpha } = timeline.position(time);
+        let (first, last) = self.range();
+        let n = last - first + 1;
+        // One lap of the loop: the n frames and the way back to the first.
+        let lap = Timeline::new(FRAME_TIME, n + 1);
+        let period = lap.duration();
+        let time = if time > self.timeline().duration() && n > 1 && time.is_finite() { time.rem_euclid(period) } else { time };
+        let wrap = |f: usize| f % n;
+        let FramePosition { frame0, frame1, alpha } = lap.position(time);
         let (frame0, frame1, blend) = match interpolation {
             Interpolation::Linear => (frame0, frame1, alpha),
             Interpolation::Step => (frame0, frame0, 0.0),
             Interpolation::Nearest => {
-                let f = timeline.nearest(time);
+                let f = lap.nearest(time);
                 (f, f, 0.0)
             }
         };
-        MorphSample { frame0: first + frame0, frame1: first + frame1, blend }
+        MorphSample { frame0: first + wrap(frame0), frame1: first + wrap(frame1), blend }
     }
 
     /// Bounds of every vertex over the frames played (file units): the floor and
@@ -380,6 +386,11 @@ mod tests {
         assert_eq!(m.frames_at(5.0, Interpolation::Linear), MorphSample { frame0: 2, frame1: 2, blend: 0.0 });
         assert!(m.set_animation_by_name("run"));
         assert_eq!(m.frames_at(0.05, Interpolation::Linear), MorphSample { frame0: 0, frame1: 1, blend: 0.5 });
+        // Past its end the animation loops: back into its first frame, then again.
+        assert_eq!(m.frames_at(0.1, Interpolation::Linear), MorphSample { frame0: 1, frame1: 1, blend: 0.0 });
+        assert_eq!(m.frames_at(0.15, Interpolation::Linear), MorphSample { frame0: 1, frame1: 0, blend: 0.5 });
+        assert_eq!(m.frames_at(0.25, Interpolation::Linear), MorphSample { frame0: 0, frame1: 1, blend: 0.5 });
+        assert_eq!(m.frames_at(0.16, Interpolation::Nearest), MorphSample { frame0: 0, frame1: 0, blend: 0.0 });
         assert_eq!(m.frames_at(0.06, Interpolation::Step), MorphSample { frame0: 0, frame1: 0, blend: 0.0 });
         assert_eq!(m.frames_at(0.06, Interpolation::Nearest), MorphSample { frame0: 1, frame1: 1, blend: 0.0 });
         assert_eq!(m.frame_name(1), "run2");
