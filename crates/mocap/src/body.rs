@@ -1,0 +1,222 @@
+//! A body for any skeleton: BVH and Acclaim files carry no mesh, so one is built
+//! around the bones, skinned to the skeleton ([`crate::skin`]).
+//!
+//! Every bone (a joint and its parent at different places in the bind pose) gets a
+//! closed tube with round ends (a capsule mesh) of the radius the caller's rule
+//! gives for its length (the viewer passes the capsule mode's rule, so fingers,
+//! toes and long helper bones look the same in both modes). A tube is owned by the
+//! bone's parent joint (whose rotation swings it); near its far end the weight
+//! fades half-way to the child joint, near its near end half-way to the parent's
+//! parent. Where two bones meet both ends share the same blend, so a bent elbow is
+//! a smooth turn with no crack or crease. Each tube is closed (every edge is shared
+//! by two triangles) and every vertex's weights sum to 1. A skeleton with no bone
+//! at all gets a ball at each root.
+//!
+//! Inputs: the skeleton, its model transforms in the bind pose, and the radius
+//! rule. Output: a [`Skin`]. One pass over the joints, no recursion.
+
+use crate::fk::Transform;
+use crate::skeleton::Skeleton;
+use crate::skin::{Skin, SkinError, MAX_INFLUENCES};
+use glam::Vec3;
+use std::f32::consts::{FRAC_PI_2, TAU};
+
+/// Vertices around a tube.
+pub const SEGMENTS: u32 = 12;
+/// Rings in each round end (the equator included).
+pub const CAP_RINGS: u32 = 3;
+/// Spans along a tube's straight part (rings between the ends: one less).
+pub const SPANS: u32 = 4;
+/// Most bones a body is built for; past that (a 200,000-joint chain) building one
+/// is refused and the viewer keeps the capsules.
+pub const MAX_BODY_BONES: usize = 8192;
+
+/// Why no body was built.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum BodyError {
+    /// More bones than [`MAX_BODY_BONES`].
+    #[error("{0} bones: too many for a body (at most {MAX_BODY_BONES})")]
+    TooManyBones(usize),
+    /// The bind pose is not one transform per joint, or not finite.
+    #[error("the bind pose has {given} transforms for {joints} joints, or non-finite ones")]
+    BindPose {
+        /// Transforms given.
+        given: usize,
+        /// Joints in the skeleton.
+        joints: usize,
+    },
+    /// Binding failed (should not happen for a valid bind pose).
+    #[error(transparent)]
+    Skin(#[from] SkinError),
+}
+
+/// Vertices of one tube.
+pub const TUBE_VERTICES: u32 = 2 + SEGMENTS * (2 * CAP_RINGS + SPANS - 1);
+
+/// The mesh being built.
+#[derive(Default)]
+struct Builder {
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    indices: Vec<u32>,
+    joints: Vec<[u32; MAX_INFLUENCES]>,
+    weights: Vec<[f32; MAX_INFLUENCES]>,
+}
+
+/// Who moves a tube: its owner, the child at its far end, the grandparent at its
+/// near end (both optional).
+#[derive(Clone, Copy)]
+struct Owners {
+    owner: u32,
+    far: Option<u32>,
+    near: Option<u32>,
+}
+
+fn smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
+    if edge1 <= edge0 {
+        return if x >= edge1 { 1.0 } else { 0.0 };
+    }
+    let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+impl Builder {
+    /// A capsule from `a` to `b` of `radius`, weighted along its axis.
+    fn tube(&mut self, a: Vec3, b: Vec3, radius: f32, who: Owners) {
+        let length = a.distance(b);
+        let z = if length > 0.0 { (b - a) / length } else { Vec3::Y };
+        let x = z.any_orthonormal_vector();
+        let y = z.cross(x);
+        let zone = (1.5 * radius).min(0.45 * length);
+        let base = self.positions.len() as u32;
+        // Rings from the near pole to the far one: (axial position, ring radius, normal's axial part).
+        let mut rings: Vec<(f32, f32, f32)> = Vec::new();
+        for k in 1..=CAP_RINGS {
+            let phi = -FRAC_PI_2 + k as f32 * FRAC_PI_2 / CAP_RINGS as f32;
+            rings.push((radius * phi.sin(), radius * phi.cos(), phi.sin()));
+        }
+        for k in 1..SPANS {
+            rings.push((length * k as f32 / SPANS as f32, radius, 0.0));
+        }
+        for k in 0..CAP_RINGS {
+            let phi = k as f32 * FRAC_PI_2 / CAP_RINGS as f32;
+            rings.push((length + radius * phi.sin(), radius * phi.cos(), phi.sin()));
+        }
+        self.vertex(a - z * radius, -z, -radius, length, zone, who);
+        for &(along, ring, nz) in &rings {
+            for s in 0..SEGMENTS {
+                let angle = s as f32 * TAU / SEGMENTS as f32;
+                let radial = x * angle.cos() + y * angle.sin();
+                let normal = (radial * (1.0 - nz * nz).max(0.0).sqrt() + z * nz).normalize_or_zero();
+                self.vertex(a + z * along + radial * ring, normal, along, length, zone, who);
+            }
+        }
+        self.vertex(b + z * radius, z, length + radius, length, zone, who);
+        // Triangles, counter-clockwise seen from outside.
+        let ring_start = |r: u32| base + 1 + r * SEGMENTS;
+        let next = |s: u32| (s + 1) % SEGMENTS;
+        let top = base + 1 + rings.len() as u32 * SEGMENTS;
+        for s in 0..SEGMENTS {
+            self.indices.extend([base, ring_start(0) + next(s), ring_start(0) + s]);
+        }
+        for r in 0..rings.len() as u32 - 1 {
+            let (lo, hi) = (ring_start(r), ring_start(r + 1));
+            for s in 0..SEGMENTS {
+                self.indices.extend([lo + s, lo + next(s), hi + next(s)]);
+                self.indices.extend([lo + s, hi + next(s), hi + s]);
+            }
+        }
+        let last = ring_start(rings.len() as u32 - 1);
+        for s in 0..SEGMENTS {
+            self.indices.extend([top, last + s, last + next(s)]);
+        }
+    }
+
+    /// One vertex at axial position `along` of a tube of `length`.
+    fn vertex(&mut self, p: Vec3, n: Vec3, along: f32, length: f32, zone: f32, who: Owners) {
+        let far = if who.far.is_some() { 0.5 * smoothstep(length - zone, length, along) } else { 0.0 };
+        let near = if who.near.is_some() { 0.5 * (1.0 - smoothstep(0.0, zone, along)) } else { 0.0 };
+        self.positions.push(p);
+        self.normals.push(n);
+        self.joints.push([who.owner, who.far.unwrap_or(who.owner), who.near.unwrap_or(who.owner), who.owner]);
+        self.weights.push([1.0 - far - near, far, near, 0.0]);
+    }
+}
+
+/// Builds the body of `skeleton` around its bind pose (`bind`: one model
+/// transform per joint, file units); `radius(length)` gives a bone's tube radius.
+pub fn build(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(f32) -> f32) -> Result<Skin, BodyError> {
+    let joints = skeleton.joints();
+    if bind.len() != joints.len() || bind.iter().any(|t| !t.translation.is_finite()) {
+        return Err(BodyError::BindPose { given: bind.len(), joints: joints.len() });
+    }
+    let at = |j: usize| bind.get(j).map_or(Vec3::ZERO, |t| t.translation);
+    let bones: Vec<(usize, usize)> = joints
+        .iter()
+        .enumerate()
+        .filter_map(|(j, joint)| joint.parent.filter(|&p| p < j).map(|p| (p, j)))
+        .filter(|&(p, j)| at(p).distance(at(j)) > 0.0)
+        .collect();
+    if bones.len() > MAX_BODY_BONES {
+        return Err(BodyError::TooManyBones(bones.len()));
+    }
+    let mut b = Builder::default();
+    let index = |j: usize| u32::try_from(j).unwrap_or(u32::MAX);
+    for &(p, j) in &bones {
+        let length = at(p).distance(at(j));
+        let r = radius(length);
+        let r = if r.is_finite() && r > 0.0 { r } else { length * 0.1 };
+        let near = joints.get(p).and_then(|x| x.parent).map(index);
+        b.tube(at(p), at(j), r, Owners { owner: index(p), far: Some(index(j)), near });
+    }
+    if bones.is_empty() {
+        for root in skeleton.roots() {
+            let r = radius(0.0);
+            let r = if r.is_finite() && r > 0.0 { r } else { 0.05 };
+            b.tube(at(root), at(root), r, Owners { owner: index(root), far: None, near: None });
+        }
+    }
+    Ok(Skin::new(b.positions, b.normals, b.indices, b.joints, b.weights, bind)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashMap;
+
+    /// Every undirected edge and how many triangles use it.
+    pub(crate) fn edge_uses(indices: &[u32]) -> HashMap<(u32, u32), usize> {
+        let mut edges = HashMap::new();
+        for t in indices.chunks(3) {
+            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                *edges.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+            }
+        }
+        edges
+    }
+
+    #[test]
+    fn a_tube_is_closed_and_weighted_toward_its_ends() {
+        let mut b = Builder::default();
+        b.tube(Vec3::ZERO, Vec3::Y * 2.0, 0.2, Owners { owner: 1, far: Some(2), near: Some(0) });
+        assert_eq!(b.positions.len() as u32, TUBE_VERTICES);
+        assert!(edge_uses(&b.indices).values().all(|&n| n == 2), "closed");
+        // The far pole is half the child's, the middle all the owner's, the near pole half the grandparent's.
+        let last = b.weights.len() - 1;
+        assert_eq!((b.joints[last], b.weights[last]), ([1, 2, 0, 1], [0.5, 0.5, 0.0, 0.0]));
+        assert_eq!((b.joints[0], b.weights[0]), ([1, 2, 0, 1], [0.5, 0.0, 0.5, 0.0]));
+        let middle = b.positions.iter().position(|p| (p.y - 1.0).abs() < 1e-4).unwrap();
+        assert_eq!(b.weights[middle], [1.0, 0.0, 0.0, 0.0]);
+        // Outward normals: from the axis.
+        for (p, n) in b.positions.iter().zip(&b.normals) {
+            let axis = Vec3::new(0.0, p.y.clamp(0.0, 2.0), 0.0);
+            assert!((*p - axis).normalize().dot(*n) > 0.99, "{p} {n}");
+        }
+        // Triangles wind counter-clockwise seen from outside.
+        for t in b.indices.chunks(3) {
+            let [p0, p1, p2] = [0, 1, 2].map(|k| b.positions[t[k] as usize]);
+            let outward = (p0 + p1 + p2) / 3.0 - Vec3::new(0.0, ((p0 + p1 + p2) / 3.0).y.clamp(0.0, 2.0), 0.0);
+            assert!((p1 - p0).cross(p2 - p0).dot(outward) > 0.0);
+        }
+    }
+}
