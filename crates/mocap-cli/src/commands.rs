@@ -340,7 +340,7 @@ pub struct RenderOptions<'a> {
 /// added to the set).
 pub fn render(files: &[PathBuf], shot: Shot, out: &Path, size: &str, options: &RenderOptions) -> Result<ExitCode, String> {
     let mode = options.mode;
-    let mode = mocap_render::DrawMode::from_name(mode).ok_or_else(|| format!("--mode {mode}: expected `capsules` or `sticks`"))?;
+    let mode = mocap_render::DrawMode::from_name(mode).ok_or_else(|| format!("--mode {mode}: expected `capsules`, `sticks` or `body`"))?;
     let size = crate::render::parse_size(size)?;
     let orbit = options.camera.map(crate::render::parse_orbit).transpose()?.unwrap_or_default();
     let assets = read_set(files)?.into_iter().map(|l| (l.name, l.asset)).collect();

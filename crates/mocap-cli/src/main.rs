@@ -80,7 +80,7 @@ enum Command {
         /// Image size WIDTHxHEIGHT (the whole sheet for --sheet).
         #[arg(long, default_value = "1280x720")]
         size: String,
-        /// Draw mode: capsules (lit solids per bone) or sticks (lines and joints).
+        /// Draw mode: capsules (lit solids per bone), sticks (lines and joints) or body (a skinned body around the bones).
         #[arg(long, default_value = "capsules")]
         mode: String,
         /// Camera `yaw,pitch[,distance]` in degrees and metres (default frames the motion).

@@ -6,7 +6,7 @@
 use mocap::glam::Vec3;
 use mocap::stage::{Actor, Layout, PoseScratch, Stage};
 use mocap::{Asset, Interpolation, Model, Timeline};
-use mocap_render::{Camera, DrawMode, FigureJoint, FigureStyle, Grid, MeshDraw, MorphMeshData, RenderTarget, Scene, SceneRenderer, SkinImage, wgpu};
+use mocap_render::{Camera, DrawMode, FigureJoint, FigureStyle, Grid, MeshDraw, MorphMeshData, RenderTarget, Scene, SceneRenderer, SkinImage, SkinnedDraw, SkinnedMeshData, wgpu};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -183,10 +183,25 @@ impl Offscreen {
 
 /// What `mocap render` draws for one actor: a skeleton's figure or a model's mesh.
 pub enum Look {
-    /// The figure of a clip's skeleton.
-    Figure(Vec<FigureJoint>),
+    /// The figure of a clip's skeleton, and its body in body mode (none when the
+    /// skeleton gets none: it keeps its capsules).
+    Figure(Vec<FigureJoint>, Option<Body>),
     /// A model's mesh on the GPU (none when it cannot be drawn).
     Mesh(Option<Arc<MorphMeshData>>),
+}
+
+/// A clip's generated body as the renderer draws it.
+pub struct Body {
+    mesh: Arc<SkinnedMeshData>,
+    inverse_bind: Vec<mocap::glam::Mat4>,
+}
+
+/// The body of `clip` ([`mocap::body::build`] around its bind pose, tube radii by
+/// the capsule mode's rule for a figure of `extent` file units).
+pub fn body(clip: &mocap::Clip, extent: f32) -> Option<Body> {
+    let skin = mocap::body::build(clip.skeleton(), &clip.bind_pose(), |length| mocap_render::body_radius(length, extent)).ok()?;
+    let mesh = SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), clip.skeleton().len()).ok()?;
+    Some(Body { mesh: Arc::new(mesh), inverse_bind: skin.inverse_bind().to_vec() })
 }
 
 /// The renderer's copy of a model's mesh and skin ([`MorphMeshData::from_frames`]).
@@ -210,7 +225,7 @@ impl StageView {
     pub fn new(assets: Vec<(String, Asset)>) -> StageView {
         let actors = assets.into_iter().map(|(name, asset)| {
             let look = match &asset {
-                Asset::Clip(clip) => Look::Figure(mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site())))),
+                Asset::Clip(clip) => Look::Figure(mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site()))), None),
                 Asset::Model(model) => Look::Mesh(mesh_data(model)),
             };
             Actor::new(&name, asset, look)
@@ -227,9 +242,17 @@ impl StageView {
         found
     }
 
-    /// The same stage drawn in `mode`.
+    /// The same stage drawn in `mode` (body mode builds the bodies).
     pub fn with_mode(mut self, mode: DrawMode) -> StageView {
         self.mode = mode;
+        if mode == DrawMode::Body {
+            for actor in &mut self.stage.actors {
+                let extent = actor.extent;
+                if let (Look::Figure(_, slot @ None), Some(clip)) = (&mut actor.extra, actor.asset.clip()) {
+                    *slot = body(clip, extent);
+                }
+            }
+        }
         self
     }
 
@@ -252,8 +275,8 @@ impl StageView {
         let mut scratch = self.scratch.borrow_mut();
         let (pose_scratch, pose) = &mut *scratch;
         for (n, actor) in self.stage.visible() {
-            let figure = match &actor.extra {
-                Look::Figure(figure) => figure,
+            let (figure, body) = match &actor.extra {
+                Look::Figure(figure, body) => (figure, body.as_ref().filter(|_| self.mode == DrawMode::Body)),
                 Look::Mesh(mesh) => {
                     if let (Some(mesh), Some(at)) = (mesh, actor.morph_at(time, Interpolation::Linear)) {
                         let tint = if mesh.has_skin() { [255; 4] } else { mocap_render::NEUTRAL_TINT };
@@ -264,9 +287,15 @@ impl StageView {
                 }
             };
             actor.pose_at(time, Interpolation::Linear, pose_scratch, pose);
+            let color = mocap_render::PALETTE[n % mocap_render::PALETTE.len()];
+            if let Some(body) = body {
+                let mut matrices = Vec::with_capacity(body.inverse_bind.len());
+                mocap::skin::skinning_matrices(pose, &body.inverse_bind, &mut matrices);
+                scene.skinned.push(SkinnedDraw { mesh: body.mesh.clone(), matrices, tint: color, weights_view: false, margin: extent * 0.1 });
+            }
             let style = FigureStyle {
-                mode: self.mode,
-                color: mocap_render::PALETTE[n % mocap_render::PALETTE.len()],
+                mode: if self.mode == DrawMode::Body && body.is_none() { DrawMode::Capsules } else { self.mode },
+                color,
                 joint_color: mocap_render::JOINT_COLOR,
                 size: extent,
                 show_joints: true,

@@ -235,7 +235,7 @@ fn render_rejects_bad_arguments_clearly() {
     for (args, needle) in [
         (vec![f, "--out", "x.png", "--size", "10x10"], "16 to 8192"),
         (vec![f, "--out", "x.png", "--camera", "a,b"], "not a number"),
-        (vec![f, "--out", "x.png", "--mode", "boxes"], "expected `capsules` or `sticks`"),
+        (vec![f, "--out", "x.png", "--mode", "boxes"], "expected `capsules`, `sticks` or `body`"),
         (vec![f, "--out", "d", "--frames", "5:1"], "a <= b"),
         (vec![f, "--out", "x.png", "--frame", "99"], "out of range"),
     ] {

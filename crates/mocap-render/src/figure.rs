@@ -29,18 +29,28 @@ pub enum DrawMode {
     Capsules,
     /// Screen-space sticks for bones and small spheres at the joints.
     Sticks,
+    /// A skinned body around the bones (the caller adds it as a
+    /// [`crate::SkinnedDraw`]; [`push_figure`] adds only the highlight).
+    Body,
 }
 
 impl DrawMode {
-    /// Every mode, in menu order.
-    pub const ALL: [DrawMode; 2] = [DrawMode::Capsules, DrawMode::Sticks];
+    /// Every mode, in menu order (the `m` key cycles through them).
+    pub const ALL: [DrawMode; 3] = [DrawMode::Capsules, DrawMode::Sticks, DrawMode::Body];
 
     /// Lower-case name used on command lines and in URLs.
     pub fn name(self) -> &'static str {
         match self {
             DrawMode::Capsules => "capsules",
             DrawMode::Sticks => "sticks",
+            DrawMode::Body => "body",
         }
+    }
+
+    /// The mode after this one in [`DrawMode::ALL`] (cycling).
+    pub fn next(self) -> DrawMode {
+        let i = DrawMode::ALL.iter().position(|m| *m == self).unwrap_or(0);
+        DrawMode::ALL[(i + 1) % DrawMode::ALL.len()]
     }
 
     /// The mode called `name` (see [`DrawMode::name`]).
@@ -90,6 +100,13 @@ pub fn bone_radius(length: f32, size: f32) -> f32 {
         return size * 0.004;
     }
     (length * 0.2).clamp(size * 0.008, size * 0.04)
+}
+
+/// Tube radius of a bone in body mode: the capsule rule ([`bone_radius`]: helper
+/// bones thin rods, fingers thin, long limbs thick) at 1.8× the thickness, so the
+/// tubes read as a body rather than a stick figure.
+pub fn body_radius(length: f32, size: f32) -> f32 {
+    bone_radius(length, size) * 1.8
 }
 
 /// Figures with more bones than this are simplified by [`figure`], so that a file
@@ -161,6 +178,11 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
                 }
                 if is_highlight {
                     scene.capsules.push(Capsule { a: p, b: p, radius: size * 0.04, color });
+                }
+            }
+            DrawMode::Body => {
+                if is_highlight {
+                    scene.capsules.push(Capsule { a: p, b: p, radius: size * 0.045, color });
                 }
             }
             DrawMode::Sticks => {

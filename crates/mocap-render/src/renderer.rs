@@ -11,11 +11,12 @@ use crate::buffer::GrowingBuffer;
 use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
 use crate::lines::{LINE_ATTRIBUTES, LineInstance};
 use crate::mesh::MeshCache;
+use crate::skinned::SkinnedCache;
 use crate::pipeline::{self, PipelineSpec, instances};
 use crate::shadow::{self, ShadowMap};
 use crate::spheres::{SPHERE_ATTRIBUTES, SphereInstance};
 use crate::uniforms::FrameUniforms;
-use crate::{Camera, RenderTarget, Scene};
+use crate::{Camera, RenderTarget, Scene, SkinnedDraw};
 use glam::Vec3;
 use wgpu::util::DeviceExt;
 
@@ -36,6 +37,7 @@ pub struct SceneRenderer {
     coarse_capsules: GrowingBuffer,
     casters: GrowingBuffer,
     meshes: MeshCache,
+    skinned: SkinnedCache,
     line_scratch: Vec<LineInstance>,
     sphere_scratch: Vec<SphereInstance>,
     fine_scratch: Vec<CapsuleInstance>,
@@ -90,6 +92,8 @@ struct Pipelines {
     overlay_lines: wgpu::RenderPipeline,
     morph: wgpu::RenderPipeline,
     morph_shadow: wgpu::RenderPipeline,
+    skinned: wgpu::RenderPipeline,
+    skinned_shadow: wgpu::RenderPipeline,
 }
 
 /// Multiplies the colour below by the fragment's colour (floor shadows).
@@ -130,7 +134,9 @@ impl SceneRenderer {
         });
         let shadow = ShadowMap::new(device);
         let meshes = MeshCache::new(device);
-        let pipelines = Pipelines::new(device, &frame_layout, &shadow.layout, &meshes.skin_layout, format, sample_count);
+        let skinned = SkinnedCache::new(device);
+        let layouts = Layouts { frame: &frame_layout, shadow: &shadow.layout, skin: &meshes.skin_layout, joints: &skinned.layout };
+        let pipelines = Pipelines::new(device, &layouts, format, sample_count);
         SceneRenderer {
             format,
             sample_count,
@@ -147,6 +153,7 @@ impl SceneRenderer {
             coarse_capsules: GrowingBuffer::new("mocap small capsules"),
             casters: GrowingBuffer::new("mocap shadow casters"),
             meshes,
+            skinned,
             line_scratch: Vec::new(),
             sphere_scratch: Vec::new(),
             fine_scratch: Vec::new(),
@@ -232,6 +239,10 @@ impl SceneRenderer {
             pass.set_pipeline(&self.pipelines.morph);
             self.draw_calls += self.meshes.draw(&mut pass, true);
         }
+        if self.skinned.has_draws() {
+            pass.set_pipeline(&self.pipelines.skinned);
+            self.draw_calls += self.skinned.draw(&mut pass);
+        }
         if let Some((buffer, count)) = self.spheres.get() {
             pass.set_pipeline(&self.pipelines.spheres);
             pass.set_vertex_buffer(0, buffer.slice(..));
@@ -278,6 +289,10 @@ impl SceneRenderer {
             pass.set_pipeline(&self.pipelines.morph_shadow);
             self.draw_calls += self.meshes.draw(&mut pass, false);
         }
+        if self.skinned.has_draws() {
+            pass.set_pipeline(&self.pipelines.skinned_shadow);
+            self.draw_calls += self.skinned.draw(&mut pass);
+        }
     }
 
     /// Uploads instances and uniforms; returns whether the shadow pass is needed.
@@ -311,7 +326,9 @@ impl SceneRenderer {
         }
         let floor_y = scene.grid.as_ref().map(|g| g.center.y);
         self.meshes.prepare(device, queue, &scene.meshes);
-        let mesh_bounds = scene.meshes.iter().filter(|_| scene.shadows).filter_map(|m| m.world_bounds());
+        self.skinned.prepare(device, queue, &scene.skinned);
+        let skinned_bounds = scene.skinned.iter().filter_map(SkinnedDraw::world_bounds);
+        let mesh_bounds = scene.meshes.iter().filter_map(|m| m.world_bounds()).chain(skinned_bounds).filter(|_| scene.shadows);
         let bounds = mesh_bounds.chain(caster_bounds(&self.caster_scratch)).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y));
         let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light.as_ref());
@@ -338,15 +355,27 @@ fn caster_bounds(casters: &[CapsuleInstance]) -> Option<(Vec3, Vec3)> {
     (min.x <= max.x).then_some((min, max))
 }
 
+/// The bind group layouts the pipelines use.
+struct Layouts<'a> {
+    frame: &'a wgpu::BindGroupLayout,
+    shadow: &'a wgpu::BindGroupLayout,
+    skin: &'a wgpu::BindGroupLayout,
+    joints: &'a wgpu::BindGroupLayout,
+}
+
 impl Pipelines {
-    fn new(
-        device: &wgpu::Device,
-        frame_layout: &wgpu::BindGroupLayout,
-        shadow_layout: &wgpu::BindGroupLayout,
-        skin_layout: &wgpu::BindGroupLayout,
-        format: wgpu::TextureFormat,
-        sample_count: u32,
-    ) -> Pipelines {
+    fn new(device: &wgpu::Device, layouts: &Layouts, format: wgpu::TextureFormat, sample_count: u32) -> Pipelines {
+        let (frame_layout, shadow_layout, skin_layout) = (layouts.frame, layouts.shadow, layouts.skin);
+        let skinned_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap skinned"),
+            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(layouts.joints)],
+            immediate_size: 0,
+        });
+        let skinned_shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap skinned shadow"),
+            bind_group_layouts: &[Some(frame_layout), None, Some(layouts.joints)],
+            immediate_size: 0,
+        });
         let textured_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("mocap textured"),
             bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(skin_layout)],
@@ -374,6 +403,8 @@ impl Pipelines {
         let line_shader = module("mocap lines", include_str!("shaders/lines.wgsl"));
         let morph_shader = module("mocap meshes", include_str!("shaders/morph.wgsl"));
         let morph_buffers = crate::mesh::buffer_layouts();
+        let skinned_shader = module("mocap skinned", include_str!("shaders/skinned.wgsl"));
+        let skinned_buffers = crate::skinned::buffer_layouts();
         let mesh = [
             Some(wgpu::VertexBufferLayout {
                 array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
@@ -493,6 +524,27 @@ impl Pipelines {
                 ..base
             },
         );
-        Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow }
+        let skinned = pipeline::build(
+            device,
+            &skinned_layout,
+            &PipelineSpec { label: "mocap skinned", shader: &skinned_shader, buffers: &skinned_buffers, cull_back: false, ..base },
+        );
+        let skinned_shadow = pipeline::build(
+            device,
+            &skinned_shadow_layout,
+            &PipelineSpec {
+                label: "mocap skinned shadows",
+                shader: &skinned_shader,
+                vertex_entry: "vs_shadow",
+                buffers: &skinned_buffers,
+                color: None,
+                depth_format: shadow::FORMAT,
+                depth_bias: wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 },
+                cull_back: false,
+                sample_count: 1,
+                ..base
+            },
+        );
+        Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
     }
 }

@@ -1,6 +1,6 @@
 //! Scene primitives: what gets drawn, independent of where it came from.
 
-use crate::{Grid, MeshDraw};
+use crate::{Grid, MeshDraw, SkinnedDraw};
 use glam::Vec3;
 
 /// A line segment drawn `width_px` pixels wide whatever its distance.
@@ -62,6 +62,8 @@ pub struct Scene {
     pub shadow_casters: Vec<Capsule>,
     /// Vertex-animated meshes (lit, textured, shadow-casting), blended on the GPU.
     pub meshes: Vec<MeshDraw>,
+    /// Skinned meshes (bodies), lit and shadow-casting, skinned on the GPU.
+    pub skinned: Vec<SkinnedDraw>,
     /// Whether the floor receives the key light's soft shadow.
     pub shadows: bool,
 }
@@ -77,6 +79,7 @@ impl Default for Scene {
             capsules: Vec::new(),
             shadow_casters: Vec::new(),
             meshes: Vec::new(),
+            skinned: Vec::new(),
             shadows: true,
         }
     }
@@ -92,5 +95,6 @@ impl Scene {
         self.capsules.clear();
         self.shadow_casters.clear();
         self.meshes.clear();
+        self.skinned.clear();
     }
 }

@@ -6,7 +6,8 @@
 use mocap::morph::MorphSample;
 use mocap::stage::{Actor, PoseScratch};
 use mocap::{Asset, Interpolation, Model, Transform};
-use mocap_render::{FigureJoint, MorphMeshData, SkinImage};
+use mocap::glam::Mat4;
+use mocap_render::{FigureJoint, MorphMeshData, SkinImage, SkinnedMeshData};
 use std::sync::Arc;
 
 /// Bone colours given to characters in turn (the renderer's palette).
@@ -28,6 +29,34 @@ pub struct Look {
     pub mesh: Option<Arc<MorphMeshData>>,
     /// A model's key frames at the last [`pose_at`].
     pub morph: Option<MorphSample>,
+    /// The generated body of a clip (body mode), built on first use: `None` not
+    /// tried yet, `Some(None)` when the skeleton gets none (too many bones).
+    pub body: Option<Option<Body>>,
+}
+
+/// A clip's generated body as the renderer draws it.
+#[derive(Clone, Debug)]
+pub struct Body {
+    /// The bind-pose mesh with its weights.
+    pub mesh: Arc<SkinnedMeshData>,
+    /// One inverse bind matrix per joint (file units).
+    pub inverse_bind: Vec<Mat4>,
+}
+
+/// Builds the body of a clip character ([`mocap::body::build`] around
+/// [`mocap::Clip::bind_pose`], tube radii by the capsule mode's
+/// [`mocap_render::bone_radius`]) once; later calls do nothing.
+pub fn ensure_body(c: &mut Character) {
+    if c.extra.body.is_some() {
+        return;
+    }
+    let extent = c.extent;
+    let body = c.clip().and_then(|clip| {
+        let skin = mocap::body::build(clip.skeleton(), &clip.bind_pose(), |length| mocap_render::body_radius(length, extent)).ok()?;
+        let mesh = SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), clip.skeleton().len()).ok()?;
+        Some(Body { mesh: Arc::new(mesh), inverse_bind: skin.inverse_bind().to_vec() })
+    });
+    c.extra.body = Some(body);
 }
 
 /// A clip or model on the viewer's stage.

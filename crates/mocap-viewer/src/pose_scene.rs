@@ -1,4 +1,5 @@
-//! Turns posed characters into renderer primitives: bones (capsules or sticks), joints, axes, floor.
+//! Turns posed characters into renderer primitives: bones (capsules or sticks) or a
+//! skinned body, joints, axes, models' meshes, the floor.
 //! This is the only place that does; [`character_primitives`] draws one character.
 
 use crate::character::Character;
@@ -7,7 +8,7 @@ use crate::settings::ViewSettings;
 use crate::stage::Stage;
 use mocap::Transform;
 use mocap::glam::Vec3;
-use mocap_render::{FigureStyle, Grid, HIGHLIGHT_COLOR, JOINT_COLOR, Line, MeshDraw, NEUTRAL_TINT, Scene, push_figure};
+use mocap_render::{DrawMode, FigureStyle, Grid, HIGHLIGHT_COLOR, JOINT_COLOR, Line, MeshDraw, NEUTRAL_TINT, Scene, SkinnedDraw, push_figure};
 
 const AXES: [[u8; 4]; 3] = [[235, 60, 60, 255], [60, 210, 80, 255], [70, 120, 255, 255]];
 
@@ -52,8 +53,19 @@ pub fn character_primitives(
     scene: &mut Scene,
 ) {
     let size = doc.world_extent();
+    // Body mode draws the skinned body; a skeleton without one keeps its capsules.
+    let body = doc.extra.body.as_ref().and_then(|b| b.as_ref()).filter(|_| settings.mode == DrawMode::Body);
+    let mode = match (settings.mode, body) {
+        (DrawMode::Body, None) => DrawMode::Capsules,
+        (mode, _) => mode,
+    };
+    if let Some(body) = body {
+        let mut matrices = Vec::with_capacity(body.inverse_bind.len());
+        mocap::skin::skinning_matrices(transforms, &body.inverse_bind, &mut matrices);
+        scene.skinned.push(SkinnedDraw { mesh: body.mesh.clone(), matrices, tint: color, weights_view: settings.show_weights, margin: size * 0.1 });
+    }
     let style = FigureStyle {
-        mode: settings.mode,
+        mode,
         color,
         joint_color: JOINT_COLOR,
         size,

@@ -9,8 +9,10 @@ pub struct ViewSettings {
     pub show_axes: bool,
     /// Draw joint spheres (stick mode).
     pub show_joints: bool,
-    /// Capsules or sticks.
+    /// Capsules, sticks or body.
     pub mode: DrawMode,
+    /// In body mode, colour the body by its bone influences.
+    pub show_weights: bool,
     /// The key light casts soft shadows on the floor.
     pub shadows: bool,
     /// Keep the camera target over the root joint.
@@ -25,6 +27,7 @@ impl Default for ViewSettings {
             show_axes: false,
             show_joints: true,
             mode: DrawMode::Capsules,
+            show_weights: false,
             shadows: true,
             follow_root: false,
             interpolate: true,

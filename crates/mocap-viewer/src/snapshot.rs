@@ -74,7 +74,7 @@ pub struct Snapshot {
     pub selected_character: Option<usize>,
     /// `spread` or `overlay`.
     pub layout: &'static str,
-    /// `capsules` or `sticks`.
+    /// `capsules`, `sticks` or `body`.
     pub draw_mode: &'static str,
     /// Whether floor shadows are drawn.
     pub shadows: bool,

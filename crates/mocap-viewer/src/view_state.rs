@@ -10,10 +10,10 @@
 //! `spread` or `overlay`, `hide` a comma list of hidden characters' numbers (1-based
 //! like `sel`; `none` or absent when all are shown), `offset` the hand-set offsets in
 //! metres as `n:x,y,z` joined by `;` (`offset=2:0.5,0,-1`; characters not listed sit
-//! at zero; `none` or absent when all are zero), `mode` `capsules` or `sticks`,
+//! at zero; `none` or absent when all are zero), `mode` `capsules`, `sticks` or `body`,
 //! `anim` the animations models play as `n:name` joined by `;` (`anim=1:run`; models
 //! not listed play all their frames; `none` or absent when all do),
-//! `shadows` 0/1, `draw` a comma list of `joints`, `axes`, `follow`, `interp`, and `panels` a comma list of `tree`, `inspector` (or
+//! `shadows` 0/1, `draw` a comma list of `joints`, `axes`, `follow`, `interp`, `weights`, and `panels` a comma list of `tree`, `inspector` (or
 //! `none`). Timeline frames (`f`, `range`, the frame shown) count in the frame time
 //! of the selection's character, else the first one. Unknown keys and unreadable
 //! values are ignored; missing keys leave the viewer as it is.
@@ -49,17 +49,17 @@ pub struct ViewState {
     pub offsets: Option<Vec<(usize, Vec3)>>,
     /// Animations played by models (0-based character; written 1-based); the rest play all frames.
     pub animations: Option<Vec<(usize, String)>>,
-    /// Capsules or sticks.
+    /// Capsules, sticks or body.
     pub mode: Option<crate::settings::DrawMode>,
     /// Soft shadows on the floor.
     pub shadows: Option<bool>,
-    /// Draw flags: joints, axes, follow root, interpolate.
-    pub draw: Option<[bool; 4]>,
+    /// Draw flags: joints, axes, follow root, interpolate, weights view.
+    pub draw: Option<[bool; 5]>,
     /// Panels: hierarchy, inspector.
     pub panels: Option<[bool; 2]>,
 }
 
-const DRAW_NAMES: [&str; 4] = ["joints", "axes", "follow", "interp"];
+const DRAW_NAMES: [&str; 5] = ["joints", "axes", "follow", "interp", "weights"];
 const PANEL_NAMES: [&str; 2] = ["tree", "inspector"];
 
 impl ViewState {
@@ -141,7 +141,7 @@ impl ViewState {
         }
         parts.push(format!("mode={}", st.mode.name()));
         parts.push(format!("shadows={}", u8::from(st.shadows)));
-        let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate];
+        let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate, st.show_weights];
         parts.push(format!("draw={}", join_flags(draw, DRAW_NAMES)));
         let panels = [viewer.panels.hierarchy, viewer.panels.inspector];
         parts.push(format!("panels={}", join_flags(panels, PANEL_NAMES)));
@@ -180,11 +180,12 @@ impl ViewState {
         if let Some(range) = self.range {
             viewer.playback.range = range;
         }
-        if let Some([joints, axes, follow, interp]) = self.draw {
+        if let Some([joints, axes, follow, interp, weights]) = self.draw {
             viewer.settings.show_joints = joints;
             viewer.settings.show_axes = axes;
             viewer.settings.follow_root = follow;
             viewer.settings.interpolate = interp;
+            viewer.settings.show_weights = weights;
         }
         if let Some(mode) = self.mode {
             viewer.settings.mode = mode;
@@ -386,6 +387,6 @@ mod tests {
         assert_eq!(s.camera, None);
         assert_eq!(s.range, None);
         assert_eq!(s.playing, Some(true));
-        assert_eq!(s.draw, Some([false, true, false, false]));
+        assert_eq!(s.draw, Some([false, true, false, false, false]));
     }
 }

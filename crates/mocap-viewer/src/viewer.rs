@@ -305,12 +305,7 @@ impl Viewer {
             (Action::Waypoint(w), _) => self.camera.waypoint(w),
             (Action::ToggleFollow, _) => self.settings.follow_root = !self.settings.follow_root,
             (Action::ToggleAxes, _) => self.settings.show_axes = !self.settings.show_axes,
-            (Action::ToggleDrawMode, _) => {
-                self.settings.mode = match self.settings.mode {
-                    DrawMode::Capsules => DrawMode::Sticks,
-                    DrawMode::Sticks => DrawMode::Capsules,
-                }
-            }
+            (Action::ToggleDrawMode, _) => self.settings.mode = self.settings.mode.next(),
             (Action::ResetCamera, _) => self.reset_camera(),
             (Action::Step(_) | Action::First | Action::Last, None) => {}
         }
@@ -334,8 +329,12 @@ impl Viewer {
     /// Poses every visible character at the playhead and rebuilds the scene primitives.
     pub fn pose(&mut self) {
         let smooth = self.playback.playing && self.settings.interpolate;
+        let body = self.settings.mode == DrawMode::Body;
         for c in self.stage.actors.iter_mut().filter(|c| c.visible) {
             character::pose_at(c, self.playback.time, smooth, &mut self.pose_scratch);
+            if body {
+                character::ensure_body(c);
+            }
         }
         let current = self.stage.actors.get(self.current()).filter(|c| c.visible);
         if self.settings.follow_root

@@ -276,6 +276,20 @@ impl Clip {
         crate::batch::for_each_frame_positions(&self.skeleton, &self.motion, visit);
     }
 
+    /// The pose a generated body is built around ([`crate::body::build`]): the model
+    /// transforms of frame 0, or of the rest pose when there are no frames (file
+    /// units; a rest pose with zero offsets and positions in the channels would
+    /// have no bones).
+    pub fn bind_pose(&self) -> Vec<Transform> {
+        let mut bind = Vec::new();
+        if self.frame_count() > 0 {
+            self.world_transforms_into(0, &mut bind);
+        } else {
+            crate::fk::local_to_model(&self.skeleton, &LocalPose::rest(&self.skeleton), &mut bind);
+        }
+        bind
+    }
+
     /// Bounding box of all joints over all frames (the rest pose when there are no
     /// frames). Non-finite positions are skipped.
     pub fn bounds(&self) -> Aabb {

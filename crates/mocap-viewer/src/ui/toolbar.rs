@@ -64,11 +64,15 @@ fn camera_menu(ui: &mut egui::Ui, viewer: &mut Viewer) {
     }
 }
 
-/// Capsules / Sticks.
+/// Capsules / Sticks / Body (and the weights view in Body).
 fn draw_mode_choice(ui: &mut egui::Ui, viewer: &mut Viewer) {
     let mode = &mut viewer.settings.mode;
     ui.selectable_value(mode, DrawMode::Capsules, "Capsules").on_hover_text("Lit solids sized to each bone (m)");
     ui.selectable_value(mode, DrawMode::Sticks, "Sticks").on_hover_text("Lines and joint balls (m)");
+    ui.selectable_value(mode, DrawMode::Body, "Body").on_hover_text("A smooth skinned body around the bones (m)");
+    if *mode == DrawMode::Body {
+        ui.checkbox(&mut viewer.settings.show_weights, "Weights").on_hover_text("Colour the body by its bone influences");
+    }
 }
 
 /// Spread / Overlay.

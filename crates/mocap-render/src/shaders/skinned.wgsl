@@ -1,0 +1,89 @@
+// Skinned meshes (bodies): every vertex is moved by up to four joint matrices,
+// blended by its weights (linear-blend skinning). The matrices of every draw of
+// the frame live in one RGBA32F texture, four texels (columns) per matrix,
+// MATRICES_PER_ROW per row, read with textureLoad (WebGL2 has no storage buffers
+// in vertex shaders; textures work everywhere). Each draw's instance gives the
+// index of its first matrix, its tint and whether to show the weights instead.
+// `Frame`, `frame`, `to_target` and `shade` come from frame.wgsl and lighting.wgsl.
+
+const MATRICES_PER_ROW: u32 = 256u;
+
+@group(2) @binding(0) var joint_matrices: texture_2d<f32>;
+
+struct SkinnedVertex {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) joints: vec4<u32>,
+    @location(3) weights: vec4<f32>,
+    // Instance: first matrix of this draw (x); linear tint (rgb) and 1 for the weights view (w).
+    @location(4) base: vec4<u32>,
+    @location(5) tint_mode: vec4<f32>,
+};
+
+struct Out {
+    @builtin(position) position: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec3<f32>,
+};
+
+fn joint_matrix(index: u32) -> mat4x4<f32> {
+    let x = i32((index % MATRICES_PER_ROW) * 4u);
+    let y = i32(index / MATRICES_PER_ROW);
+    return mat4x4<f32>(
+        textureLoad(joint_matrices, vec2<i32>(x, y), 0),
+        textureLoad(joint_matrices, vec2<i32>(x + 1, y), 0),
+        textureLoad(joint_matrices, vec2<i32>(x + 2, y), 0),
+        textureLoad(joint_matrices, vec2<i32>(x + 3, y), 0),
+    );
+}
+
+// The blended matrix of a vertex.
+fn skin_matrix(v: SkinnedVertex) -> mat4x4<f32> {
+    let b = v.base.x;
+    return joint_matrix(b + v.joints.x) * v.weights.x
+        + joint_matrix(b + v.joints.y) * v.weights.y
+        + joint_matrix(b + v.joints.z) * v.weights.z
+        + joint_matrix(b + v.joints.w) * v.weights.w;
+}
+
+// A colour per joint (golden-ratio hues), for the weights view.
+fn joint_color(j: u32) -> vec3<f32> {
+    let h = fract(f32(j) * 0.61803398875) * 6.0;
+    let k = vec3<f32>(5.0, 3.0, 1.0);
+    let c = clamp(abs(fract((h + k) / 6.0) * 6.0 - 3.0) - 1.0, vec3<f32>(0.0), vec3<f32>(1.0));
+    return mix(vec3<f32>(0.15), c, 0.85);
+}
+
+@vertex
+fn vs_main(v: SkinnedVertex) -> Out {
+    let m = skin_matrix(v);
+    let world = (m * vec4<f32>(v.position, 1.0)).xyz;
+    var out: Out;
+    out.position = frame.projection * frame.view * vec4<f32>(world, 1.0);
+    out.world = world;
+    out.normal = (m * vec4<f32>(v.normal, 0.0)).xyz;
+    if (v.tint_mode.w > 0.5) {
+        out.color = joint_color(v.joints.x) * v.weights.x + joint_color(v.joints.y) * v.weights.y
+            + joint_color(v.joints.z) * v.weights.z + joint_color(v.joints.w) * v.weights.w;
+    } else {
+        out.color = v.tint_mode.rgb;
+    }
+    return out;
+}
+
+// Depth-only pass into the shadow map.
+@vertex
+fn vs_shadow(v: SkinnedVertex) -> @builtin(position) vec4<f32> {
+    let world = (skin_matrix(v) * vec4<f32>(v.position, 1.0)).xyz;
+    return frame.light_view_proj * vec4<f32>(world, 1.0);
+}
+
+@fragment
+fn fs_main(in: Out) -> @location(0) vec4<f32> {
+    var n = normalize(in.normal);
+    if (dot(n, frame.eye.xyz - in.world) < 0.0) {
+        n = -n;
+    }
+    return to_target(vec4<f32>(shade(in.color, in.world, n), 1.0));
+}

@@ -1,0 +1,287 @@
+//! Skinned meshes on the GPU: [`SkinnedMeshData`] (the bind-pose mesh with its
+//! joint weights, handed over once through an `Arc`), [`SkinnedDraw`] (one posed
+//! copy: a matrix per joint) and the renderer's cache of their buffers.
+//!
+//! The vertex buffer is uploaded once per mesh; per frame only the joint matrices
+//! move, all draws' into one RGBA32F texture (four texels per matrix) that the
+//! vertex shader reads, the same code on WebGPU, WebGL2 and Vulkan.
+
+use crate::buffer::GrowingBuffer;
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3};
+use std::collections::HashMap;
+use std::sync::{Arc, Weak};
+use wgpu::util::DeviceExt;
+
+/// Matrices per row of the joint texture (must match skinned.wgsl).
+const MATRICES_PER_ROW: u32 = 256;
+
+/// One vertex: bind-pose position and normal, four joints and their weights.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct SkinnedVertex {
+    /// Bind-pose position.
+    pub position: [f32; 3],
+    /// Bind-pose unit normal.
+    pub normal: [f32; 3],
+    /// Joint indices (into the draw's matrices).
+    pub joints: [u32; 4],
+    /// Weights (summing to 1).
+    pub weights: [f32; 4],
+}
+
+/// A mesh bound to joints, as the renderer draws it.
+#[derive(Debug, PartialEq)]
+pub struct SkinnedMeshData {
+    vertices: Vec<SkinnedVertex>,
+    indices: Vec<u32>,
+    joint_count: u32,
+}
+
+impl SkinnedMeshData {
+    /// A mesh from per-vertex arrays of equal length and three indices per
+    /// triangle; every weighted joint must be below `joint_count`. Refused (with
+    /// why) otherwise.
+    pub fn new(
+        positions: &[Vec3],
+        normals: &[Vec3],
+        joints: &[[u32; 4]],
+        weights: &[[f32; 4]],
+        indices: Vec<u32>,
+        joint_count: usize,
+    ) -> Result<SkinnedMeshData, String> {
+        let n = positions.len();
+        if normals.len() != n || joints.len() != n || weights.len() != n {
+            return Err("positions, normals, joints and weights differ in length".into());
+        }
+        if indices.len() % 3 != 0 || indices.iter().any(|&i| i as usize >= n) {
+            return Err("triangle indices out of range".into());
+        }
+        if joints.iter().zip(weights).any(|(j, w)| j.iter().zip(w).any(|(j, w)| *w > 0.0 && *j as usize >= joint_count)) {
+            return Err("a vertex is weighted to a joint past the skeleton".into());
+        }
+        let joint_count = u32::try_from(joint_count).map_err(|_| "too many joints")?;
+        let vertices = (0..n)
+            .map(|i| SkinnedVertex {
+                position: positions[i].to_array(),
+                normal: normals[i].to_array(),
+                joints: joints[i].map(|j| j.min(joint_count.saturating_sub(1))),
+                weights: weights[i],
+            })
+            .collect();
+        Ok(SkinnedMeshData { vertices, indices, joint_count })
+    }
+
+    /// Joints the mesh is bound to (matrices a draw needs).
+    pub fn joint_count(&self) -> u32 {
+        self.joint_count
+    }
+
+    /// Vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.vertices.len()
+    }
+}
+
+/// One posed copy of a skinned mesh in a frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SkinnedDraw {
+    /// The mesh (uploaded on first sight, kept while an `Arc` to it lives).
+    pub mesh: Arc<SkinnedMeshData>,
+    /// One matrix per joint, bind pose to world (`world · bind⁻¹`); missing ones
+    /// count as identity.
+    pub matrices: Vec<Mat4>,
+    /// sRGB colour.
+    pub tint: [u8; 4],
+    /// Colour by bone influences instead of the tint.
+    pub weights_view: bool,
+    /// How far the surface reaches from the joints at most (world units): for
+    /// fitting the shadow map around the draw.
+    pub margin: f32,
+}
+
+impl SkinnedDraw {
+    /// A box around the posed mesh: the joints' positions grown by
+    /// [`SkinnedDraw::margin`] (for fitting the shadow map).
+    pub fn world_bounds(&self) -> Option<(Vec3, Vec3)> {
+        let margin = if self.margin.is_finite() { self.margin.max(0.0) } else { 0.0 };
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for m in &self.matrices {
+            let p = m.w_axis.truncate();
+            if p.is_finite() {
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        }
+        (lo.x <= hi.x).then(|| (lo - Vec3::splat(margin), hi + Vec3::splat(margin)))
+    }
+}
+
+/// Per-draw data (slot 1).
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct Instance {
+    base: [u32; 4],
+    tint_mode: [f32; 4],
+}
+
+const INSTANCE_SIZE: u64 = std::mem::size_of::<Instance>() as u64;
+
+/// Vertex buffer layouts of the skinned pipeline: the mesh, then the instance.
+pub(crate) fn buffer_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
+    const VERTEX: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32x4, 3 => Float32x4];
+    const INSTANCE: [wgpu::VertexAttribute; 2] = wgpu::vertex_attr_array![4 => Uint32x4, 5 => Float32x4];
+    [
+        Some(wgpu::VertexBufferLayout { array_stride: std::mem::size_of::<SkinnedVertex>() as u64, step_mode: wgpu::VertexStepMode::Vertex, attributes: &VERTEX }),
+        Some(wgpu::VertexBufferLayout { array_stride: INSTANCE_SIZE, step_mode: wgpu::VertexStepMode::Instance, attributes: &INSTANCE }),
+    ]
+}
+
+struct GpuMesh {
+    owner: Weak<SkinnedMeshData>,
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    index_count: u32,
+}
+
+/// The skinned meshes on the GPU, the joint texture and this frame's draws.
+pub(crate) struct SkinnedCache {
+    pub layout: wgpu::BindGroupLayout,
+    meshes: HashMap<usize, GpuMesh>,
+    texture: Option<(wgpu::Texture, wgpu::BindGroup, u32)>,
+    instances: GrowingBuffer,
+    scratch: Vec<Instance>,
+    texels: Vec<[f32; 4]>,
+    draws: Vec<(usize, u32)>,
+}
+
+impl SkinnedCache {
+    pub fn new(device: &wgpu::Device) -> SkinnedCache {
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("mocap joint matrices"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::VERTEX,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            }],
+        });
+        SkinnedCache {
+            layout,
+            meshes: HashMap::new(),
+            texture: None,
+            instances: GrowingBuffer::new("mocap skinned instances"),
+            scratch: Vec::new(),
+            texels: Vec::new(),
+            draws: Vec::new(),
+        }
+    }
+
+    /// Uploads new meshes, forgets dropped ones, and writes this frame's matrices
+    /// and instances.
+    pub fn prepare(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, draws: &[SkinnedDraw]) {
+        self.meshes.retain(|_, m| m.owner.strong_count() > 0);
+        self.scratch.clear();
+        self.texels.clear();
+        self.draws.clear();
+        for draw in draws {
+            let key = Arc::as_ptr(&draw.mesh) as usize;
+            if !self.meshes.contains_key(&key) {
+                let data = &draw.mesh;
+                let bytes: &[u8] = bytemuck::cast_slice(&data.vertices);
+                if bytes.len() as u64 > device.limits().max_buffer_size || data.indices.is_empty() {
+                    continue;
+                }
+                let buffer = |label, contents: &[u8], usage| device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage });
+                let mesh = GpuMesh {
+                    owner: Arc::downgrade(data),
+                    vertices: buffer("mocap skinned vertices", bytes, wgpu::BufferUsages::VERTEX),
+                    indices: buffer("mocap skinned indices", bytemuck::cast_slice(&data.indices), wgpu::BufferUsages::INDEX),
+                    index_count: data.indices.len() as u32,
+                };
+                self.meshes.insert(key, mesh);
+            }
+            let base = (self.texels.len() / 4) as u32;
+            for j in 0..draw.mesh.joint_count as usize {
+                let m = draw.matrices.get(j).copied().filter(|m| m.is_finite()).unwrap_or(Mat4::IDENTITY);
+                self.texels.extend(m.to_cols_array_2d());
+            }
+            let [r, g, b, _] = crate::srgb_to_linear(draw.tint);
+            self.draws.push((key, self.scratch.len() as u32));
+            self.scratch.push(Instance { base: [base, 0, 0, 0], tint_mode: [r, g, b, if draw.weights_view { 1.0 } else { 0.0 }] });
+        }
+        self.instances.upload(device, queue, &self.scratch);
+        self.upload_matrices(device, queue);
+    }
+
+    /// Writes the matrices into the joint texture, growing it (rows doubling) when needed.
+    fn upload_matrices(&mut self, device: &wgpu::Device, queue: &wgpu::Queue) {
+        let matrices = (self.texels.len() / 4) as u32;
+        if matrices == 0 {
+            return;
+        }
+        let rows = matrices.div_ceil(MATRICES_PER_ROW);
+        let max_rows = device.limits().max_texture_dimension_2d;
+        if rows > max_rows {
+            self.draws.clear();
+            return;
+        }
+        if self.texture.as_ref().is_none_or(|(_, _, have)| *have < rows) {
+            let height = rows.next_power_of_two().min(max_rows);
+            let texture = device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("mocap joint matrices"),
+                size: wgpu::Extent3d { width: MATRICES_PER_ROW * 4, height, depth_or_array_layers: 1 },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            });
+            let view = texture.create_view(&Default::default());
+            let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("mocap joint matrices"),
+                layout: &self.layout,
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view) }],
+            });
+            self.texture = Some((texture, group, height));
+        }
+        let Some((texture, _, _)) = &self.texture else { return };
+        // Whole rows: pad the last one.
+        let row_texels = (MATRICES_PER_ROW * 4) as usize;
+        self.texels.resize(rows as usize * row_texels, [0.0; 4]);
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo { texture, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+            bytemuck::cast_slice(&self.texels),
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(MATRICES_PER_ROW * 4 * 16), rows_per_image: Some(rows) },
+            wgpu::Extent3d { width: MATRICES_PER_ROW * 4, height: rows, depth_or_array_layers: 1 },
+        );
+    }
+
+    /// Whether this frame draws any skinned mesh.
+    pub fn has_draws(&self) -> bool {
+        !self.draws.is_empty() && self.texture.is_some()
+    }
+
+    /// Records the draws into `pass` (pipeline and group 0 set); binds the joint
+    /// texture at group 2. Returns the draw calls made.
+    pub fn draw<'a>(&'a self, pass: &mut wgpu::RenderPass<'a>) -> u32 {
+        let (Some((instances, _)), Some((_, group, _))) = (self.instances.get(), &self.texture) else { return 0 };
+        pass.set_bind_group(2, group, &[]);
+        let mut calls = 0;
+        for &(key, instance) in &self.draws {
+            let Some(mesh) = self.meshes.get(&key) else { continue };
+            let at = u64::from(instance) * INSTANCE_SIZE;
+            pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+            pass.set_vertex_buffer(1, instances.slice(at..at + INSTANCE_SIZE));
+            pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+            calls += 1;
+        }
+        calls
+    }
+}
