@@ -6,6 +6,10 @@
 //! Then the same for capsules without shadows, and without shadows or MSAA, to
 //! show where the time goes on a software rasteriser.
 //!
+//! Then body mode (generated bodies skinned on the GPU) for 1, 16 and 64 of the
+//! same characters, and the time to build the body of the corpus skeleton with the
+//! most joints.
+//!
 //! Then 1, 16 and 64 textured MD2 characters (`md2/waste/tris.md2` with its PCX
 //! skin, running; frames blended on the GPU), and the time to load the largest
 //! corpus model (`md2/irrlicht_faerie/faerie.md2` with its BMP skin: parse, build
@@ -52,6 +56,11 @@ fn main() {
             measure(&gpu, &mut offscreen, &clip, DrawMode::Capsules, count, false);
         }
     }
+    println!("body mode (generated skinned bodies, GPU skinning), 4x MSAA, shadows on:");
+    for count in [1usize, 16, 64] {
+        measure(&gpu, &mut offscreen, &clip, DrawMode::Body, count, true);
+    }
+    body_build_time(&corpus);
     let read = |p: &str| std::fs::read(corpus.join(p)).expect("corpus MD2 file");
     let (model, skin) = (read("md2/waste/tris.md2"), read("md2/waste/waste.pcx"));
     let files = [mocap::Input { name: "tris.md2", bytes: &model }, mocap::Input { name: "waste.pcx", bytes: &skin }];
@@ -73,6 +82,29 @@ fn main() {
     }
     let load_ms = start.elapsed().as_secs_f64() * 1e3 / runs as f64;
     println!("load faerie.md2 ({} KB) + faerie2.bmp: {load_ms:.2} ms (parse, drawing mesh, skin decode)", model.len() / 1024);
+}
+
+/// Times building the body of the corpus BVH skeleton with the most joints.
+fn body_build_time(corpus: &Path) {
+    let manifest = std::fs::read_to_string(corpus.join("MANIFEST.tsv")).unwrap_or_default();
+    let largest = manifest
+        .lines()
+        .filter_map(|l| l.split('\t').next())
+        .filter(|p| p.ends_with(".bvh"))
+        .filter_map(|p| Some((p.to_owned(), mocap::load_one(p, &std::fs::read(corpus.join(p)).ok()?).ok()?.clip()?.clone())))
+        .max_by_key(|(_, c)| c.skeleton().len());
+    let Some((path, clip)) = largest else { return };
+    let bind = clip.bind_pose();
+    let extent = clip.pose_extent();
+    let runs = 20;
+    let start = Instant::now();
+    let mut vertices = 0;
+    for _ in 0..runs {
+        let body = mocap::body::build(clip.skeleton(), &bind, |l| mocap_render::body_radius(l, extent)).expect("a body");
+        vertices = body.positions().len();
+    }
+    let ms = start.elapsed().as_secs_f64() * 1e3 / runs as f64;
+    println!("body for {path} ({} joints, {vertices} vertices): built in {ms:.2} ms", clip.skeleton().len());
 }
 
 /// Times whole frames of `count` characters and prints one line.
@@ -100,12 +132,13 @@ fn measure(gpu: &Gpu, offscreen: &mut Offscreen, clip: &mocap::Asset, mode: Draw
     }
     let readback_ms = start.elapsed().as_secs_f64() * 1e3 / FRAMES as f64;
     println!(
-        "{:<8} {count:>3} characters: frame {frame_ms:>7.2} ms, + readback {readback_ms:>7.2} ms  ({} capsules, {} lines, {} spheres, {} meshes; draw calls per frame: {})",
+        "{:<8} {count:>3} characters: frame {frame_ms:>7.2} ms, + readback {readback_ms:>7.2} ms  ({} capsules, {} lines, {} spheres, {} meshes, {} bodies; draw calls per frame: {})",
         if clip.model().is_some() { "md2" } else { mode.name() },
         scene.capsules.len(),
         scene.lines.len(),
         scene.spheres.len(),
         scene.meshes.len(),
+        scene.skinned.len(),
         offscreen.draw_calls(),
     );
 }

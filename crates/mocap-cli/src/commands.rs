@@ -100,7 +100,8 @@ fn vec3(v: mocap::glam::Vec3) -> Value {
 
 fn print_json(value: &Value) -> Result<ExitCode, String> {
     let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
-    println!("{text}");
+    // A closed pipe (`| head`) is not an error worth a panic.
+    let _ = writeln!(std::io::stdout().lock(), "{text}");
     Ok(ExitCode::SUCCESS)
 }
 
@@ -215,6 +216,80 @@ pub fn pose(paths: &[PathBuf], frame: usize) -> Result<ExitCode, String> {
         .collect();
     let time = clip.timeline().time_of(frame);
     print_json(&json!({ "frame": frame, "time": time, "joints": joints }))
+}
+
+/// What `mocap ik` is asked.
+pub struct IkRequest<'a> {
+    /// The effector's name.
+    pub joint: &'a str,
+    /// `x,y,z`.
+    pub target: &'a str,
+    /// Frame index.
+    pub frame: usize,
+    /// Bones above the effector.
+    pub bones: Option<usize>,
+    /// Solver name.
+    pub solver: Option<&'a str>,
+}
+
+/// `mocap ik`: the pose at a frame, its chain solved toward a target.
+pub fn ik(paths: &[PathBuf], request: &IkRequest) -> Result<ExitCode, String> {
+    let clip = read_clip(paths)?;
+    let skeleton = clip.skeleton();
+    if request.frame >= clip.frame_count().max(1) {
+        return Err(format!("{}: frame {} is out of range (the clip has {} frames)", shown(paths), request.frame, clip.frame_count()));
+    }
+    let effector = skeleton.find(request.joint).ok_or_else(|| format!("{}: no joint named `{}`", shown(paths), request.joint))?;
+    let xyz: Vec<f32> = request.target.split(',').map(|v| v.trim().parse::<f32>()).collect::<Result<_, _>>().map_err(|_| format!("--target {}: expected x,y,z (numbers)", request.target))?;
+    let target = match xyz.as_slice() {
+        &[x, y, z] if xyz.iter().all(|v| v.is_finite()) => mocap::glam::Vec3::new(x, y, z),
+        _ => return Err(format!("--target {}: expected x,y,z (three finite numbers)", request.target)),
+    };
+    let chain = match request.bones {
+        Some(bones) => mocap::ik::Chain::up_from(skeleton, effector, bones.max(1)),
+        None => Ok(mocap::ik::default_chains(skeleton).into_iter().find(|(_, c)| c.effector() == effector).map(|(_, c)| c).unwrap_or(mocap::ik::Chain::up_from(skeleton, effector, 2).map_err(|e| e.to_string())?)),
+    }
+    .map_err(|e| e.to_string())?;
+    let solver = request.solver.unwrap_or(if chain.joints().len() == 3 { "two-bone" } else { "fabrik" });
+    let mut pose = mocap::LocalPose::default();
+    clip.local_pose_into(request.frame, &mut pose);
+    // Within a ten-thousandth of the chain's length, with passes to spare (CCD
+    // converges slowly on some chains; the others stop as soon as they are there).
+    let rest = mocap::fk::rest_positions(skeleton);
+    let length: f32 = chain.joints().windows(2).map(|w| rest[w[0]].distance(rest[w[1]])).sum();
+    let options = mocap::ik::Options { angle_unit: clip.motion().angle_unit(), iterations: 2000, tolerance: 1e-4 * length.max(1e-6), ..Default::default() };
+    let result = match solver {
+        "two-bone" if chain.joints().len() == 3 => {
+            // Bend toward where the middle joint points now (keeps the knee forward).
+            let mid = mocap::ik::model_transform(skeleton, &pose, chain.joints()[1]).translation;
+            let root = mocap::ik::model_transform(skeleton, &pose, chain.root()).translation;
+            mocap::ik::two_bone(skeleton, &mut pose, &chain, target, mid + (mid - root), &options)
+        }
+        "two-bone" => return Err(format!("--solver two-bone needs a chain of two bones (this one has {})", chain.joints().len() - 1)),
+        "ccd" => mocap::ik::ccd(skeleton, &mut pose, &chain, target, &options),
+        "fabrik" => mocap::ik::fabrik(skeleton, &mut pose, &chain, target, &options),
+        other => return Err(format!("--solver {other}: expected two-bone, ccd or fabrik")),
+    };
+    let mut model = Vec::new();
+    mocap::local_to_model(skeleton, &pose, &mut model);
+    let name = |j: usize| skeleton.joints().get(j).map_or(String::new(), |x| x.name.clone());
+    let joints: Vec<Value> = skeleton
+        .joints()
+        .iter()
+        .zip(&model)
+        .map(|(j, t)| json!({ "name": j.name, "parent": j.parent, "end_site": j.is_end_site(), "position": vec3(t.translation) }))
+        .collect();
+    print_json(&json!({
+        "frame": request.frame,
+        "time": clip.timeline().time_of(request.frame),
+        "joint": request.joint,
+        "target": vec3(target),
+        "solver": solver,
+        "chain": chain.joints().iter().map(|&j| name(j)).collect::<Vec<_>>(),
+        "reached": result.reached,
+        "distance": num(result.distance),
+        "joints": joints,
+    }))
 }
 
 /// `mocap convert`: to BVH (general clips baked, every position kept) or BVA (each

@@ -39,6 +39,32 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Solves IK at one frame: pulls a joint to a target and prints the corrected
+    /// pose's world positions (as `pose` does).
+    Ik {
+        /// The motion file (an AMC finds its .asf, or give both).
+        #[arg(required = true, num_args = 1..=2)]
+        files: Vec<PathBuf>,
+        /// The joint to move (the end effector).
+        #[arg(long)]
+        joint: String,
+        /// Where it should go: x,y,z in the file's units and model space.
+        #[arg(long, allow_hyphen_values = true)]
+        target: String,
+        /// Frame index, 0-based.
+        #[arg(long, default_value_t = 0)]
+        frame: usize,
+        /// Bones in the chain above the joint (default: the limb's two for a hand or
+        /// foot of a humanoid, else 2).
+        #[arg(long)]
+        bones: Option<usize>,
+        /// two-bone, ccd or fabrik (default: two-bone for two bones, else fabrik).
+        #[arg(long)]
+        solver: Option<String>,
+        /// Print JSON (the only output form; accepted for clarity).
+        #[arg(long)]
+        json: bool,
+    },
     /// Converts a motion to BVH (every joint position kept) or BVA (each joint's world transform a segment).
     Convert {
         /// Input file(s): one motion file, or an Acclaim skeleton and motion (`SKEL.asf TAKE.amc`).
@@ -101,6 +127,9 @@ fn main() -> ExitCode {
         Command::Info { files, json } => commands::info(&files, json),
         Command::Pose { files, frame, json: _ } => commands::pose(&files, frame),
         Command::Convert { inputs, output } => commands::convert(&inputs, &output),
+        Command::Ik { files, joint, target, frame, bones, solver, json: _ } => {
+            commands::ik(&files, &commands::IkRequest { joint: &joint, target: &target, frame, bones, solver: solver.as_deref() })
+        }
         Command::Validate { paths } => commands::validate(&paths),
         Command::Render { mut files, skin, animation, frame, time, frames, sheet, columns, out, size, mode, camera } => {
             files.extend(skin);

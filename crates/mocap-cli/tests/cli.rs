@@ -253,3 +253,38 @@ fn info_and_validate_read_md2_models() {
     let out = mocap(&["render", weapon.to_str().unwrap(), "--animation", "fly", "--out", "/tmp/never.png"]);
     assert!(!out.status.success() && stderr(&out).contains("--animation fly: no model"), "{}", stderr(&out));
 }
+
+#[test]
+fn ik_moves_a_hand_to_a_target_and_reports_the_pose() {
+    let walk = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bvh");
+    let walk = walk.to_str().unwrap();
+    let pose: Value = serde_json::from_str(&stdout(&mocap(&["pose", walk, "--frame", "12", "--json"]))).unwrap();
+    let hand = pose["joints"].as_array().unwrap().iter().find(|j| j["name"] == "LeftHand").unwrap()["position"].clone();
+    let p: Vec<f64> = hand.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let target = format!("{},{},{}", p[0] + 6.0, p[1] + 8.0, p[2] - 4.0);
+    for solver in ["two-bone", "ccd", "fabrik"] {
+        let out = mocap(&["ik", walk, "--joint", "LeftHand", "--target", &target, "--frame", "12", "--solver", solver, "--json"]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
+        assert_eq!(v["chain"], serde_json::json!(["LeftArm", "LeftForeArm", "LeftHand"]), "the default arm chain");
+        assert_eq!(v["reached"], true, "{solver}: {}", v["distance"]);
+        let got = v["joints"].as_array().unwrap().iter().find(|j| j["name"] == "LeftHand").unwrap()["position"].clone();
+        let g: Vec<f64> = got.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        let d = ((g[0] - p[0] - 6.0).powi(2) + (g[1] - p[1] - 8.0).powi(2) + (g[2] - p[2] + 4.0).powi(2)).sqrt();
+        assert!(d < 1e-2, "{solver}: the hand is {d} from the target");
+        // The other hand did not move.
+        let other = |v: &Value| v["joints"].as_array().unwrap().iter().find(|j| j["name"] == "RightHand").unwrap()["position"].clone();
+        assert_eq!(other(&v), other(&pose));
+    }
+    for (args, needle) in [
+        (vec!["--joint", "Nope", "--target", "0,0,0"], "no joint named `Nope`"),
+        (vec!["--joint", "LeftHand", "--target", "1,2"], "expected x,y,z"),
+        (vec!["--joint", "LeftHand", "--target", "0,0,0", "--solver", "magic"], "expected two-bone, ccd or fabrik"),
+        (vec!["--joint", "LeftHand", "--target", "0,0,0", "--bones", "4", "--solver", "two-bone"], "needs a chain of two bones"),
+    ] {
+        let mut all = vec!["ik", walk];
+        all.extend(args);
+        let out = mocap(&all);
+        assert!(!out.status.success() && stderr(&out).contains(needle), "{all:?}: {}", stderr(&out));
+    }
+}

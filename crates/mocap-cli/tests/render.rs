@@ -168,6 +168,12 @@ fn golden_two_characters_custom_camera() {
     check_golden("figure_pair_camera.png", 2, &["--time", "0.75", "--size", "320x180", "--camera", "60,25"]);
 }
 
+/// Body mode: the figure's generated body, skinned on the GPU, bent at frame 2.
+#[test]
+fn golden_body_mode() {
+    check_golden("figure_body.png", 1, &["--frame", "2", "--size", "320x180", "--mode", "body", "--camera", "25,10"]);
+}
+
 #[test]
 fn golden_contact_sheet() {
     check_golden("figure_sheet.png", 1, &["--sheet", "--columns", "3", "--size", "480x180"]);

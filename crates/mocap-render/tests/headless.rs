@@ -229,3 +229,74 @@ fn a_mesh_casts_a_shadow_on_the_floor() {
     let darker = lit.chunks(4).zip(shadowed.chunks(4)).filter(|(a, b)| u32::from(a[0]) + u32::from(a[1]) + u32::from(a[2]) > u32::from(b[0]) + u32::from(b[1]) + u32::from(b[2]) + 20).count();
     assert!(darker > 50, "the floor under the mesh is darker with shadows ({darker} pixels)");
 }
+
+/// GPU skinning against the same blend done on the CPU: a bent strip of quads
+/// weighted between two joints, drawn skinned, then drawn from CPU-skinned
+/// vertices as a static mesh; the pictures agree.
+#[test]
+fn gpu_skinning_matches_the_cpu_blend() {
+    use mocap_render::glam::{Mat4, Quat};
+    use mocap_render::{MeshDraw, MorphMeshData, MorphVertex, SkinnedDraw, SkinnedMeshData};
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    // A strip along +Y from 0 to 2 facing +Z, 9 rows; weights move from joint 0 to joint 1 along it.
+    let (mut positions, mut normals, mut joints, mut weights, mut uvs) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for row in 0..9 {
+        let y = row as f32 * 0.25;
+        let w1 = (y - 0.5).clamp(0.0, 1.0);
+        for x in [-0.2f32, 0.2] {
+            positions.push(Vec3::new(x, y, 0.0));
+            normals.push(Vec3::Z);
+            joints.push([0, 1, 0, 0]);
+            weights.push([1.0 - w1, w1, 0.0, 0.0]);
+            uvs.push([0.0, 0.0]);
+        }
+    }
+    let mut indices = Vec::new();
+    for row in 0..8u32 {
+        let (a, b) = (row * 2, row * 2 + 2);
+        indices.extend([a, a + 1, b + 1, a, b + 1, b]);
+    }
+    let mesh = std::sync::Arc::new(SkinnedMeshData::new(&positions, &normals, &joints, &weights, indices.clone(), 2).unwrap());
+    // Joint 1 at y = 1 turns 60° about Z: its matrix is T(1)·R·T(-1) (bind → posed).
+    let bend = Mat4::from_translation(Vec3::Y) * Mat4::from_quat(Quat::from_rotation_z(1.0)) * Mat4::from_translation(-Vec3::Y);
+    let matrices = vec![Mat4::IDENTITY, bend];
+    let camera = Camera::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.0);
+    let tint = [200, 180, 160, 255];
+    let mut scene = Scene { shadows: false, ..Scene::default() };
+    scene.skinned = vec![SkinnedDraw { mesh: mesh.clone(), matrices: matrices.clone(), tint, weights_view: false, margin: 0.3 }];
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let gpu = read_pixels(&device, &queue, &target);
+    // The CPU blend: Σ wᵢ·Mᵢ applied to each vertex.
+    let vertices: Vec<MorphVertex> = positions
+        .iter()
+        .zip(&normals)
+        .zip(&weights)
+        .map(|((p, n), w)| {
+            let m = matrices[0] * w[0] + matrices[1] * w[1];
+            MorphVertex { position: m.transform_point3(*p).to_array(), normal: m.transform_vector3(*n).normalize().to_array() }
+        })
+        .collect();
+    let cpu_mesh = std::sync::Arc::new(MorphMeshData::new(positions.len(), vertices, uvs, indices, None).unwrap());
+    scene.skinned.clear();
+    scene.meshes = vec![MeshDraw { mesh: cpu_mesh, frames: [0, 0], blend: 0.0, transform: Mat4::IDENTITY, tint }];
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let cpu = read_pixels(&device, &queue, &target);
+    let background = Scene::default().background;
+    let drawn = gpu.chunks(4).filter(|p| *p != background).count();
+    let differ = gpu.chunks(4).zip(cpu.chunks(4)).filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 8)).count();
+    assert!(drawn > 300, "the skinned strip is drawn ({drawn} pixels)");
+    assert!(differ * 100 < drawn, "GPU and CPU skinning agree: {differ} of {drawn} pixels differ");
+    // The bend is real: the top of the strip moved left of the bottom.
+    let columns_of = |rows: std::ops::Range<usize>| {
+        let cols: Vec<usize> = gpu.chunks(4).enumerate().filter(|(i, p)| *p != background && rows.contains(&(i / SIZE as usize))).map(|(i, _)| i % SIZE as usize).collect();
+        cols.iter().sum::<usize>() as f32 / cols.len().max(1) as f32
+    };
+    assert!(columns_of(10..40) + 10.0 < columns_of(80..110), "bent toward -X at the top");
+    // The weights view colours by joint, not by the tint.
+    scene.meshes.clear();
+    scene.skinned = vec![SkinnedDraw { mesh, matrices, tint, weights_view: true, margin: 0.3 }];
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let weights_view = read_pixels(&device, &queue, &target);
+    let changed = gpu.chunks(4).zip(weights_view.chunks(4)).filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 30)).count();
+    assert!(changed * 2 > drawn, "the weights view recolours the body ({changed} of {drawn})");
+}
