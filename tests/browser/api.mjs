@@ -21,6 +21,12 @@ await step('parseMotion in Node on the built package', async () => {
     `${names.length} joints, root ${names[0]}, parents an Int32Array`);
   const p = clip.worldPositions(10);
   check(p instanceof Float32Array && p.length === 3 * names.length && p.every(Number.isFinite), `worldPositions(10): ${p.length} finite floats`);
+  const indices = clip.bodyIndices();
+  const body = clip.bodyVertices(10);
+  check(indices instanceof Uint32Array && indices.length > 0 && indices.length % 3 === 0, `bodyIndices(): ${indices.length / 3} triangles`);
+  check(body instanceof Float32Array && body.length % 3 === 0 && body.every(Number.isFinite) && indices.every((i) => i < body.length / 3), `bodyVertices(10): ${body.length / 3} finite vertices`);
+  const moved = clip.bodyVertices(40);
+  check(moved.some((v, i) => Math.abs(v - body[i]) > 1e-3), 'the body moves with the motion');
   const again = pkg.parseMotion(new TextEncoder().encode(clip.toBvh()), 'again.bvh');
   check(again.frameCount === 67 && again.worldPositions(10).every((v, i) => v === p[i]), 'toBvh() parses back to the same positions');
   let message = null;

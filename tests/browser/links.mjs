@@ -135,7 +135,7 @@ try {
   const failing = [
     ['missing file', `${cors.origin}/missing.bvh`, /not found \(HTTP 404\)/],
     ['host without CORS', `${plain.origin}/walk.bvh`, /blocked by CORS.*Access-Control-Allow-Origin/],
-    ['not a motion file', `${cors.origin}/notes.html`, /not a motion file/],
+    ['not a motion file', `${cors.origin}/notes.html`, /not a motion file or model/],
     ['javascript: URL', 'javascript:window.pwned=true', /Only http and https/],
     ['data: URL', 'data:text/plain,HIERARCHY', /Only http and https/],
     ['too large', `${cors.origin}/big.bvh`, /too large.*limit is 1\.0 MB/, '&maxmb=1'],

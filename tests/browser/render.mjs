@@ -78,6 +78,25 @@ try {
     check(s.view.includes('mode=sticks'), 'the fragment follows');
   });
 
+  await step('the m key again switches to the body, then back to capsules', async () => {
+    await page.keyboard.press('m');
+    const s = await waitState(page, (s) => s.drawMode === 'body');
+    await changeAndRender(page, (v) => v.seek(30));
+    const body = await view(page, shot('body'));
+    const [a, b] = [await pixelStats(context, capsules), await pixelStats(context, body)];
+    check(b.figure > a.figure, `the body covers more pixels than the capsules (${b.figure} > ${a.figure})`);
+    check(b.blue < 5, `no joint balls on the body (${b.blue})`);
+    check(s.view.includes('mode=body'), 'the fragment follows');
+    const w = await changeAndRender(page, (v) => v.applyViewState('draw=joints,weights'));
+    const weights = await view(page, shot('body-weights'));
+    const pw = await pixelStats(context, weights, body);
+    check(w.view.includes('weights'), `the weights view is in the fragment (${w.view})`);
+    const grey = (await pixelStats(context, weights)).figure;
+    check(grey < b.figure / 2, `the weights view colours the body (${grey} grey pixels left of ${b.figure})`);
+    await page.keyboard.press('m');
+    await waitState(page, (s) => s.drawMode === 'capsules');
+  });
+
   await step('a link with mode=sticks opens in stick mode', async () => {
     await page.goto('about:blank');
     await page.goto(`${base}#t=1&play=0&mode=sticks&shadows=1`);

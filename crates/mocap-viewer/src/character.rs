@@ -32,6 +32,108 @@ pub struct Look {
     /// The generated body of a clip (body mode), built on first use: `None` not
     /// tried yet, `Some(None)` when the skeleton gets none (too many bones).
     pub body: Option<Option<Body>>,
+    /// A pose corrected by dragging a joint (Pose mode), shown at its frame.
+    pub correction: Option<Correction>,
+    /// The clip's own pose (world, metres) while a correction is shown, drawn as a ghost.
+    pub ghost: Vec<Transform>,
+}
+
+/// Local rotations (and a root position) set by IK at one frame of a clip.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Correction {
+    /// The clip frame it applies to.
+    pub frame: usize,
+    /// Joints and their corrected local rotations.
+    pub rotations: Vec<(usize, mocap::glam::Quat)>,
+    /// Roots moved by hand, and their local translations.
+    pub translations: Vec<(usize, mocap::glam::Vec3)>,
+}
+
+impl Correction {
+    /// Writes the corrected values into `local`.
+    pub fn apply(&self, local: &mut mocap::LocalPose) {
+        for &(j, q) in &self.rotations {
+            if let Some(slot) = local.rotation.get_mut(j) {
+                *slot = q;
+            }
+        }
+        for &(j, t) in &self.translations {
+            if let Some(slot) = local.translation.get_mut(j) {
+                *slot = t;
+            }
+        }
+    }
+
+    /// Keeps `local`'s values for `joints` (replacing earlier ones for them).
+    fn record(&mut self, local: &mocap::LocalPose, joints: &[usize], moved_root: Option<usize>) {
+        for &j in joints {
+            let Some(&q) = local.rotation.get(j) else { continue };
+            match self.rotations.iter_mut().find(|(k, _)| *k == j) {
+                Some(slot) => slot.1 = q,
+                None => self.rotations.push((j, q)),
+            }
+        }
+        if let Some(j) = moved_root {
+            let Some(&t) = local.translation.get(j) else { return };
+            match self.translations.iter_mut().find(|(k, _)| *k == j) {
+                Some(slot) => slot.1 = t,
+                None => self.translations.push((j, t)),
+            }
+        }
+    }
+}
+
+/// Moves joint `joint` of a clip character to `world` (metres) at the frame shown
+/// at `time`, by IK on its chain (the limb's two bones for a hand or foot found by
+/// [`mocap::ik::default_chains`], else the two bones above it; a root joint moves
+/// itself), keeping earlier corrections of that frame. Returns the solve, or
+/// `None` for a model, an unknown joint or a non-finite target.
+pub fn drag_joint(c: &mut Character, joint: usize, world: mocap::glam::Vec3, time: f64, scratch: &mut PoseScratch) -> Option<mocap::ik::Solve> {
+    use mocap::ik;
+    let clip = c.clip()?;
+    let skeleton = clip.skeleton();
+    let parent = skeleton.joints().get(joint)?.parent;
+    let target = (world - c.placement()) / c.scale();
+    if !target.is_finite() {
+        return None;
+    }
+    let frame = c.frame_at(time);
+    c.sample_local(time, Interpolation::Step, scratch);
+    let mut local = std::mem::take(&mut scratch.local);
+    let mut correction = c.extra.correction.clone().filter(|k| k.frame == frame).unwrap_or(Correction { frame, ..Correction::default() });
+    correction.apply(&mut local);
+    let solve = match parent {
+        None => {
+            // A root: its local translation is its model position.
+            if let Some(slot) = local.translation.get_mut(joint) {
+                *slot = target;
+            }
+            correction.record(&local, &[], Some(joint));
+            ik::Solve { distance: 0.0, reached: true, iterations: 1 }
+        }
+        Some(_) => {
+            let chain = ik::default_chains(skeleton).into_iter().map(|(_, c)| c).find(|c| c.effector() == joint);
+            let chain = chain.or_else(|| ik::Chain::up_from(skeleton, joint, 2).ok())?;
+            let length: f32 = {
+                let rest = mocap::fk::rest_positions(skeleton);
+                chain.joints().windows(2).map(|w| rest[w[0]].distance(rest[w[1]])).sum()
+            };
+            let options = ik::Options { angle_unit: clip.motion().angle_unit(), iterations: 64, tolerance: 1e-4 * length.max(1e-6), ..ik::Options::default() };
+            let solve = if chain.joints().len() == 3 {
+                // Bend the way the limb bends now (knees forward, elbows back).
+                let root = ik::model_transform(skeleton, &local, chain.root()).translation;
+                let mid = ik::model_transform(skeleton, &local, chain.joints()[1]).translation;
+                ik::two_bone(skeleton, &mut local, &chain, target, mid + (mid - root), &options)
+            } else {
+                ik::fabrik(skeleton, &mut local, &chain, target, &options)
+            };
+            correction.record(&local, chain.joints(), None);
+            solve
+        }
+    };
+    scratch.local = local;
+    c.extra.correction = Some(correction);
+    Some(solve)
 }
 
 /// A clip's generated body as the renderer draws it.
@@ -43,16 +145,22 @@ pub struct Body {
     pub inverse_bind: Vec<Mat4>,
 }
 
-/// Builds the body of a clip character ([`mocap::body::build`] around
-/// [`mocap::Clip::bind_pose`], tube radii by the capsule mode's
-/// [`mocap_render::bone_radius`]) once; later calls do nothing.
+/// The generated body of a clip whose first pose is `extent` file units across:
+/// [`mocap::body::build`] around [`mocap::Clip::bind_pose`], tube radii by
+/// [`mocap_render::body_radius`] (the capsule rule, thicker). `None` when the
+/// skeleton gets none (too many bones).
+pub fn body_skin(clip: &mocap::Clip, extent: f32) -> Option<mocap::skin::Skin> {
+    mocap::body::build(clip.skeleton(), &clip.bind_pose(), |length| mocap_render::body_radius(length, extent)).ok()
+}
+
+/// Builds the body of a clip character ([`body_skin`]) once; later calls do nothing.
 pub fn ensure_body(c: &mut Character) {
     if c.extra.body.is_some() {
         return;
     }
     let extent = c.extent;
     let body = c.clip().and_then(|clip| {
-        let skin = mocap::body::build(clip.skeleton(), &clip.bind_pose(), |length| mocap_render::body_radius(length, extent)).ok()?;
+        let skin = body_skin(clip, extent)?;
         let mesh = SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), clip.skeleton().len()).ok()?;
         Some(Body { mesh: Arc::new(mesh), inverse_bind: skin.inverse_bind().to_vec() })
     });
@@ -94,7 +202,23 @@ pub fn pose_at(c: &mut Character, time: f64, smooth: bool, scratch: &mut PoseScr
         (false, true) => Interpolation::Nearest,
     };
     let mut pose = std::mem::take(&mut c.extra.pose);
-    c.pose_at(time, interpolation, scratch, &mut pose);
+    let correction = c.extra.correction.as_ref().filter(|k| k.frame == c.frame_at(time));
+    match correction {
+        Some(correction) if c.sample_local(time, Interpolation::Step, scratch) => {
+            // The clip's own pose is the ghost; the corrected one is drawn.
+            let mut local = std::mem::take(&mut scratch.local);
+            let mut ghost = std::mem::take(&mut c.extra.ghost);
+            c.place(&local, &mut ghost);
+            correction.apply(&mut local);
+            c.place(&local, &mut pose);
+            scratch.local = local;
+            c.extra.ghost = ghost;
+        }
+        _ => {
+            c.pose_at(time, interpolation, scratch, &mut pose);
+            c.extra.ghost.clear();
+        }
+    }
     c.extra.pose = pose;
     c.extra.morph = c.morph_at(time, interpolation);
 }

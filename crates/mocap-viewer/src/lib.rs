@@ -13,6 +13,7 @@
 pub mod app;
 pub mod camera;
 pub mod character;
+pub mod drag;
 pub mod keys;
 pub mod layout;
 pub mod panels;

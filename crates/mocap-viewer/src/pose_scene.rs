@@ -28,6 +28,7 @@ pub fn build_scene(stage: &Stage, settings: &ViewSettings, selected: Option<Sele
         }
         let joint = selected.filter(|s| s.character == i).map(|s| s.joint);
         character_primitives(c, &c.extra.pose, c.extra.color, settings, joint, scene);
+        push_ghost(c, scene);
     }
 }
 
@@ -79,6 +80,16 @@ pub fn character_primitives(
             if joint.marker {
                 push_axes(t, size * 0.06, scene);
             }
+        }
+    }
+}
+
+/// The clip's own pose under a correction: thin translucent lines over everything.
+fn push_ghost(c: &Character, scene: &mut Scene) {
+    let ghost = &c.extra.ghost;
+    for (joint, t) in c.extra.figure.iter().zip(ghost) {
+        if let Some(p) = joint.parent.and_then(|p| ghost.get(p)) {
+            scene.overlay_lines.push(Line { a: p.translation, b: t.translation, color: [255, 255, 255, 110], width_px: 2.0 });
         }
     }
 }

@@ -19,6 +19,8 @@ pub struct ViewSettings {
     pub follow_root: bool,
     /// Interpolate between frames while playing (paused views are always frame-exact).
     pub interpolate: bool,
+    /// Pose mode: dragging a joint in the view moves it and its chain follows by IK.
+    pub pose_mode: bool,
 }
 
 impl Default for ViewSettings {
@@ -31,6 +33,7 @@ impl Default for ViewSettings {
             shadows: true,
             follow_root: false,
             interpolate: true,
+            pose_mode: false,
         }
     }
 }

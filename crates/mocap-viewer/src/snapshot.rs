@@ -30,6 +30,8 @@ pub struct ClipSummary {
     pub model_frame: Option<(usize, String)>,
     /// For a model: the skin file in use.
     pub skin: Option<String>,
+    /// Whether a pose correction (by dragging in Pose mode) is shown at its frame.
+    pub corrected: bool,
 }
 
 impl ClipSummary {
@@ -51,6 +53,7 @@ impl ClipSummary {
             animations: model.map_or(Vec::new(), |m| m.mesh.animations().iter().map(|a| a.name.clone()).collect()),
             model_frame: model.zip(c.extra.morph).map(|(m, at)| (at.frame0, m.frame_name(at.frame0).to_owned())),
             skin: model.and_then(|m| m.skin.as_ref()).map(|s| s.name.clone()),
+            corrected: c.extra.correction.is_some(),
         }
     }
 }
@@ -78,6 +81,8 @@ pub struct Snapshot {
     pub draw_mode: &'static str,
     /// Whether floor shadows are drawn.
     pub shadows: bool,
+    /// Whether Pose mode (drag joints by IK) is on.
+    pub pose_mode: bool,
     /// Last load error, shown in the page.
     pub error: Option<String>,
     /// Joint labels the hierarchy panel drew in its last frame.
@@ -106,6 +111,7 @@ impl Snapshot {
             layout: v.stage.layout.name(),
             draw_mode: v.settings.mode.name(),
             shadows: v.settings.shadows,
+            pose_mode: v.settings.pose_mode,
             error: v.error.clone(),
             tree_labels,
             frames_rendered,

@@ -276,10 +276,19 @@ impl Viewer {
         self.tree_labels = labels;
 
         self.pose();
+        let handles = self.handles();
+        let mut joint_drag = None;
         egui::CentralPanel::no_frame().show(ui, |ui| {
-            self.viewport.show(ui, render_state, &mut self.camera, &self.scene);
+            let (_, dragged) = self.viewport.show(ui, render_state, &mut self.camera, &self.scene, &handles);
+            joint_drag = dragged;
             ui::overlay::show(ui, self);
         });
+        if let Some(d) = joint_drag {
+            self.set_playing(false);
+            self.selected = Some(Selection { character: d.handle.character, joint: d.handle.joint });
+            self.drag_joint(d.handle.character, d.handle.joint, d.target);
+            ui.ctx().request_repaint();
+        }
         if self.playback.playing && !self.stage.actors.is_empty() {
             ui.ctx().request_repaint();
         }
@@ -344,6 +353,51 @@ impl Viewer {
             self.camera.target.z = root.translation.z;
         }
         pose_scene::build_scene(&self.stage, &self.settings, self.selected, &mut self.scene);
+    }
+
+    /// The joints that can be grabbed in Pose mode: every joint of every visible
+    /// clip character (End Sites included: a finger tip is a fine handle), where it
+    /// was last drawn. Empty outside Pose mode.
+    pub fn handles(&self) -> Vec<crate::drag::Handle> {
+        if !self.settings.pose_mode {
+            return Vec::new();
+        }
+        let mut out = Vec::new();
+        for (character, c) in self.stage.visible().filter(|(_, c)| c.clip().is_some()) {
+            out.extend(c.extra.pose.iter().enumerate().map(|(joint, t)| crate::drag::Handle { character, joint, world: t.translation }));
+        }
+        out
+    }
+
+    /// Moves joint `joint` of character `character` to `world` (metres) at the frame
+    /// shown, by IK ([`character::drag_joint`]); the corrected pose is drawn over
+    /// the clip's own (ghosted) until [`Viewer::reset_pose`]. Returns the solve, or
+    /// `None` when there is no such joint.
+    pub fn drag_joint(&mut self, character: usize, joint: usize, world: mocap::glam::Vec3) -> Option<mocap::ik::Solve> {
+        let time = self.playback.time;
+        let c = self.stage.actors.get_mut(character)?;
+        let solve = character::drag_joint(c, joint, world, time, &mut self.pose_scratch);
+        self.pose();
+        solve
+    }
+
+    /// Forgets every pose correction made by dragging.
+    pub fn reset_pose(&mut self) {
+        for c in &mut self.stage.actors {
+            c.extra.correction = None;
+        }
+    }
+
+    /// Whether any character has a pose correction.
+    pub fn has_corrections(&self) -> bool {
+        self.stage.actors.iter().any(|c| c.extra.correction.is_some())
+    }
+
+    /// Where a joint was last drawn on screen (points), if the view has been drawn
+    /// and the joint is in front of the camera.
+    pub fn joint_on_screen(&self, character: usize, joint: usize) -> Option<egui::Pos2> {
+        let world = self.stage.actors.get(character)?.extra.pose.get(joint)?.translation;
+        self.viewport.geometry?.project(world)
     }
 
     /// The scene primitives built by the last [`Viewer::pose`].

@@ -1,6 +1,7 @@
 //! The 3D view: renders the scene offscreen with `mocap-render` and shows it as an egui image.
 
 use crate::camera::OrbitCamera;
+use crate::drag::{self, Handle, JointDrag, ViewGeometry};
 use mocap_render::{RenderTarget, Scene, SceneRenderer};
 
 /// Colour format of the offscreen image: egui composites in gamma space, so the
@@ -22,24 +23,35 @@ pub struct Viewport {
     pub frames_rendered: u64,
     /// The wgpu backend in use ("BrowserWebGpu", "Gl", "Vulkan", ...), once known.
     pub backend: Option<String>,
+    /// Where the view was last drawn and with which camera.
+    pub geometry: Option<ViewGeometry>,
+    /// The joint held by the pointer (Pose mode), from the press to the release.
+    grabbed: Option<Handle>,
 }
 
 impl Viewport {
-    /// Lays out the view in `rect`, handles camera input and draws `scene`.
-    /// Returns the response so callers can react to clicks.
+    /// Lays out the view in `rect`, handles camera input and draws `scene`. A left
+    /// press on one of `handles` (Pose mode) grabs that joint instead of orbiting;
+    /// while it is held, the joint's target under the pointer is returned each frame.
     pub fn show(
         &mut self,
         ui: &mut egui::Ui,
         render_state: Option<&egui_wgpu::RenderState>,
         camera: &mut OrbitCamera,
         scene: &Scene,
-    ) -> egui::Response {
+        handles: &[Handle],
+    ) -> (egui::Response, Option<JointDrag>) {
         let rect = ui.available_rect_before_wrap();
         let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
-        handle_camera_input(ui, &response, camera);
+        let joint_drag = self.grab(&response, handles);
+        if self.grabbed.is_none() {
+            handle_camera_input(ui, &response, camera);
+        }
+        let aspect = (rect.width() / rect.height().max(1.0)).max(1e-3);
+        self.geometry = Some(ViewGeometry { rect, camera: camera.to_camera(aspect) });
         let Some(rs) = render_state else {
             ui.painter().text(rect.center(), egui::Align2::CENTER_CENTER, "No GPU renderer", egui::FontId::proportional(16.0), egui::Color32::GRAY);
-            return response;
+            return (response, joint_drag);
         };
         let ppp = ui.ctx().pixels_per_point();
         let size = [(rect.width() * ppp).round().max(1.0) as u32, (rect.height() * ppp).round().max(1.0) as u32];
@@ -57,7 +69,26 @@ impl Viewport {
         self.frames_rendered += 1;
         let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
         ui.painter().image(gpu.texture, rect, uv, egui::Color32::WHITE);
-        response
+        (response, joint_drag)
+    }
+
+    /// Grabs a joint on a left press over it, follows the pointer while held (in the
+    /// plane through the joint facing the camera of the last frame) and lets go on
+    /// release.
+    fn grab(&mut self, response: &egui::Response, handles: &[Handle]) -> Option<JointDrag> {
+        let view = self.geometry?;
+        let pointer = response.interact_pointer_pos();
+        if response.drag_started_by(egui::PointerButton::Primary) {
+            // The press position, not where the pointer is after the drag threshold.
+            let press = response.ctx.input(|i| i.pointer.press_origin()).or(pointer);
+            self.grabbed = press.and_then(|p| drag::pick(handles, &view, p));
+        }
+        let handle = self.grabbed?;
+        if !response.dragged_by(egui::PointerButton::Primary) || response.drag_stopped() {
+            self.grabbed = None;
+        }
+        let target = view.on_plane(pointer?, handle.world)?;
+        Some(JointDrag { handle, target })
     }
 }
 

@@ -9,6 +9,8 @@ use wasm_bindgen::prelude::*;
 pub struct MotionClip {
     clip: Clip,
     scratch: Vec<Vec3>,
+    /// The generated body, built on first use (`Some(None)`: the skeleton gets none).
+    body: Option<Option<mocap::skin::Skin>>,
 }
 
 /// Parses a motion file (BVH, BVA, or an Acclaim ASF alone: its rest pose; the
@@ -31,7 +33,7 @@ pub fn parse_motion(bytes: &[u8], file_name: &str, skeleton: Option<Vec<u8>>) ->
         Some(Err(e)) => return Err(JsError::new(&e.to_string())),
         None => return Err(JsError::new(&format!("{file_name}: no motion in this file"))),
     };
-    Ok(MotionClip { clip, scratch: Vec::new() })
+    Ok(MotionClip { clip, scratch: Vec::new(), body: None })
 }
 
 #[wasm_bindgen(js_class = MotionClip)]
@@ -77,6 +79,30 @@ impl MotionClip {
         self.scratch.iter().flat_map(|p| p.to_array()).collect()
     }
 
+    /// The generated body's triangles (three vertex indices each), as body mode
+    /// draws it; empty when the skeleton gets no body (too many bones).
+    #[wasm_bindgen(js_name = bodyIndices)]
+    pub fn body_indices(&mut self) -> Vec<u32> {
+        self.body().map_or(Vec::new(), |b| b.indices().to_vec())
+    }
+
+    /// The generated body skinned at `frame` (clamped): `x, y, z` per vertex in
+    /// file units, model space (the CPU reference of what body mode draws).
+    #[wasm_bindgen(js_name = bodyVertices)]
+    pub fn body_vertices(&mut self, frame: u32) -> Vec<f32> {
+        let mut model = Vec::new();
+        if self.clip.frame_count() > 0 {
+            self.clip.world_transforms_into((frame as usize).min(self.clip.frame_count() - 1), &mut model);
+        } else {
+            model = self.clip.bind_pose();
+        }
+        let Some(body) = self.body() else { return Vec::new() };
+        let (mut matrices, mut positions, mut normals) = (Vec::new(), Vec::new(), Vec::new());
+        mocap::skin::skinning_matrices(&model, body.inverse_bind(), &mut matrices);
+        mocap::skin::skin_vertices(body, &matrices, &mut positions, &mut normals);
+        positions.iter().flat_map(|p| p.to_array()).collect()
+    }
+
     /// The clip as standard BVH text.
     #[wasm_bindgen(js_name = toBvh)]
     pub fn to_bvh(&self) -> String {
@@ -88,5 +114,14 @@ impl MotionClip {
     /// The parsed clip.
     pub fn clip(&self) -> &Clip {
         &self.clip
+    }
+
+    /// The generated body, built once.
+    fn body(&mut self) -> Option<&mocap::skin::Skin> {
+        if self.body.is_none() {
+            let extent = self.clip.pose_extent();
+            self.body = Some(mocap_viewer::character::body_skin(&self.clip, if extent > 0.0 && extent.is_finite() { extent } else { 1.0 }));
+        }
+        self.body.as_ref().and_then(Option::as_ref)
     }
 }

@@ -85,6 +85,46 @@ impl MocapViewer {
         self.with_viewer(|v| v.add_asset(file_name, clip));
     }
 
+    /// Pose mode: moves joint `name` of character `character` (0-based) to world
+    /// position `x, y, z` (metres, as drawn) at the frame shown, by IK; the clip's
+    /// own pose shows as a ghost. Returns whether the target was reached (`false`
+    /// also when there is no such joint).
+    #[wasm_bindgen(js_name = dragJoint)]
+    pub fn drag_joint(&self, character: u32, name: &str, x: f32, y: f32, z: f32) -> bool {
+        self.with_viewer(|v| {
+            let joint = v.stage.actors.get(character as usize)?.clip()?.skeleton().find(name)?;
+            v.drag_joint(character as usize, joint, mocap::glam::Vec3::new(x, y, z)).map(|s| s.reached)
+        })
+        .flatten()
+        .unwrap_or(false)
+    }
+
+    /// Forgets every pose corrected by dragging.
+    #[wasm_bindgen(js_name = resetPose)]
+    pub fn reset_pose(&self) {
+        self.with_viewer(|v| v.reset_pose());
+    }
+
+    /// Where joint `name` of character `character` was last drawn, in CSS pixels
+    /// of the page (`[x, y]`), or `undefined` when it is not on screen.
+    #[wasm_bindgen(js_name = jointScreenPosition)]
+    pub fn joint_screen_position(&self, character: u32, name: &str) -> Option<Vec<f32>> {
+        let v = self.viewer.try_borrow().ok()?;
+        let joint = v.stage.actors.get(character as usize)?.clip()?.skeleton().find(name)?;
+        let p = v.joint_on_screen(character as usize, joint)?;
+        Some(vec![p.x, p.y])
+    }
+
+    /// World position (metres, as drawn) of joint `name` of character `character`
+    /// at the last frame drawn, or `undefined`.
+    #[wasm_bindgen(js_name = jointWorldPosition)]
+    pub fn joint_world_position(&self, character: u32, name: &str) -> Option<Vec<f32>> {
+        let v = self.viewer.try_borrow().ok()?;
+        let c = v.stage.actors.get(character as usize)?;
+        let joint = c.clip()?.skeleton().find(name)?;
+        c.extra.pose.get(joint).map(|t| t.translation.to_array().to_vec())
+    }
+
     /// Plays animation `name` (`'all'` for every frame in file order) on the model
     /// that is character `index` (0-based); returns whether that model has it.
     #[wasm_bindgen(js_name = setAnimation)]

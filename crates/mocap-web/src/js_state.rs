@@ -39,6 +39,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
             set(&o, "modelFrame", c.model_frame.as_ref().map_or(JsValue::NULL, |(f, _)| JsValue::from_f64(*f as f64)));
             set(&o, "frameName", c.model_frame.as_ref().map_or(JsValue::NULL, |(_, n)| JsValue::from_str(n)));
             set(&o, "skin", opt(&c.skin));
+            set(&o, "corrected", c.corrected);
             JsValue::from(o)
         })
         .collect();
@@ -53,6 +54,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "layout", s.layout);
     set(&o, "drawMode", s.draw_mode);
     set(&o, "shadows", s.shadows);
+    set(&o, "poseMode", s.pose_mode);
     set(&o, "error", opt(&s.error));
     set(&o, "treeLabels", strings(&s.tree_labels));
     set(&o, "framesRendered", s.frames_rendered as f64);

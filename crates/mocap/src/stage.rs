@@ -48,7 +48,8 @@ impl Layout {
 /// Reusable buffers for posing actors.
 #[derive(Clone, Debug, Default)]
 pub struct PoseScratch {
-    local: LocalPose,
+    /// The last local pose sampled ([`Actor::sample_local`]).
+    pub local: LocalPose,
     sample: SampleScratch,
 }
 
@@ -151,12 +152,31 @@ impl<E> Actor<E> {
     /// shown ([`Interpolation::Step`]). Past its end a clip holds its last pose. A
     /// model has no joints: `out` is left empty.
     pub fn pose_at(&self, time: f64, interpolation: Interpolation, scratch: &mut PoseScratch, out: &mut Vec<Transform>) {
+        if !self.sample_local(time, interpolation, scratch) {
+            out.clear();
+            return;
+        }
+        let local = std::mem::take(&mut scratch.local);
+        self.place(&local, out);
+        scratch.local = local;
+    }
+
+    /// Samples the clip at `time` into `scratch`'s local pose ([`PoseScratch::local`]),
+    /// the seam where IK and edits change it before [`Actor::place`]; false for a model.
+    pub fn sample_local(&self, time: f64, interpolation: Interpolation, scratch: &mut PoseScratch) -> bool {
+        let Some(clip) = self.clip() else { return false };
+        clip.sample_local_into(time, interpolation, &mut scratch.sample, &mut scratch.local);
+        true
+    }
+
+    /// Model transforms of a local pose of this clip, in metres and placed (empty
+    /// for a model).
+    pub fn place(&self, local: &LocalPose, out: &mut Vec<Transform>) {
         let Some(clip) = self.clip() else {
             out.clear();
             return;
         };
-        clip.sample_local_into(time, interpolation, &mut scratch.sample, &mut scratch.local);
-        local_to_model(clip.skeleton(), &scratch.local, out);
+        local_to_model(clip.skeleton(), local, out);
         let (scale, at) = (self.scale(), self.placement());
         for t in out.iter_mut() {
             t.translation = t.translation * scale + at;

@@ -44,6 +44,11 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.checkbox(&mut viewer.settings.follow_root, "Follow root").on_hover_text("f");
             ui.checkbox(&mut viewer.settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
             ui.separator();
+            ui.checkbox(&mut viewer.settings.pose_mode, "Pose").on_hover_text("Drag a joint in the view: its chain follows by IK (the clip's own pose shows as a ghost)");
+            if viewer.has_corrections() && ui.button("Reset pose").on_hover_text("Forget the poses corrected by dragging").clicked() {
+                viewer.reset_pose();
+            }
+            ui.separator();
             ui.menu_button("Camera", |ui| camera_menu(ui, viewer));
             ui.label("Keys (?)").on_hover_text(HELP);
         });

@@ -1,0 +1,118 @@
+//! Pose mode (no GPU): dragging a joint moves it by IK at the frame shown, the
+//! clip's own pose becomes a ghost, other frames and Reset show the clip; and a real
+//! pointer drag in the headless UI grabs the joint under it instead of orbiting.
+
+use mocap::glam::Vec3;
+use mocap_viewer::Viewer;
+
+const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
+
+fn paused() -> Viewer {
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    v.set_playing(false);
+    v.seek(12);
+    v.pose();
+    v
+}
+
+fn joint(v: &Viewer, name: &str) -> usize {
+    v.stage.actors[0].clip().unwrap().skeleton().find(name).unwrap()
+}
+
+fn at(v: &Viewer, j: usize) -> Vec3 {
+    v.stage.actors[0].extra.pose[j].translation
+}
+
+#[test]
+fn dragging_a_hand_moves_it_and_its_arm_follows() {
+    let mut v = paused();
+    let (hand, other, elbow) = (joint(&v, "LeftHand"), joint(&v, "RightHand"), joint(&v, "LeftForeArm"));
+    let (before, other_before, elbow_before) = (at(&v, hand), at(&v, other), at(&v, elbow));
+    let target = before + Vec3::new(0.08, 0.12, -0.05);
+    let solve = v.drag_joint(0, hand, target).unwrap();
+    assert!(solve.reached, "{solve:?}");
+    assert!(at(&v, hand).distance(target) < 1e-3, "the hand is at the target: {}", at(&v, hand));
+    assert!(at(&v, elbow).distance(elbow_before) > 1e-3, "the elbow follows");
+    assert_eq!(at(&v, other), other_before, "the other hand stays");
+    assert!(!v.stage.actors[0].extra.ghost.is_empty(), "the clip's own pose is ghosted");
+    assert!(v.scene().overlay_lines.len() > 10, "the ghost is drawn");
+    assert!(v.snapshot().clips[0].corrected);
+    // Another frame shows the clip; coming back shows the correction again.
+    v.seek(20);
+    v.pose();
+    assert!(v.stage.actors[0].extra.ghost.is_empty());
+    v.seek(12);
+    v.pose();
+    assert!(at(&v, hand).distance(target) < 1e-3);
+    v.reset_pose();
+    v.pose();
+    assert!(at(&v, hand).distance(before) < 1e-5, "Reset restores the clip");
+    assert!(!v.has_corrections());
+}
+
+#[test]
+fn dragging_the_root_moves_the_whole_figure_and_nonsense_is_refused() {
+    let mut v = paused();
+    let head = joint(&v, "Head");
+    let (root, head_before) = (at(&v, 0), at(&v, head));
+    v.drag_joint(0, 0, root + Vec3::new(0.3, 0.0, 0.0)).unwrap();
+    assert!(at(&v, 0).distance(root + Vec3::new(0.3, 0.0, 0.0)) < 1e-4);
+    assert!(at(&v, head).distance(head_before + Vec3::new(0.3, 0.0, 0.0)) < 1e-3);
+    assert!(v.drag_joint(0, 999, Vec3::ZERO).is_none());
+    assert!(v.drag_joint(5, 0, Vec3::ZERO).is_none());
+    assert!(v.drag_joint(0, head, Vec3::NAN).is_none());
+    assert!(v.stage.actors[0].extra.pose.iter().all(|t| t.translation.is_finite()));
+}
+
+fn run(ctx: &egui::Context, v: &mut Viewer, time: f64, events: Vec<egui::Event>) {
+    let input = egui::RawInput {
+        time: Some(time),
+        screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))),
+        events,
+        ..Default::default()
+    };
+    let mut output = ctx.run_ui(input, |ui| v.ui(ui, None));
+    output.textures_delta.clear();
+}
+
+fn button(pos: egui::Pos2, pressed: bool) -> egui::Event {
+    egui::Event::PointerButton { pos, button: egui::PointerButton::Primary, pressed, modifiers: egui::Modifiers::NONE }
+}
+
+#[test]
+fn a_pointer_drag_in_the_view_grabs_the_joint_in_pose_mode() {
+    let ctx = egui::Context::default();
+    let mut v = paused();
+    v.apply_fragment("draw=joints,interp,pose");
+    assert!(v.settings.pose_mode);
+    run(&ctx, &mut v, 0.0, vec![]);
+    run(&ctx, &mut v, 0.05, vec![]);
+    let hand = joint(&v, "LeftHand");
+    let start = v.joint_on_screen(0, hand).expect("the hand is on screen");
+    let camera_before = v.camera.clone();
+    let end = start + egui::vec2(30.0, -25.0);
+    let mut t = 0.1;
+    run(&ctx, &mut v, t, vec![egui::Event::PointerMoved(start), button(start, true)]);
+    for k in 1..=6 {
+        t += 0.05;
+        let p = start + (end - start) * (k as f32 / 6.0);
+        run(&ctx, &mut v, t, vec![egui::Event::PointerMoved(p)]);
+    }
+    run(&ctx, &mut v, t + 0.05, vec![button(end, false)]);
+    run(&ctx, &mut v, t + 0.1, vec![]);
+    assert_eq!(v.camera, camera_before, "the drag moved the joint, not the camera");
+    let now = v.joint_on_screen(0, hand).unwrap();
+    assert!(now.distance(end) < 2.0, "the hand follows the pointer: {now:?} vs {end:?}");
+    assert_eq!(v.selected_name(), Some("LeftHand"));
+    // Outside Pose mode the same drag orbits.
+    v.reset_pose();
+    v.settings.pose_mode = false;
+    run(&ctx, &mut v, t + 0.2, vec![]);
+    let s = v.joint_on_screen(0, hand).unwrap();
+    run(&ctx, &mut v, t + 0.25, vec![egui::Event::PointerMoved(s), button(s, true)]);
+    run(&ctx, &mut v, t + 0.3, vec![egui::Event::PointerMoved(s + egui::vec2(40.0, 0.0))]);
+    run(&ctx, &mut v, t + 0.35, vec![button(s + egui::vec2(40.0, 0.0), false)]);
+    assert_ne!(v.camera, camera_before, "it orbits");
+    assert!(!v.has_corrections());
+}
