@@ -97,6 +97,33 @@ try {
     await waitState(page, (s) => s.drawMode === 'capsules');
   });
 
+  await step('in Pose mode, dragging a hand in the view moves it to the pointer', async () => {
+    await changeAndRender(page, (v) => { v.pause(); v.seek(30); v.applyViewState('draw=joints,interp,pose'); });
+    const s0 = await waitState(page, (s) => s.poseMode === true);
+    const start = await page.evaluate(() => window.mocapViewer.jointScreenPosition(0, 'LeftHand'));
+    check(Array.isArray(start) || start instanceof Float32Array, `the hand is on screen at ${start}`);
+    const [x, y] = start;
+    const end = [x + 40, y - 30];
+    await page.mouse.move(x, y);
+    await page.mouse.down();
+    for (let k = 1; k <= 8; k++) {
+      await page.mouse.move(x + (end[0] - x) * k / 8, y + (end[1] - y) * k / 8);
+      await page.waitForTimeout(60);
+    }
+    await page.mouse.up();
+    const s = await waitState(page, (s) => s.clips[0].corrected === true && s.selectedJoint === 'LeftHand');
+    await changeAndRender(page, () => {});
+    const now = await page.evaluate(() => window.mocapViewer.jointScreenPosition(0, 'LeftHand'));
+    const d = Math.hypot(now[0] - end[0], now[1] - end[1]);
+    check(d < 4, `the hand is under the pointer (${now} vs ${end}, ${d.toFixed(1)} px)`);
+    check(s.view.includes('pose') && s0.view.includes('pose'), 'Pose mode is in the fragment');
+    await view(page, shot('pose-drag'));
+    await page.evaluate(() => window.mocapViewer.resetPose());
+    const r = await waitState(page, (s) => s.clips[0].corrected === false);
+    check(!r.clips[0].corrected, 'resetPose() restores the clip');
+    await changeAndRender(page, (v) => v.applyViewState('draw=joints,interp'));
+  });
+
   await step('a link with mode=sticks opens in stick mode', async () => {
     await page.goto('about:blank');
     await page.goto(`${base}#t=1&play=0&mode=sticks&shadows=1`);
