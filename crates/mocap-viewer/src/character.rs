@@ -36,6 +36,8 @@ pub struct Look {
     pub correction: Option<Correction>,
     /// The clip's own pose (world, metres) while a correction is shown, drawn as a ghost.
     pub ghost: Vec<Transform>,
+    /// Foot contacts and locks of a clip, found on first use (foot locking).
+    pub foot_lock: Option<mocap::contact::FootLock>,
 }
 
 /// Local rotations (and a root position) set by IK at one frame of a clip.
@@ -194,32 +196,40 @@ fn mesh_data(model: &Model) -> Option<Arc<MorphMeshData>> {
 /// Poses the character at `time`: interpolated when `smooth`, else the frame shown
 /// at that time in its own frame time (the one rule of [`mocap::time`]); a model
 /// not interpolating switches frames at the halfway point (Quake's nearest frame).
-/// Past its end a clip holds its last pose. The transforms are in metres and placed.
-pub fn pose_at(c: &mut Character, time: f64, smooth: bool, scratch: &mut PoseScratch) {
+/// Past its end a clip holds its last pose. The stages after sampling, on the local
+/// pose: a correction made by dragging (at its frame; the clip's own pose becomes
+/// the ghost), then foot locking when `lock_feet`. The transforms are in metres and
+/// placed.
+pub fn pose_at(c: &mut Character, time: f64, smooth: bool, lock_feet: bool, scratch: &mut PoseScratch) {
     let interpolation = match (smooth, c.model().is_some()) {
         (true, _) => Interpolation::Linear,
         (false, false) => Interpolation::Step,
         (false, true) => Interpolation::Nearest,
     };
+    if lock_feet && c.extra.foot_lock.is_none() {
+        c.extra.foot_lock = c.clip().map(mocap::contact::FootLock::new);
+    }
     let mut pose = std::mem::take(&mut c.extra.pose);
+    let mut ghost = std::mem::take(&mut c.extra.ghost);
+    ghost.clear();
     let correction = c.extra.correction.as_ref().filter(|k| k.frame == c.frame_at(time));
-    match correction {
-        Some(correction) if c.sample_local(time, Interpolation::Step, scratch) => {
-            // The clip's own pose is the ghost; the corrected one is drawn.
-            let mut local = std::mem::take(&mut scratch.local);
-            let mut ghost = std::mem::take(&mut c.extra.ghost);
+    let sampling = if correction.is_some() { Interpolation::Step } else { interpolation };
+    if (correction.is_some() || lock_feet) && c.sample_local(time, sampling, scratch) {
+        let mut local = std::mem::take(&mut scratch.local);
+        if let Some(correction) = correction {
             c.place(&local, &mut ghost);
             correction.apply(&mut local);
-            c.place(&local, &mut pose);
-            scratch.local = local;
-            c.extra.ghost = ghost;
         }
-        _ => {
-            c.pose_at(time, interpolation, scratch, &mut pose);
-            c.extra.ghost.clear();
+        if let (true, Some(lock), Some(clip)) = (lock_feet, &c.extra.foot_lock, c.clip()) {
+            lock.apply(clip, &mut local, time);
         }
+        c.place(&local, &mut pose);
+        scratch.local = local;
+    } else {
+        c.pose_at(time, interpolation, scratch, &mut pose);
     }
     c.extra.pose = pose;
+    c.extra.ghost = ghost;
     c.extra.morph = c.morph_at(time, interpolation);
 }
 

@@ -21,6 +21,8 @@ pub struct ViewSettings {
     pub interpolate: bool,
     /// Pose mode: dragging a joint in the view moves it and its chain follows by IK.
     pub pose_mode: bool,
+    /// Pin each foot to the floor while it is in contact (legs solved by IK).
+    pub foot_lock: bool,
 }
 
 impl Default for ViewSettings {
@@ -34,6 +36,7 @@ impl Default for ViewSettings {
             follow_root: false,
             interpolate: true,
             pose_mode: false,
+            foot_lock: false,
         }
     }
 }

@@ -32,6 +32,8 @@ pub struct ClipSummary {
     pub skin: Option<String>,
     /// Whether a pose correction (by dragging in Pose mode) is shown at its frame.
     pub corrected: bool,
+    /// With foot locking on: frames each foot is in contact (per leg).
+    pub foot_contacts: Vec<usize>,
 }
 
 impl ClipSummary {
@@ -54,6 +56,7 @@ impl ClipSummary {
             model_frame: model.zip(c.extra.morph).map(|(m, at)| (at.frame0, m.frame_name(at.frame0).to_owned())),
             skin: model.and_then(|m| m.skin.as_ref()).map(|s| s.name.clone()),
             corrected: c.extra.correction.is_some(),
+            foot_contacts: c.extra.foot_lock.as_ref().map_or(Vec::new(), |l| l.contacts().map(|k| k.iter().filter(|x| **x).count()).collect()),
         }
     }
 }

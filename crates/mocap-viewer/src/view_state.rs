@@ -13,7 +13,7 @@
 //! at zero; `none` or absent when all are zero), `mode` `capsules`, `sticks` or `body`,
 //! `anim` the animations models play as `n:name` joined by `;` (`anim=1:run`; models
 //! not listed play all their frames; `none` or absent when all do),
-//! `shadows` 0/1, `draw` a comma list of `joints`, `axes`, `follow`, `interp`, `weights`, `pose`, and `panels` a comma list of `tree`, `inspector` (or
+//! `shadows` 0/1, `draw` a comma list of `joints`, `axes`, `follow`, `interp`, `weights`, `pose`, `footlock`, and `panels` a comma list of `tree`, `inspector` (or
 //! `none`). Timeline frames (`f`, `range`, the frame shown) count in the frame time
 //! of the selection's character, else the first one. Unknown keys and unreadable
 //! values are ignored; missing keys leave the viewer as it is.
@@ -54,12 +54,12 @@ pub struct ViewState {
     /// Soft shadows on the floor.
     pub shadows: Option<bool>,
     /// Draw flags: joints, axes, follow root, interpolate, weights view, pose mode.
-    pub draw: Option<[bool; 6]>,
+    pub draw: Option<[bool; 7]>,
     /// Panels: hierarchy, inspector.
     pub panels: Option<[bool; 2]>,
 }
 
-const DRAW_NAMES: [&str; 6] = ["joints", "axes", "follow", "interp", "weights", "pose"];
+const DRAW_NAMES: [&str; 7] = ["joints", "axes", "follow", "interp", "weights", "pose", "footlock"];
 const PANEL_NAMES: [&str; 2] = ["tree", "inspector"];
 
 impl ViewState {
@@ -141,7 +141,7 @@ impl ViewState {
         }
         parts.push(format!("mode={}", st.mode.name()));
         parts.push(format!("shadows={}", u8::from(st.shadows)));
-        let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate, st.show_weights, st.pose_mode];
+        let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate, st.show_weights, st.pose_mode, st.foot_lock];
         parts.push(format!("draw={}", join_flags(draw, DRAW_NAMES)));
         let panels = [viewer.panels.hierarchy, viewer.panels.inspector];
         parts.push(format!("panels={}", join_flags(panels, PANEL_NAMES)));
@@ -180,8 +180,9 @@ impl ViewState {
         if let Some(range) = self.range {
             viewer.playback.range = range;
         }
-        if let Some([joints, axes, follow, interp, weights, pose]) = self.draw {
+        if let Some([joints, axes, follow, interp, weights, pose, footlock]) = self.draw {
             viewer.settings.pose_mode = pose;
+            viewer.settings.foot_lock = footlock;
             viewer.settings.show_joints = joints;
             viewer.settings.show_axes = axes;
             viewer.settings.follow_root = follow;
@@ -388,6 +389,6 @@ mod tests {
         assert_eq!(s.camera, None);
         assert_eq!(s.range, None);
         assert_eq!(s.playing, Some(true));
-        assert_eq!(s.draw, Some([false, true, false, false, false, false]));
+        assert_eq!(s.draw, Some([false, true, false, false, false, false, false]));
     }
 }

@@ -340,7 +340,7 @@ impl Viewer {
         let smooth = self.playback.playing && self.settings.interpolate;
         let body = self.settings.mode == DrawMode::Body;
         for c in self.stage.actors.iter_mut().filter(|c| c.visible) {
-            character::pose_at(c, self.playback.time, smooth, &mut self.pose_scratch);
+            character::pose_at(c, self.playback.time, smooth, self.settings.foot_lock, &mut self.pose_scratch);
             if body {
                 character::ensure_body(c);
             }

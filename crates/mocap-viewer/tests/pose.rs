@@ -116,3 +116,28 @@ fn a_pointer_drag_in_the_view_grabs_the_joint_in_pose_mode() {
     assert_ne!(v.camera, camera_before, "it orbits");
     assert!(!v.has_corrections());
 }
+
+#[test]
+fn foot_locking_finds_contacts_and_keeps_a_planted_foot_still() {
+    let mut v = paused();
+    v.apply_fragment("draw=joints,interp,footlock");
+    assert!(v.settings.foot_lock);
+    v.pose();
+    let s = v.snapshot();
+    assert_eq!(s.clips[0].foot_contacts.len(), 2, "two feet");
+    assert!(s.clips[0].foot_contacts.iter().all(|&n| n > 5), "{:?}", s.clips[0].foot_contacts);
+    assert!(v.view_fragment().contains("footlock"));
+    // Inside a contact run of a foot, the locked foot does not move between frames.
+    let lock = v.stage.actors[0].extra.foot_lock.clone().unwrap();
+    let leg = &lock.legs[0];
+    let run = (1..leg.contact.len()).find(|&f| leg.contact[f] && leg.contact[f - 1]).expect("a run of two contact frames");
+    let foot = leg.chain.effector();
+    let mut at_frame = |f: usize| {
+        v.seek(f);
+        v.pose();
+        v.stage.actors[0].extra.pose[foot].translation
+    };
+    let (a, b) = (at_frame(run - 1), at_frame(run));
+    assert!(a.distance(b) < 1e-3, "the planted foot stays: {a} → {b}");
+    assert!(v.stage.actors[0].extra.pose.iter().all(|t| t.translation.is_finite()));
+}

@@ -40,6 +40,8 @@ pub fn to_js(s: &Snapshot) -> JsValue {
             set(&o, "frameName", c.model_frame.as_ref().map_or(JsValue::NULL, |(_, n)| JsValue::from_str(n)));
             set(&o, "skin", opt(&c.skin));
             set(&o, "corrected", c.corrected);
+            let contacts: Array = c.foot_contacts.iter().map(|n| JsValue::from_f64(*n as f64)).collect();
+            set(&o, "footContacts", contacts);
             JsValue::from(o)
         })
         .collect();

@@ -27,6 +27,7 @@ pub mod bva;
 pub mod bvh;
 pub mod channel;
 pub mod clip;
+pub mod contact;
 pub mod error;
 mod fastmath;
 pub mod fk;

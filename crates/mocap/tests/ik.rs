@@ -248,3 +248,73 @@ fn default_chains_are_the_arms_and_legs_of_real_skeletons() {
     }
 }
 
+
+/// A figure whose hips drift along X while its left foot stays on the floor for
+/// frames 0–14 (skating with it), then lifts for 15–29.
+fn skating_clip() -> mocap::Clip {
+    let mut text = String::from("HIERARCHY\nROOT Hips\n{\nOFFSET 0 90 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n");
+    for (side, x) in [("Left", 10.0), ("Right", -10.0)] {
+        text.push_str(&format!("JOINT {side}UpLeg\n{{\nOFFSET {x} 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT {side}Leg\n{{\nOFFSET 0 -42 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT {side}Foot\n{{\nOFFSET 0 -42 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{{\nOFFSET 0 -4 12\n}}\n}}\n}}\n}}\n"));
+    }
+    text.push_str("JOINT Spine\n{\nOFFSET 0 20 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT Head\n{\nOFFSET 0 60 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 20 0\n}\n}\n}\n");
+    for (side, x) in [("Left", 25.0), ("Right", -25.0)] {
+        text.push_str(&format!("JOINT {side}Arm\n{{\nOFFSET {x} 70 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT {side}ForeArm\n{{\nOFFSET 0 -28 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT {side}Hand\n{{\nOFFSET 0 -25 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{{\nOFFSET 0 -8 0\n}}\n}}\n}}\n}}\n"));
+    }
+    text.push_str("}\nMOTION\nFrames: 30\nFrame Time: 0.0333333\n");
+    for f in 0..30 {
+        let x = f as f32 * 0.5;
+        // The left knee bends slightly throughout; from frame 15 the left hip lifts the leg.
+        let lift = if f >= 15 { -40.0 } else { 0.0 };
+        let left = format!("0 {lift} 0 0 10 0 0 0 0");
+        let right = "0 -20 0 0 30 0 0 0 0";
+        let rest = "0 0 0 ".repeat(8);
+        text.push_str(&format!("{x} 0 0 0 0 0 {left} {right} {rest}\n"));
+    }
+    mocap::bvh::parse(text.as_bytes()).unwrap()
+}
+
+#[test]
+fn foot_locking_pins_a_skating_foot_and_lets_it_go() {
+    use mocap::contact::FootLock;
+    let clip = skating_clip();
+    let lock = FootLock::new(&clip);
+    assert_eq!(lock.legs.len(), 2, "two legs found");
+    let skeleton = clip.skeleton();
+    let left = lock.legs.iter().find(|l| skeleton.joints()[l.chain.effector()].name == "LeftFoot").expect("the left leg");
+    assert!(left.contact[..14].iter().all(|c| *c), "stance frames are contacts: {:?}", left.contact);
+    assert!(left.contact[16..].iter().all(|c| !*c), "the lifted foot is not: {:?}", left.contact);
+    let foot = left.chain.effector();
+    let mut pinned = Vec::new();
+    for f in 0..14 {
+        let mut local = LocalPose::default();
+        clip.local_pose_into(f, &mut local);
+        lock.apply(&clip, &mut local, clip.timeline().time_of(f));
+        pinned.push(positions(skeleton, &local)[foot]);
+        assert!(all_finite(&local));
+    }
+    let unlocked: Vec<Vec3> = (0..14).map(|f| clip.world_positions(f)[foot]).collect();
+    assert!(unlocked[0].distance(unlocked[13]) > 5.0, "without locking the foot skates");
+    for p in &pinned {
+        assert!(p.distance(pinned[0]) < 1e-2, "locked, the foot stays put: {p} vs {}", pinned[0]);
+    }
+    // Well after the run the left foot's lock is off: its leg is the clip's own
+    // (the right foot skates on the floor the whole time, so it stays locked).
+    let mut local = LocalPose::default();
+    clip.local_pose_into(25, &mut local);
+    let before = local.clone();
+    lock.apply(&clip, &mut local, clip.timeline().time_of(25));
+    for &j in left.chain.joints() {
+        assert_eq!(local.rotation[j], before.rotation[j]);
+    }
+}
+
+#[test]
+fn the_generated_walk_has_alternating_foot_contacts() {
+    let walk = mocap::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap();
+    let lock = mocap::contact::FootLock::new(&walk);
+    assert_eq!(lock.legs.len(), 2);
+    for leg in &lock.legs {
+        let n = leg.contact.iter().filter(|c| **c).count();
+        assert!(n > 5 && n < leg.contact.len() - 5, "{} of {} frames in contact", n, leg.contact.len());
+    }
+}

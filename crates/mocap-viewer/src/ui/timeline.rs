@@ -52,6 +52,9 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             if slider.changed() {
                 viewer.playback.seek(f, timing);
             }
+            if viewer.settings.foot_lock {
+                contact_marks(ui, viewer, &slider, timing);
+            }
         });
         ui.horizontal(|ui| {
             let mut on = viewer.playback.range.is_some();
@@ -65,6 +68,27 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
         });
         ui.add_space(2.0);
     });
+}
+
+/// Foot contacts of the current character under the scrub bar: one row of marks
+/// per foot at the frames where it rests on the floor.
+fn contact_marks(ui: &egui::Ui, viewer: &Viewer, slider: &egui::Response, timing: crate::playback::Timing) {
+    let Some(c) = viewer.current_character() else { return };
+    let (Some(lock), Some(clip)) = (&c.extra.foot_lock, c.clip()) else { return };
+    // The slider's rail: its width less the value box.
+    let rail = egui::Rect::from_min_max(slider.rect.left_top(), egui::pos2(slider.rect.right() - 60.0, slider.rect.bottom()));
+    let span = timing.duration().max(1e-9);
+    let colors = [egui::Color32::from_rgb(90, 200, 255), egui::Color32::from_rgb(255, 150, 80)];
+    for (row, contacts) in lock.contacts().enumerate() {
+        let y = rail.bottom() + 1.0 + row as f32 * 3.0;
+        let color = colors[row % colors.len()];
+        for (f, _) in contacts.iter().enumerate().filter(|(_, c)| **c) {
+            let x = rail.left() + (clip.timeline().time_of(f) / span) as f32 * rail.width();
+            if x <= rail.right() {
+                ui.painter().line_segment([egui::pos2(x, y), egui::pos2(x + 2.0, y)], egui::Stroke::new(2.0, color));
+            }
+        }
+    }
 }
 
 /// The embed layout's timeline: play/pause and the scrub bar on one row.

@@ -43,6 +43,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.checkbox(&mut viewer.settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");
             ui.checkbox(&mut viewer.settings.follow_root, "Follow root").on_hover_text("f");
             ui.checkbox(&mut viewer.settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
+            ui.checkbox(&mut viewer.settings.foot_lock, "Foot lock").on_hover_text("Pin each foot to the floor while it is in contact (legs solved by IK); contacts show on the timeline");
             ui.separator();
             ui.checkbox(&mut viewer.settings.pose_mode, "Pose").on_hover_text("Drag a joint in the view: its chain follows by IK (the clip's own pose shows as a ghost)");
             if viewer.has_corrections() && ui.button("Reset pose").on_hover_text("Forget the poses corrected by dragging").clicked() {
