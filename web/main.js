@@ -206,10 +206,12 @@ async function main() {
   const limit = maxMb > 0 ? maxMb * 1048576 : DEFAULT_LIMIT;
   const embed = params.get('embed') === '1';
   if (embed) document.body.classList.add('embed');
+  // ?demo=tentacle[&bones=N] opens a demo instead of the default clip.
+  const demo = urls.length === 0 ? params.get('demo') : null;
   let viewer;
   try {
     await init();
-    viewer = await start('viewer', 'file-input', urls.length === 0);
+    viewer = await start('viewer', 'file-input', urls.length === 0 && !demo);
     window.mocapViewer = viewer;
     viewer.setEmbed(embed);
     wireFiles(viewer);
@@ -221,6 +223,7 @@ async function main() {
   }
   window.mocapUrlLoads = [];
   if (urls.length > 0) await loadUrls(viewer, urls, limit);
+  if (demo && !viewer.openDemo(demo, Number(params.get('bones')) || undefined)) viewer.showError(`?demo=${demo}: no such demo (try ?demo=tentacle)`);
   if (location.hash.length > 1) viewer.applyViewState(location.hash.slice(1));
   followViewState(viewer);
   window.addEventListener('mocap-share', () => share(viewer, source));

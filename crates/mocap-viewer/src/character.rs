@@ -49,6 +49,8 @@ pub struct Correction {
     pub rotations: Vec<(usize, mocap::glam::Quat)>,
     /// Roots moved by hand, and their local translations.
     pub translations: Vec<(usize, mocap::glam::Vec3)>,
+    /// Draw the clip's own pose as a ghost under it.
+    pub ghost: bool,
 }
 
 impl Correction {
@@ -102,7 +104,7 @@ pub fn drag_joint(c: &mut Character, joint: usize, world: mocap::glam::Vec3, tim
     let frame = c.frame_at(time);
     c.sample_local(time, Interpolation::Step, scratch);
     let mut local = std::mem::take(&mut scratch.local);
-    let mut correction = c.extra.correction.clone().filter(|k| k.frame == frame).unwrap_or(Correction { frame, ..Correction::default() });
+    let mut correction = c.extra.correction.clone().filter(|k| k.frame == frame).unwrap_or(Correction { frame, ghost: true, ..Correction::default() });
     correction.apply(&mut local);
     let solve = match parent {
         None => {
@@ -217,7 +219,9 @@ pub fn pose_at(c: &mut Character, time: f64, smooth: bool, lock_feet: bool, scra
     if (correction.is_some() || lock_feet) && c.sample_local(time, sampling, scratch) {
         let mut local = std::mem::take(&mut scratch.local);
         if let Some(correction) = correction {
-            c.place(&local, &mut ghost);
+            if correction.ghost {
+                c.place(&local, &mut ghost);
+            }
             correction.apply(&mut local);
         }
         if let (true, Some(lock), Some(clip)) = (lock_feet, &c.extra.foot_lock, c.clip()) {

@@ -7,6 +7,9 @@
 use mocap::glam::{Vec3, Vec4Swizzles};
 use mocap_render::Camera;
 
+/// The `character` of the handle of the tentacle demo's target sphere.
+pub const TARGET: usize = usize::MAX;
+
 /// Grab radius around a joint on screen, in points.
 pub const GRAB_RADIUS: f32 = 14.0;
 

@@ -23,6 +23,7 @@ pub mod selection;
 pub mod settings;
 pub mod snapshot;
 pub mod stage;
+pub mod tentacle;
 pub mod ui;
 pub mod viewer;
 pub mod view_state;

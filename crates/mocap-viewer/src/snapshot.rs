@@ -61,6 +61,23 @@ impl ClipSummary {
     }
 }
 
+/// The bendy-tentacle demo's state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DemoSummary {
+    /// Bones in the chain.
+    pub bones: usize,
+    /// `two-bone`, `ccd` or `fabrik`.
+    pub solver: &'static str,
+    /// Soft or rigid skin.
+    pub soft: bool,
+    /// Whether the tip follows the target.
+    pub follow: bool,
+    /// The target (world, metres).
+    pub target: [f32; 3],
+    /// Where the tip was drawn (world, metres).
+    pub tip: [f32; 3],
+}
+
 /// The observable state of the viewer.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct Snapshot {
@@ -98,6 +115,8 @@ pub struct Snapshot {
     pub embed: bool,
     /// The wgpu backend drawing the 3D view ("BrowserWebGpu", "Gl", ...).
     pub backend: Option<String>,
+    /// The bendy-tentacle demo, when open.
+    pub demo: Option<DemoSummary>,
 }
 
 impl Snapshot {
@@ -121,6 +140,14 @@ impl Snapshot {
             view: v.view_fragment(),
             embed: v.panels.embed,
             backend,
+            demo: v.tentacle.as_ref().map(|t| DemoSummary {
+                bones: t.bones,
+                solver: t.solver.name(),
+                soft: t.soft,
+                follow: t.follow,
+                target: t.target.to_array(),
+                tip: t.tip.to_array(),
+            }),
         }
     }
 }

@@ -51,6 +51,8 @@ pub struct Viewer {
     pub panels: Panels,
     /// Reads dropped files; remembers the last Acclaim skeleton for motions dropped alone.
     pub loader: mocap::Loader,
+    /// The bendy-tentacle demo, when it is open (its tentacle is character 1).
+    pub tentacle: Option<crate::tentacle::Tentacle>,
     viewport: Viewport,
     scene: Scene,
     pose_scratch: mocap::stage::PoseScratch,
@@ -104,6 +106,7 @@ impl Viewer {
     /// state kept, no loop range or selection, camera framed on the motion. The first
     /// frame drawn afterwards shows frame 0 (the clock restarts).
     pub fn open_assets(&mut self, assets: Vec<(String, mocap::Asset)>) {
+        self.tentacle = None;
         self.playback.time = 0.0;
         self.last_time = None;
         self.playback.range = None;
@@ -145,6 +148,9 @@ impl Viewer {
         if !self.stage.remove(index) {
             return false;
         }
+        if index == 0 {
+            self.tentacle = None;
+        }
         self.selected = match self.selected {
             Some(s) if s.character == index => None,
             Some(s) if s.character > index => Some(Selection { character: s.character - 1, ..s }),
@@ -155,6 +161,7 @@ impl Viewer {
 
     /// Closes every character.
     pub fn clear(&mut self) {
+        self.tentacle = None;
         self.stage.replace(Vec::new());
         self.selected = None;
     }
@@ -284,10 +291,19 @@ impl Viewer {
             ui::overlay::show(ui, self);
         });
         if let Some(d) = joint_drag {
-            self.set_playing(false);
-            self.selected = Some(Selection { character: d.handle.character, joint: d.handle.joint });
-            self.drag_joint(d.handle.character, d.handle.joint, d.target);
+            if d.handle.character == crate::drag::TARGET {
+                if let Some(t) = &mut self.tentacle {
+                    t.target = d.target;
+                }
+            } else {
+                self.set_playing(false);
+                self.selected = Some(Selection { character: d.handle.character, joint: d.handle.joint });
+                self.drag_joint(d.handle.character, d.handle.joint, d.target);
+            }
             ui.ctx().request_repaint();
+        }
+        if self.tentacle.is_some() {
+            ui::tentacle::show(ui, self);
         }
         if self.playback.playing && !self.stage.actors.is_empty() {
             ui.ctx().request_repaint();
@@ -339,6 +355,9 @@ impl Viewer {
     pub fn pose(&mut self) {
         let smooth = self.playback.playing && self.settings.interpolate;
         let body = self.settings.mode == DrawMode::Body;
+        if let (Some(demo), Some(c)) = (&self.tentacle, self.stage.actors.first_mut()) {
+            demo.pose(c);
+        }
         for c in self.stage.actors.iter_mut().filter(|c| c.visible) {
             character::pose_at(c, self.playback.time, smooth, self.settings.foot_lock, &mut self.pose_scratch);
             if body {
@@ -353,16 +372,25 @@ impl Viewer {
             self.camera.target.z = root.translation.z;
         }
         pose_scene::build_scene(&self.stage, &self.settings, self.selected, &mut self.scene);
+        if let Some(demo) = &mut self.tentacle {
+            self.scene.spheres.push(mocap_render::Sphere { center: demo.target, radius: 0.07, color: [235, 70, 60, 255] });
+            if let Some(tip) = self.stage.actors.first().and_then(|c| c.extra.pose.last()) {
+                demo.tip = tip.translation;
+            }
+        }
     }
 
     /// The joints that can be grabbed in Pose mode: every joint of every visible
     /// clip character (End Sites included: a finger tip is a fine handle), where it
     /// was last drawn. Empty outside Pose mode.
     pub fn handles(&self) -> Vec<crate::drag::Handle> {
-        if !self.settings.pose_mode {
-            return Vec::new();
-        }
         let mut out = Vec::new();
+        if let Some(t) = &self.tentacle {
+            out.push(crate::drag::Handle { character: crate::drag::TARGET, joint: 0, world: t.target });
+        }
+        if !self.settings.pose_mode {
+            return out;
+        }
         for (character, c) in self.stage.visible().filter(|(_, c)| c.clip().is_some()) {
             out.extend(c.extra.pose.iter().enumerate().map(|(joint, t)| crate::drag::Handle { character, joint, world: t.translation }));
         }
@@ -381,6 +409,31 @@ impl Viewer {
         solve
     }
 
+    /// Opens the bendy-tentacle demo with `bones` bones in place of everything open:
+    /// its skin drawn in body mode, the tip following the target sphere.
+    pub fn open_tentacle(&mut self, bones: usize) {
+        let demo = crate::tentacle::Tentacle::new(bones);
+        let clip = mocap::demo::tentacle(demo.bones);
+        self.open_assets(vec![("tentacle".to_owned(), mocap::Asset::Clip(clip))]);
+        self.settings.mode = DrawMode::Body;
+        self.set_playing(false);
+        if let Some(c) = self.stage.actors.first_mut() {
+            c.extra.body = Some(c.clip().and_then(|clip| demo.body(clip)));
+        }
+        self.tentacle = Some(demo);
+        self.camera.pitch = 0.15;
+        self.camera.yaw = 0.3;
+        let length = self.tentacle.as_ref().map_or(1.0, |t| t.bones as f32 * mocap::demo::BONE_LENGTH);
+        self.camera.target = mocap::glam::Vec3::new(0.0, length * 0.5, 0.0) + self.stage.actors.first().map_or(mocap::glam::Vec3::ZERO, |c| c.placement());
+        self.camera.distance = length * 2.6;
+    }
+
+    /// Rebuilds the tentacle's skin after the demo's softness changed.
+    pub fn refresh_tentacle_skin(&mut self) {
+        let (Some(demo), Some(c)) = (&self.tentacle, self.stage.actors.first_mut()) else { return };
+        c.extra.body = Some(c.clip().and_then(|clip| demo.body(clip)));
+    }
+
     /// Forgets every pose correction made by dragging.
     pub fn reset_pose(&mut self) {
         for c in &mut self.stage.actors {
@@ -397,6 +450,11 @@ impl Viewer {
     /// and the joint is in front of the camera.
     pub fn joint_on_screen(&self, character: usize, joint: usize) -> Option<egui::Pos2> {
         let world = self.stage.actors.get(character)?.extra.pose.get(joint)?.translation;
+        self.screen_position(world)
+    }
+
+    /// Where a world point is on screen (points) with the last frame's view.
+    pub fn screen_position(&self, world: mocap::glam::Vec3) -> Option<egui::Pos2> {
         self.viewport.geometry?.project(world)
     }
 

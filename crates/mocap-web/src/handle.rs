@@ -99,6 +99,57 @@ impl MocapViewer {
         .unwrap_or(false)
     }
 
+    /// Opens a demo in place of everything open: `'tentacle'` (the bendy
+    /// tentacle, `bones` bones, 2 by default). Returns false for an unknown name.
+    #[wasm_bindgen(js_name = openDemo)]
+    pub fn open_demo(&self, name: &str, bones: Option<u32>) -> bool {
+        if name != "tentacle" {
+            return false;
+        }
+        self.with_viewer(|v| v.open_tentacle(bones.unwrap_or(2) as usize)).is_some()
+    }
+
+    /// Sets the tentacle demo: its target (world, metres), whether the tip follows
+    /// it, the solver (`'two-bone'`, `'ccd'`, `'fabrik'`) and soft or rigid skin.
+    /// Returns false when the demo is not open or the solver is unknown.
+    #[wasm_bindgen(js_name = setDemo)]
+    pub fn set_demo(&self, target: Option<Vec<f32>>, follow: Option<bool>, solver: Option<String>, soft: Option<bool>) -> bool {
+        self.with_viewer(|v| {
+            let Some(t) = &mut v.tentacle else { return false };
+            if let Some([x, y, z]) = target.as_deref().and_then(|p| <[f32; 3]>::try_from(p).ok()) {
+                t.target = mocap::glam::Vec3::new(x, y, z);
+            }
+            if let Some(f) = follow {
+                t.follow = f;
+            }
+            if let Some(s) = solver {
+                match mocap_viewer::tentacle::Solver::from_name(&s) {
+                    Some(s) => t.solver = s,
+                    None => return false,
+                }
+            }
+            let skin_changed = soft.is_some_and(|s| s != t.soft);
+            if let Some(s) = soft {
+                t.soft = s;
+            }
+            if skin_changed {
+                v.refresh_tentacle_skin();
+            }
+            true
+        })
+        .unwrap_or(false)
+    }
+
+    /// Where the tentacle demo's target sphere was last drawn, in CSS pixels
+    /// (`[x, y]`), or `undefined`.
+    #[wasm_bindgen(js_name = demoTargetScreenPosition)]
+    pub fn demo_target_screen_position(&self) -> Option<Vec<f32>> {
+        let v = self.viewer.try_borrow().ok()?;
+        let target = v.tentacle.as_ref()?.target;
+        let p = v.screen_position(target)?;
+        Some(vec![p.x, p.y])
+    }
+
     /// Forgets every pose corrected by dragging.
     #[wasm_bindgen(js_name = resetPose)]
     pub fn reset_pose(&self) {

@@ -63,5 +63,17 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "view", s.view.as_str());
     set(&o, "embed", s.embed);
     set(&o, "backend", opt(&s.backend));
+    let demo = s.demo.as_ref().map_or(JsValue::NULL, |d| {
+        let o = Object::new();
+        set(&o, "bones", d.bones as f64);
+        set(&o, "solver", d.solver);
+        set(&o, "soft", d.soft);
+        set(&o, "follow", d.follow);
+        let v3 = |v: [f32; 3]| -> Array { v.iter().map(|x| JsValue::from_f64(f64::from(*x))).collect() };
+        set(&o, "target", v3(d.target));
+        set(&o, "tip", v3(d.tip));
+        o.into()
+    });
+    set(&o, "demo", demo);
     o.into()
 }

@@ -28,6 +28,7 @@ pub mod bvh;
 pub mod channel;
 pub mod clip;
 pub mod contact;
+pub mod demo;
 pub mod error;
 mod fastmath;
 pub mod fk;

@@ -6,5 +6,6 @@ pub mod inspector;
 pub mod model_info;
 pub mod overlay;
 pub mod side;
+pub mod tentacle;
 pub mod timeline;
 pub mod toolbar;
