@@ -443,7 +443,7 @@ impl Viewer {
 
     /// Whether any character has a pose correction.
     pub fn has_corrections(&self) -> bool {
-        self.stage.actors.iter().any(|c| c.extra.correction.is_some())
+        self.stage.actors.iter().any(|c| c.extra.correction.as_ref().is_some_and(|k| k.ghost))
     }
 
     /// Where a joint was last drawn on screen (points), if the view has been drawn
