@@ -3,8 +3,9 @@
 //! copy: a matrix per joint) and the renderer's cache of their buffers.
 //!
 //! The vertex buffer is uploaded once per mesh; per frame only the joint matrices
-//! move, all draws' into one RGBA32F texture (four texels per matrix) that the
-//! vertex shader reads, the same code on WebGPU, WebGL2 and Vulkan.
+//! move, all draws' into one RGBA32F texture (three texels per matrix: the rows of
+//! its affine part) that the vertex shader reads, the same code on WebGPU, WebGL2
+//! and Vulkan.
 
 use crate::buffer::GrowingBuffer;
 use bytemuck::{Pod, Zeroable};
@@ -15,6 +16,8 @@ use wgpu::util::DeviceExt;
 
 /// Matrices per row of the joint texture (must match skinned.wgsl).
 const MATRICES_PER_ROW: u32 = 256;
+/// Texels per matrix: the three rows of its affine part.
+const TEXELS_PER_MATRIX: u32 = 3;
 
 /// One vertex: bind-pose position and normal, four joints and their weights.
 #[repr(C)]
@@ -205,10 +208,10 @@ impl SkinnedCache {
                 };
                 self.meshes.insert(key, mesh);
             }
-            let base = (self.texels.len() / 4) as u32;
+            let base = (self.texels.len() / TEXELS_PER_MATRIX as usize) as u32;
             for j in 0..draw.mesh.joint_count as usize {
                 let m = draw.matrices.get(j).copied().filter(|m| m.is_finite()).unwrap_or(Mat4::IDENTITY);
-                self.texels.extend(m.to_cols_array_2d());
+                self.texels.extend([m.row(0), m.row(1), m.row(2)].map(|r| r.to_array()));
             }
             let [r, g, b, _] = crate::srgb_to_linear(draw.tint);
             self.draws.push((key, self.scratch.len() as u32));
@@ -220,7 +223,7 @@ impl SkinnedCache {
 
     /// Writes the matrices into the joint texture, growing it (rows doubling) when needed.
     fn upload_matrices(&mut self, device: &wgpu::Device, queue: &wgpu::Queue) {
-        let matrices = (self.texels.len() / 4) as u32;
+        let matrices = (self.texels.len() / TEXELS_PER_MATRIX as usize) as u32;
         if matrices == 0 {
             return;
         }
@@ -234,7 +237,7 @@ impl SkinnedCache {
             let height = rows.next_power_of_two().min(max_rows);
             let texture = device.create_texture(&wgpu::TextureDescriptor {
                 label: Some("mocap joint matrices"),
-                size: wgpu::Extent3d { width: MATRICES_PER_ROW * 4, height, depth_or_array_layers: 1 },
+                size: wgpu::Extent3d { width: MATRICES_PER_ROW * TEXELS_PER_MATRIX, height, depth_or_array_layers: 1 },
                 mip_level_count: 1,
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
@@ -252,13 +255,13 @@ impl SkinnedCache {
         }
         let Some((texture, _, _)) = &self.texture else { return };
         // Whole rows: pad the last one.
-        let row_texels = (MATRICES_PER_ROW * 4) as usize;
+        let row_texels = (MATRICES_PER_ROW * TEXELS_PER_MATRIX) as usize;
         self.texels.resize(rows as usize * row_texels, [0.0; 4]);
         queue.write_texture(
             wgpu::TexelCopyTextureInfo { texture, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
             bytemuck::cast_slice(&self.texels),
-            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(MATRICES_PER_ROW * 4 * 16), rows_per_image: Some(rows) },
-            wgpu::Extent3d { width: MATRICES_PER_ROW * 4, height: rows, depth_or_array_layers: 1 },
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(MATRICES_PER_ROW * TEXELS_PER_MATRIX * 16), rows_per_image: Some(rows) },
+            wgpu::Extent3d { width: MATRICES_PER_ROW * TEXELS_PER_MATRIX, height: rows, depth_or_array_layers: 1 },
         );
     }
 

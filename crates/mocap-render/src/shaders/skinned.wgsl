@@ -1,8 +1,9 @@
 // Skinned meshes (bodies): every vertex is moved by up to four joint matrices,
 // blended by its weights (linear-blend skinning). The matrices of every draw of
-// the frame live in one RGBA32F texture, four texels (columns) per matrix,
-// MATRICES_PER_ROW per row, read with textureLoad (WebGL2 has no storage buffers
-// in vertex shaders; textures work everywhere). Each draw's instance gives the
+// the frame live in one RGBA32F texture, three texels per matrix (the rows of its
+// affine 3×4 part), MATRICES_PER_ROW per row, read with textureLoad (WebGL2 has no
+// storage buffers in vertex shaders; textures work everywhere). Influences of
+// weight 0 are skipped. Each draw's instance gives the
 // index of its first matrix, its tint and whether to show the weights instead.
 // `Frame`, `frame`, `to_target` and `shade` come from frame.wgsl and lighting.wgsl.
 
@@ -27,24 +28,46 @@ struct Out {
     @location(2) color: vec3<f32>,
 };
 
-fn joint_matrix(index: u32) -> mat4x4<f32> {
-    let x = i32((index % MATRICES_PER_ROW) * 4u);
+// The rows of a joint's matrix (affine: the fourth row is 0 0 0 1), weighted.
+struct Rows {
+    r0: vec4<f32>,
+    r1: vec4<f32>,
+    r2: vec4<f32>,
+};
+
+fn add_joint(acc: Rows, index: u32, w: f32) -> Rows {
+    let x = i32((index % MATRICES_PER_ROW) * 3u);
     let y = i32(index / MATRICES_PER_ROW);
-    return mat4x4<f32>(
-        textureLoad(joint_matrices, vec2<i32>(x, y), 0),
-        textureLoad(joint_matrices, vec2<i32>(x + 1, y), 0),
-        textureLoad(joint_matrices, vec2<i32>(x + 2, y), 0),
-        textureLoad(joint_matrices, vec2<i32>(x + 3, y), 0),
-    );
+    var out: Rows;
+    out.r0 = acc.r0 + textureLoad(joint_matrices, vec2<i32>(x, y), 0) * w;
+    out.r1 = acc.r1 + textureLoad(joint_matrices, vec2<i32>(x + 1, y), 0) * w;
+    out.r2 = acc.r2 + textureLoad(joint_matrices, vec2<i32>(x + 2, y), 0) * w;
+    return out;
 }
 
-// The blended matrix of a vertex.
-fn skin_matrix(v: SkinnedVertex) -> mat4x4<f32> {
+// The blended matrix of a vertex, as rows.
+fn skin_rows(v: SkinnedVertex) -> Rows {
     let b = v.base.x;
-    return joint_matrix(b + v.joints.x) * v.weights.x
-        + joint_matrix(b + v.joints.y) * v.weights.y
-        + joint_matrix(b + v.joints.z) * v.weights.z
-        + joint_matrix(b + v.joints.w) * v.weights.w;
+    var m = add_joint(Rows(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0)), b + v.joints.x, v.weights.x);
+    if (v.weights.y > 0.0) {
+        m = add_joint(m, b + v.joints.y, v.weights.y);
+    }
+    if (v.weights.z > 0.0) {
+        m = add_joint(m, b + v.joints.z, v.weights.z);
+    }
+    if (v.weights.w > 0.0) {
+        m = add_joint(m, b + v.joints.w, v.weights.w);
+    }
+    return m;
+}
+
+fn skin_point(m: Rows, p: vec3<f32>) -> vec3<f32> {
+    let h = vec4<f32>(p, 1.0);
+    return vec3<f32>(dot(m.r0, h), dot(m.r1, h), dot(m.r2, h));
+}
+
+fn skin_vector(m: Rows, n: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(dot(m.r0.xyz, n), dot(m.r1.xyz, n), dot(m.r2.xyz, n));
 }
 
 // A colour per joint (golden-ratio hues), for the weights view.
@@ -57,12 +80,12 @@ fn joint_color(j: u32) -> vec3<f32> {
 
 @vertex
 fn vs_main(v: SkinnedVertex) -> Out {
-    let m = skin_matrix(v);
-    let world = (m * vec4<f32>(v.position, 1.0)).xyz;
+    let m = skin_rows(v);
+    let world = skin_point(m, v.position);
     var out: Out;
     out.position = frame.projection * frame.view * vec4<f32>(world, 1.0);
     out.world = world;
-    out.normal = (m * vec4<f32>(v.normal, 0.0)).xyz;
+    out.normal = skin_vector(m, v.normal);
     if (v.tint_mode.w > 0.5) {
         out.color = joint_color(v.joints.x) * v.weights.x + joint_color(v.joints.y) * v.weights.y
             + joint_color(v.joints.z) * v.weights.z + joint_color(v.joints.w) * v.weights.w;
@@ -75,8 +98,7 @@ fn vs_main(v: SkinnedVertex) -> Out {
 // Depth-only pass into the shadow map.
 @vertex
 fn vs_shadow(v: SkinnedVertex) -> @builtin(position) vec4<f32> {
-    let world = (skin_matrix(v) * vec4<f32>(v.position, 1.0)).xyz;
-    return frame.light_view_proj * vec4<f32>(world, 1.0);
+    return frame.light_view_proj * vec4<f32>(skin_point(skin_rows(v), v.position), 1.0);
 }
 
 @fragment
