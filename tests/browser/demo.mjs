@@ -32,7 +32,7 @@ try {
       await page.waitForTimeout(60);
     }
     await page.mouse.up();
-    const s = await changeAndRender(page, () => {});
+    const s = await changeAndRender(page, (v) => v.pause());
     const now = await page.evaluate(() => window.mocapViewer.demoTargetScreenPosition());
     const d = Math.hypot(now[0] - end[0], now[1] - end[1]);
     check(d < 4, `the sphere is under the pointer (${now} vs ${end}, ${d.toFixed(1)} px)`);
@@ -43,7 +43,7 @@ try {
   await step('rigid skin and CCD from JavaScript', async () => {
     const ok = await page.evaluate(() => window.mocapViewer.setDemo([0.5, 0.5, 0.2], true, 'ccd', false));
     const s = await waitState(page, (s) => s.demo.solver === 'ccd' && s.demo.soft === false);
-    await changeAndRender(page, () => {});
+    await changeAndRender(page, (v) => v.pause());
     const s2 = await waitState(page, (s) => Math.hypot(s.demo.tip[0] - 0.5, s.demo.tip[1] - 0.5, s.demo.tip[2] - 0.2) < 1e-2);
     check(ok && s.demo.soft === false && s2.demo.solver === 'ccd', 'setDemo changes solver, skin and target');
     check(!(await page.evaluate(() => window.mocapViewer.setDemo(null, null, 'magic', null))), 'an unknown solver is refused');

@@ -112,7 +112,7 @@ try {
     }
     await page.mouse.up();
     const s = await waitState(page, (s) => s.clips[0].corrected === true && s.selectedJoint === 'LeftHand');
-    await changeAndRender(page, () => {});
+    await changeAndRender(page, (v) => v.pause());
     const now = await page.evaluate(() => window.mocapViewer.jointScreenPosition(0, 'LeftHand'));
     const d = Math.hypot(now[0] - end[0], now[1] - end[1]);
     check(d < 4, `the hand is under the pointer (${now} vs ${end}, ${d.toFixed(1)} px)`);
