@@ -29,6 +29,7 @@ pub mod channel;
 pub mod clip;
 pub mod contact;
 pub mod demo;
+pub mod edit;
 pub mod error;
 mod fastmath;
 pub mod fk;

@@ -1,0 +1,456 @@
+//! Clip edits: each takes a clip and gives a new one that BVH can hold (the input
+//! is baked first, [`crate::bake::to_bvh`]), so every result can be saved and read
+//! back exactly.
+//!
+//! Edits that only reorder or drop frames ([`Edit::Trim`], [`Edit::Reverse`],
+//! [`Edit::PingPong`]) copy motion rows, bit for bit. The others work on local
+//! poses (sampled with the clip's own rule, changed, written back as channel
+//! values in each joint's own rotation order): [`Edit::Resample`],
+//! [`Edit::LoopKnit`], [`Edit::InPlace`], [`Edit::UpAxis`], [`Edit::Scale`],
+//! [`Edit::RemoveJoint`]; [`Edit::Rename`] changes names only.
+
+use crate::bake;
+use crate::channel::{AngleUnit, Channel, ChannelKind};
+use crate::clip::Clip;
+use crate::motion::Motion;
+use crate::pose::{from_row, LocalPose};
+use crate::sample::{sample, Interpolation, SampleScratch};
+use crate::skeleton::{EulerConvention, Joint, Skeleton};
+use crate::time::Timeline;
+use glam::{EulerRot, Quat, Vec3};
+
+/// One clip edit.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Edit {
+    /// Keep frames `first..=last`.
+    Trim {
+        /// First frame kept.
+        first: usize,
+        /// Last frame kept (inclusive).
+        last: usize,
+    },
+    /// Resample to `fps` frames per second over the same duration, with the
+    /// clip's own sampling (rotations by slerp, translations by lerp).
+    Resample {
+        /// The new frame rate.
+        fps: f64,
+    },
+    /// Play backward.
+    Reverse,
+    /// Forward, then backward without repeating the ends (a seamless loop).
+    PingPong,
+    /// Blend the last `frames` frames toward the first so the loop is seamless
+    /// (rotations and the root's height; the root's travel is kept).
+    LoopKnit {
+        /// Frames blended.
+        frames: usize,
+    },
+    /// Remove the root's horizontal travel (its height stays); with
+    /// `remove_turning`, also its turning about the vertical axis.
+    InPlace {
+        /// Also keep the root facing as on the first frame.
+        remove_turning: bool,
+    },
+    /// The file's up axis is `from` (`Z` for Z-up files): turn the whole clip so
+    /// that it is Y-up (distances kept).
+    UpAxis {
+        /// 0 = X, 1 = Y (no change), 2 = Z; `negative` for -X/-Y/-Z.
+        from: usize,
+        /// The file's up points along the negative axis.
+        negative: bool,
+    },
+    /// Multiply every length (offsets and positions) by `factor` (a unit change).
+    Scale {
+        /// Length factor, positive and finite.
+        factor: f32,
+    },
+    /// Rename a joint.
+    Rename {
+        /// Current name.
+        from: String,
+        /// New name.
+        to: String,
+    },
+    /// Remove a joint; its children move to its parent. With `fold`, its motion
+    /// is folded into them so that no position changes; without, it is dropped.
+    RemoveJoint {
+        /// The joint's name.
+        name: String,
+        /// Keep positions (fold) or drop the joint's motion.
+        fold: bool,
+    },
+}
+
+/// Why an edit cannot be made.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct EditError(pub String);
+
+fn err<T>(message: impl Into<String>) -> Result<T, EditError> {
+    Err(EditError(message.into()))
+}
+
+/// Applies `edit` to `clip`.
+pub fn apply(clip: &Clip, edit: &Edit) -> Result<Clip, EditError> {
+    let (clip, _) = bake::to_bvh(clip);
+    let frames = clip.frame_count();
+    match edit {
+        Edit::Trim { first, last } => {
+            if first > last || *last >= frames {
+                return err(format!("trim {first}:{last}: the clip has frames 0 to {}", frames.saturating_sub(1)));
+            }
+            rows(&clip, (*first..=*last).collect())
+        }
+        Edit::Reverse => rows(&clip, (0..frames).rev().collect()),
+        Edit::PingPong => {
+            let back = (1..frames.saturating_sub(1)).rev();
+            rows(&clip, (0..frames).chain(back).collect())
+        }
+        Edit::Resample { fps } => resample(&clip, *fps),
+        Edit::LoopKnit { frames: k } => loop_knit(&clip, *k),
+        Edit::InPlace { remove_turning } => in_place(&clip, *remove_turning),
+        Edit::UpAxis { from, negative } => up_axis(&clip, *from, *negative),
+        Edit::Scale { factor } => scale(&clip, *factor),
+        Edit::Rename { from, to } => rename(&clip, from, to),
+        Edit::RemoveJoint { name, fold } => remove_joint(&clip, name, *fold),
+    }
+}
+
+/// Applies edits in order.
+pub fn apply_all(clip: &Clip, edits: &[Edit]) -> Result<Clip, EditError> {
+    edits.iter().try_fold(clip.clone(), |c, e| apply(&c, e))
+}
+
+/// The clip with the rows `order` (frame indices) in that order.
+fn rows(clip: &Clip, order: Vec<usize>) -> Result<Clip, EditError> {
+    let motion = clip.motion();
+    let width = motion.channel_count();
+    let mut data = Vec::with_capacity(width * order.len());
+    for f in &order {
+        data.extend_from_slice(motion.row(*f));
+    }
+    rebuild(clip, clip.skeleton().clone(), motion.frame_time(), order.len(), data)
+}
+
+fn rebuild(clip: &Clip, skeleton: Skeleton, frame_time: f64, frames: usize, data: Vec<f32>) -> Result<Clip, EditError> {
+    let width = skeleton.channel_count();
+    let motion = Motion::new(frame_time, width, frames, data).ok_or_else(|| EditError("the edit made no valid motion".into()))?;
+    let mut out = Clip::new(skeleton, motion.with_angle_unit(clip.motion().angle_unit())).map_err(|e| EditError(e.to_string()))?;
+    out.metadata = clip.metadata.clone();
+    Ok(out)
+}
+
+/// Every frame's local pose.
+fn locals(clip: &Clip) -> Vec<LocalPose> {
+    (0..clip.frame_count())
+        .map(|f| {
+            let mut local = LocalPose::default();
+            from_row(clip.skeleton(), clip.motion().row(f), clip.motion().angle_unit(), &mut local);
+            local
+        })
+        .collect()
+}
+
+/// glam's intrinsic order for the product `R[a0] · R[a1] · R[a2]`.
+fn euler_order(axes: [usize; 3]) -> EulerRot {
+    match axes {
+        [0, 1, 2] => EulerRot::XYZ,
+        [0, 2, 1] => EulerRot::XZY,
+        [1, 0, 2] => EulerRot::YXZ,
+        [1, 2, 0] => EulerRot::YZX,
+        [2, 0, 1] => EulerRot::ZXY,
+        _ => EulerRot::ZYX,
+    }
+}
+
+/// Appends joint `j`'s channel values for a local pose (a plain, intrinsic
+/// skeleton): positions from the translation, rotations decomposed in the joint's
+/// own channel order (axes it has no channel for are left out).
+fn joint_values(joint: &Joint, translation: Vec3, rotation: Quat, unit: AngleUnit, out: &mut Vec<f32>) {
+    let mut axes: Vec<usize> = joint.channels.iter().filter(|c| c.is_rotation()).map(|c| c.axis()).collect();
+    axes.dedup();
+    let mut full = axes.clone();
+    for a in 0..3 {
+        if !full.contains(&a) {
+            full.push(a);
+        }
+    }
+    let order = euler_order([full[0], full[1], full[2]]);
+    let (a, b, c) = rotation.to_euler(order);
+    let angles = [a, b, c];
+    let per = unit.radians_per_unit();
+    let mut rotation_index = 0;
+    for channel in &joint.channels {
+        match channel.kind() {
+            ChannelKind::Translation => out.push(translation[channel.axis()]),
+            ChannelKind::Rotation => {
+                let k = full.iter().position(|&x| x == channel.axis()).unwrap_or(rotation_index);
+                out.push(angles.get(k).copied().unwrap_or(0.0) / per);
+                rotation_index += 1;
+            }
+            ChannelKind::Scale => out.push(1.0),
+            ChannelKind::Length => out.push(0.0),
+        }
+    }
+}
+
+/// A motion row for a local pose of a plain skeleton.
+fn row_of(skeleton: &Skeleton, local: &LocalPose, unit: AngleUnit, out: &mut Vec<f32>) {
+    for (j, joint) in skeleton.joints().iter().enumerate() {
+        let t = local.translation.get(j).copied().unwrap_or(joint.offset);
+        let q = local.rotation.get(j).copied().unwrap_or(Quat::IDENTITY);
+        joint_values(joint, t, q, unit, out);
+    }
+}
+
+/// The clip from local poses (same skeleton).
+fn from_locals(clip: &Clip, skeleton: Skeleton, frame_time: f64, poses: &[LocalPose]) -> Result<Clip, EditError> {
+    let unit = clip.motion().angle_unit();
+    let mut data = Vec::with_capacity(skeleton.channel_count() * poses.len());
+    for p in poses {
+        row_of(&skeleton, p, unit, &mut data);
+    }
+    rebuild(clip, skeleton, frame_time, poses.len(), data)
+}
+
+fn resample(clip: &Clip, fps: f64) -> Result<Clip, EditError> {
+    if !(fps.is_finite() && fps > 0.0 && fps <= 100_000.0) {
+        return err(format!("fps {fps}: expected a positive frame rate"));
+    }
+    let duration = clip.duration();
+    let timeline = Timeline::new(1.0 / fps, 1);
+    let frames = if duration > 0.0 { timeline.frames_to_reach(duration) } else { clip.frame_count().min(1) };
+    if frames > crate::time::MAX_FRAMES / 4 || frames.saturating_mul(clip.skeleton().channel_count()) > 1 << 30 {
+        return err(format!("fps {fps}: {frames} frames would be too many"));
+    }
+    let mut scratch = SampleScratch::default();
+    let poses: Vec<LocalPose> = (0..frames)
+        .map(|f| {
+            let mut local = LocalPose::default();
+            sample(clip.skeleton(), clip.motion(), f as f64 / fps, Interpolation::Linear, &mut scratch, &mut local);
+            local
+        })
+        .collect();
+    from_locals(clip, clip.skeleton().clone(), 1.0 / fps, &poses)
+}
+
+fn roots(skeleton: &Skeleton) -> Vec<usize> {
+    skeleton.roots().collect()
+}
+
+fn loop_knit(clip: &Clip, k: usize) -> Result<Clip, EditError> {
+    let n = clip.frame_count();
+    if k == 0 || k >= n {
+        return err(format!("loop knit over {k} frames: the clip has {n} frames (use 1 to {})", n.saturating_sub(1)));
+    }
+    let mut poses = locals(clip);
+    let first = poses[0].clone();
+    let last = poses[n - 1].clone();
+    let roots = roots(clip.skeleton());
+    for i in 0..k {
+        // Weight of the correction that takes the last frame onto the first: the
+        // frame after the last is (virtually) the first.
+        let w = (i + 1) as f32 / (k + 1) as f32;
+        let pose = &mut poses[n - k + i];
+        for j in 0..pose.rotation.len() {
+            let delta = first.rotation[j] * last.rotation[j].inverse();
+            pose.rotation[j] = (Quat::IDENTITY.slerp(delta, w) * pose.rotation[j]).normalize();
+        }
+        for &r in &roots {
+            let dy = first.translation[r].y - last.translation[r].y;
+            pose.translation[r].y += dy * w;
+        }
+    }
+    from_locals(clip, clip.skeleton().clone(), clip.frame_time(), &poses)
+}
+
+fn in_place(clip: &Clip, remove_turning: bool) -> Result<Clip, EditError> {
+    let mut poses = locals(clip);
+    let Some(first) = poses.first().cloned() else { return Ok(clip.clone()) };
+    for &r in &roots(clip.skeleton()) {
+        let start = first.translation[r];
+        let heading0 = heading(first.rotation[r]);
+        for pose in &mut poses {
+            pose.translation[r].x = start.x;
+            pose.translation[r].z = start.z;
+            if remove_turning {
+                let turn = heading(pose.rotation[r]) - heading0;
+                pose.rotation[r] = (Quat::from_rotation_y(-turn) * pose.rotation[r]).normalize();
+            }
+        }
+    }
+    from_locals(clip, clip.skeleton().clone(), clip.frame_time(), &poses)
+}
+
+/// Rotation about the vertical axis of where `q` takes +Z (radians).
+fn heading(q: Quat) -> f32 {
+    let f = q * Vec3::Z;
+    f.x.atan2(f.z)
+}
+
+fn up_axis(clip: &Clip, from: usize, negative: bool) -> Result<Clip, EditError> {
+    // The rotation taking the file's up onto +Y.
+    let up = match from {
+        0 => Vec3::X,
+        1 => Vec3::Y,
+        2 => Vec3::Z,
+        _ => return err(format!("up axis {from}: expected x, y or z")),
+    } * if negative { -1.0 } else { 1.0 };
+    let fix = Quat::from_rotation_arc(up, Vec3::Y);
+    let mut poses = locals(clip);
+    let roots = roots(clip.skeleton());
+    for pose in &mut poses {
+        for &r in &roots {
+            pose.translation[r] = fix * pose.translation[r];
+            pose.rotation[r] = (fix * pose.rotation[r]).normalize();
+        }
+    }
+    // Roots need all three rotation channels (and position channels when they move).
+    let joints: Vec<Joint> = clip
+        .skeleton()
+        .joints()
+        .iter()
+        .map(|j| {
+            if j.parent.is_some() {
+                return j.clone();
+            }
+            let mut channels: Vec<Channel> = j.channels.iter().filter(|c| c.kind() == ChannelKind::Translation).copied().collect();
+            if channels.is_empty() && j.offset != Vec3::ZERO {
+                channels.extend([Channel::Xposition, Channel::Yposition, Channel::Zposition]);
+            } else if !channels.is_empty() {
+                channels = vec![Channel::Xposition, Channel::Yposition, Channel::Zposition];
+            }
+            if !j.is_end_site() {
+                channels.extend([Channel::Zrotation, Channel::Xrotation, Channel::Yrotation]);
+            }
+            let mut joint = Joint::new(j.name.clone(), j.parent, fix * j.offset, channels);
+            if j.is_end_site() {
+                joint = Joint::end_site(j.name.clone(), j.parent, fix * j.offset);
+            }
+            joint
+        })
+        .collect();
+    let skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| EditError(e.to_string()))?;
+    from_locals(clip, skeleton, clip.frame_time(), &poses)
+}
+
+fn scale(clip: &Clip, factor: f32) -> Result<Clip, EditError> {
+    if !(factor.is_finite() && factor > 0.0) {
+        return err(format!("scale {factor}: expected a positive factor"));
+    }
+    let joints: Vec<Joint> = clip
+        .skeleton()
+        .joints()
+        .iter()
+        .map(|j| {
+            let mut joint = j.clone();
+            joint.offset *= factor;
+            joint
+        })
+        .collect();
+    let skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| EditError(e.to_string()))?;
+    let mut data = clip.motion().data().to_vec();
+    let width = clip.skeleton().channel_count().max(1);
+    let translation_columns: Vec<usize> = clip
+        .skeleton()
+        .joints()
+        .iter()
+        .flat_map(|j| j.channels.iter().enumerate().filter(|(_, c)| c.kind() == ChannelKind::Translation).map(move |(k, _)| j.first_channel() + k))
+        .collect();
+    for row in data.chunks_mut(width) {
+        for &c in &translation_columns {
+            if let Some(v) = row.get_mut(c) {
+                *v *= factor;
+            }
+        }
+    }
+    rebuild(clip, skeleton, clip.frame_time(), clip.frame_count(), data)
+}
+
+fn rename(clip: &Clip, from: &str, to: &str) -> Result<Clip, EditError> {
+    let to = to.trim();
+    if to.is_empty() || to.chars().any(|c| c.is_whitespace() || c == '{' || c == '}') {
+        return err(format!("rename to `{to}`: a joint name needs no spaces or braces"));
+    }
+    let Some(index) = clip.skeleton().find(from) else { return err(format!("rename: no joint named `{from}`")) };
+    let joints: Vec<Joint> = clip
+        .skeleton()
+        .joints()
+        .iter()
+        .enumerate()
+        .map(|(i, j)| {
+            let mut joint = j.clone();
+            if i == index {
+                joint.name = to.to_owned();
+            }
+            // An End Site named after its joint (`Head_End`, as readers name them) follows.
+            if j.is_end_site() && j.parent == Some(index) && j.name == format!("{from}_End") {
+                joint.name = format!("{to}_End");
+            }
+            joint
+        })
+        .collect();
+    let skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| EditError(e.to_string()))?;
+    rebuild(clip, skeleton, clip.frame_time(), clip.frame_count(), clip.motion().data().to_vec())
+}
+
+fn remove_joint(clip: &Clip, name: &str, fold: bool) -> Result<Clip, EditError> {
+    let skeleton = clip.skeleton();
+    let Some(gone) = skeleton.find(name) else { return err(format!("remove: no joint named `{name}`")) };
+    let old = skeleton.joints();
+    let parent = old[gone].parent;
+    if parent.is_none() && old.iter().filter(|j| j.parent == Some(gone)).count() != 1 {
+        return err(format!("remove `{name}`: a root can be removed only when it has exactly one child"));
+    }
+    let poses = locals(clip);
+    // New indices: every joint but the removed one, in order.
+    let map: Vec<Option<usize>> = (0..old.len()).scan(0usize, |next, i| Some(if i == gone { None } else { *next += 1; Some(*next - 1) })).collect();
+    let children: Vec<usize> = (0..old.len()).filter(|&i| old[i].parent == Some(gone)).collect();
+    // Children of the removed joint hang from its parent, at its offset plus
+    // theirs. Folding gives a joint child position channels and all three
+    // rotations (the removed joint's turning moves it); an End Site child keeps
+    // its rest place.
+    let joints: Vec<Joint> = old
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| *i != gone)
+        .map(|(i, j)| {
+            let new_parent = if j.parent == Some(gone) { parent } else { j.parent }.and_then(|p| map[p]);
+            let child = children.contains(&i);
+            let offset = if child { old[gone].offset + j.offset } else { j.offset };
+            if j.is_end_site() {
+                Joint::end_site(j.name.clone(), new_parent, offset)
+            } else if child && fold {
+                let mut channels = vec![Channel::Xposition, Channel::Yposition, Channel::Zposition];
+                channels.extend([Channel::Zrotation, Channel::Xrotation, Channel::Yrotation]);
+                Joint::new(j.name.clone(), new_parent, offset, channels)
+            } else {
+                Joint::new(j.name.clone(), new_parent, offset, j.channels.clone())
+            }
+        })
+        .collect();
+    let new_skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| EditError(e.to_string()))?;
+    let new_poses: Vec<LocalPose> = poses
+        .iter()
+        .map(|p| {
+            let mut out = LocalPose::rest(&new_skeleton);
+            for (i, m) in map.iter().enumerate() {
+                let Some(n) = *m else { continue };
+                out.translation[n] = p.translation[i];
+                out.rotation[n] = p.rotation[i];
+                if children.contains(&i) && !old[i].is_end_site() {
+                    if fold {
+                        out.translation[n] = p.translation[gone] + p.rotation[gone] * p.translation[i];
+                        out.rotation[n] = (p.rotation[gone] * p.rotation[i]).normalize();
+                    } else {
+                        out.translation[n] = old[gone].offset + p.translation[i];
+                    }
+                } else if old[i].is_end_site() {
+                    out.translation[n] = new_skeleton.joints()[n].offset;
+                }
+            }
+            out
+        })
+        .collect();
+    from_locals(clip, new_skeleton, clip.frame_time(), &new_poses)
+}

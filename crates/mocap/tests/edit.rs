@@ -1,0 +1,162 @@
+//! Clip edits on the generated walk: each edit's exact effect, and every result
+//! saves as BVH and reads back the same.
+
+use mocap::edit::{apply, apply_all, Edit};
+use mocap::glam::Vec3;
+use mocap::Clip;
+
+fn walk() -> Clip {
+    mocap::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap()
+}
+
+fn positions(clip: &Clip, frame: usize) -> Vec<Vec3> {
+    clip.world_positions(frame)
+}
+
+fn same_pose(a: &Clip, fa: usize, b: &Clip, fb: usize, tolerance: f32) -> bool {
+    positions(a, fa).iter().zip(positions(b, fb)).all(|(p, q)| p.distance(q) <= tolerance)
+}
+
+/// Saving and reading back gives the same clip, value for value.
+fn round_trips(clip: &Clip) {
+    let again = mocap::bvh::parse(mocap::bvh::write(clip).as_bytes()).unwrap();
+    assert_eq!(again.skeleton(), clip.skeleton());
+    assert_eq!(again.motion().data(), clip.motion().data());
+}
+
+#[test]
+fn trim_reverse_and_ping_pong_move_whole_rows() {
+    let w = walk();
+    let n = w.frame_count();
+    let t = apply(&w, &Edit::Trim { first: 10, last: 29 }).unwrap();
+    assert_eq!(t.frame_count(), 20);
+    assert_eq!(t.motion().row(0), w.motion().row(10));
+    assert_eq!(t.motion().row(19), w.motion().row(29));
+    assert!(apply(&w, &Edit::Trim { first: 5, last: n }).is_err() && apply(&w, &Edit::Trim { first: 9, last: 3 }).is_err());
+    let r = apply(&w, &Edit::Reverse).unwrap();
+    assert_eq!(r.motion().row(0), w.motion().row(n - 1));
+    assert_eq!(apply(&r, &Edit::Reverse).unwrap(), w, "reverse twice is the identity");
+    let p = apply(&w, &Edit::PingPong).unwrap();
+    assert_eq!(p.frame_count(), 2 * n - 2);
+    for k in 1..n - 1 {
+        assert_eq!(p.motion().row(n - 1 + k), w.motion().row(n - 1 - k));
+    }
+    for c in [&t, &r, &p] {
+        round_trips(c);
+    }
+}
+
+#[test]
+fn resampling_at_an_integer_factor_keeps_the_original_frames() {
+    let w = walk();
+    let fps = 1.0 / w.frame_time();
+    let double = apply(&w, &Edit::Resample { fps: fps * 2.0 }).unwrap();
+    assert_eq!(double.frame_count(), 2 * w.frame_count() - 1);
+    for f in 0..w.frame_count() {
+        assert!(same_pose(&w, f, &double, 2 * f, 1e-3), "frame {f}");
+    }
+    // In between: the clip's own interpolation.
+    let mid = {
+        let mut out = Vec::new();
+        w.sample_world_positions_into(w.timeline().time_of(10) + w.frame_time() / 2.0, mocap::Interpolation::Linear, &mut out);
+        out
+    };
+    assert!(positions(&double, 21).iter().zip(&mid).all(|(a, b)| a.distance(*b) < 1e-3));
+    let half = apply(&w, &Edit::Resample { fps: fps / 2.0 }).unwrap();
+    assert_eq!(half.frame_count(), (w.frame_count() + 1) / 2);
+    assert!(same_pose(&w, 20, &half, 10, 1e-3));
+    assert!(apply(&w, &Edit::Resample { fps: 0.0 }).is_err() && apply(&w, &Edit::Resample { fps: f64::NAN }).is_err());
+    round_trips(&double);
+}
+
+#[test]
+fn in_place_keeps_height_and_rotations() {
+    let w = walk();
+    let p = apply(&w, &Edit::InPlace { remove_turning: false }).unwrap();
+    let root = 0;
+    let start = positions(&w, 0)[root];
+    let mut lw = mocap::LocalPose::default();
+    let mut lp = mocap::LocalPose::default();
+    for f in 0..w.frame_count() {
+        let (a, b) = (positions(&w, f)[root], positions(&p, f)[root]);
+        assert!((a.y - b.y).abs() < 1e-4 && (b.x - start.x).abs() < 1e-4 && (b.z - start.z).abs() < 1e-4, "frame {f}: {a} → {b}");
+        w.local_pose_into(f, &mut lw);
+        p.local_pose_into(f, &mut lp);
+        for (q1, q2) in lw.rotation.iter().zip(&lp.rotation) {
+            assert!(q1.dot(*q2).abs() > 0.99999, "frame {f}: rotations unchanged");
+        }
+    }
+    round_trips(&p);
+}
+
+#[test]
+fn loop_knit_brings_the_end_onto_the_start() {
+    let w = walk();
+    let n = w.frame_count();
+    let k = apply(&w, &Edit::LoopKnit { frames: 8 }).unwrap();
+    let gap = |c: &Clip| {
+        let mut a = mocap::LocalPose::default();
+        let mut b = mocap::LocalPose::default();
+        c.local_pose_into(0, &mut a);
+        c.local_pose_into(n - 1, &mut b);
+        a.rotation.iter().zip(&b.rotation).map(|(x, y)| x.angle_between(*y)).fold(0.0f32, f32::max)
+    };
+    assert!(gap(&k) <= gap(&w) / 8.0 + 1e-4, "the last frame is close to the first: {} vs {}", gap(&k), gap(&w));
+    assert!(same_pose(&w, n - 10, &k, n - 10, 1e-4), "frames before the knit are untouched");
+    assert!(apply(&w, &Edit::LoopKnit { frames: n }).is_err());
+}
+
+#[test]
+fn up_axis_scale_rename_keep_the_figure() {
+    let w = walk();
+    // Pretend the walk was Z-up: turning it keeps every distance between joints.
+    let turned = apply(&w, &Edit::UpAxis { from: 2, negative: false }).unwrap();
+    for f in [0, 30] {
+        let (a, b) = (positions(&w, f), positions(&turned, f));
+        for i in 0..a.len() {
+            for j in 0..a.len() {
+                assert!((a[i].distance(a[j]) - b[i].distance(b[j])).abs() < 1e-3);
+            }
+        }
+        // What was +Z (up in the file) is +Y now.
+        let head = w.skeleton().find("Head").unwrap();
+        assert!(((b[head] - b[0]).y - (a[head] - a[0]).z).abs() < 1e-3);
+    }
+    let scaled = apply(&w, &Edit::Scale { factor: 0.01 }).unwrap();
+    assert!(positions(&w, 12).iter().zip(positions(&scaled, 12)).all(|(a, b)| (*a * 0.01).distance(b) < 1e-5));
+    let renamed = apply(&w, &Edit::Rename { from: "Head".into(), to: "Kopf".into() }).unwrap();
+    assert!(renamed.skeleton().find("Kopf").is_some() && renamed.skeleton().find("Head").is_none());
+    assert!(apply(&w, &Edit::Rename { from: "Nope".into(), to: "X".into() }).is_err());
+    assert!(apply(&w, &Edit::Rename { from: "Head".into(), to: "two words".into() }).is_err());
+    for c in [&turned, &scaled, &renamed] {
+        round_trips(c);
+    }
+}
+
+#[test]
+fn removing_a_joint_folds_or_drops_its_motion() {
+    let w = walk();
+    let name = "LeftForeArm";
+    let gone = w.skeleton().find(name).unwrap();
+    let folded = apply(&w, &Edit::RemoveJoint { name: name.into(), fold: true }).unwrap();
+    assert_eq!(folded.skeleton().len(), w.skeleton().len() - 1);
+    assert!(folded.skeleton().find(name).is_none());
+    for f in [0, 17, 40] {
+        let (a, b) = (positions(&w, f), positions(&folded, f));
+        let kept: Vec<Vec3> = a.iter().enumerate().filter(|(i, _)| *i != gone).map(|(_, p)| *p).collect();
+        for (j, (p, q)) in kept.iter().zip(&b).enumerate() {
+            let joint = &folded.skeleton().joints()[j];
+            if !joint.is_end_site() {
+                assert!(p.distance(*q) < 1e-3, "frame {f}: {} moved {p} → {q}", joint.name);
+            }
+        }
+    }
+    let dropped = apply(&w, &Edit::RemoveJoint { name: name.into(), fold: false }).unwrap();
+    let hand = dropped.skeleton().find("LeftHand").unwrap();
+    assert!(positions(&dropped, 17)[hand].distance(positions(&w, 17)[w.skeleton().find("LeftHand").unwrap()]) > 1e-3, "dropping loses the forearm's turn");
+    assert!(apply(&w, &Edit::RemoveJoint { name: "Hips".into(), fold: true }).is_err(), "a root with several children stays");
+    round_trips(&folded);
+    // Edits chain in order.
+    let chained = apply_all(&w, &[Edit::Trim { first: 0, last: 9 }, Edit::Reverse]).unwrap();
+    assert_eq!(chained.motion().row(0), w.motion().row(9));
+}
