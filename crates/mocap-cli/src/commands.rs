@@ -218,6 +218,92 @@ pub fn pose(paths: &[PathBuf], frame: usize) -> Result<ExitCode, String> {
     print_json(&json!({ "frame": frame, "time": time, "joints": joints }))
 }
 
+/// One edit of `mocap edit`, as written on the command line.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EditOp {
+    /// `--trim a:b`.
+    Trim(String),
+    /// `--fps N`.
+    Fps(String),
+    /// `--reverse`.
+    Reverse,
+    /// `--ping-pong`.
+    PingPong,
+    /// `--knit N`.
+    Knit(String),
+    /// `--in-place` (false) or `--in-place-turning` (true).
+    InPlace(bool),
+    /// `--up z`.
+    Up(String),
+    /// `--units m`.
+    Units(String),
+    /// `--scale F`.
+    Scale(String),
+    /// `--rename OLD=NEW`.
+    Rename(String),
+    /// `--remove J` (fold, true) or `--drop-joint J` (false).
+    Remove(String, bool),
+}
+
+/// The core edit for `op` on `clip` (units are resolved against the clip's guess).
+fn core_edit(op: &EditOp, clip: &Clip) -> Result<mocap::edit::Edit, String> {
+    use mocap::edit::Edit;
+    let number = |flag: &str, v: &str| v.trim().parse::<f64>().ok().filter(|x| x.is_finite()).ok_or_else(|| format!("--{flag} {v}: expected a number"));
+    Ok(match op {
+        EditOp::Trim(v) => {
+            let (a, b) = v.split_once(':').ok_or_else(|| format!("--trim {v}: expected a:b (frames)"))?;
+            let frame = |x: &str| x.trim().parse::<usize>().map_err(|_| format!("--trim {v}: expected a:b (frames)"));
+            Edit::Trim { first: frame(a)?, last: frame(b)? }
+        }
+        EditOp::Fps(v) => Edit::Resample { fps: number("fps", v)? },
+        EditOp::Reverse => Edit::Reverse,
+        EditOp::PingPong => Edit::PingPong,
+        EditOp::Knit(v) => Edit::LoopKnit { frames: v.trim().parse().map_err(|_| format!("--knit {v}: expected a frame count"))? },
+        EditOp::InPlace(turning) => Edit::InPlace { remove_turning: *turning },
+        EditOp::Up(v) => {
+            let t = v.trim().to_ascii_lowercase();
+            let (negative, axis) = t.strip_prefix('-').map_or((false, t.as_str()), |a| (true, a));
+            let from = ["x", "y", "z"].iter().position(|a| *a == axis).ok_or_else(|| format!("--up {v}: expected x, y, z, -x, -y or -z"))?;
+            Edit::UpAxis { from, negative }
+        }
+        EditOp::Units(v) => {
+            let target = match v.trim() {
+                "m" => mocap::Units::Meters,
+                "dm" => mocap::Units::Decimeters,
+                "cm" => mocap::Units::Centimeters,
+                "mm" => mocap::Units::Millimeters,
+                "in" => mocap::Units::Inches,
+                _ => return Err(format!("--units {v}: expected m, dm, cm, mm or in")),
+            };
+            Edit::Scale { factor: clip.units().meters_per_unit() / target.meters_per_unit() }
+        }
+        EditOp::Scale(v) => Edit::Scale { factor: number("scale", v)? as f32 },
+        EditOp::Rename(v) => {
+            let (from, to) = v.split_once('=').ok_or_else(|| format!("--rename {v}: expected OLD=NEW"))?;
+            Edit::Rename { from: from.to_owned(), to: to.to_owned() }
+        }
+        EditOp::Remove(name, fold) => Edit::RemoveJoint { name: name.clone(), fold: *fold },
+    })
+}
+
+/// `mocap edit`: the edits in order, then BVH.
+pub fn edit(inputs: &[PathBuf], ops: &[EditOp], output: &Path) -> Result<ExitCode, String> {
+    if output.extension().and_then(|e| e.to_str()).is_none_or(|e| !e.eq_ignore_ascii_case("bvh")) {
+        return Err(format!("{}: edit writes .bvh files", output.display()));
+    }
+    let mut clip = read_clip(inputs)?;
+    for op in ops {
+        let edit = core_edit(op, &clip)?;
+        clip = mocap::edit::apply(&clip, &edit).map_err(|e| format!("{}: {e}", shown(inputs)))?;
+    }
+    let (baked, warnings) = mocap::bake::to_bvh(&clip);
+    for w in warnings {
+        eprintln!("{}: warning: {w}", output.display());
+    }
+    std::fs::write(output, mocap::bvh::write(&baked)).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+    Ok(ExitCode::SUCCESS)
+}
+
 /// What `mocap ik` is asked.
 pub struct IkRequest<'a> {
     /// The effector's name.

@@ -2,8 +2,8 @@
 //!
 //! Errors go to stderr as `FILE:LINE:COL: message` with a non-zero exit status.
 
-use mocap_cli::commands;
-use clap::{Parser, Subcommand};
+use mocap_cli::commands::{self, EditOp};
+use clap::{ArgMatches, CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -65,6 +65,54 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Edits a motion and writes BVH: the edits apply in the order given.
+    Edit {
+        /// The motion file (an AMC finds its .asf, or give both).
+        #[arg(required = true, num_args = 1..=2)]
+        files: Vec<PathBuf>,
+        /// Output file (.bvh).
+        #[arg(short, long)]
+        output: PathBuf,
+        /// Keep frames a:b (inclusive).
+        #[arg(long, value_name = "A:B")]
+        trim: Vec<String>,
+        /// Resample to this frame rate (the clip's own interpolation).
+        #[arg(long)]
+        fps: Vec<f64>,
+        /// Play backward.
+        #[arg(long)]
+        reverse: bool,
+        /// Forward then backward, a seamless loop.
+        #[arg(long)]
+        ping_pong: bool,
+        /// Blend the last N frames into the first so the loop is seamless.
+        #[arg(long, value_name = "N")]
+        knit: Vec<usize>,
+        /// Remove the root's horizontal travel (its height stays).
+        #[arg(long)]
+        in_place: bool,
+        /// Also remove the root's turning (with --in-place's effect).
+        #[arg(long)]
+        in_place_turning: bool,
+        /// The file's up axis (x, y, z, -x, -y, -z): turn it to stand Y-up.
+        #[arg(long, allow_hyphen_values = true)]
+        up: Vec<String>,
+        /// Convert lengths from the guessed unit to m, dm, cm, mm or in.
+        #[arg(long)]
+        units: Vec<String>,
+        /// Multiply every length by this factor.
+        #[arg(long)]
+        scale: Vec<f32>,
+        /// Rename a joint: OLD=NEW.
+        #[arg(long, value_name = "OLD=NEW")]
+        rename: Vec<String>,
+        /// Remove a joint, folding its motion into its children (no position changes).
+        #[arg(long, value_name = "JOINT")]
+        remove: Vec<String>,
+        /// Remove a joint and drop its motion.
+        #[arg(long, value_name = "JOINT")]
+        drop_joint: Vec<String>,
+    },
     /// Converts a motion to BVH (every joint position kept) or BVA (each joint's world transform a segment).
     Convert {
         /// Input file(s): one motion file, or an Acclaim skeleton and motion (`SKEL.asf TAKE.amc`).
@@ -121,12 +169,67 @@ enum Command {
     },
 }
 
+/// The edits of `mocap edit`, in the order they appear on the command line.
+fn edit_ops(matches: &ArgMatches) -> Result<Vec<EditOp>, String> {
+    let mut ops: Vec<(usize, EditOp)> = Vec::new();
+    let values = |id: &str| -> Vec<(usize, String)> {
+        match (matches.indices_of(id), matches.get_raw(id)) {
+            (Some(i), Some(v)) => i.zip(v.map(|x| x.to_string_lossy().into_owned())).collect(),
+            _ => Vec::new(),
+        }
+    };
+    let flag = |id: &str| -> Option<usize> { matches.get_flag(id).then(|| matches.index_of(id)).flatten() };
+    for (i, v) in values("trim") {
+        ops.push((i, EditOp::Trim(v)));
+    }
+    for (i, v) in values("fps") {
+        ops.push((i, EditOp::Fps(v)));
+    }
+    for (i, v) in values("knit") {
+        ops.push((i, EditOp::Knit(v)));
+    }
+    for (i, v) in values("up") {
+        ops.push((i, EditOp::Up(v)));
+    }
+    for (i, v) in values("units") {
+        ops.push((i, EditOp::Units(v)));
+    }
+    for (i, v) in values("scale") {
+        ops.push((i, EditOp::Scale(v)));
+    }
+    for (i, v) in values("rename") {
+        ops.push((i, EditOp::Rename(v)));
+    }
+    for (i, v) in values("remove") {
+        ops.push((i, EditOp::Remove(v, true)));
+    }
+    for (i, v) in values("drop_joint") {
+        ops.push((i, EditOp::Remove(v, false)));
+    }
+    for (id, op) in [("reverse", EditOp::Reverse), ("ping_pong", EditOp::PingPong), ("in_place", EditOp::InPlace(false)), ("in_place_turning", EditOp::InPlace(true))] {
+        if let Some(i) = flag(id) {
+            ops.push((i, op));
+        }
+    }
+    ops.sort_by_key(|(i, _)| *i);
+    Ok(ops.into_iter().map(|(_, op)| op).collect())
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let matches = Cli::command().get_matches();
+    let cli = match Cli::from_arg_matches(&matches) {
+        Ok(cli) => cli,
+        Err(e) => e.exit(),
+    };
     let result = match cli.command {
         Command::Info { files, json } => commands::info(&files, json),
         Command::Pose { files, frame, json: _ } => commands::pose(&files, frame),
         Command::Convert { inputs, output } => commands::convert(&inputs, &output),
+        Command::Edit { files, output, .. } => match matches.subcommand_matches("edit").map(edit_ops) {
+            Some(Ok(ops)) => commands::edit(&files, &ops, &output),
+            Some(Err(e)) => Err(e),
+            None => Err("edit: no arguments".into()),
+        },
         Command::Ik { files, joint, target, frame, bones, solver, json: _ } => {
             commands::ik(&files, &commands::IkRequest { joint: &joint, target: &target, frame, bones, solver: solver.as_deref() })
         }

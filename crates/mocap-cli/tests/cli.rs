@@ -288,3 +288,44 @@ fn ik_moves_a_hand_to_a_target_and_reports_the_pose() {
         assert!(!out.status.success() && stderr(&out).contains(needle), "{all:?}: {}", stderr(&out));
     }
 }
+
+#[test]
+fn edit_applies_its_flags_in_the_order_given() {
+    let walk = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bvh");
+    let walk = walk.to_str().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = |name: &str| dir.path().join(name).to_str().unwrap().to_owned();
+    let frames = |path: &str| -> u64 {
+        let v: Value = serde_json::from_str(&stdout(&mocap(&["info", path, "--json"]))).unwrap();
+        v["frames"].as_u64().unwrap()
+    };
+    // Trim to 10 frames, then double the rate: 19 frames; the other way round: 10.
+    let a = out("a.bvh");
+    assert!(mocap(&["edit", walk, "--trim", "0:9", "--fps", "60", "-o", &a]).status.success());
+    assert_eq!(frames(&a), 19);
+    let b = out("b.bvh");
+    assert!(mocap(&["edit", walk, "--fps", "60", "--trim", "0:9", "-o", &b]).status.success());
+    assert_eq!(frames(&b), 10);
+    // Every edit kind runs and writes a file that reads back.
+    let c = out("c.bvh");
+    let all = ["edit", walk, "--reverse", "--ping-pong", "--knit", "4", "--in-place", "--up", "z", "--units", "m", "--scale", "2", "--rename", "Head=Kopf", "--remove", "LeftForeArm", "--drop-joint", "RightForeArm", "-o", &c];
+    let r = mocap(&all);
+    assert!(r.status.success(), "{}", stderr(&r));
+    let v: Value = serde_json::from_str(&stdout(&mocap(&["info", &c, "--json"]))).unwrap();
+    assert_eq!(v["joints"].as_u64(), Some(19));
+    for (args, needle) in [
+        (vec!["--trim", "5:1"], "trim 5:1"),
+        (vec!["--up", "q"], "--up q"),
+        (vec!["--units", "furlong"], "--units furlong"),
+        (vec!["--rename", "Head"], "expected OLD=NEW"),
+        (vec!["--remove", "Tail"], "no joint named `Tail`"),
+    ] {
+        let mut full = vec!["edit", walk];
+        full.extend(args);
+        full.extend(["-o", &c]);
+        let r = mocap(&full);
+        assert!(!r.status.success() && stderr(&r).contains(needle), "{full:?}: {}", stderr(&r));
+    }
+    let r = mocap(&["edit", walk, "--reverse", "-o", &out("x.bva")]);
+    assert!(!r.status.success() && stderr(&r).contains("writes .bvh"));
+}
