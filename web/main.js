@@ -195,6 +195,23 @@ function wireFiles(viewer) {
   });
 }
 
+// Downloads the current character as BVH (Edit ▸ Save as BVH): the text comes from
+// the viewer; the page only hands it to the browser as a file.
+function saveFile(viewer) {
+  const saved = viewer.saveBvh();
+  if (!saved) return;
+  const [name, text] = saved;
+  const url = URL.createObjectURL(new Blob([text], { type: 'text/plain' }));
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = name;
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10000);
+  window.mocapLastSave = { name, bytes: text.length };
+}
+
 async function main() {
   if (!navigator.gpu && !hasWebGL2()) {
     showStatus(NO_GPU, true);
@@ -227,6 +244,12 @@ async function main() {
   if (location.hash.length > 1) viewer.applyViewState(location.hash.slice(1));
   followViewState(viewer);
   window.addEventListener('mocap-share', () => share(viewer, source));
+  window.addEventListener('mocap-save', () => saveFile(viewer));
+  // Edits not saved are not lost by accident: the browser asks before leaving.
+  window.addEventListener('beforeunload', (e) => {
+    const s = viewer.state();
+    if (s && s.clips.some((c) => c.edited)) e.preventDefault();
+  });
   document.getElementById('share-close').addEventListener('click', () => {
     document.getElementById('share').hidden = true;
   });

@@ -9,6 +9,7 @@ pub struct ViewerApp {
     viewer: Rc<RefCell<Viewer>>,
     on_open_requested: Box<dyn FnMut(OpenMode)>,
     on_share_requested: Box<dyn FnMut()>,
+    on_save_requested: Box<dyn FnMut()>,
 }
 
 impl ViewerApp {
@@ -16,7 +17,14 @@ impl ViewerApp {
     /// runs when the user presses "Open…" ([`OpenMode::Replace`]) or "Add…" ([`OpenMode::Add`]).
     pub fn new(ctx: &egui::Context, viewer: Rc<RefCell<Viewer>>, on_open_requested: Box<dyn FnMut(OpenMode)>) -> ViewerApp {
         ctx.set_theme(egui::ThemePreference::Dark);
-        ViewerApp { viewer, on_open_requested, on_share_requested: Box::new(|| {}) }
+        ViewerApp { viewer, on_open_requested, on_share_requested: Box::new(|| {}), on_save_requested: Box::new(|| {}) }
+    }
+
+    /// Sets what runs when the user presses "Save as BVH" (the host saves
+    /// [`Viewer::save_bvh`] of the current character).
+    pub fn on_save(mut self, f: Box<dyn FnMut()>) -> ViewerApp {
+        self.on_save_requested = f;
+        self
     }
 
     /// Sets what runs when the user presses "Share" (the host builds and copies the link).
@@ -28,11 +36,14 @@ impl ViewerApp {
 
 impl eframe::App for ViewerApp {
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        let (open, share) = {
+        let (open, share, save) = {
             let Ok(mut viewer) = self.viewer.try_borrow_mut() else { return };
             viewer.ui(ui, frame.wgpu_render_state());
-            (std::mem::take(&mut viewer.open_requested), std::mem::take(&mut viewer.share_requested))
+            (std::mem::take(&mut viewer.open_requested), std::mem::take(&mut viewer.share_requested), std::mem::take(&mut viewer.save_requested))
         };
+        if save {
+            (self.on_save_requested)();
+        }
         if let Some(mode) = open {
             (self.on_open_requested)(mode);
         }

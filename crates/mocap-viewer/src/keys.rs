@@ -27,10 +27,14 @@ pub enum Action {
     ToggleDrawMode,
     /// Frame the whole motion again.
     ResetCamera,
+    /// Take back the last clip edit (Ctrl+Z).
+    Undo,
+    /// Make the last undone edit again (Ctrl+Shift+Z, Ctrl+Y).
+    Redo,
 }
 
 /// Key bindings, listed for the help text.
-pub const HELP: &str = "Space play/pause · ←/→ step · Home/End first/last · z/Z zoom · j/k orbit · 1 2 3 views · f follow root · a axes · m capsules/sticks · r reset view · drag: left orbit, right/middle pan, wheel zoom";
+pub const HELP: &str = "Space play/pause · ←/→ step · Home/End first/last · z/Z zoom · j/k orbit · 1 2 3 views · f follow root · a axes · m capsules/sticks/body · r reset view · Ctrl+Z undo · Ctrl+Shift+Z / Ctrl+Y redo · drag: left orbit, right/middle pan, wheel zoom";
 
 /// Reads this frame's key presses (ignored while a text field has focus).
 pub fn read_actions(ctx: &egui::Context, out: &mut Vec<Action>) {
@@ -39,12 +43,24 @@ pub fn read_actions(ctx: &egui::Context, out: &mut Vec<Action>) {
     }
     ctx.input(|input| {
         for event in &input.events {
-            if let egui::Event::Key { key, pressed: true, modifiers, .. } = event
-                && let Some(action) = action_for(*key, modifiers.shift) {
+            if let egui::Event::Key { key, pressed: true, modifiers, .. } = event {
+                let action = if modifiers.command { command_action(*key, modifiers.shift) } else { action_for(*key, modifiers.shift) };
+                if let Some(action) = action {
                     out.push(action);
                 }
+            }
         }
     });
+}
+
+/// Shortcuts with Ctrl (Cmd on a Mac).
+fn command_action(key: egui::Key, shift: bool) -> Option<Action> {
+    match key {
+        egui::Key::Z if shift => Some(Action::Redo),
+        egui::Key::Z => Some(Action::Undo),
+        egui::Key::Y => Some(Action::Redo),
+        _ => None,
+    }
 }
 
 fn action_for(key: egui::Key, shift: bool) -> Option<Action> {
@@ -78,5 +94,8 @@ mod tests {
         assert_eq!(action_for(egui::Key::Z, true), Some(Action::Zoom(1.25)));
         assert_eq!(action_for(egui::Key::Z, false), Some(Action::Zoom(0.8)));
         assert_eq!(action_for(egui::Key::Q, false), None);
+        assert_eq!(command_action(egui::Key::Z, false), Some(Action::Undo));
+        assert_eq!(command_action(egui::Key::Z, true), Some(Action::Redo));
+        assert_eq!(command_action(egui::Key::Y, false), Some(Action::Redo));
     }
 }

@@ -14,6 +14,7 @@ pub mod app;
 pub mod camera;
 pub mod character;
 pub mod drag;
+pub mod history;
 pub mod keys;
 pub mod layout;
 pub mod panels;

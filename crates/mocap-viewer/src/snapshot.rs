@@ -34,6 +34,8 @@ pub struct ClipSummary {
     pub corrected: bool,
     /// With foot locking on: frames each foot is in contact (per leg).
     pub foot_contacts: Vec<usize>,
+    /// Whether the clip has edits (that undo can take back).
+    pub edited: bool,
 }
 
 impl ClipSummary {
@@ -56,6 +58,7 @@ impl ClipSummary {
             model_frame: model.zip(c.extra.morph).map(|(m, at)| (at.frame0, m.frame_name(at.frame0).to_owned())),
             skin: model.and_then(|m| m.skin.as_ref()).map(|s| s.name.clone()),
             corrected: c.extra.correction.is_some(),
+            edited: false,
             foot_contacts: c.extra.foot_lock.as_ref().map_or(Vec::new(), |l| l.contacts().map(|k| k.iter().filter(|x| **x).count()).collect()),
         }
     }
@@ -117,13 +120,17 @@ pub struct Snapshot {
     pub backend: Option<String>,
     /// The bendy-tentacle demo, when open.
     pub demo: Option<DemoSummary>,
+    /// The edit Undo would take back, and the one Redo would make again.
+    pub undo: Option<String>,
+    /// See [`Snapshot::undo`].
+    pub redo: Option<String>,
 }
 
 impl Snapshot {
     /// The state of `v`, with what only the viewer's private parts know passed in.
     pub fn of(v: &Viewer, tree_labels: Vec<String>, frames_rendered: u64, backend: Option<String>) -> Snapshot {
         Snapshot {
-            clips: v.stage.actors.iter().map(ClipSummary::of).collect(),
+            clips: v.stage.actors.iter().enumerate().map(|(i, c)| ClipSummary { edited: v.history.edited(i), ..ClipSummary::of(c) }).collect(),
             frame: v.frame(),
             time: v.playback.time,
             playing: v.playback.playing,
@@ -140,6 +147,8 @@ impl Snapshot {
             view: v.view_fragment(),
             embed: v.panels.embed,
             backend,
+            undo: v.history.next_undo().map(str::to_owned),
+            redo: v.history.next_redo().map(str::to_owned),
             demo: v.tentacle.as_ref().map(|t| DemoSummary {
                 bones: t.bones,
                 solver: t.solver.name(),

@@ -53,6 +53,10 @@ pub struct Viewer {
     pub loader: mocap::Loader,
     /// The bendy-tentacle demo, when it is open (its tentacle is character 1).
     pub tentacle: Option<crate::tentacle::Tentacle>,
+    /// Clip edits, for undo and redo.
+    pub history: crate::history::History,
+    /// Set when the user pressed "Save as BVH"; the host saves [`Viewer::save_bvh`] and clears it.
+    pub save_requested: bool,
     viewport: Viewport,
     scene: Scene,
     pose_scratch: mocap::stage::PoseScratch,
@@ -107,6 +111,7 @@ impl Viewer {
     /// frame drawn afterwards shows frame 0 (the clock restarts).
     pub fn open_assets(&mut self, assets: Vec<(String, mocap::Asset)>) {
         self.tentacle = None;
+        self.history.clear();
         self.playback.time = 0.0;
         self.last_time = None;
         self.playback.range = None;
@@ -151,6 +156,7 @@ impl Viewer {
         if index == 0 {
             self.tentacle = None;
         }
+        self.history.clear();
         self.selected = match self.selected {
             Some(s) if s.character == index => None,
             Some(s) if s.character > index => Some(Selection { character: s.character - 1, ..s }),
@@ -162,6 +168,7 @@ impl Viewer {
     /// Closes every character.
     pub fn clear(&mut self) {
         self.tentacle = None;
+        self.history.clear();
         self.stage.replace(Vec::new());
         self.selected = None;
     }
@@ -332,6 +339,12 @@ impl Viewer {
             (Action::ToggleAxes, _) => self.settings.show_axes = !self.settings.show_axes,
             (Action::ToggleDrawMode, _) => self.settings.mode = self.settings.mode.next(),
             (Action::ResetCamera, _) => self.reset_camera(),
+            (Action::Undo, _) => {
+                self.undo();
+            }
+            (Action::Redo, _) => {
+                self.redo();
+            }
             (Action::Step(_) | Action::First | Action::Last, None) => {}
         }
     }
@@ -432,6 +445,70 @@ impl Viewer {
     pub fn refresh_tentacle_skin(&mut self) {
         let (Some(demo), Some(c)) = (&self.tentacle, self.stage.actors.first_mut()) else { return };
         c.extra.body = Some(c.clip().and_then(|clip| demo.body(clip)));
+    }
+
+    /// Applies a clip edit ([`mocap::edit`]) to character `character`, as one step
+    /// that [`Viewer::undo`] takes back. Returns why not when it cannot be made.
+    pub fn edit(&mut self, character: usize, edit: &mocap::edit::Edit, label: &str) -> Result<(), String> {
+        let c = self.stage.actors.get(character).ok_or_else(|| format!("no character {}", character + 1))?;
+        let clip = c.clip().ok_or_else(|| format!("{}: a model has no motion to edit", c.name))?;
+        let edited = mocap::edit::apply(clip, edit).map_err(|e| format!("{}: {e}", c.name))?;
+        let before = c.asset.clone();
+        let after = mocap::Asset::Clip(edited);
+        self.history.push(crate::history::Change { character, label: label.to_owned(), before, after: after.clone() });
+        self.replace_asset(character, after);
+        Ok(())
+    }
+
+    /// Takes back the last edit; returns its label.
+    pub fn undo(&mut self) -> Option<String> {
+        let change = self.history.undo()?.clone();
+        self.replace_asset(change.character, change.before);
+        Some(change.label)
+    }
+
+    /// Makes the last undone edit again; returns its label.
+    pub fn redo(&mut self) -> Option<String> {
+        let change = self.history.redo()?.clone();
+        self.replace_asset(change.character, change.after);
+        Some(change.label)
+    }
+
+    /// Puts `asset` in character `index`'s place, keeping its name, colour,
+    /// visibility and offset; the timeline and the selection follow.
+    fn replace_asset(&mut self, index: usize, asset: mocap::Asset) {
+        let Some(old) = self.stage.actors.get(index) else { return };
+        let others: Vec<Character> = Vec::new();
+        let mut c = character::new_character(&old.name, asset, &others);
+        c.extra.color = old.extra.color;
+        c.visible = old.visible;
+        c.offset = old.offset;
+        if let Some(slot) = self.stage.actors.get_mut(index) {
+            *slot = c;
+        }
+        self.stage.arrange();
+        if let Some(s) = self.selected.filter(|s| s.character == index) {
+            let joints = self.stage.actors.get(index).and_then(|c| c.clip()).map_or(0, |c| c.skeleton().len());
+            if s.joint >= joints {
+                self.selected = None;
+            }
+        }
+        self.playback.range = None;
+        if let Some(t) = self.timing() {
+            self.playback.time = self.playback.time.min(t.duration());
+        }
+    }
+
+    /// Character `index` as a BVH file: (file name, text), every edit baked in;
+    /// an edited clip's name says so (`walk-edited.bvh`). `None` for a model.
+    pub fn save_bvh(&self, index: usize) -> Option<(String, String)> {
+        let c = self.stage.actors.get(index)?;
+        let clip = c.clip()?;
+        let base = c.name.rsplit(['/', '\\']).next().unwrap_or(&c.name);
+        let stem = base.rsplit_once('.').map_or(base, |(s, _)| s);
+        let stem = stem.strip_suffix("-edited").unwrap_or(stem);
+        let name = if self.history.edited(index) { format!("{stem}-edited.bvh") } else { format!("{stem}.bvh") };
+        Some((name, mocap::bvh::write(clip)))
     }
 
     /// Forgets every pose correction made by dragging.

@@ -150,6 +150,53 @@ impl MocapViewer {
         Some(vec![p.x, p.y])
     }
 
+    /// Character `index` (the current one by default) as a BVH file, every edit
+    /// baked in: `[fileName, text]` (`walk-edited.bvh` when edited), or
+    /// `undefined` for a model.
+    #[wasm_bindgen(js_name = saveBvh)]
+    pub fn save_bvh(&self, index: Option<u32>) -> Option<Vec<String>> {
+        let v = self.viewer.try_borrow().ok()?;
+        let index = index.map_or(v.current(), |i| i as usize);
+        v.save_bvh(index).map(|(name, text)| vec![name, text])
+    }
+
+    /// Applies a clip edit to character `index`, one undoable step: `'reverse'`,
+    /// `'ping-pong'`, `'in-place'`, `'in-place-turning'`, `'up-z'`, `'trim:A:B'`,
+    /// `'fps:N'`, `'knit:N'`, `'scale:F'`, `'rename:OLD:NEW'`, `'remove:JOINT'` or
+    /// `'drop:JOINT'`. Returns the error message, or `undefined` when done.
+    pub fn edit(&self, index: u32, spec: &str) -> Option<String> {
+        use mocap::edit::Edit;
+        let parts: Vec<&str> = spec.split(':').collect();
+        let number = |s: Option<&&str>| s.and_then(|v| v.trim().parse::<f64>().ok());
+        let edit = match parts.as_slice() {
+            ["reverse"] => Some(Edit::Reverse),
+            ["ping-pong"] => Some(Edit::PingPong),
+            ["in-place"] => Some(Edit::InPlace { remove_turning: false }),
+            ["in-place-turning"] => Some(Edit::InPlace { remove_turning: true }),
+            ["up-z"] => Some(Edit::UpAxis { from: 2, negative: false }),
+            ["trim", a, b] => a.parse().ok().zip(b.parse().ok()).map(|(first, last)| Edit::Trim { first, last }),
+            ["fps", _] => number(parts.get(1)).map(|fps| Edit::Resample { fps }),
+            ["knit", n] => n.parse().ok().map(|frames| Edit::LoopKnit { frames }),
+            ["scale", _] => number(parts.get(1)).map(|f| Edit::Scale { factor: f as f32 }),
+            ["rename", from, to] => Some(Edit::Rename { from: (*from).to_owned(), to: (*to).to_owned() }),
+            ["remove", joint] => Some(Edit::RemoveJoint { name: (*joint).to_owned(), fold: true }),
+            ["drop", joint] => Some(Edit::RemoveJoint { name: (*joint).to_owned(), fold: false }),
+            _ => None,
+        };
+        let Some(edit) = edit else { return Some(format!("{spec}: not an edit this viewer makes")) };
+        self.with_viewer(|v| v.edit(index as usize, &edit, spec).err()).flatten()
+    }
+
+    /// Takes back the last clip edit; returns its label (`undefined` when none).
+    pub fn undo(&self) -> Option<String> {
+        self.with_viewer(|v| v.undo()).flatten()
+    }
+
+    /// Makes the last undone edit again; returns its label.
+    pub fn redo(&self) -> Option<String> {
+        self.with_viewer(|v| v.redo()).flatten()
+    }
+
     /// Forgets every pose corrected by dragging.
     #[wasm_bindgen(js_name = resetPose)]
     pub fn reset_pose(&self) {

@@ -40,6 +40,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
             set(&o, "frameName", c.model_frame.as_ref().map_or(JsValue::NULL, |(_, n)| JsValue::from_str(n)));
             set(&o, "skin", opt(&c.skin));
             set(&o, "corrected", c.corrected);
+            set(&o, "edited", c.edited);
             let contacts: Array = c.foot_contacts.iter().map(|n| JsValue::from_f64(*n as f64)).collect();
             set(&o, "footContacts", contacts);
             JsValue::from(o)
@@ -75,5 +76,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
         o.into()
     });
     set(&o, "demo", demo);
+    set(&o, "undo", opt(&s.undo));
+    set(&o, "redo", opt(&s.redo));
     o.into()
 }

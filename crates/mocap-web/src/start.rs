@@ -96,12 +96,21 @@ async fn start_on(
                 if cc.wgpu_render_state.is_none() {
                     return Err("no wgpu renderer".into());
                 }
-                let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker)).on_share(Box::new(share_event));
+                let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker)).on_share(Box::new(share_event)).on_save(Box::new(save_event));
                 Ok(Box::new(app))
             }),
         )
         .await?;
     Ok(MocapViewer { viewer, ctx, _runner: runner })
+}
+
+/// Tells the page that the user pressed "Save as BVH" (a `mocap-save` event on
+/// `window`; the page calls `saveBvh()` and downloads the file).
+fn save_event() {
+    let event = web_sys::Event::new("mocap-save");
+    if let (Some(window), Ok(event)) = (web_sys::window(), event) {
+        let _ = window.dispatch_event(&event);
+    }
 }
 
 /// Tells the page that the user pressed "Share" (a `mocap-share` event on `window`).

@@ -51,6 +51,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             }
             ui.separator();
             ui.menu_button("Camera", |ui| camera_menu(ui, viewer));
+            ui.menu_button("Edit", |ui| super::edit_menu::show(ui, viewer));
             ui.menu_button("Demos", |ui| {
                 if ui.button("Bendy tentacle").on_hover_text("Soft skinning and IK on a chain of bones (also ?demo=tentacle)").clicked() {
                     viewer.open_tentacle(2);

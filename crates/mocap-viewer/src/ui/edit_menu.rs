@@ -1,0 +1,101 @@
+//! The Edit menu: clip edits on the current character (each one undoable), undo
+//! and redo, and Save as BVH.
+
+use crate::viewer::Viewer;
+use mocap::edit::Edit;
+
+/// Shows the Edit menu's entries (inside the toolbar's menu button).
+pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
+    let index = viewer.current();
+    let Some(c) = viewer.stage.actors.get(index) else {
+        ui.label("No clip open");
+        return;
+    };
+    let Some(clip) = c.clip() else {
+        ui.label(format!("{}: a model has no motion to edit", c.name));
+        return;
+    };
+    let (name, fps, units) = (c.name.clone(), 1.0 / clip.frame_time(), clip.units());
+    let selected = viewer.selected.filter(|s| s.character == index).and_then(|s| clip.skeleton().joints().get(s.joint)).map(|j| j.name.clone());
+    ui.label(egui::RichText::new(format!("Editing {name}")).weak());
+    let mut edit: Option<(Edit, String)> = None;
+    if let Some((a, b)) = viewer.playback.range {
+        if ui.button(format!("Trim to the loop range ({a}–{b})")).clicked() {
+            edit = Some((Edit::Trim { first: a.min(b), last: a.max(b) }, format!("Trim {a}–{b}")));
+        }
+    } else {
+        ui.add_enabled(false, egui::Button::new("Trim to the loop range")).on_disabled_hover_text("Set a loop range under the timeline first");
+    }
+    ui.menu_button("Resample", |ui| {
+        for target in [24.0, 30.0, 60.0, 120.0] {
+            if ui.button(format!("{target} fps")).clicked() {
+                edit = Some((Edit::Resample { fps: target }, format!("Resample to {target} fps")));
+            }
+        }
+        ui.label(egui::RichText::new(format!("now {fps:.2} fps")).weak());
+    });
+    for (label, e) in [
+        ("Reverse", Edit::Reverse),
+        ("Ping-pong", Edit::PingPong),
+        ("Loop knit (8 frames)", Edit::LoopKnit { frames: 8 }),
+        ("In place", Edit::InPlace { remove_turning: false }),
+        ("In place, no turning", Edit::InPlace { remove_turning: true }),
+        ("Stand up a Z-up file", Edit::UpAxis { from: 2, negative: false }),
+    ] {
+        if ui.button(label).clicked() {
+            edit = Some((e, label.to_owned()));
+        }
+    }
+    if units != mocap::Units::Meters && ui.button(format!("Lengths to metres (from {})", units.name())).clicked() {
+        edit = Some((Edit::Scale { factor: units.meters_per_unit() }, "Lengths to metres".to_owned()));
+    }
+    match &selected {
+        Some(joint) => {
+            if ui.button(format!("Remove {joint} (keep positions)")).clicked() {
+                edit = Some((Edit::RemoveJoint { name: joint.clone(), fold: true }, format!("Remove {joint}")));
+            }
+            if ui.button(format!("Remove {joint} (drop its motion)")).clicked() {
+                edit = Some((Edit::RemoveJoint { name: joint.clone(), fold: false }, format!("Drop {joint}")));
+            }
+            rename(ui, joint, &mut edit);
+        }
+        None => {
+            ui.label(egui::RichText::new("Select a joint to rename or remove it").weak());
+        }
+    }
+    ui.separator();
+    let undo = viewer.history.next_undo().map(|l| format!("Undo {l} (Ctrl+Z)"));
+    if ui.add_enabled(undo.is_some(), egui::Button::new(undo.as_deref().unwrap_or("Undo (Ctrl+Z)"))).clicked() {
+        viewer.undo();
+    }
+    let redo = viewer.history.next_redo().map(|l| format!("Redo {l} (Ctrl+Shift+Z)"));
+    if ui.add_enabled(redo.is_some(), egui::Button::new(redo.as_deref().unwrap_or("Redo (Ctrl+Shift+Z)"))).clicked() {
+        viewer.redo();
+    }
+    ui.separator();
+    if ui.button("Save as BVH").on_hover_text("Download this character with every edit baked in").clicked() {
+        viewer.save_requested = true;
+        ui.close();
+    }
+    if let Some((e, label)) = edit {
+        if let Err(message) = viewer.edit(index, &e, &label) {
+            viewer.error = Some(message);
+        }
+        ui.close();
+    }
+}
+
+/// A text field to rename the selected joint.
+fn rename(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>) {
+    let id = egui::Id::unique("rename-joint");
+    let mut text: String = ui.ctx().data(|d| d.get_temp(id)).unwrap_or_else(|| joint.to_owned());
+    ui.horizontal(|ui| {
+        ui.label("Rename to");
+        let field = ui.add(egui::TextEdit::singleline(&mut text).desired_width(120.0));
+        let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        if (ui.button("OK").clicked() || enter) && text.trim() != joint {
+            *edit = Some((Edit::Rename { from: joint.to_owned(), to: text.trim().to_owned() }, format!("Rename {joint}")));
+        }
+    });
+    ui.ctx().data_mut(|d| d.insert_temp(id, text));
+}

@@ -1,0 +1,96 @@
+//! Clip edits in the viewer: each edit is one undoable step, undoing every edit
+//! gives back the original clip bit for bit, redo makes them again, Ctrl+Z and
+//! Ctrl+Shift+Z work, and Save as BVH writes the edited clip under a name that
+//! says so.
+
+use mocap::edit::Edit;
+use mocap_viewer::Viewer;
+
+const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
+
+fn clip(v: &Viewer) -> mocap::Clip {
+    v.stage.actors[0].clip().unwrap().clone()
+}
+
+#[test]
+fn every_edit_kind_undoes_to_the_original_bit_for_bit() {
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    let original = clip(&v);
+    let edits = [
+        Edit::Trim { first: 3, last: 50 },
+        Edit::Resample { fps: 60.0 },
+        Edit::Reverse,
+        Edit::PingPong,
+        Edit::LoopKnit { frames: 5 },
+        Edit::InPlace { remove_turning: true },
+        Edit::UpAxis { from: 2, negative: false },
+        Edit::Scale { factor: 0.01 },
+        Edit::Rename { from: "Head".into(), to: "Kopf".into() },
+        Edit::RemoveJoint { name: "LeftForeArm".into(), fold: true },
+        Edit::RemoveJoint { name: "RightForeArm".into(), fold: false },
+    ];
+    let mut after = Vec::new();
+    for (k, e) in edits.iter().enumerate() {
+        v.edit(0, e, &format!("edit {k}")).unwrap_or_else(|m| panic!("{e:?}: {m}"));
+        after.push(clip(&v));
+        v.pose();
+        assert!(v.stage.actors[0].extra.pose.iter().all(|t| t.translation.is_finite()));
+    }
+    assert!(v.snapshot().clips[0].edited);
+    assert_eq!(v.snapshot().undo.as_deref(), Some("edit 10"));
+    for k in (0..edits.len()).rev() {
+        assert_eq!(v.undo().as_deref(), Some(format!("edit {k}").as_str()));
+    }
+    assert_eq!(clip(&v), original, "undoing everything gives back the original");
+    assert!(v.undo().is_none() && !v.snapshot().clips[0].edited);
+    for expected in &after {
+        v.redo().unwrap();
+        assert_eq!(&clip(&v), expected);
+    }
+    // A failed edit changes nothing and is not recorded.
+    let before = clip(&v);
+    assert!(v.edit(0, &Edit::Trim { first: 9, last: 2 }, "bad").is_err());
+    assert_eq!(clip(&v), before);
+    assert_eq!(v.snapshot().undo.as_deref(), Some("edit 10"));
+}
+
+#[test]
+fn save_as_bvh_writes_the_edited_clip_and_says_so() {
+    let mut v = Viewer::default();
+    v.load("clips/walk.bvh", WALK).unwrap();
+    assert_eq!(v.save_bvh(0).unwrap().0, "walk.bvh");
+    v.edit(0, &Edit::Reverse, "Reverse").unwrap();
+    let (name, text) = v.save_bvh(0).unwrap();
+    assert_eq!(name, "walk-edited.bvh");
+    let again = mocap::bvh::parse(text.as_bytes()).unwrap();
+    assert_eq!(again.motion().data(), clip(&v).motion().data(), "parse(save(x)) is x");
+    assert_eq!(again.skeleton(), clip(&v).skeleton());
+    // A model has no BVH.
+    assert!(v.save_bvh(5).is_none());
+}
+
+#[test]
+fn ctrl_z_and_ctrl_shift_z_undo_and_redo() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    let original = clip(&v);
+    v.edit(0, &Edit::Reverse, "Reverse").unwrap();
+    let reversed = clip(&v);
+    let key = |key, shift| egui::Event::Key { key, physical_key: None, pressed: true, repeat: false, modifiers: egui::Modifiers { ctrl: true, command: true, shift, ..Default::default() } };
+    let run = |v: &mut Viewer, t: f64, events: Vec<egui::Event>| {
+        let input = egui::RawInput { time: Some(t), screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))), events, ..Default::default() };
+        let mut out = ctx.run_ui(input, |ui| v.ui(ui, None));
+        out.textures_delta.clear();
+    };
+    let camera = v.camera.clone();
+    run(&mut v, 0.0, vec![key(egui::Key::Z, false)]);
+    assert_eq!(clip(&v), original);
+    run(&mut v, 0.1, vec![key(egui::Key::Z, true)]);
+    assert_eq!(clip(&v), reversed);
+    run(&mut v, 0.2, vec![key(egui::Key::Z, false)]);
+    run(&mut v, 0.3, vec![key(egui::Key::Y, false)]);
+    assert_eq!(clip(&v), reversed);
+    assert_eq!(v.camera.distance, camera.distance, "Ctrl+Z does not zoom");
+}
