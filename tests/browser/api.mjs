@@ -152,6 +152,32 @@ try {
     await page.screenshot({ path: path.join(outDir, 'api-start-viewer.png') });
     check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
   });
+  await step('edits on the page: undo, and Save as BVH downloads the edited clip', async () => {
+    await page.goto(base);
+    await page.waitForFunction(() => window.mocapViewer && window.mocapViewer.state().clips.length === 1, null, { timeout: 60000 });
+    const r = await page.evaluate(() => {
+      const v = window.mocapViewer;
+      v.pause();
+      const errors = [v.edit(0, 'reverse'), v.edit(0, 'trim:0:9'), v.edit(0, 'trim:9:2') ?? null];
+      const s = v.state();
+      return { errors, edited: s.clips[0].edited, frames: s.clips[0].frames, undo: s.undo };
+    });
+    check(r.errors[0] === undefined && r.errors[1] === undefined && typeof r.errors[2] === 'string', `edits apply, a bad one says why (${r.errors[2]})`);
+    check(r.edited && r.frames === 10 && r.undo === 'trim:0:9', `edited: ${r.frames} frames, undo "${r.undo}"`);
+    const download = page.waitForEvent('download', { timeout: 30000 });
+    await page.evaluate(() => window.dispatchEvent(new Event('mocap-save')));
+    const file = await download;
+    check(file.suggestedFilename() === 'walk-edited.bvh', `the file is ${file.suggestedFilename()}`);
+    const saved = fs.readFileSync(await file.path());
+    const pkg = await import(path.join(dist, 'pkg/mocap_web.js'));
+    const a = pkg.parseMotion(saved, 'walk-edited.bvh');
+    const b = pkg.parseMotion(walk, 'walk.bvh');
+    const first = a.worldPositions(0);
+    const last = b.worldPositions(66);
+    check(a.frameCount === 10 && first.every((x, i) => Math.abs(x - last[i]) < 1e-3), 'the saved clip is the edited one (its first frame is the original last)');
+    const u = await page.evaluate(() => { const v = window.mocapViewer; v.undo(); v.undo(); return v.state(); });
+    check(!u.clips[0].edited && u.clips[0].frames === 67 && u.redo === 'reverse', `undo twice restores (${u.clips[0].frames} frames, redo "${u.redo}")`);
+  });
 } finally {
   await close();
 }
