@@ -1,5 +1,5 @@
-//! Top bar: Open, Add and Share buttons, layout, panel toggles, view toggles and
-//! camera buttons.
+//! Top bar: Open, Add and Share buttons, layout, draw mode, the View menu (panels
+//! and view toggles), foot lock and Pose mode, and the Camera, Edit and Demos menus.
 
 use crate::camera::Waypoint;
 use crate::keys::{Action, HELP};
@@ -32,19 +32,10 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.separator();
             layout_choice(ui, viewer);
             ui.separator();
-            ui.checkbox(&mut viewer.panels.hierarchy, "Tree").on_hover_text("Show the joint hierarchy");
-            ui.checkbox(&mut viewer.panels.inspector, "Inspector").on_hover_text("Show clip info and the joint inspector");
-            ui.separator();
             draw_mode_choice(ui, viewer);
-            ui.checkbox(&mut viewer.settings.shadows, "Shadows").on_hover_text("Soft shadows from the key light on the floor");
-            if viewer.settings.mode == DrawMode::Sticks {
-                ui.checkbox(&mut viewer.settings.show_joints, "Joints");
-            }
-            ui.checkbox(&mut viewer.settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");
-            ui.checkbox(&mut viewer.settings.follow_root, "Follow root").on_hover_text("f");
-            ui.checkbox(&mut viewer.settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
-            ui.checkbox(&mut viewer.settings.foot_lock, "Foot lock").on_hover_text("Pin each foot to the floor while it is in contact (legs solved by IK); contacts show on the timeline");
+            ui.menu_button("View", |ui| view_menu(ui, viewer));
             ui.separator();
+            ui.checkbox(&mut viewer.settings.foot_lock, "Foot lock").on_hover_text("Pin each foot to the floor while it is in contact (legs solved by IK); contacts show on the timeline");
             ui.checkbox(&mut viewer.settings.pose_mode, "Pose").on_hover_text("Drag a joint in the view: its chain follows by IK (the clip's own pose shows as a ghost)");
             if viewer.has_corrections() && ui.button("Reset pose").on_hover_text("Forget the poses corrected by dragging").clicked() {
                 viewer.reset_pose();
@@ -77,15 +68,26 @@ fn camera_menu(ui: &mut egui::Ui, viewer: &mut Viewer) {
     }
 }
 
-/// Capsules / Sticks / Body (and the weights view in Body).
+/// Capsules / Sticks / Body.
 fn draw_mode_choice(ui: &mut egui::Ui, viewer: &mut Viewer) {
     let mode = &mut viewer.settings.mode;
     ui.selectable_value(mode, DrawMode::Capsules, "Capsules").on_hover_text("Lit solids sized to each bone (m)");
     ui.selectable_value(mode, DrawMode::Sticks, "Sticks").on_hover_text("Lines and joint balls (m)");
     ui.selectable_value(mode, DrawMode::Body, "Body").on_hover_text("A smooth skinned body around the bones (m)");
-    if *mode == DrawMode::Body {
-        ui.checkbox(&mut viewer.settings.show_weights, "Weights").on_hover_text("Colour the body by its bone influences");
-    }
+}
+
+/// Panels and view toggles: tree, inspector, shadows, joints, weights, axes,
+/// follow root, interpolation.
+fn view_menu(ui: &mut egui::Ui, viewer: &mut Viewer) {
+    ui.checkbox(&mut viewer.panels.hierarchy, "Tree").on_hover_text("Show the joint hierarchy");
+    ui.checkbox(&mut viewer.panels.inspector, "Inspector").on_hover_text("Show clip info and the joint inspector");
+    ui.separator();
+    ui.checkbox(&mut viewer.settings.shadows, "Shadows").on_hover_text("Soft shadows from the key light on the floor");
+    ui.checkbox(&mut viewer.settings.show_joints, "Joints").on_hover_text("Joint balls in stick mode");
+    ui.checkbox(&mut viewer.settings.show_weights, "Weights").on_hover_text("Colour the body by its bone influences (body mode)");
+    ui.checkbox(&mut viewer.settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");
+    ui.checkbox(&mut viewer.settings.follow_root, "Follow root").on_hover_text("f");
+    ui.checkbox(&mut viewer.settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
 }
 
 /// Spread / Overlay.
