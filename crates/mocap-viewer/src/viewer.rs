@@ -57,6 +57,8 @@ pub struct Viewer {
     pub history: crate::history::History,
     /// Set when the user pressed "Save as BVH"; the host saves [`Viewer::save_bvh`] and clears it.
     pub save_requested: bool,
+    /// A character with unsaved edits the user asked to close: the viewer asks first.
+    pub pending_close: Option<usize>,
     viewport: Viewport,
     scene: Scene,
     pose_scratch: mocap::stage::PoseScratch,
@@ -312,6 +314,7 @@ impl Viewer {
         if self.tentacle.is_some() {
             ui::tentacle::show(ui, self);
         }
+        self.confirm_close(ui.ctx());
         if self.playback.playing && !self.stage.actors.is_empty() {
             ui.ctx().request_repaint();
         }
@@ -509,6 +512,34 @@ impl Viewer {
         let stem = stem.strip_suffix("-edited").unwrap_or(stem);
         let name = if self.history.edited(index) { format!("{stem}-edited.bvh") } else { format!("{stem}.bvh") };
         Some((name, mocap::bvh::write(clip)))
+    }
+
+    /// Asks whether to close a character whose edits are not saved.
+    fn confirm_close(&mut self, ctx: &egui::Context) {
+        let Some(index) = self.pending_close else { return };
+        let Some(name) = self.stage.actors.get(index).map(|c| c.name.clone()) else {
+            self.pending_close = None;
+            return;
+        };
+        egui::Window::new("Unsaved edits").collapsible(false).resizable(false).anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0)).show(ctx, |ui| {
+            ui.label(format!("{name} has edits that are not saved."));
+            ui.horizontal(|ui| {
+                if ui.button("Save as BVH").clicked() {
+                    // Saving saves the current character: make it this one.
+                    if self.current() != index {
+                        self.selected = Some(Selection { character: index, joint: 0 });
+                    }
+                    self.save_requested = true;
+                }
+                if ui.button("Close without saving").clicked() {
+                    self.pending_close = None;
+                    self.remove(index);
+                }
+                if ui.button("Keep it open").clicked() {
+                    self.pending_close = None;
+                }
+            });
+        });
     }
 
     /// Forgets every pose correction made by dragging.

@@ -94,3 +94,25 @@ fn ctrl_z_and_ctrl_shift_z_undo_and_redo() {
     assert_eq!(clip(&v), reversed);
     assert_eq!(v.camera.distance, camera.distance, "Ctrl+Z does not zoom");
 }
+
+#[test]
+fn closing_an_edited_character_asks_first() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    v.add("again.bvh", WALK).unwrap();
+    v.edit(1, &Edit::Reverse, "Reverse").unwrap();
+    let run = |v: &mut Viewer, t: f64| {
+        let input = egui::RawInput { time: Some(t), screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))), ..Default::default() };
+        let mut out = ctx.run_ui(input, |ui| v.ui(ui, None));
+        out.textures_delta.clear();
+    };
+    // What the ✕ button does for an edited character: ask, keep it open meanwhile.
+    v.pending_close = Some(1);
+    run(&mut v, 0.0);
+    run(&mut v, 0.1);
+    assert_eq!(v.stage.actors.len(), 2, "still open while asking");
+    assert_eq!(v.pending_close, Some(1));
+    // Closing an unedited one needs no question.
+    assert!(!v.history.edited(0));
+}

@@ -107,7 +107,12 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
             viewer.set_animation(index, &name);
         }
         if let Some(index) = remove {
-            viewer.remove(index);
+            // A character with unsaved edits is closed only after asking.
+            if viewer.history.edited(index) {
+                viewer.pending_close = Some(index);
+            } else {
+                viewer.remove(index);
+            }
         }
     });
 }
