@@ -304,6 +304,47 @@ pub fn edit(inputs: &[PathBuf], ops: &[EditOp], output: &Path) -> Result<ExitCod
     Ok(ExitCode::SUCCESS)
 }
 
+/// What `mocap layer` is asked.
+pub struct LayerRequest<'a> {
+    /// The base joint whose subtree the layer drives.
+    pub subtree: &'a str,
+    /// 0–1.
+    pub weight: f32,
+    /// Additive instead of override.
+    pub additive: bool,
+    /// Fade-in seconds.
+    pub fade_in: f64,
+    /// Fade-out seconds.
+    pub fade_out: f64,
+    /// `BASE=LAYER` pairs.
+    pub map: &'a [String],
+}
+
+/// `mocap layer`: a layer on a subtree of the base, as BVH.
+pub fn layer(base: &Path, layer: &Path, request: &LayerRequest, output: &Path) -> Result<ExitCode, String> {
+    if output.extension().and_then(|e| e.to_str()).is_none_or(|e| !e.eq_ignore_ascii_case("bvh")) {
+        return Err(format!("{}: layer writes .bvh files", output.display()));
+    }
+    let base_clip = read_clip(&[base.to_path_buf()])?;
+    let layer_clip = read_clip(&[layer.to_path_buf()])?;
+    let map = request
+        .map
+        .iter()
+        .map(|m| m.split_once('=').map(|(b, l)| (b.to_owned(), l.to_owned())).ok_or_else(|| format!("--map {m}: expected BASE=LAYER")))
+        .collect::<Result<Vec<_>, _>>()?;
+    let settings = mocap::layer::Layer {
+        subtree: request.subtree.to_owned(),
+        weight: request.weight,
+        fade_in: request.fade_in,
+        fade_out: request.fade_out,
+        blend: if request.additive { mocap::layer::Blend::Additive } else { mocap::layer::Blend::Override },
+        map,
+    };
+    let out = mocap::layer::apply(&base_clip, &layer_clip, &settings).map_err(|e| format!("{} + {}: {e}", base.display(), layer.display()))?;
+    std::fs::write(output, mocap::bvh::write(&out)).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+    Ok(ExitCode::SUCCESS)
+}
+
 /// What `mocap ik` is asked.
 pub struct IkRequest<'a> {
     /// The effector's name.

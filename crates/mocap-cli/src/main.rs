@@ -113,6 +113,35 @@ enum Command {
         #[arg(long, value_name = "JOINT")]
         drop_joint: Vec<String>,
     },
+    /// Layers a second motion on a subtree of a base motion (a wave on the right arm
+    /// over a walk) and writes BVH.
+    Layer {
+        /// The base motion (BVH, BVA, or an Acclaim pair).
+        base: PathBuf,
+        /// The base joint whose subtree the layer drives.
+        #[arg(long)]
+        subtree: String,
+        /// The layer's motion.
+        layer: PathBuf,
+        /// 0 (base) to 1 (layer).
+        #[arg(long, default_value_t = 1.0)]
+        weight: f32,
+        /// Add the layer's change from its first frame instead of replacing.
+        #[arg(long)]
+        additive: bool,
+        /// Seconds to fade the layer in from the start.
+        #[arg(long, default_value_t = 0.0)]
+        fade_in: f64,
+        /// Seconds to fade it out before the end.
+        #[arg(long, default_value_t = 0.0)]
+        fade_out: f64,
+        /// Match a base joint to a layer joint by hand: BASE=LAYER (repeatable).
+        #[arg(long, value_name = "BASE=LAYER")]
+        map: Vec<String>,
+        /// Output file (.bvh).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// Converts a motion to BVH (every joint position kept) or BVA (each joint's world transform a segment).
     Convert {
         /// Input file(s): one motion file, or an Acclaim skeleton and motion (`SKEL.asf TAKE.amc`).
@@ -225,6 +254,10 @@ fn main() -> ExitCode {
         Command::Info { files, json } => commands::info(&files, json),
         Command::Pose { files, frame, json: _ } => commands::pose(&files, frame),
         Command::Convert { inputs, output } => commands::convert(&inputs, &output),
+        Command::Layer { base, subtree, layer, weight, additive, fade_in, fade_out, map, output } => {
+            let request = commands::LayerRequest { subtree: &subtree, weight, additive, fade_in, fade_out, map: &map };
+            commands::layer(&base, &layer, &request, &output)
+        }
         Command::Edit { files, output, .. } => match matches.subcommand_matches("edit").map(edit_ops) {
             Some(Ok(ops)) => commands::edit(&files, &ops, &output),
             Some(Err(e)) => Err(e),

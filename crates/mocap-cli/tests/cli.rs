@@ -329,3 +329,33 @@ fn edit_applies_its_flags_in_the_order_given() {
     let r = mocap(&["edit", walk, "--reverse", "-o", &out("x.bva")]);
     assert!(!r.status.success() && stderr(&r).contains("writes .bvh"));
 }
+
+#[test]
+fn layer_puts_a_second_motion_on_a_subtree() {
+    let walk = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bvh");
+    let walk = walk.to_str().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let wave = dir.path().join("wave.bvh");
+    let wave = wave.to_str().unwrap();
+    assert!(mocap(&["edit", walk, "--reverse", "-o", wave]).status.success());
+    let out = dir.path().join("out.bvh");
+    let out = out.to_str().unwrap();
+    let r = mocap(&["layer", walk, "--subtree", "RightShoulder", wave, "--weight", "1", "-o", out]);
+    assert!(r.status.success(), "{}", stderr(&r));
+    let pose = |file: &str, frame: &str| -> Value { serde_json::from_str(&stdout(&mocap(&["pose", file, "--frame", frame, "--json"]))).unwrap() };
+    let at = |v: &Value, name: &str| v["joints"].as_array().unwrap().iter().find(|j| j["name"] == name).unwrap()["position"].clone();
+    let (layered, base, layer) = (pose(out, "10"), pose(walk, "10"), pose(wave, "10"));
+    assert_eq!(at(&layered, "LeftHand"), at(&base, "LeftHand"), "outside the subtree: the base");
+    let (h, w) = (at(&layered, "RightHand"), at(&layer, "RightHand"));
+    let (hips_l, hips_w) = (at(&layered, "Hips"), at(&layer, "Hips"));
+    // The hand hangs from the base's shoulder but turned as in the layer: relative to the hips it moved.
+    assert_ne!(h, at(&base, "RightHand"));
+    let rel = |p: &Value, o: &Value| (0..3).map(|k| p[k].as_f64().unwrap() - o[k].as_f64().unwrap()).collect::<Vec<_>>();
+    let (a, c) = (rel(&h, &hips_l), rel(&w, &hips_w));
+    let d: f64 = a.iter().zip(&c).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt();
+    assert!(d < 15.0, "the layered hand is near the layer's (relative to the hips): {a:?} vs {c:?}");
+    let r = mocap(&["layer", walk, "--subtree", "Wing", wave, "-o", out]);
+    assert!(!r.status.success() && stderr(&r).contains("no joint named `Wing`"));
+    let r = mocap(&["layer", walk, "--subtree", "RightShoulder", wave, "--map", "nonsense", "-o", out]);
+    assert!(!r.status.success() && stderr(&r).contains("expected BASE=LAYER"));
+}

@@ -166,7 +166,7 @@ fn euler_order(axes: [usize; 3]) -> EulerRot {
 /// Appends joint `j`'s channel values for a local pose (a plain, intrinsic
 /// skeleton): positions from the translation, rotations decomposed in the joint's
 /// own channel order (axes it has no channel for are left out).
-fn joint_values(joint: &Joint, translation: Vec3, rotation: Quat, unit: AngleUnit, out: &mut Vec<f32>) {
+pub(crate) fn joint_values(joint: &Joint, translation: Vec3, rotation: Quat, unit: AngleUnit, out: &mut Vec<f32>) {
     let mut axes: Vec<usize> = joint.channels.iter().filter(|c| c.is_rotation()).map(|c| c.axis()).collect();
     axes.dedup();
     let mut full = axes.clone();

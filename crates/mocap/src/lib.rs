@@ -35,6 +35,7 @@ mod fastmath;
 pub mod fk;
 pub mod ik;
 pub mod image;
+pub mod layer;
 pub mod load;
 pub mod md2;
 pub mod morph;
