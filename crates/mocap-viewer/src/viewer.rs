@@ -456,11 +456,27 @@ impl Viewer {
         let c = self.stage.actors.get(character).ok_or_else(|| format!("no character {}", character + 1))?;
         let clip = c.clip().ok_or_else(|| format!("{}: a model has no motion to edit", c.name))?;
         let edited = mocap::edit::apply(clip, edit).map_err(|e| format!("{}: {e}", c.name))?;
-        let before = c.asset.clone();
+        self.commit(character, edited, label);
+        Ok(())
+    }
+
+    /// Layers character `source`'s clip on the subtree of `layer.subtree` in
+    /// character `character` ([`mocap::layer::apply`]), as one undoable step.
+    pub fn add_layer(&mut self, character: usize, source: usize, layer: &mocap::layer::Layer) -> Result<(), String> {
+        let base = self.stage.actors.get(character).and_then(|c| c.clip()).ok_or_else(|| format!("no clip {}", character + 1))?;
+        let other = self.stage.actors.get(source).and_then(|c| c.clip()).ok_or_else(|| format!("no clip {}", source + 1))?;
+        let name = self.stage.actors.get(source).map_or(String::new(), |c| c.name.clone());
+        let out = mocap::layer::apply(base, other, layer).map_err(|e| e.to_string())?;
+        self.commit(character, out, &format!("Layer {name} on {}", layer.subtree));
+        Ok(())
+    }
+
+    /// Records and shows an edited clip of character `character`.
+    fn commit(&mut self, character: usize, edited: mocap::Clip, label: &str) {
+        let Some(before) = self.stage.actors.get(character).map(|c| c.asset.clone()) else { return };
         let after = mocap::Asset::Clip(edited);
         self.history.push(crate::history::Change { character, label: label.to_owned(), before, after: after.clone() });
         self.replace_asset(character, after);
-        Ok(())
     }
 
     /// Takes back the last edit; returns its label.

@@ -116,3 +116,18 @@ fn closing_an_edited_character_asks_first() {
     // Closing an unedited one needs no question.
     assert!(!v.history.edited(0));
 }
+
+#[test]
+fn a_layer_from_another_open_clip_is_one_undoable_step() {
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    v.add("wave.bvh", WALK).unwrap();
+    v.edit(1, &Edit::Reverse, "Reverse").unwrap();
+    let original = clip(&v);
+    v.add_layer(0, 1, &mocap::layer::Layer::on("RightShoulder")).unwrap();
+    assert_ne!(clip(&v), original);
+    assert_eq!(v.snapshot().undo.as_deref(), Some("Layer wave.bvh on RightShoulder"));
+    v.undo();
+    assert_eq!(clip(&v), original);
+    assert!(v.add_layer(0, 1, &mocap::layer::Layer::on("Wing")).is_err());
+}

@@ -187,6 +187,16 @@ impl MocapViewer {
         self.with_viewer(|v| v.edit(index as usize, &edit, spec).err()).flatten()
     }
 
+    /// Layers character `source`'s clip on the subtree of joint `subtree` of
+    /// character `index` (override, or `additive`), one undoable step; returns
+    /// the error message, or `undefined` when done.
+    #[wasm_bindgen(js_name = addLayer)]
+    pub fn add_layer(&self, index: u32, source: u32, subtree: &str, weight: Option<f32>, additive: Option<bool>) -> Option<String> {
+        let blend = if additive.unwrap_or(false) { mocap::layer::Blend::Additive } else { mocap::layer::Blend::Override };
+        let layer = mocap::layer::Layer { weight: weight.unwrap_or(1.0), blend, ..mocap::layer::Layer::on(subtree) };
+        self.with_viewer(|v| v.add_layer(index as usize, source as usize, &layer).err()).flatten()
+    }
+
     /// Takes back the last clip edit; returns its label (`undefined` when none).
     pub fn undo(&self) -> Option<String> {
         self.with_viewer(|v| v.undo()).flatten()

@@ -58,6 +58,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                 edit = Some((Edit::RemoveJoint { name: joint.clone(), fold: false }, format!("Drop {joint}")));
             }
             rename(ui, joint, &mut edit);
+            layer_menu(ui, viewer, index, joint);
         }
         None => {
             ui.label(egui::RichText::new("Select a joint to rename or remove it").weak());
@@ -83,6 +84,27 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
         }
         ui.close();
     }
+}
+
+/// Layers another open clip on the selected joint's subtree (override or additive).
+fn layer_menu(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize, joint: &str) {
+    let others: Vec<(usize, String)> = (viewer.stage.actors.iter().enumerate()).filter(|(i, c)| *i != index && c.clip().is_some()).map(|(i, c)| (i, c.name.clone())).collect();
+    ui.menu_button(format!("Layer on {joint}'s subtree"), |ui| {
+        if others.is_empty() {
+            ui.label("Open (Add…) the clip to layer first");
+        }
+        for (source, name) in others {
+            for (label, blend) in [("", mocap::layer::Blend::Override), (" (additive)", mocap::layer::Blend::Additive)] {
+                if ui.button(format!("{name}{label}")).on_hover_text("Joints are matched by name across naming conventions").clicked() {
+                    let layer = mocap::layer::Layer { blend, ..mocap::layer::Layer::on(joint) };
+                    if let Err(message) = viewer.add_layer(index, source, &layer) {
+                        viewer.error = Some(message);
+                    }
+                    ui.close();
+                }
+            }
+        }
+    });
 }
 
 /// A text field to rename the selected joint.
