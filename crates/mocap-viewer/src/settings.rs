@@ -23,6 +23,8 @@ pub struct ViewSettings {
     pub pose_mode: bool,
     /// Pin each foot to the floor while it is in contact (legs solved by IK).
     pub foot_lock: bool,
+    /// Frames on each side over which a key fades in and out.
+    pub key_window: usize,
 }
 
 impl Default for ViewSettings {
@@ -37,6 +39,7 @@ impl Default for ViewSettings {
             interpolate: true,
             pose_mode: false,
             foot_lock: false,
+            key_window: 3,
         }
     }
 }

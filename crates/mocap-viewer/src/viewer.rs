@@ -336,12 +336,23 @@ impl Viewer {
                 self.playback.seek(b, t);
             }
             (Action::Zoom(f), _) => self.camera.zoom(f),
+            (Action::Orbit(px), _) if px > 0.0 && self.settings.pose_mode && self.has_corrections() => {
+                // In Pose mode with a correction, k sets the key instead of orbiting.
+                if let Err(message) = self.set_key() {
+                    self.error = Some(message);
+                }
+            }
             (Action::Orbit(px), _) => self.camera.orbit(px, 0.0),
             (Action::Waypoint(w), _) => self.camera.waypoint(w),
             (Action::ToggleFollow, _) => self.settings.follow_root = !self.settings.follow_root,
             (Action::ToggleAxes, _) => self.settings.show_axes = !self.settings.show_axes,
             (Action::ToggleDrawMode, _) => self.settings.mode = self.settings.mode.next(),
             (Action::ResetCamera, _) => self.reset_camera(),
+            (Action::SetKey, _) => {
+                if let Err(message) = self.set_key() {
+                    self.error = Some(message);
+                }
+            }
             (Action::Undo, _) => {
                 self.undo();
             }
@@ -494,7 +505,7 @@ impl Viewer {
     }
 
     /// Puts `asset` in character `index`'s place, keeping its name, colour,
-    /// visibility and offset; the timeline and the selection follow.
+    /// visibility and placement; the timeline and the selection follow.
     fn replace_asset(&mut self, index: usize, asset: mocap::Asset) {
         let Some(old) = self.stage.actors.get(index) else { return };
         let others: Vec<Character> = Vec::new();
@@ -502,10 +513,12 @@ impl Viewer {
         c.extra.color = old.extra.color;
         c.visible = old.visible;
         c.offset = old.offset;
+        // The character stays where it stands (an edit does not move it to a new
+        // lane centre; changing the layout arranges again).
+        c.layout_offset = old.layout_offset;
         if let Some(slot) = self.stage.actors.get_mut(index) {
             *slot = c;
         }
-        self.stage.arrange();
         if let Some(s) = self.selected.filter(|s| s.character == index) {
             let joints = self.stage.actors.get(index).and_then(|c| c.clip()).map_or(0, |c| c.skeleton().len());
             if s.joint >= joints {
@@ -556,6 +569,27 @@ impl Viewer {
                 }
             });
         });
+    }
+
+    /// Turns the pose corrections made by dragging into keys: each character's
+    /// correction becomes one undoable edit ([`mocap::edit::Edit::Correct`]) at its
+    /// frame, fading over [`crate::settings::ViewSettings::key_window`] frames on each
+    /// side. Returns how many characters were keyed.
+    pub fn set_key(&mut self) -> Result<usize, String> {
+        let window = self.settings.key_window;
+        let mut keyed = 0;
+        for index in 0..self.stage.actors.len() {
+            let Some(c) = self.stage.actors.get(index) else { continue };
+            let Some(correction) = c.extra.correction.clone().filter(|k| k.ghost) else { continue };
+            let Some(clip) = c.clip() else { continue };
+            let name = |j: usize| clip.skeleton().joints().get(j).map(|x| x.name.clone());
+            let rotations = correction.rotations.iter().filter_map(|&(j, q)| Some((name(j)?, q))).collect();
+            let translations = correction.translations.iter().filter_map(|&(j, t)| Some((name(j)?, t))).collect();
+            let edit = mocap::edit::Edit::Correct { frame: correction.frame, rotations, translations, window };
+            self.edit(index, &edit, &format!("Key at frame {}", correction.frame))?;
+            keyed += 1;
+        }
+        Ok(keyed)
     }
 
     /// Forgets every pose correction made by dragging.

@@ -141,3 +141,29 @@ fn foot_locking_finds_contacts_and_keeps_a_planted_foot_still() {
     assert!(a.distance(b) < 1e-3, "the planted foot stays: {a} → {b}");
     assert!(v.stage.actors[0].extra.pose.iter().all(|t| t.translation.is_finite()));
 }
+
+#[test]
+fn a_dragged_pose_becomes_a_key_that_fades_and_saves() {
+    let mut v = paused();
+    let hand = joint(&v, "LeftHand");
+    let target = at(&v, hand) + Vec3::new(0.08, 0.12, -0.05);
+    assert!(v.drag_joint(0, hand, target).unwrap().reached);
+    v.settings.key_window = 2;
+    assert_eq!(v.set_key(), Ok(1));
+    assert!(!v.has_corrections(), "the correction is now part of the clip");
+    assert_eq!(v.snapshot().undo.as_deref(), Some("Key at frame 12"));
+    v.pose();
+    assert!(at(&v, hand).distance(target) < 2e-3, "keyed: the hand is at the target at frame 12 ({})", at(&v, hand).distance(target));
+    // It fades: frame 14 moved less than frame 13, frame 15 (past the window) not at all.
+    let clip = v.stage.actors[0].clip().unwrap().clone();
+    let original = mocap::bvh::parse(WALK).unwrap();
+    let moved = |f: usize| clip.world_positions(f)[hand].distance(original.world_positions(f)[hand]);
+    assert!(moved(13) > moved(14) && moved(14) > 0.0 && moved(15) < 1e-4, "{} {} {}", moved(13), moved(14), moved(15));
+    // Saved, it reads back with the key.
+    let (_, text) = v.save_bvh(0).unwrap();
+    let saved = mocap::bvh::parse(text.as_bytes()).unwrap();
+    assert!(saved.world_positions(12)[hand].distance(clip.world_positions(12)[hand]) < 1e-3);
+    // Undo restores the clip bit for bit.
+    v.undo();
+    assert_eq!(v.stage.actors[0].clip().unwrap(), &original);
+}

@@ -197,6 +197,20 @@ impl MocapViewer {
         self.with_viewer(|v| v.add_layer(index as usize, source as usize, &layer).err()).flatten()
     }
 
+    /// Keys the poses corrected by dragging (Pose mode) at their frames, fading over
+    /// `window` frames on each side (3 by default); returns the error message, or
+    /// `undefined` when done.
+    #[wasm_bindgen(js_name = setKey)]
+    pub fn set_key(&self, window: Option<u32>) -> Option<String> {
+        self.with_viewer(|v| {
+            if let Some(w) = window {
+                v.settings.key_window = w as usize;
+            }
+            v.set_key().err()
+        })
+        .flatten()
+    }
+
     /// Takes back the last clip edit; returns its label (`undefined` when none).
     pub fn undo(&self) -> Option<String> {
         self.with_viewer(|v| v.undo()).flatten()

@@ -71,6 +71,19 @@ pub enum Edit {
         /// New name.
         to: String,
     },
+    /// A pose correction keyed at `frame`: the named joints take these local
+    /// rotations (and roots these local positions) there, and the change fades out
+    /// over `window` frames on each side, so a glitch is fixed without a pop.
+    Correct {
+        /// The frame keyed.
+        frame: usize,
+        /// Joint names and their local rotations at the frame.
+        rotations: Vec<(String, Quat)>,
+        /// Joint names and their local translations at the frame (moved roots).
+        translations: Vec<(String, Vec3)>,
+        /// Frames on each side over which the correction fades.
+        window: usize,
+    },
     /// Remove a joint; its children move to its parent. With `fold`, its motion
     /// is folded into them so that no position changes; without, it is dropped.
     RemoveJoint {
@@ -113,6 +126,7 @@ pub fn apply(clip: &Clip, edit: &Edit) -> Result<Clip, EditError> {
         Edit::Scale { factor } => scale(&clip, *factor),
         Edit::Rename { from, to } => rename(&clip, from, to),
         Edit::RemoveJoint { name, fold } => remove_joint(&clip, name, *fold),
+        Edit::Correct { frame, rotations, translations, window } => correct(&clip, *frame, rotations, translations, *window),
     }
 }
 
@@ -453,4 +467,66 @@ fn remove_joint(clip: &Clip, name: &str, fold: bool) -> Result<Clip, EditError> 
         })
         .collect();
     from_locals(clip, new_skeleton, clip.frame_time(), &new_poses)
+}
+
+/// Weight of a correction keyed at `key` at frame `f`: 1 there, easing (smoothstep)
+/// to 0 at `window + 1` frames away.
+fn key_weight(f: usize, key: usize, window: usize) -> f32 {
+    let d = f.abs_diff(key) as f32 / (window + 1) as f32;
+    if d >= 1.0 {
+        return 0.0;
+    }
+    let t = 1.0 - d;
+    t * t * (3.0 - 2.0 * t)
+}
+
+fn correct(clip: &Clip, frame: usize, rotations: &[(String, Quat)], translations: &[(String, Vec3)], window: usize) -> Result<Clip, EditError> {
+    let n = clip.frame_count();
+    if frame >= n {
+        return err(format!("key at frame {frame}: the clip has frames 0 to {}", n.saturating_sub(1)));
+    }
+    let skeleton = clip.skeleton();
+    let find = |name: &str| skeleton.find(name).ok_or_else(|| EditError(format!("key: no joint named `{name}`")));
+    let rotations: Vec<(usize, Quat)> = rotations.iter().map(|(name, q)| Ok((find(name)?, *q))).collect::<Result<_, EditError>>()?;
+    let translations: Vec<(usize, Vec3)> = translations.iter().map(|(name, t)| Ok((find(name)?, *t))).collect::<Result<_, EditError>>()?;
+    if rotations.iter().any(|(_, q)| !q.is_finite()) || translations.iter().any(|(_, t)| !t.is_finite()) {
+        return err("key: a value is not finite");
+    }
+    let mut poses = locals(clip);
+    let at_key = poses[frame].clone();
+    // The change at the key, in each joint's own frame, spread over the window.
+    let deltas: Vec<(usize, Quat)> = rotations.iter().map(|&(j, q)| (j, (at_key.rotation[j].inverse() * q).normalize())).collect();
+    let moves: Vec<(usize, Vec3)> = translations.iter().map(|&(j, t)| (j, t - at_key.translation[j])).collect();
+    for (f, pose) in poses.iter_mut().enumerate() {
+        let w = key_weight(f, frame, window);
+        if w <= 0.0 {
+            continue;
+        }
+        for &(j, d) in &deltas {
+            pose.rotation[j] = (pose.rotation[j] * Quat::IDENTITY.slerp(d, w)).normalize();
+        }
+        for &(j, m) in &moves {
+            pose.translation[j] += m * w;
+        }
+    }
+    // Joints whose translation is keyed need position channels.
+    let joints: Vec<Joint> = skeleton
+        .joints()
+        .iter()
+        .enumerate()
+        .map(|(i, j)| {
+            let moved = translations.iter().any(|(k, _)| *k == i);
+            if moved && !j.channels.iter().any(|c| c.kind() == ChannelKind::Translation) {
+                let mut channels = vec![Channel::Xposition, Channel::Yposition, Channel::Zposition];
+                channels.extend(j.channels.iter().copied());
+                Joint::new(j.name.clone(), j.parent, j.offset, channels)
+            } else if j.is_end_site() {
+                Joint::end_site(j.name.clone(), j.parent, j.offset)
+            } else {
+                Joint::new(j.name.clone(), j.parent, j.offset, j.channels.clone())
+            }
+        })
+        .collect();
+    let skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| EditError(e.to_string()))?;
+    from_locals(clip, skeleton, clip.frame_time(), &poses)
 }

@@ -37,8 +37,14 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.separator();
             ui.checkbox(&mut viewer.settings.foot_lock, "Foot lock").on_hover_text("Pin each foot to the floor while it is in contact (legs solved by IK); contacts show on the timeline");
             ui.checkbox(&mut viewer.settings.pose_mode, "Pose").on_hover_text("Drag a joint in the view: its chain follows by IK (the clip's own pose shows as a ghost)");
-            if viewer.has_corrections() && ui.button("Reset pose").on_hover_text("Forget the poses corrected by dragging").clicked() {
-                viewer.reset_pose();
+            if viewer.has_corrections() {
+                if ui.button("Set key").on_hover_text("Key the corrected pose at this frame (k); it fades over the key window").clicked() {
+                    viewer.apply(Action::SetKey);
+                }
+                ui.add(egui::DragValue::new(&mut viewer.settings.key_window).range(0..=60).prefix("± ").suffix(" frames")).on_hover_text("Frames on each side over which the key fades in and out");
+                if ui.button("Reset pose").on_hover_text("Forget the poses corrected by dragging").clicked() {
+                    viewer.reset_pose();
+                }
             }
             ui.separator();
             ui.menu_button("Camera", |ui| camera_menu(ui, viewer));
