@@ -177,6 +177,25 @@ try {
     check(a.frameCount === 10 && first.every((x, i) => Math.abs(x - last[i]) < 1e-3), 'the saved clip is the edited one (its first frame is the original last)');
     const u = await page.evaluate(() => { const v = window.mocapViewer; v.undo(); v.undo(); return v.state(); });
     check(!u.clips[0].edited && u.clips[0].frames === 67 && u.redo === 'reverse', `undo twice restores (${u.clips[0].frames} frames, redo "${u.redo}")`);
+    // Drag a hand at frame 12 (metres, as drawn), key it, save: the saved file has the hand there.
+    const keyed = await page.evaluate(async () => {
+      const v = window.mocapViewer;
+      v.seek(12);
+      v.applyViewState('draw=joints,interp,pose');
+      await new Promise((r) => setTimeout(r, 300));
+      const p = v.jointWorldPosition(0, 'LeftHand');
+      const reached = v.dragJoint(0, 'LeftHand', p[0] + 0.08, p[1] + 0.12, p[2] - 0.05);
+      const error = v.setKey(2) ?? null;
+      const [name, text] = v.saveBvh(0);
+      return { reached, error, name, text, state: v.state() };
+    });
+    check(keyed.reached && keyed.error === null && keyed.state.undo === 'Key at frame 12', `dragged and keyed (${keyed.error}, undo "${keyed.state.undo}")`);
+    const savedKey = pkg.parseMotion(new TextEncoder().encode(keyed.text), keyed.name);
+    const hand = savedKey.jointNames.indexOf('LeftHand');
+    const moved = savedKey.worldPositions(12).slice(3 * hand, 3 * hand + 3);
+    const orig = b.worldPositions(12).slice(3 * hand, 3 * hand + 3);
+    const delta = [moved[0] - orig[0], moved[1] - orig[1], moved[2] - orig[2]];
+    check(Math.hypot(delta[0] - 8, delta[1] - 12, delta[2] + 5) < 0.3, `the saved BVH has the hand 8, 12, -5 cm away at frame 12 (${delta.map((d) => d.toFixed(2))})`);
   });
 } finally {
   await close();

@@ -160,3 +160,28 @@ fn removing_a_joint_folds_or_drops_its_motion() {
     let chained = apply_all(&w, &[Edit::Trim { first: 0, last: 9 }, Edit::Reverse]).unwrap();
     assert_eq!(chained.motion().row(0), w.motion().row(9));
 }
+
+#[test]
+fn a_keyed_correction_fades_over_its_window() {
+    let w = walk();
+    let arm = w.skeleton().find("LeftArm").unwrap();
+    let mut at = mocap::LocalPose::default();
+    w.local_pose_into(20, &mut at);
+    let turned = at.rotation[arm] * mocap::glam::Quat::from_rotation_z(0.8);
+    let key = |window| apply(&w, &Edit::Correct { frame: 20, rotations: vec![("LeftArm".into(), turned)], translations: vec![], window }).unwrap();
+    let k = key(3);
+    let rotation = |c: &Clip, f: usize| {
+        let mut p = mocap::LocalPose::default();
+        c.local_pose_into(f, &mut p);
+        p.rotation[arm]
+    };
+    assert!(rotation(&k, 20).dot(turned).abs() > 0.99999, "the key holds at its frame");
+    let change = |f: usize| rotation(&k, f).angle_between(rotation(&w, f));
+    assert!(change(21) > change(22) && change(22) > change(23) && change(23) > 0.0 && change(24) < 1e-5, "it fades: {} {} {} {}", change(21), change(22), change(23), change(24));
+    assert!((change(19) - change(21)).abs() < 0.05, "both sides alike");
+    let sharp = key(0);
+    assert!(rotation(&sharp, 21).angle_between(rotation(&w, 21)) < 1e-5, "window 0 keys one frame");
+    assert!(apply(&w, &Edit::Correct { frame: 99, rotations: vec![], translations: vec![], window: 1 }).is_err());
+    assert!(apply(&w, &Edit::Correct { frame: 1, rotations: vec![("Tail".into(), turned)], translations: vec![], window: 1 }).is_err());
+    round_trips(&k);
+}
