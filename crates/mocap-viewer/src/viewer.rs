@@ -455,6 +455,19 @@ impl Viewer {
         self.camera.distance = length * 2.6;
     }
 
+    /// Starts a new character for the creator (a root joint, 60 frames at 30 fps)
+    /// in place of everything open, selected and in Pose mode: add joints from the
+    /// Edit menu, pose them by dragging and Set key, then Save as BVH.
+    pub fn new_character(&mut self) {
+        let clip = mocap::edit::new_character(60, 30.0);
+        self.open_assets(vec![("character.bvh".to_owned(), mocap::Asset::Clip(clip))]);
+        self.set_playing(false);
+        self.settings.pose_mode = true;
+        self.selected = Some(Selection { character: 0, joint: 0 });
+        self.camera.target = mocap::glam::Vec3::new(0.0, 1.0, 0.0);
+        self.camera.distance = 4.0;
+    }
+
     /// Rebuilds the tentacle's skin after the demo's softness changed.
     pub fn refresh_tentacle_skin(&mut self) {
         let (Some(demo), Some(c)) = (&self.tentacle, self.stage.actors.first_mut()) else { return };

@@ -131,3 +131,37 @@ fn a_layer_from_another_open_clip_is_one_undoable_step() {
     assert_eq!(clip(&v), original);
     assert!(v.add_layer(0, 1, &mocap::layer::Layer::on("Wing")).is_err());
 }
+
+#[test]
+fn the_creator_makes_a_character_that_poses_keys_and_saves() {
+    use mocap::glam::Vec3;
+    let mut v = Viewer::default();
+    v.new_character();
+    assert!(v.settings.pose_mode && v.selected_name() == Some("Hips"));
+    v.edit(0, &Edit::AddJoint { parent: "Hips".into(), name: "Arm".into(), offset: Vec3::new(0.0, 0.4, 0.0) }, "Add Arm").unwrap();
+    v.edit(0, &Edit::AddJoint { parent: "Arm".into(), name: "Hand".into(), offset: Vec3::new(0.0, 0.4, 0.0) }, "Add Hand").unwrap();
+    let names: Vec<String> = v.snapshot().clips[0].joint_names.clone();
+    assert_eq!(names, ["Hips", "Arm", "Hand", "Hand_End"]);
+    // Pose the hand at frame 30 by dragging, key it, play it back.
+    v.seek(30);
+    v.pose();
+    let hand = 2;
+    let start = v.stage.actors[0].extra.pose[hand].translation;
+    let target = start + Vec3::new(0.3, -0.2, 0.0);
+    assert!(v.drag_joint(0, hand, target).unwrap().reached);
+    v.set_key().unwrap();
+    v.pose();
+    assert!(v.stage.actors[0].extra.pose[hand].translation.distance(target) < 2e-3);
+    v.seek(0);
+    v.pose();
+    assert!(v.stage.actors[0].extra.pose[hand].translation.distance(start) < 1e-4, "other frames keep the rest pose");
+    // Saved and read back: the same skeleton and motion.
+    let (name, text) = v.save_bvh(0).unwrap();
+    assert_eq!(name, "character-edited.bvh");
+    let again = mocap::bvh::parse(text.as_bytes()).unwrap();
+    assert_eq!(again.skeleton(), clip(&v).skeleton());
+    assert_eq!(again.motion().data(), clip(&v).motion().data());
+    let mut dropped = Viewer::default();
+    dropped.load(&name, text.as_bytes()).unwrap();
+    assert_eq!(dropped.snapshot().clips[0].joint_names, names);
+}

@@ -163,11 +163,17 @@ impl MocapViewer {
     /// Applies a clip edit to character `index`, one undoable step: `'reverse'`,
     /// `'ping-pong'`, `'in-place'`, `'in-place-turning'`, `'up-z'`, `'trim:A:B'`,
     /// `'fps:N'`, `'knit:N'`, `'scale:F'`, `'rename:OLD:NEW'`, `'remove:JOINT'` or
-    /// `'drop:JOINT'`. Returns the error message, or `undefined` when done.
+    /// `'drop:JOINT'`, and for the creator `'add:PARENT:NAME:x,y,z'`,
+    /// `'offset:NAME:x,y,z'`, `'channels:NAME:ZXY[:position]'`. Returns the error
+    /// message, or `undefined` when done.
     pub fn edit(&self, index: u32, spec: &str) -> Option<String> {
         use mocap::edit::Edit;
         let parts: Vec<&str> = spec.split(':').collect();
         let number = |s: Option<&&str>| s.and_then(|v| v.trim().parse::<f64>().ok());
+        let vec3 = |s: &str| -> Option<mocap::glam::Vec3> {
+            let v: Vec<f32> = s.split(',').map(|x| x.trim().parse().ok()).collect::<Option<_>>()?;
+            <[f32; 3]>::try_from(v).ok().map(mocap::glam::Vec3::from_array)
+        };
         let edit = match parts.as_slice() {
             ["reverse"] => Some(Edit::Reverse),
             ["ping-pong"] => Some(Edit::PingPong),
@@ -180,6 +186,10 @@ impl MocapViewer {
             ["scale", _] => number(parts.get(1)).map(|f| Edit::Scale { factor: f as f32 }),
             ["rename", from, to] => Some(Edit::Rename { from: (*from).to_owned(), to: (*to).to_owned() }),
             ["remove", joint] => Some(Edit::RemoveJoint { name: (*joint).to_owned(), fold: true }),
+            ["add", parent, name, xyz] => vec3(xyz).map(|offset| Edit::AddJoint { parent: (*parent).to_owned(), name: (*name).to_owned(), offset }),
+            ["offset", name, xyz] => vec3(xyz).map(|offset| Edit::SetOffset { name: (*name).to_owned(), offset }),
+            ["channels", name, order] => Some(Edit::SetChannels { name: (*name).to_owned(), position: false, order: (*order).to_owned() }),
+            ["channels", name, order, "position"] => Some(Edit::SetChannels { name: (*name).to_owned(), position: true, order: (*order).to_owned() }),
             ["drop", joint] => Some(Edit::RemoveJoint { name: (*joint).to_owned(), fold: false }),
             _ => None,
         };
@@ -209,6 +219,13 @@ impl MocapViewer {
             v.set_key().err()
         })
         .flatten()
+    }
+
+    /// Starts a new character for the creator (a root joint, 60 frames) in place of
+    /// everything open, in Pose mode.
+    #[wasm_bindgen(js_name = newCharacter)]
+    pub fn new_character(&self) {
+        self.with_viewer(|v| v.new_character());
     }
 
     /// Takes back the last clip edit; returns its label (`undefined` when none).

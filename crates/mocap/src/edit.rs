@@ -84,6 +84,34 @@ pub enum Edit {
         /// Frames on each side over which the correction fades.
         window: usize,
     },
+    /// Add a joint under `parent` at `offset` (three rotation channels, rest pose on
+    /// every frame); the parent's End Site, if it had one, gives way, and the new
+    /// joint gets its own.
+    AddJoint {
+        /// The parent joint's name.
+        parent: String,
+        /// The new joint's name (unique).
+        name: String,
+        /// Its offset from the parent, in the parent's frame.
+        offset: Vec3,
+    },
+    /// Move a joint (or End Site) relative to its parent.
+    SetOffset {
+        /// The joint's name.
+        name: String,
+        /// The new offset.
+        offset: Vec3,
+    },
+    /// Give a joint position channels or not, and its rotation order (`"ZXY"`,
+    /// any order of X, Y and Z); its motion is kept.
+    SetChannels {
+        /// The joint's name.
+        name: String,
+        /// Xposition Yposition Zposition first.
+        position: bool,
+        /// The rotation axes in order, e.g. `"ZXY"`.
+        order: String,
+    },
     /// Remove a joint; its children move to its parent. With `fold`, its motion
     /// is folded into them so that no position changes; without, it is dropped.
     RemoveJoint {
@@ -127,6 +155,9 @@ pub fn apply(clip: &Clip, edit: &Edit) -> Result<Clip, EditError> {
         Edit::Rename { from, to } => rename(&clip, from, to),
         Edit::RemoveJoint { name, fold } => remove_joint(&clip, name, *fold),
         Edit::Correct { frame, rotations, translations, window } => correct(&clip, *frame, rotations, translations, *window),
+        Edit::AddJoint { parent, name, offset } => add_joint(&clip, parent, name, *offset),
+        Edit::SetOffset { name, offset } => set_offset(&clip, name, *offset),
+        Edit::SetChannels { name, position, order } => set_channels(&clip, name, *position, order),
     }
 }
 
@@ -529,4 +560,194 @@ fn correct(clip: &Clip, frame: usize, rotations: &[(String, Quat)], translations
         .collect();
     let skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| EditError(e.to_string()))?;
     from_locals(clip, skeleton, clip.frame_time(), &poses)
+}
+
+/// A new character for the creator: a root joint `Hips` one metre up with all six
+/// channels and an End Site above it, `frames` frames of its rest pose at `fps`.
+pub fn new_character(frames: usize, fps: f64) -> Clip {
+    let root = Joint::new(
+        "Hips",
+        None,
+        Vec3::new(0.0, 1.0, 0.0),
+        vec![Channel::Xposition, Channel::Yposition, Channel::Zposition, Channel::Zrotation, Channel::Xrotation, Channel::Yrotation],
+    );
+    let end = Joint::end_site("Hips_End", Some(0), Vec3::new(0.0, 0.1, 0.0));
+    let skeleton = Skeleton::new(vec![root, end], EulerConvention::Intrinsic).unwrap_or_default();
+    let frames = frames.max(1);
+    let row = [0.0, 1.0, 0.0, 0.0, 0.0, 0.0];
+    let data: Vec<f32> = (0..frames).flat_map(|_| row).collect();
+    let fps = if fps.is_finite() && fps > 0.0 { fps } else { 30.0 };
+    Motion::new(1.0 / fps, 6, frames, data).and_then(|m| Clip::new(skeleton, m).ok()).unwrap_or_default()
+}
+
+/// Joints (each with the index of its source joint, if any) put in depth-first
+/// order, parents remapped; returns the new joints and, per new joint, its source.
+fn depth_first(joints: Vec<(Joint, Option<usize>)>) -> (Vec<Joint>, Vec<Option<usize>>) {
+    let mut children: Vec<Vec<usize>> = vec![Vec::new(); joints.len()];
+    let mut roots = Vec::new();
+    for (i, (j, _)) in joints.iter().enumerate() {
+        match j.parent.filter(|&p| p < joints.len() && p != i) {
+            Some(p) => children[p].push(i),
+            None => roots.push(i),
+        }
+    }
+    let mut order = Vec::with_capacity(joints.len());
+    let mut stack: Vec<usize> = roots.into_iter().rev().collect();
+    while let Some(i) = stack.pop() {
+        order.push(i);
+        stack.extend(children[i].iter().rev());
+    }
+    let mut position = vec![0usize; joints.len()];
+    for (k, &i) in order.iter().enumerate() {
+        position[i] = k;
+    }
+    let mut out = Vec::with_capacity(order.len());
+    let mut sources = Vec::with_capacity(order.len());
+    for &i in &order {
+        let (joint, source) = &joints[i];
+        let mut joint = joint.clone();
+        joint.parent = joint.parent.map(|p| position[p]);
+        out.push(joint);
+        sources.push(*source);
+    }
+    (out, sources)
+}
+
+/// A clip over `joints` (from [`depth_first`]): each frame's local pose taken from
+/// the source joints, rest values for new ones.
+fn restructured(clip: &Clip, joints: Vec<Joint>, sources: &[Option<usize>]) -> Result<Clip, EditError> {
+    // Plain joints again (columns are assigned by the skeleton).
+    let joints: Vec<Joint> = joints
+        .into_iter()
+        .map(|j| if j.is_end_site() { Joint::end_site(j.name.clone(), j.parent, j.offset) } else { Joint::new(j.name.clone(), j.parent, j.offset, j.channels.clone()) })
+        .collect();
+    let skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| EditError(e.to_string()))?;
+    let rest = LocalPose::rest(&skeleton);
+    let poses: Vec<LocalPose> = locals(clip)
+        .iter()
+        .map(|p| {
+            let mut out = rest.clone();
+            for (n, source) in sources.iter().enumerate() {
+                if let Some(i) = source {
+                    if !skeleton.is_end_site(n) {
+                        out.translation[n] = p.translation[*i];
+                        out.rotation[n] = p.rotation[*i];
+                    }
+                }
+            }
+            out
+        })
+        .collect();
+    from_locals(clip, skeleton, clip.frame_time(), &poses)
+}
+
+fn add_joint(clip: &Clip, parent: &str, name: &str, offset: Vec3) -> Result<Clip, EditError> {
+    let skeleton = clip.skeleton();
+    let name = name.trim();
+    if name.is_empty() || name.chars().any(|c| c.is_whitespace() || c == '{' || c == '}') {
+        return err(format!("add `{name}`: a joint name needs no spaces or braces"));
+    }
+    if skeleton.find(name).is_some() {
+        return err(format!("add `{name}`: there is already a joint of that name"));
+    }
+    if !offset.is_finite() {
+        return err(format!("add `{name}`: the offset is not finite"));
+    }
+    let p = skeleton.find(parent).ok_or_else(|| EditError(format!("add: no joint named `{parent}`")))?;
+    if skeleton.is_end_site(p) {
+        return err(format!("add under `{parent}`: an End Site has no children"));
+    }
+    let mut joints: Vec<(Joint, Option<usize>)> = skeleton
+        .joints()
+        .iter()
+        .enumerate()
+        // The parent's End Site gives way to the new joint.
+        .filter(|(_, j)| !(j.is_end_site() && j.parent == Some(p)))
+        .map(|(i, j)| (j.clone(), Some(i)))
+        .collect();
+    // Parents as positions in this list.
+    let position: Vec<Option<usize>> = {
+        let mut map = vec![None; skeleton.len()];
+        for (k, (_, source)) in joints.iter().enumerate() {
+            if let Some(i) = source {
+                map[*i] = Some(k);
+            }
+        }
+        map
+    };
+    for (joint, _) in &mut joints {
+        joint.parent = joint.parent.and_then(|q| position[q]);
+    }
+    let parent_position = position[p].ok_or_else(|| EditError("the parent vanished".into()))?;
+    let new_index = joints.len();
+    joints.push((Joint::new(name, Some(parent_position), offset, vec![Channel::Zrotation, Channel::Xrotation, Channel::Yrotation]), None));
+    let tip = if offset.length() > 0.0 { offset * 0.25 } else { Vec3::new(0.0, 0.05, 0.0) };
+    joints.push((Joint::end_site(format!("{name}_End"), Some(new_index), tip), None));
+    let (joints, sources) = depth_first(joints);
+    restructured(clip, joints, &sources)
+}
+
+fn set_offset(clip: &Clip, name: &str, offset: Vec3) -> Result<Clip, EditError> {
+    let skeleton = clip.skeleton();
+    let j = skeleton.find(name).ok_or_else(|| EditError(format!("offset: no joint named `{name}`")))?;
+    if !offset.is_finite() {
+        return err(format!("offset of `{name}`: not finite"));
+    }
+    let joints: Vec<(Joint, Option<usize>)> = skeleton
+        .joints()
+        .iter()
+        .enumerate()
+        .map(|(i, joint)| {
+            let mut joint = joint.clone();
+            if i == j {
+                joint.offset = offset;
+            }
+            (joint, Some(i))
+        })
+        .collect();
+    let sources: Vec<Option<usize>> = joints.iter().map(|(_, s)| *s).collect();
+    let moved = joints.into_iter().map(|(j, _)| j).collect();
+    // A joint with position channels keeps its animated position; for it the rest
+    // offset changes only the file's OFFSET line.
+    restructured(clip, moved, &sources)
+}
+
+fn set_channels(clip: &Clip, name: &str, position: bool, order: &str) -> Result<Clip, EditError> {
+    let skeleton = clip.skeleton();
+    let j = skeleton.find(name).ok_or_else(|| EditError(format!("channels: no joint named `{name}`")))?;
+    if skeleton.is_end_site(j) {
+        return err(format!("channels of `{name}`: an End Site has none"));
+    }
+    let axes: Vec<Channel> = order
+        .trim()
+        .chars()
+        .map(|c| match c.to_ascii_uppercase() {
+            'X' => Ok(Channel::Xrotation),
+            'Y' => Ok(Channel::Yrotation),
+            'Z' => Ok(Channel::Zrotation),
+            _ => Err(EditError(format!("rotation order `{order}`: use X, Y and Z, e.g. ZXY"))),
+        })
+        .collect::<Result<_, _>>()?;
+    let mut seen = axes.clone();
+    seen.sort_by_key(|c| c.axis());
+    seen.dedup();
+    if seen.len() != axes.len() || axes.len() != 3 {
+        return err(format!("rotation order `{order}`: name each of X, Y and Z once"));
+    }
+    let joints: Vec<(Joint, Option<usize>)> = skeleton
+        .joints()
+        .iter()
+        .enumerate()
+        .map(|(i, joint)| {
+            let mut joint = joint.clone();
+            if i == j {
+                let mut channels = if position { vec![Channel::Xposition, Channel::Yposition, Channel::Zposition] } else { Vec::new() };
+                channels.extend(axes.iter().copied());
+                joint.channels = channels;
+            }
+            (joint, Some(i))
+        })
+        .collect();
+    let sources: Vec<Option<usize>> = joints.iter().map(|(_, s)| *s).collect();
+    restructured(clip, joints.into_iter().map(|(j, _)| j).collect(), &sources)
 }

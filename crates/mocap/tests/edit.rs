@@ -185,3 +185,46 @@ fn a_keyed_correction_fades_over_its_window() {
     assert!(apply(&w, &Edit::Correct { frame: 1, rotations: vec![("Tail".into(), turned)], translations: vec![], window: 1 }).is_err());
     round_trips(&k);
 }
+
+#[test]
+fn the_creator_builds_a_character_that_saves_and_reads_back() {
+    let mut c = mocap::edit::new_character(20, 30.0);
+    assert_eq!(c.skeleton().len(), 2);
+    assert_eq!(c.frame_count(), 20);
+    let steps = [
+        Edit::AddJoint { parent: "Hips".into(), name: "Spine".into(), offset: Vec3::new(0.0, 0.3, 0.0) },
+        Edit::AddJoint { parent: "Spine".into(), name: "Head".into(), offset: Vec3::new(0.0, 0.4, 0.0) },
+        Edit::AddJoint { parent: "Spine".into(), name: "LeftArm".into(), offset: Vec3::new(0.2, 0.3, 0.0) },
+        Edit::AddJoint { parent: "LeftArm".into(), name: "LeftHand".into(), offset: Vec3::new(0.5, 0.0, 0.0) },
+        Edit::SetOffset { name: "LeftHand".into(), offset: Vec3::new(0.45, 0.0, 0.0) },
+        Edit::SetChannels { name: "Spine".into(), position: false, order: "XYZ".into() },
+        Edit::Rename { from: "LeftHand".into(), to: "LeftWrist".into() },
+    ];
+    for e in &steps {
+        c = apply(&c, e).unwrap_or_else(|m| panic!("{e:?}: {m}"));
+    }
+    let names: Vec<&str> = c.skeleton().joints().iter().map(|j| j.name.as_str()).collect();
+    assert_eq!(names, ["Hips", "Spine", "Head", "Head_End", "LeftArm", "LeftWrist", "LeftWrist_End"], "depth-first, End Sites only at the leaves");
+    let wrist = c.skeleton().find("LeftWrist").unwrap();
+    assert!((c.world_positions(0)[wrist] - Vec3::new(0.65, 1.6, 0.0)).length() < 1e-5);
+    // Animate it: a key on the arm at frame 10.
+    let turned = mocap::glam::Quat::from_rotation_z(-1.2);
+    c = apply(&c, &Edit::Correct { frame: 10, rotations: vec![("LeftArm".into(), turned)], translations: vec![], window: 5 }).unwrap();
+    assert!(c.world_positions(10)[wrist].y < 1.6 - 0.3, "the arm swings down at the key");
+    // Save, read back: the same skeleton and motion.
+    round_trips(&c);
+    // Bad requests say why.
+    for bad in [
+        Edit::AddJoint { parent: "Nope".into(), name: "X".into(), offset: Vec3::ONE },
+        Edit::AddJoint { parent: "Hips".into(), name: "Spine".into(), offset: Vec3::ONE },
+        Edit::AddJoint { parent: "Head_End".into(), name: "X".into(), offset: Vec3::ONE },
+        Edit::SetChannels { name: "Spine".into(), position: false, order: "XXZ".into() },
+        Edit::SetOffset { name: "Spine".into(), offset: Vec3::NAN },
+    ] {
+        assert!(apply(&c, &bad).is_err(), "{bad:?}");
+    }
+    // Removing a joint moves its children to its parent.
+    let without = apply(&c, &Edit::RemoveJoint { name: "Spine".into(), fold: false }).unwrap();
+    let head = without.skeleton().find("Head").unwrap();
+    assert_eq!(without.skeleton().joints()[head].parent, Some(0));
+}

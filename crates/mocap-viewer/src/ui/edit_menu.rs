@@ -6,6 +6,12 @@ use mocap::edit::Edit;
 
 /// Shows the Edit menu's entries (inside the toolbar's menu button).
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
+    if ui.button("New character").on_hover_text("Start a skeleton from one root joint: add joints here, pose them by dragging (Pose) and Set key").clicked() {
+        viewer.new_character();
+        ui.close();
+        return;
+    }
+    ui.separator();
     let index = viewer.current();
     let Some(c) = viewer.stage.actors.get(index) else {
         ui.label("No clip open");
@@ -58,6 +64,15 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                 edit = Some((Edit::RemoveJoint { name: joint.clone(), fold: false }, format!("Drop {joint}")));
             }
             rename(ui, joint, &mut edit);
+            let is_end = clip.skeleton().find(joint).is_some_and(|j| clip.skeleton().is_end_site(j));
+            if !is_end {
+                add_child(ui, joint, &mut edit);
+                channels(ui, joint, &mut edit);
+            }
+            let offset = clip.skeleton().find(joint).and_then(|j| clip.skeleton().joints().get(j)).map(|j| j.offset);
+            if let Some(offset) = offset {
+                set_offset(ui, joint, offset, &mut edit);
+            }
             layer_menu(ui, viewer, index, joint);
         }
         None => {
@@ -101,6 +116,60 @@ fn layer_menu(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize, joint: &str)
                         viewer.error = Some(message);
                     }
                     ui.close();
+                }
+            }
+        }
+    });
+}
+
+/// Adds a child joint to the selected joint: its name and offset.
+fn add_child(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>) {
+    ui.menu_button(format!("Add a child to {joint}"), |ui| {
+        let id = egui::Id::unique("add-child");
+        let (mut name, mut xyz): (String, [f32; 3]) = ui.ctx().data(|d| d.get_temp(id)).unwrap_or_else(|| ("Joint".to_owned(), [0.0, 0.3, 0.0]));
+        ui.horizontal(|ui| {
+            ui.label("name");
+            ui.add(egui::TextEdit::singleline(&mut name).desired_width(110.0));
+        });
+        ui.horizontal(|ui| {
+            ui.label("offset");
+            for (v, axis) in xyz.iter_mut().zip(["x ", "y ", "z "]) {
+                ui.add(egui::DragValue::new(v).speed(0.01).prefix(axis));
+            }
+        });
+        if ui.button("Add").clicked() {
+            let offset = mocap::glam::Vec3::from_array(xyz);
+            *edit = Some((Edit::AddJoint { parent: joint.to_owned(), name: name.trim().to_owned(), offset }, format!("Add {}", name.trim())));
+        }
+        ui.ctx().data_mut(|d| d.insert_temp(id, (name, xyz)));
+    });
+}
+
+/// Sets the selected joint's offset from its parent.
+fn set_offset(ui: &mut egui::Ui, joint: &str, current: mocap::glam::Vec3, edit: &mut Option<(Edit, String)>) {
+    ui.menu_button(format!("Offset of {joint}"), |ui| {
+        let id = egui::Id::unique(("offset", joint));
+        let mut xyz: [f32; 3] = ui.ctx().data(|d| d.get_temp(id)).unwrap_or(current.to_array());
+        ui.horizontal(|ui| {
+            for (v, axis) in xyz.iter_mut().zip(["x ", "y ", "z "]) {
+                ui.add(egui::DragValue::new(v).speed(0.01).prefix(axis));
+            }
+        });
+        if ui.button("Set").clicked() {
+            *edit = Some((Edit::SetOffset { name: joint.to_owned(), offset: mocap::glam::Vec3::from_array(xyz) }, format!("Offset {joint}")));
+        }
+        ui.ctx().data_mut(|d| d.insert_temp(id, xyz));
+    });
+}
+
+/// Sets the selected joint's channels: position or not, and the rotation order.
+fn channels(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>) {
+    ui.menu_button(format!("Channels of {joint}"), |ui| {
+        for order in ["ZXY", "XYZ", "XZY", "YXZ", "YZX", "ZYX"] {
+            for position in [false, true] {
+                let label = if position { format!("position + {order} rotation") } else { format!("{order} rotation") };
+                if ui.button(label).clicked() {
+                    *edit = Some((Edit::SetChannels { name: joint.to_owned(), position, order: order.to_owned() }, format!("Channels of {joint}")));
                 }
             }
         }
