@@ -3,7 +3,7 @@
 // node api.mjs <url> <distDir> <outDir> <chromium>
 import fs from 'node:fs';
 import path from 'node:path';
-import { launch, reporter } from './common.mjs';
+import { dropFiles, launch, reporter, waitDropped } from './common.mjs';
 
 const [base, dist, outDir, chromiumPath] = process.argv.slice(2);
 const { check, step, finish } = reporter('api');
@@ -182,7 +182,8 @@ try {
       const v = window.mocapViewer;
       v.seek(12);
       v.applyViewState('draw=joints,interp,pose');
-      await new Promise((r) => setTimeout(r, 300));
+      const f0 = v.state().framesRendered;
+      for (let i = 0; i < 300 && v.state().framesRendered <= f0; i++) await new Promise((r) => setTimeout(r, 20));
       const p = v.jointWorldPosition(0, 'LeftHand');
       const reached = v.dragJoint(0, 'LeftHand', p[0] + 0.08, p[1] + 0.12, p[2] - 0.05);
       const error = v.setKey(2) ?? null;
@@ -196,6 +197,47 @@ try {
     const orig = b.worldPositions(12).slice(3 * hand, 3 * hand + 3);
     const delta = [moved[0] - orig[0], moved[1] - orig[1], moved[2] - orig[2]];
     check(Math.hypot(delta[0] - 8, delta[1] - 12, delta[2] + 5) < 0.3, `the saved BVH has the hand 8, 12, -5 cm away at frame 12 (${delta.map((d) => d.toFixed(2))})`);
+  });
+  await step('the creator: three joints, two keyed poses, play, save, drop the file back in', async () => {
+    const made = await page.evaluate(async () => {
+      const v = window.mocapViewer;
+      // Waits for the next drawn frame (each call below asks for one).
+      const tick = async () => {
+        const f = v.state().framesRendered;
+        for (let i = 0; i < 300 && v.state().framesRendered <= f; i++) await new Promise((r) => setTimeout(r, 20));
+      };
+      v.newCharacter();
+      await tick();
+      const errors = [v.edit(0, 'add:Hips:Arm:0,0.4,0'), v.edit(0, 'add:Arm:Hand:0,0.4,0')].filter((e) => e !== undefined);
+      await tick();
+      const poses = [];
+      for (const [frame, dx] of [[10, 0.3], [40, -0.3]]) {
+        v.seek(frame);
+        await tick();
+        const p = v.jointWorldPosition(0, 'Hand');
+        const reached = v.dragJoint(0, 'Hand', p[0] + dx, p[1] - 0.2, p[2]);
+        const error = v.setKey(4) ?? null;
+        await tick();
+        poses.push({ reached, error, at: v.jointWorldPosition(0, 'Hand'), target: [p[0] + dx, p[1] - 0.2, p[2]] });
+      }
+      v.play();
+      await new Promise((r) => setTimeout(r, 600));
+      const playing = v.state();
+      v.pause();
+      const [name, text] = v.saveBvh(0);
+      return { errors, poses, playing, name, text };
+    });
+    check(made.errors.length === 0, `joints added (${made.errors})`);
+    for (const p of made.poses) {
+      const d = Math.hypot(p.at[0] - p.target[0], p.at[1] - p.target[1], p.at[2] - p.target[2]);
+      check(p.reached && p.error === null && d < 5e-3, `a keyed pose holds (${d.toFixed(4)} m)`);
+    }
+    check(made.playing.playing && made.playing.time > 0, `it plays (${made.playing.time.toFixed(2)} s)`);
+    check(made.name === 'character-edited.bvh', `saved as ${made.name}`);
+    await dropFiles(page, [{ name: made.name, bytes: Buffer.from(made.text) }]);
+    const s = await waitDropped(page, made.name);
+    const c = s.clips[0];
+    check(s.error === null && c.joints === 3 && c.frames === 60 && c.jointNames.join() === 'Hips,Arm,Hand,Hand_End', `dropped back in: ${c.joints} joints, ${c.frames} frames (${c.jointNames})`);
   });
 } finally {
   await close();
