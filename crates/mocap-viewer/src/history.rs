@@ -15,6 +15,11 @@ pub struct Change {
     pub before: Asset,
     /// The asset after it.
     pub after: Asset,
+    /// For a key (a keyed pose correction), its frame.
+    pub key: Option<usize>,
+    /// Whether the edit moves frames (trim, resample, reverse…): earlier keys no
+    /// longer sit where they were.
+    pub retimes: bool,
 }
 
 /// Done and undone edits.
@@ -64,6 +69,23 @@ impl History {
     /// Whether character `c` has edits that are done.
     pub fn edited(&self, c: usize) -> bool {
         self.done.iter().any(|x| x.character == c)
+    }
+
+    /// The frames keyed on character `c` since its frames last moved, in order.
+    pub fn keys(&self, c: usize) -> Vec<usize> {
+        let mut keys = Vec::new();
+        for change in self.done.iter().filter(|x| x.character == c) {
+            if change.retimes {
+                keys.clear();
+            }
+            if let Some(k) = change.key {
+                if !keys.contains(&k) {
+                    keys.push(k);
+                }
+            }
+        }
+        keys.sort_unstable();
+        keys
     }
 
     /// Forgets everything (files opened, characters closed).

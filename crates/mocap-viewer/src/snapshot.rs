@@ -36,6 +36,8 @@ pub struct ClipSummary {
     pub foot_contacts: Vec<usize>,
     /// Whether the clip has edits (that undo can take back).
     pub edited: bool,
+    /// Frames keyed (pose corrections made keys), in order.
+    pub keys: Vec<usize>,
 }
 
 impl ClipSummary {
@@ -59,6 +61,7 @@ impl ClipSummary {
             skin: model.and_then(|m| m.skin.as_ref()).map(|s| s.name.clone()),
             corrected: c.extra.correction.is_some(),
             edited: false,
+            keys: Vec::new(),
             foot_contacts: c.extra.foot_lock.as_ref().map_or(Vec::new(), |l| l.contacts().map(|k| k.iter().filter(|x| **x).count()).collect()),
         }
     }
@@ -130,7 +133,7 @@ impl Snapshot {
     /// The state of `v`, with what only the viewer's private parts know passed in.
     pub fn of(v: &Viewer, tree_labels: Vec<String>, frames_rendered: u64, backend: Option<String>) -> Snapshot {
         Snapshot {
-            clips: v.stage.actors.iter().enumerate().map(|(i, c)| ClipSummary { edited: v.history.edited(i), ..ClipSummary::of(c) }).collect(),
+            clips: v.stage.actors.iter().enumerate().map(|(i, c)| ClipSummary { edited: v.history.edited(i), keys: v.history.keys(i), ..ClipSummary::of(c) }).collect(),
             frame: v.frame(),
             time: v.playback.time,
             playing: v.playback.playing,

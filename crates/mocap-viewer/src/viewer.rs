@@ -480,8 +480,22 @@ impl Viewer {
         let c = self.stage.actors.get(character).ok_or_else(|| format!("no character {}", character + 1))?;
         let clip = c.clip().ok_or_else(|| format!("{}: a model has no motion to edit", c.name))?;
         let edited = mocap::edit::apply(clip, edit).map_err(|e| format!("{}: {e}", c.name))?;
-        self.commit(character, edited, label);
+        use mocap::edit::Edit;
+        let key = if let Edit::Correct { frame, .. } = edit { Some(*frame) } else { None };
+        let retimes = matches!(edit, Edit::Trim { .. } | Edit::Resample { .. } | Edit::Reverse | Edit::PingPong);
+        self.commit(character, edited, label, key, retimes);
         Ok(())
+    }
+
+    /// Moves the playhead to the next (`forward`) or previous keyed frame of the
+    /// current character; returns the frame, if there is one that way.
+    pub fn step_key(&mut self, forward: bool) -> Option<usize> {
+        let keys = self.history.keys(self.current());
+        let now = self.frame();
+        let next = if forward { keys.into_iter().find(|&k| k > now) } else { keys.into_iter().rev().find(|&k| k < now) }?;
+        self.set_playing(false);
+        self.seek(next);
+        Some(next)
     }
 
     /// Layers character `source`'s clip on the subtree of `layer.subtree` in
@@ -491,15 +505,15 @@ impl Viewer {
         let other = self.stage.actors.get(source).and_then(|c| c.clip()).ok_or_else(|| format!("no clip {}", source + 1))?;
         let name = self.stage.actors.get(source).map_or(String::new(), |c| c.name.clone());
         let out = mocap::layer::apply(base, other, layer).map_err(|e| e.to_string())?;
-        self.commit(character, out, &format!("Layer {name} on {}", layer.subtree));
+        self.commit(character, out, &format!("Layer {name} on {}", layer.subtree), None, false);
         Ok(())
     }
 
     /// Records and shows an edited clip of character `character`.
-    fn commit(&mut self, character: usize, edited: mocap::Clip, label: &str) {
+    fn commit(&mut self, character: usize, edited: mocap::Clip, label: &str, key: Option<usize>, retimes: bool) {
         let Some(before) = self.stage.actors.get(character).map(|c| c.asset.clone()) else { return };
         let after = mocap::Asset::Clip(edited);
-        self.history.push(crate::history::Change { character, label: label.to_owned(), before, after: after.clone() });
+        self.history.push(crate::history::Change { character, label: label.to_owned(), before, after: after.clone(), key, retimes });
         self.replace_asset(character, after);
     }
 

@@ -155,6 +155,15 @@ fn the_creator_makes_a_character_that_poses_keys_and_saves() {
     v.seek(0);
     v.pose();
     assert!(v.stage.actors[0].extra.pose[hand].translation.distance(start) < 1e-4, "other frames keep the rest pose");
+    // Keys show on the timeline and the playhead steps between them.
+    assert_eq!(v.snapshot().clips[0].keys, [30]);
+    assert_eq!(v.step_key(true), Some(30));
+    assert_eq!(v.step_key(true), None);
+    assert_eq!(v.step_key(false), None);
+    v.edit(0, &Edit::Reverse, "Reverse").unwrap();
+    assert!(v.snapshot().clips[0].keys.is_empty(), "frames moved: the key is no longer where it was");
+    v.undo();
+    assert_eq!(v.snapshot().clips[0].keys, [30]);
     // Saved and read back: the same skeleton and motion.
     let (name, text) = v.save_bvh(0).unwrap();
     assert_eq!(name, "character-edited.bvh");

@@ -41,6 +41,8 @@ pub fn to_js(s: &Snapshot) -> JsValue {
             set(&o, "skin", opt(&c.skin));
             set(&o, "corrected", c.corrected);
             set(&o, "edited", c.edited);
+            let keys: Array = c.keys.iter().map(|k| JsValue::from_f64(*k as f64)).collect();
+            set(&o, "keys", keys);
             let contacts: Array = c.foot_contacts.iter().map(|n| JsValue::from_f64(*n as f64)).collect();
             set(&o, "footContacts", contacts);
             JsValue::from(o)

@@ -30,6 +30,15 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             act(ui, play, "Play / pause (Space)", Action::TogglePlay);
             act(ui, ">", "Step forward (→)", Action::Step(1));
             act(ui, ">|", "Last frame (End)", Action::Last);
+            if !viewer.history.keys(viewer.current()).is_empty() {
+                ui.separator();
+                if ui.button("◀ key").on_hover_text("Previous keyed frame").clicked() {
+                    viewer.step_key(false);
+                }
+                if ui.button("key ▶").on_hover_text("Next keyed frame").clicked() {
+                    viewer.step_key(true);
+                }
+            }
         });
         ui.horizontal(|ui| {
             let counted_in = viewer.current_character().map_or(String::new(), |d| format!("Frames of {} ({:.2} fps)", d.name, 1.0 / d.asset.timeline().frame_time()));
@@ -55,6 +64,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             if viewer.settings.foot_lock {
                 contact_marks(ui, viewer, &slider, timing);
             }
+            key_marks(ui, viewer, &slider, timing);
         });
         ui.horizontal(|ui| {
             let mut on = viewer.playback.range.is_some();
@@ -87,6 +97,26 @@ fn contact_marks(ui: &egui::Ui, viewer: &Viewer, slider: &egui::Response, timing
             if x <= rail.right() {
                 ui.painter().line_segment([egui::pos2(x, y), egui::pos2(x + 2.0, y)], egui::Stroke::new(2.0, color));
             }
+        }
+    }
+}
+
+/// The current character's keyed frames as small diamonds on the scrub bar.
+fn key_marks(ui: &egui::Ui, viewer: &Viewer, slider: &egui::Response, timing: crate::playback::Timing) {
+    let keys = viewer.history.keys(viewer.current());
+    if keys.is_empty() {
+        return;
+    }
+    let Some(c) = viewer.current_character() else { return };
+    let rail = egui::Rect::from_min_max(slider.rect.left_top(), egui::pos2(slider.rect.right() - 60.0, slider.rect.bottom()));
+    let span = timing.duration().max(1e-9);
+    let y = rail.center().y;
+    for k in keys {
+        let x = rail.left() + (c.asset.timeline().time_of(k) / span) as f32 * rail.width();
+        if x <= rail.right() {
+            let d = 5.0;
+            let points = vec![egui::pos2(x, y - d), egui::pos2(x + d, y), egui::pos2(x, y + d), egui::pos2(x - d, y)];
+            ui.painter().add(egui::Shape::convex_polygon(points, egui::Color32::from_rgb(255, 200, 40), egui::Stroke::new(1.0, egui::Color32::BLACK)));
         }
     }
 }
