@@ -87,6 +87,36 @@ impl Correction {
     }
 }
 
+/// Sets joint `joint`'s local rotation at the frame shown at `time` (a correction,
+/// like a drag: ghosted, keyed by Set key). `None` for a model or an unknown joint.
+pub fn rotate_joint(c: &mut Character, joint: usize, rotation: mocap::glam::Quat, time: f64, scratch: &mut PoseScratch) -> Option<()> {
+    let clip = c.clip()?;
+    if joint >= clip.skeleton().len() || clip.skeleton().is_end_site(joint) || !rotation.is_finite() {
+        return None;
+    }
+    let frame = c.frame_at(time);
+    c.sample_local(time, Interpolation::Step, scratch);
+    let mut local = std::mem::take(&mut scratch.local);
+    let mut correction = c.extra.correction.clone().filter(|k| k.frame == frame).unwrap_or(Correction { frame, ghost: true, ..Correction::default() });
+    correction.apply(&mut local);
+    if let Some(slot) = local.rotation.get_mut(joint) {
+        *slot = rotation.normalize();
+    }
+    correction.record(&local, &[joint], None);
+    scratch.local = local;
+    c.extra.correction = Some(correction);
+    Some(())
+}
+
+/// Joint `joint`'s local rotation as drawn (from the world transforms of the last
+/// pose), if known.
+pub fn drawn_local_rotation(c: &Character, joint: usize) -> Option<mocap::glam::Quat> {
+    let clip = c.clip()?;
+    let world = c.extra.pose.get(joint)?.rotation;
+    let parent = clip.skeleton().joints().get(joint)?.parent.and_then(|p| c.extra.pose.get(p)).map_or(mocap::glam::Quat::IDENTITY, |t| t.rotation);
+    Some((parent.inverse() * world).normalize())
+}
+
 /// Moves joint `joint` of a clip character to `world` (metres) at the frame shown
 /// at `time`, by IK on its chain (the limb's two bones for a hand or foot found by
 /// [`mocap::ik::default_chains`], else the two bones above it; a root joint moves

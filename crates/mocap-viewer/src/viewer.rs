@@ -619,6 +619,16 @@ impl Viewer {
         Ok(keyed)
     }
 
+    /// Sets joint `joint` of character `character` to a local rotation at the frame
+    /// shown (typed values in Pose mode): a correction like a drag, keyed by Set key.
+    pub fn rotate_joint(&mut self, character: usize, joint: usize, rotation: mocap::glam::Quat) -> bool {
+        let time = self.playback.time;
+        let Some(c) = self.stage.actors.get_mut(character) else { return false };
+        let done = character::rotate_joint(c, joint, rotation, time, &mut self.pose_scratch).is_some();
+        self.pose();
+        done
+    }
+
     /// Forgets every pose correction made by dragging.
     pub fn reset_pose(&mut self) {
         for c in &mut self.stage.actors {

@@ -167,3 +167,20 @@ fn a_dragged_pose_becomes_a_key_that_fades_and_saves() {
     v.undo();
     assert_eq!(v.stage.actors[0].clip().unwrap(), &original);
 }
+
+#[test]
+fn a_typed_rotation_is_a_correction_that_keys() {
+    use mocap::glam::{EulerRot, Quat};
+    let mut v = paused();
+    let arm = joint(&v, "LeftArm");
+    let q = Quat::from_euler(EulerRot::ZXY, 0.4, -0.3, 0.2);
+    assert!(v.rotate_joint(0, arm, q));
+    let drawn = mocap_viewer::character::drawn_local_rotation(&v.stage.actors[0], arm).unwrap();
+    assert!(drawn.dot(q).abs() > 0.99999, "drawn as typed");
+    assert!(v.has_corrections());
+    v.set_key().unwrap();
+    let mut local = mocap::LocalPose::default();
+    v.stage.actors[0].clip().unwrap().local_pose_into(12, &mut local);
+    assert!(local.rotation[arm].dot(q).abs() > 0.99999, "keyed into the clip");
+    assert!(!v.rotate_joint(0, 999, q) && !v.rotate_joint(0, arm, Quat::from_xyzw(f32::NAN, 0.0, 0.0, 1.0)));
+}

@@ -238,6 +238,21 @@ impl MocapViewer {
         self.with_viewer(|v| v.redo()).flatten()
     }
 
+    /// Pose mode by typing: sets joint `name` of character `character` to the local
+    /// rotation Z, X, Y degrees (intrinsic) at the frame shown; Set key keeps it.
+    /// Returns whether there is such a joint.
+    #[wasm_bindgen(js_name = rotateJoint)]
+    pub fn rotate_joint(&self, character: u32, name: &str, z: f32, x: f32, y: f32) -> bool {
+        use mocap::glam::{EulerRot, Quat};
+        self.with_viewer(|v| {
+            let joint = v.stage.actors.get(character as usize)?.clip()?.skeleton().find(name)?;
+            let q = Quat::from_euler(EulerRot::ZXY, z.to_radians(), x.to_radians(), y.to_radians());
+            Some(v.rotate_joint(character as usize, joint, q))
+        })
+        .flatten()
+        .unwrap_or(false)
+    }
+
     /// Forgets every pose corrected by dragging.
     #[wasm_bindgen(js_name = resetPose)]
     pub fn reset_pose(&self) {

@@ -13,9 +13,37 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                 super::model_info::show(ui, c, model);
                 return;
             }
+            if viewer.settings.pose_mode {
+                rotate_row(ui, viewer);
+            }
             let selected = viewer.selected.and_then(|s| Some((viewer.stage.actors.get(s.character)?, s.joint)));
             let frame = selected.map_or(0, |(c, _)| c.frame_at(viewer.playback.time));
             super::inspector::show(ui, selected, frame, viewer.playback.time);
         });
     });
+}
+
+/// Pose mode: the selected joint's local rotation as Z, X, Y degrees (intrinsic, the
+/// usual BVH order), editable; a change is a correction at this frame (Set key keys it).
+fn rotate_row(ui: &mut egui::Ui, viewer: &mut Viewer) {
+    use mocap::glam::{EulerRot, Quat};
+    let Some(s) = viewer.selected else { return };
+    let Some(c) = viewer.stage.actors.get(s.character) else { return };
+    let Some(q) = crate::character::drawn_local_rotation(c, s.joint) else { return };
+    if c.clip().is_some_and(|clip| clip.skeleton().is_end_site(s.joint)) {
+        return;
+    }
+    let (z, x, y) = q.to_euler(EulerRot::ZXY);
+    let mut degrees = [z.to_degrees(), x.to_degrees(), y.to_degrees()];
+    let mut changed = false;
+    ui.horizontal(|ui| {
+        ui.label("Rotate").on_hover_text("The selected joint's rotation at this frame (Z, X, Y degrees); Set key keeps it");
+        for (v, axis) in degrees.iter_mut().zip(["z ", "x ", "y "]) {
+            changed |= ui.add(egui::DragValue::new(v).speed(0.5).max_decimals(1).prefix(axis)).changed();
+        }
+    });
+    if changed {
+        let [z, x, y] = degrees.map(f32::to_radians);
+        viewer.rotate_joint(s.character, s.joint, Quat::from_euler(EulerRot::ZXY, z, x, y));
+    }
 }
