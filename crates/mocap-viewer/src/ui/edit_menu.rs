@@ -101,24 +101,35 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     }
 }
 
-/// Layers another open clip on the selected joint's subtree (override or additive).
+/// Layers another open clip on the selected joint's subtree: weight, fades,
+/// override or additive.
 fn layer_menu(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize, joint: &str) {
     let others: Vec<(usize, String)> = (viewer.stage.actors.iter().enumerate()).filter(|(i, c)| *i != index && c.clip().is_some()).map(|(i, c)| (i, c.name.clone())).collect();
     ui.menu_button(format!("Layer on {joint}'s subtree"), |ui| {
         if others.is_empty() {
             ui.label("Open (Add…) the clip to layer first");
+            return;
         }
+        let id = egui::Id::unique("layer-settings");
+        let (mut weight, mut fade_in, mut fade_out, mut additive): (f32, f64, f64, bool) = ui.ctx().data(|d| d.get_temp(id)).unwrap_or((1.0, 0.0, 0.0, false));
+        ui.add(egui::Slider::new(&mut weight, 0.0..=1.0).text("weight"));
+        ui.horizontal(|ui| {
+            ui.add(egui::DragValue::new(&mut fade_in).range(0.0..=60.0).speed(0.05).prefix("fade in ").suffix(" s"));
+            ui.add(egui::DragValue::new(&mut fade_out).range(0.0..=60.0).speed(0.05).prefix("fade out ").suffix(" s"));
+        });
+        ui.checkbox(&mut additive, "Additive (add the layer's change from its first frame)");
+        ui.separator();
         for (source, name) in others {
-            for (label, blend) in [("", mocap::layer::Blend::Override), (" (additive)", mocap::layer::Blend::Additive)] {
-                if ui.button(format!("{name}{label}")).on_hover_text("Joints are matched by name across naming conventions").clicked() {
-                    let layer = mocap::layer::Layer { blend, ..mocap::layer::Layer::on(joint) };
-                    if let Err(message) = viewer.add_layer(index, source, &layer) {
-                        viewer.error = Some(message);
-                    }
-                    ui.close();
+            if ui.button(format!("Layer {name}")).on_hover_text("Joints are matched by name across naming conventions").clicked() {
+                let blend = if additive { mocap::layer::Blend::Additive } else { mocap::layer::Blend::Override };
+                let layer = mocap::layer::Layer { weight, fade_in, fade_out, blend, ..mocap::layer::Layer::on(joint) };
+                if let Err(message) = viewer.add_layer(index, source, &layer) {
+                    viewer.error = Some(message);
                 }
+                ui.close();
             }
         }
+        ui.ctx().data_mut(|d| d.insert_temp(id, (weight, fade_in, fade_out, additive)));
     });
 }
 
