@@ -174,3 +174,28 @@ fn the_creator_makes_a_character_that_poses_keys_and_saves() {
     dropped.load(&name, text.as_bytes()).unwrap();
     assert_eq!(dropped.snapshot().clips[0].joint_names, names);
 }
+
+#[test]
+fn the_edit_menu_draws_for_clips_models_and_nothing() {
+    // The menu's contents, drawn in a plain panel (no clicks): no panic for any state.
+    let ctx = egui::Context::default();
+    let mut v = Viewer::default();
+    let draw = |v: &mut Viewer| {
+        let input = egui::RawInput { screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(800.0, 1400.0))), ..Default::default() };
+        let mut out = ctx.run_ui(input, |ui| {
+            egui::CentralPanel::default().show_inside(ui, |ui| mocap_viewer::ui::edit_menu::show(ui, v));
+        });
+        out.textures_delta.clear();
+    };
+    draw(&mut v);
+    v.load("walk.bvh", WALK).unwrap();
+    draw(&mut v);
+    v.select(Some(7));
+    v.playback.range = Some((5, 20));
+    v.add("wave.bvh", WALK).unwrap();
+    v.edit(0, &Edit::Reverse, "Reverse").unwrap();
+    draw(&mut v);
+    v.select(Some(5));
+    draw(&mut v);
+    assert!(v.error.is_none());
+}
