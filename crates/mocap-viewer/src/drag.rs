@@ -22,6 +22,8 @@ pub struct Handle {
     pub joint: usize,
     /// World position (metres).
     pub world: Vec3,
+    /// For a point on a rotation ring of the selected joint: the ring's axis (world).
+    pub ring: Option<Vec3>,
 }
 
 /// The 3D view's rectangle on screen and the camera it was drawn with.
@@ -87,6 +89,10 @@ pub struct JointDrag {
     pub handle: Handle,
     /// Where the pointer puts it (world).
     pub target: Vec3,
+    /// The pointer (points).
+    pub pointer: egui::Pos2,
+    /// Where the press that grabbed it was (points).
+    pub press: egui::Pos2,
 }
 
 #[cfg(test)]
@@ -102,8 +108,49 @@ mod tests {
         let back = view.on_plane(s, p).unwrap();
         assert!(back.distance(p) < 1e-4, "{back} vs {p}");
         assert_eq!(view.project(Vec3::new(0.0, 1.0, 0.0)).map(|q| (q.x.round(), q.y.round())), Some((400.0, 250.0)), "the target is the centre");
-        let handles = [Handle { character: 0, joint: 3, world: p }, Handle { character: 1, joint: 0, world: Vec3::new(-1.0, 0.0, 0.0) }];
+        let handles = [Handle { character: 0, joint: 3, world: p, ring: None }, Handle { character: 1, joint: 0, world: Vec3::new(-1.0, 0.0, 0.0), ring: None }];
         assert_eq!(pick(&handles, &view, s + egui::vec2(5.0, -5.0)).map(|h| h.joint), Some(3));
         assert_eq!(pick(&handles, &view, s + egui::vec2(40.0, 0.0)), None);
     }
+}
+
+/// Points of the three rotation rings around a joint at `center` with world
+/// rotation `rotation` (its local X, Y and Z axes), `radius` across, as handles
+/// (every 10°) and as line segments to draw (with the axis each belongs to).
+pub fn rings(character: usize, joint: usize, center: Vec3, rotation: mocap::glam::Quat, radius: f32) -> (Vec<Handle>, Vec<(Vec3, Vec3, usize)>) {
+    let mut handles = Vec::new();
+    let mut segments = Vec::new();
+    for k in 0..3 {
+        let axis = rotation * [Vec3::X, Vec3::Y, Vec3::Z][k];
+        let u = axis.any_orthonormal_vector();
+        let v = axis.cross(u);
+        let point = |i: usize| {
+            let a = i as f32 * std::f32::consts::TAU / 36.0;
+            center + (u * a.cos() + v * a.sin()) * radius
+        };
+        for i in 0..36 {
+            handles.push(Handle { character, joint, world: point(i), ring: Some(axis) });
+            segments.push((point(i), point(i + 1), k));
+        }
+    }
+    (handles, segments)
+}
+
+/// The angle (radians) of the pointer around a ring: where the ray under `pos`
+/// meets the ring's plane, measured about `axis` from `from` (a vector in the plane).
+pub fn ring_angle(view: &ViewGeometry, pos: egui::Pos2, center: Vec3, axis: Vec3, from: Vec3) -> Option<f32> {
+    let (origin, dir) = view.ray(pos)?;
+    let denom = dir.dot(axis);
+    if denom.abs() < 1e-4 {
+        return None;
+    }
+    let t = (center - origin).dot(axis) / denom;
+    let p = origin + dir * t - center;
+    let v = p - axis * p.dot(axis);
+    if v.length() < 1e-6 || !v.is_finite() {
+        return None;
+    }
+    let from = (from - axis * from.dot(axis)).normalize_or_zero();
+    let v = v.normalize();
+    Some(from.cross(v).dot(axis).atan2(from.dot(v)))
 }

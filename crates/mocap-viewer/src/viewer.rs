@@ -28,6 +28,20 @@ pub enum OpenMode {
     Add,
 }
 
+/// A rotation ring being dragged: the joint, the ring's axis and centre, where the
+/// press was (as a vector in the ring's plane and its angle), and the joint's world
+/// rotation then.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct RingDrag {
+    character: usize,
+    joint: usize,
+    axis: mocap::glam::Vec3,
+    center: mocap::glam::Vec3,
+    from: mocap::glam::Vec3,
+    start: f32,
+    world: mocap::glam::Quat,
+}
+
 /// The whole viewer. Plain state is public; GPU and scratch state is private.
 #[derive(Default)]
 pub struct Viewer {
@@ -59,6 +73,7 @@ pub struct Viewer {
     pub save_requested: bool,
     /// A character with unsaved edits the user asked to close: the viewer asks first.
     pub pending_close: Option<usize>,
+    ring_drag: Option<RingDrag>,
     viewport: Viewport,
     scene: Scene,
     pose_scratch: mocap::stage::PoseScratch,
@@ -299,8 +314,14 @@ impl Viewer {
             joint_drag = dragged;
             ui::overlay::show(ui, self);
         });
+        if joint_drag.is_none() {
+            self.ring_drag = None;
+        }
         if let Some(d) = joint_drag {
-            if d.handle.character == crate::drag::TARGET {
+            if let Some(axis) = d.handle.ring {
+                self.set_playing(false);
+                self.drag_ring(d, axis);
+            } else if d.handle.character == crate::drag::TARGET {
                 if let Some(t) = &mut self.tentacle {
                     t.target = d.target;
                 }
@@ -399,6 +420,12 @@ impl Viewer {
             self.camera.target.z = root.translation.z;
         }
         pose_scene::build_scene(&self.stage, &self.settings, self.selected, &mut self.scene);
+        if let Some((_, segments)) = self.rings() {
+            const RING: [[u8; 4]; 3] = [[235, 70, 70, 230], [80, 220, 90, 230], [80, 130, 255, 230]];
+            for (a, b, k) in segments {
+                self.scene.overlay_lines.push(mocap_render::Line { a, b, color: RING[k % 3], width_px: 2.5 });
+            }
+        }
         if let Some(demo) = &mut self.tentacle {
             self.scene.spheres.push(mocap_render::Sphere { center: demo.target, radius: 0.07, color: [235, 70, 60, 255] });
             if let Some(tip) = self.stage.actors.first().and_then(|c| c.extra.pose.last()) {
@@ -413,13 +440,16 @@ impl Viewer {
     pub fn handles(&self) -> Vec<crate::drag::Handle> {
         let mut out = Vec::new();
         if let Some(t) = &self.tentacle {
-            out.push(crate::drag::Handle { character: crate::drag::TARGET, joint: 0, world: t.target });
+            out.push(crate::drag::Handle { character: crate::drag::TARGET, joint: 0, world: t.target, ring: None });
         }
         if !self.settings.pose_mode {
             return out;
         }
         for (character, c) in self.stage.visible().filter(|(_, c)| c.clip().is_some()) {
-            out.extend(c.extra.pose.iter().enumerate().map(|(joint, t)| crate::drag::Handle { character, joint, world: t.translation }));
+            out.extend(c.extra.pose.iter().enumerate().map(|(joint, t)| crate::drag::Handle { character, joint, world: t.translation, ring: None }));
+        }
+        if let Some((handles, _)) = self.rings() {
+            out.extend(handles);
         }
         out
     }
@@ -617,6 +647,42 @@ impl Viewer {
             keyed += 1;
         }
         Ok(keyed)
+    }
+
+    /// Pose mode: the rotation rings of the selected joint (its local X, Y, Z in
+    /// red, green, blue), as handles and as segments to draw; `None` when there is
+    /// no selected joint of a clip, or outside Pose mode.
+    fn rings(&self) -> Option<(Vec<crate::drag::Handle>, Vec<(mocap::glam::Vec3, mocap::glam::Vec3, usize)>)> {
+        if !self.settings.pose_mode {
+            return None;
+        }
+        let s = self.selected?;
+        let c = self.stage.actors.get(s.character)?;
+        if c.clip()?.skeleton().is_end_site(s.joint) || !c.visible {
+            return None;
+        }
+        let t = c.extra.pose.get(s.joint)?;
+        Some(crate::drag::rings(s.character, s.joint, t.translation, t.rotation, c.world_extent() * 0.12))
+    }
+
+    /// Turns the selected joint by dragging one of its rings: the pointer's angle
+    /// around the ring since the press turns the joint about that axis.
+    fn drag_ring(&mut self, d: crate::drag::JointDrag, axis: mocap::glam::Vec3) {
+        let Some(view) = self.viewport.geometry else { return };
+        let Some(c) = self.stage.actors.get(d.handle.character) else { return };
+        let Some(t) = c.extra.pose.get(d.handle.joint).copied() else { return };
+        let fresh = self.ring_drag.is_none_or(|r| r.joint != d.handle.joint || r.character != d.handle.character || r.axis != axis);
+        if fresh {
+            let from = d.handle.world - t.translation;
+            // From the press, not from where the drag was first noticed.
+            let Some(start) = crate::drag::ring_angle(&view, d.press, t.translation, axis, from) else { return };
+            self.ring_drag = Some(RingDrag { character: d.handle.character, joint: d.handle.joint, axis, center: t.translation, from, start, world: t.rotation });
+        }
+        let Some(r) = self.ring_drag else { return };
+        let Some(angle) = crate::drag::ring_angle(&view, d.pointer, r.center, r.axis, r.from) else { return };
+        let turned = mocap::glam::Quat::from_axis_angle(r.axis, angle - r.start) * r.world;
+        let parent = c.clip().and_then(|clip| clip.skeleton().joints().get(r.joint)?.parent).and_then(|p| c.extra.pose.get(p)).map_or(mocap::glam::Quat::IDENTITY, |p| p.rotation);
+        self.rotate_joint(r.character, r.joint, (parent.inverse() * turned).normalize());
     }
 
     /// Sets joint `joint` of character `character` to a local rotation at the frame

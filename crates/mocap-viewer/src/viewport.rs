@@ -25,8 +25,9 @@ pub struct Viewport {
     pub backend: Option<String>,
     /// Where the view was last drawn and with which camera.
     pub geometry: Option<ViewGeometry>,
-    /// The joint held by the pointer (Pose mode), from the press to the release.
-    grabbed: Option<Handle>,
+    /// The joint held by the pointer (Pose mode), from the press to the release,
+    /// and where the press was.
+    grabbed: Option<(Handle, egui::Pos2)>,
 }
 
 impl Viewport {
@@ -81,14 +82,15 @@ impl Viewport {
         if response.drag_started_by(egui::PointerButton::Primary) {
             // The press position, not where the pointer is after the drag threshold.
             let press = response.ctx.input(|i| i.pointer.press_origin()).or(pointer);
-            self.grabbed = press.and_then(|p| drag::pick(handles, &view, p));
+            self.grabbed = press.and_then(|p| Some((drag::pick(handles, &view, p)?, p)));
         }
-        let handle = self.grabbed?;
+        let (handle, press) = self.grabbed?;
         if !response.dragged_by(egui::PointerButton::Primary) || response.drag_stopped() {
             self.grabbed = None;
         }
-        let target = view.on_plane(pointer?, handle.world)?;
-        Some(JointDrag { handle, target })
+        let pointer = pointer?;
+        let target = view.on_plane(pointer, handle.world)?;
+        Some(JointDrag { handle, target, pointer, press })
     }
 }
 

@@ -184,3 +184,38 @@ fn a_typed_rotation_is_a_correction_that_keys() {
     assert!(local.rotation[arm].dot(q).abs() > 0.99999, "keyed into the clip");
     assert!(!v.rotate_joint(0, 999, q) && !v.rotate_joint(0, arm, Quat::from_xyzw(f32::NAN, 0.0, 0.0, 1.0)));
 }
+
+#[test]
+fn dragging_a_ring_turns_the_selected_joint_about_its_axis() {
+    let ctx = egui::Context::default();
+    let mut v = paused();
+    let elbow = joint(&v, "LeftForeArm");
+    v.select(Some(elbow));
+    v.apply_fragment("draw=joints,interp,pose");
+    run(&ctx, &mut v, 0.0, vec![]);
+    run(&ctx, &mut v, 0.05, vec![]);
+    let start = v.stage.actors[0].extra.pose[elbow];
+    // A point on the ring about the joint's local Z axis, and one a quarter turn on.
+    let axis = start.rotation * Vec3::Z;
+    let radius = v.stage.actors[0].world_extent() * 0.12;
+    let u = axis.any_orthonormal_vector();
+    let w = axis.cross(u);
+    let on_ring = |a: f32| start.translation + (u * a.cos() + w * a.sin()) * radius;
+    let from = v.screen_position(on_ring(0.0)).unwrap();
+    let to = v.screen_position(on_ring(0.5)).unwrap();
+    let mut t = 0.1;
+    run(&ctx, &mut v, t, vec![egui::Event::PointerMoved(from), button(from, true)]);
+    for k in 1..=6 {
+        t += 0.05;
+        let target = v.screen_position(on_ring(0.5 * k as f32 / 6.0)).unwrap();
+        run(&ctx, &mut v, t, vec![egui::Event::PointerMoved(target)]);
+    }
+    run(&ctx, &mut v, t + 0.05, vec![button(to, false)]);
+    run(&ctx, &mut v, t + 0.1, vec![]);
+    let now = v.stage.actors[0].extra.pose[elbow];
+    assert!(now.translation.distance(start.translation) < 1e-4, "the joint turns in place");
+    let turn = now.rotation * start.rotation.inverse();
+    let (turn_axis, angle) = turn.to_axis_angle();
+    assert!((angle - 0.5).abs() < 0.03 && turn_axis.dot(axis) > 0.99, "a half-radian turn about the ring's axis: {angle} about {turn_axis}");
+    assert!(v.has_corrections());
+}
