@@ -20,6 +20,11 @@ pub struct Change {
     /// Whether the edit moves frames (trim, resample, reverse…): earlier keys no
     /// longer sit where they were.
     pub retimes: bool,
+    /// A key this change took away (deleting or moving a key).
+    pub unkey: Option<usize>,
+    /// The edit itself, when it can be made again on another clip (for deleting or
+    /// moving a key under later edits); `None` for layers.
+    pub edit: Option<mocap::edit::Edit>,
 }
 
 /// Done and undone edits.
@@ -78,6 +83,9 @@ impl History {
             if change.retimes {
                 keys.clear();
             }
+            if let Some(k) = change.unkey {
+                keys.retain(|x| *x != k);
+            }
             if let Some(k) = change.key {
                 if !keys.contains(&k) {
                     keys.push(k);
@@ -86,6 +94,39 @@ impl History {
         }
         keys.sort_unstable();
         keys
+    }
+
+    /// Character `c`'s edits as a list that can be made again: the asset they
+    /// start from (the original, or what the last layer made) and the edits in
+    /// order, with deleted keys taken out and moved ones in their new place.
+    /// `None` when `c` has no edits.
+    pub fn effective(&self, c: usize) -> Option<(Asset, Vec<mocap::edit::Edit>)> {
+        let mine: Vec<&Change> = self.done.iter().filter(|x| x.character == c).collect();
+        let first = mine.first()?;
+        let mut base = first.before.clone();
+        let mut edits: Vec<mocap::edit::Edit> = Vec::new();
+        for change in mine {
+            if let Some(k) = change.unkey {
+                // A key deleted or moved: take the latest key at that frame out.
+                let at = edits.iter().rposition(|e| matches!(e, mocap::edit::Edit::Correct { frame, .. } if *frame == k));
+                if let Some(i) = at {
+                    edits.remove(i);
+                }
+                if let Some(e) = &change.edit {
+                    edits.insert(at.unwrap_or(edits.len()), e.clone());
+                }
+                continue;
+            }
+            match &change.edit {
+                Some(e) => edits.push(e.clone()),
+                None => {
+                    // A layer: what it made is the new starting point.
+                    base = change.after.clone();
+                    edits.clear();
+                }
+            }
+        }
+        Some((base, edits))
     }
 
     /// Forgets everything (files opened, characters closed).

@@ -513,7 +513,49 @@ impl Viewer {
         use mocap::edit::Edit;
         let key = if let Edit::Correct { frame, .. } = edit { Some(*frame) } else { None };
         let retimes = matches!(edit, Edit::Trim { .. } | Edit::Resample { .. } | Edit::Reverse | Edit::PingPong);
-        self.commit(character, edited, label, key, retimes);
+        self.commit(character, edited, label, key, retimes, Some(edit.clone()), None);
+        Ok(())
+    }
+
+    /// Deletes the key at `frame` of the current character (not only the last one):
+    /// the clip is rebuilt from before that key with every later edit made again,
+    /// as one undoable step.
+    pub fn delete_key(&mut self, frame: usize) -> Result<(), String> {
+        self.rekey(frame, None)
+    }
+
+    /// Moves the key at `from` of the current character to frame `to` (the same
+    /// pose, at another time), as one undoable step.
+    pub fn move_key(&mut self, from: usize, to: usize) -> Result<(), String> {
+        self.rekey(from, Some(to))
+    }
+
+    fn rekey(&mut self, frame: usize, to: Option<usize>) -> Result<(), String> {
+        use mocap::edit::Edit;
+        let character = self.current();
+        if !self.history.keys(character).contains(&frame) {
+            return Err(format!("no key at frame {frame}"));
+        }
+        let (base, mut edits) = self.history.effective(character).ok_or_else(|| format!("no key at frame {frame}"))?;
+        let at = edits.iter().rposition(|e| matches!(e, Edit::Correct { frame: f, .. } if *f == frame)).ok_or_else(|| format!("the key at frame {frame} was made before a layer: it cannot be changed now"))?;
+        let moved = match (to, edits.remove(at)) {
+            (Some(to), Edit::Correct { rotations, translations, window, .. }) => Some(Edit::Correct { frame: to, rotations, translations, window }),
+            _ => None,
+        };
+        if let Some(m) = &moved {
+            // In the same place in the sequence (later renames still apply after it).
+            edits.insert(at, m.clone());
+        }
+        let mut clip = base.clip().cloned().ok_or("not a clip")?;
+        for edit in &edits {
+            clip = mocap::edit::apply(&clip, edit).map_err(|e| e.to_string())?;
+        }
+        let label = match to {
+            Some(to) => format!("Move key {frame} → {to}"),
+            None => format!("Delete key at frame {frame}"),
+        };
+        // The key list follows: the old frame goes, a moved key's new frame comes.
+        self.commit(character, clip, &label, to, false, moved, Some(frame));
         Ok(())
     }
 
@@ -535,15 +577,16 @@ impl Viewer {
         let other = self.stage.actors.get(source).and_then(|c| c.clip()).ok_or_else(|| format!("no clip {}", source + 1))?;
         let name = self.stage.actors.get(source).map_or(String::new(), |c| c.name.clone());
         let out = mocap::layer::apply(base, other, layer).map_err(|e| e.to_string())?;
-        self.commit(character, out, &format!("Layer {name} on {}", layer.subtree), None, false);
+        self.commit(character, out, &format!("Layer {name} on {}", layer.subtree), None, false, None, None);
         Ok(())
     }
 
     /// Records and shows an edited clip of character `character`.
-    fn commit(&mut self, character: usize, edited: mocap::Clip, label: &str, key: Option<usize>, retimes: bool) {
+    #[allow(clippy::too_many_arguments)]
+    fn commit(&mut self, character: usize, edited: mocap::Clip, label: &str, key: Option<usize>, retimes: bool, edit: Option<mocap::edit::Edit>, unkey: Option<usize>) {
         let Some(before) = self.stage.actors.get(character).map(|c| c.asset.clone()) else { return };
         let after = mocap::Asset::Clip(edited);
-        self.history.push(crate::history::Change { character, label: label.to_owned(), before, after: after.clone(), key, retimes });
+        self.history.push(crate::history::Change { character, label: label.to_owned(), before, after: after.clone(), key, retimes, unkey, edit });
         self.replace_asset(character, after);
     }
 

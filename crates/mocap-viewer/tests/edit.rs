@@ -199,3 +199,44 @@ fn the_edit_menu_draws_for_clips_models_and_nothing() {
     draw(&mut v);
     assert!(v.error.is_none());
 }
+
+#[test]
+fn keys_can_be_deleted_and_moved_under_later_edits() {
+    use mocap::glam::Quat;
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    let original = clip(&v);
+    let arm = original.skeleton().find("LeftArm").unwrap();
+    let mut at = |f: usize| {
+        let mut p = mocap::LocalPose::default();
+        original.local_pose_into(f, &mut p);
+        p.rotation[arm]
+    };
+    let key = |frame: usize, q: Quat| Edit::Correct { frame, rotations: vec![("LeftArm".into(), q)], translations: vec![], window: 2 };
+    let (q10, q40) = (at(10) * Quat::from_rotation_z(0.7), at(40) * Quat::from_rotation_x(0.5));
+    v.edit(0, &key(10, q10), "Key at frame 10").unwrap();
+    v.edit(0, &key(40, q40), "Key at frame 40").unwrap();
+    v.edit(0, &Edit::Rename { from: "Head".into(), to: "Kopf".into() }, "Rename").unwrap();
+    assert_eq!(v.snapshot().clips[0].keys, [10, 40]);
+    let rotation = |v: &Viewer, f: usize| {
+        let mut p = mocap::LocalPose::default();
+        clip(v).local_pose_into(f, &mut p);
+        p.rotation[arm]
+    };
+    // Delete the first key: frame 10 is the clip's again, the second key and the rename stay.
+    v.delete_key(10).unwrap();
+    assert_eq!(v.snapshot().clips[0].keys, [40]);
+    assert!(rotation(&v, 10).dot(at(10)).abs() > 0.99999);
+    assert!(rotation(&v, 40).dot(q40).abs() > 0.99999);
+    assert!(clip(&v).skeleton().find("Kopf").is_some());
+    // Move the second key to frame 45.
+    v.move_key(40, 45).unwrap();
+    assert_eq!(v.snapshot().clips[0].keys, [45]);
+    assert!(rotation(&v, 45).dot(q40).abs() > 0.99999 && rotation(&v, 40).dot(at(40)).abs() > 0.999);
+    // Both are undoable.
+    v.undo();
+    assert_eq!(v.snapshot().clips[0].keys, [40]);
+    v.undo();
+    assert_eq!(v.snapshot().clips[0].keys, [10, 40]);
+    assert!(v.delete_key(33).is_err());
+}

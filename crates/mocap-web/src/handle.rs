@@ -228,6 +228,19 @@ impl MocapViewer {
         self.with_viewer(|v| v.new_character());
     }
 
+    /// Deletes the key at `frame` of the current character (later edits are made
+    /// again); returns the error message, or `undefined` when done.
+    #[wasm_bindgen(js_name = deleteKey)]
+    pub fn delete_key(&self, frame: u32) -> Option<String> {
+        self.with_viewer(|v| v.delete_key(frame as usize).err()).flatten()
+    }
+
+    /// Moves the key at `from` of the current character to frame `to`.
+    #[wasm_bindgen(js_name = moveKey)]
+    pub fn move_key(&self, from: u32, to: u32) -> Option<String> {
+        self.with_viewer(|v| v.move_key(from as usize, to as usize).err()).flatten()
+    }
+
     /// Takes back the last clip edit; returns its label (`undefined` when none).
     pub fn undo(&self) -> Option<String> {
         self.with_viewer(|v| v.undo()).flatten()

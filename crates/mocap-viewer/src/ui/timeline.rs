@@ -38,6 +38,24 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                 if ui.button("key ▶").on_hover_text("Next keyed frame").clicked() {
                     viewer.step_key(true);
                 }
+                let here = viewer.frame();
+                if viewer.history.keys(viewer.current()).contains(&here) {
+                    let mut result = None;
+                    if ui.button("⏴ move").on_hover_text("Move this key one frame earlier").clicked() && here > 0 {
+                        result = Some(viewer.move_key(here, here - 1).map(|()| here - 1));
+                    }
+                    if ui.button("move ⏵").on_hover_text("Move this key one frame later").clicked() && here < timing.last() {
+                        result = Some(viewer.move_key(here, here + 1).map(|()| here + 1));
+                    }
+                    if ui.button("✕ key").on_hover_text("Delete this key (later edits are made again)").clicked() {
+                        result = Some(viewer.delete_key(here).map(|()| here));
+                    }
+                    match result {
+                        Some(Ok(frame)) => viewer.seek(frame),
+                        Some(Err(message)) => viewer.error = Some(message),
+                        None => {}
+                    }
+                }
             }
         });
         ui.horizontal(|ui| {
