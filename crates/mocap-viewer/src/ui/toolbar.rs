@@ -11,10 +11,10 @@ use crate::viewer::{OpenMode, Viewer};
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     egui::Panel::top("toolbar").show(ui, |ui| {
         ui.horizontal_wrapped(|ui| {
-            if ui.button("Open…").on_hover_text("Open .bvh files in place of what is open (or drop them anywhere on the page)").clicked() {
+            if ui.button("Open…").on_hover_text("Open motion files (.bvh, .bva, .asf with .amc) or Quake 2 models (.md2 with their skins) in place of what is open (or drop them anywhere on the page)").clicked() {
                 viewer.open_requested = Some(OpenMode::Replace);
             }
-            if ui.button("Add…").on_hover_text("Add .bvh files to what is open (or drop them with Shift held)").clicked() {
+            if ui.button("Add…").on_hover_text("Add motion files or models to what is open (or drop them with Shift held)").clicked() {
                 viewer.open_requested = Some(OpenMode::Add);
             }
             if ui.button("Share").on_hover_text("Copy a link that reproduces this view").clicked() {
