@@ -42,6 +42,16 @@ struct RingDrag {
     world: mocap::glam::Quat,
 }
 
+/// A new bone being dragged out of a joint (the creator): its parent, and where
+/// its end is (world) while the pointer holds it.
+#[derive(Clone, Debug, PartialEq)]
+struct Grow {
+    character: usize,
+    parent: usize,
+    name: String,
+    end: Option<mocap::glam::Vec3>,
+}
+
 /// The whole viewer. Plain state is public; GPU and scratch state is private.
 #[derive(Default)]
 pub struct Viewer {
@@ -74,6 +84,8 @@ pub struct Viewer {
     /// A character with unsaved edits the user asked to close: the viewer asks first.
     pub pending_close: Option<usize>,
     ring_drag: Option<RingDrag>,
+    /// The creator's "drag out a new bone" from a joint, while it is armed or held.
+    grow: Option<Grow>,
     viewport: Viewport,
     scene: Scene,
     pose_scratch: mocap::stage::PoseScratch,
@@ -316,9 +328,13 @@ impl Viewer {
         });
         if joint_drag.is_none() {
             self.ring_drag = None;
+            self.finish_new_bone();
         }
         if let Some(d) = joint_drag {
-            if let Some(axis) = d.handle.ring {
+            if let Some(grow) = self.grow.as_mut().filter(|g| g.character == d.handle.character && g.parent == d.handle.joint) {
+                // Growing a new bone: its end follows the pointer until release.
+                grow.end = Some(d.target);
+            } else if let Some(axis) = d.handle.ring {
                 self.set_playing(false);
                 self.drag_ring(d, axis);
             } else if d.handle.character == crate::drag::TARGET {
@@ -420,6 +436,11 @@ impl Viewer {
             self.camera.target.z = root.translation.z;
         }
         pose_scene::build_scene(&self.stage, &self.settings, self.selected, &mut self.scene);
+        if let Some(Grow { character, parent, end: Some(end), .. }) = &self.grow {
+            if let Some(from) = self.stage.actors.get(*character).and_then(|c| c.extra.pose.get(*parent)) {
+                self.scene.overlay_lines.push(mocap_render::Line { a: from.translation, b: *end, color: [255, 200, 40, 255], width_px: 4.0 });
+            }
+        }
         if let Some((_, segments)) = self.rings() {
             const RING: [[u8; 4]; 3] = [[235, 70, 70, 230], [80, 220, 90, 230], [80, 130, 255, 230]];
             for (a, b, k) in segments {
@@ -483,6 +504,44 @@ impl Viewer {
         let length = self.tentacle.as_ref().map_or(1.0, |t| t.bones as f32 * mocap::demo::BONE_LENGTH);
         self.camera.target = mocap::glam::Vec3::new(0.0, length * 0.5, 0.0) + self.stage.actors.first().map_or(mocap::glam::Vec3::ZERO, |c| c.placement());
         self.camera.distance = length * 2.6;
+    }
+
+    /// Arms the creator's drag: the next drag from the selected joint in the view
+    /// pulls out a new child bone named `name`, added (one undoable edit) where
+    /// the pointer lets go. Returns false without a selected clip joint.
+    pub fn grow_bone(&mut self, name: &str) -> bool {
+        let Some(s) = self.selected else { return false };
+        let ok = self.stage.actors.get(s.character).and_then(|c| c.clip()).is_some_and(|clip| !clip.skeleton().is_end_site(s.joint));
+        if ok {
+            self.settings.pose_mode = true;
+            self.grow = Some(Grow { character: s.character, parent: s.joint, name: name.trim().to_owned(), end: None });
+        }
+        ok
+    }
+
+    /// Whether a new bone is being dragged out (armed or held).
+    pub fn growing(&self) -> bool {
+        self.grow.is_some()
+    }
+
+    /// At the release of a bone drag: adds the joint where its end was let go.
+    fn finish_new_bone(&mut self) {
+        let Some(Grow { character, parent, name, end: Some(end) }) = self.grow.clone() else { return };
+        self.grow = None;
+        let Some(c) = self.stage.actors.get(character) else { return };
+        let (Some(clip), Some(at)) = (c.clip(), c.extra.pose.get(parent)) else { return };
+        // The offset in the parent joint's frame and the file's units.
+        let offset = at.rotation.inverse() * (end - at.translation) / (at.scale.x.abs().max(1e-9));
+        let parent_name = clip.skeleton().joints().get(parent).map(|j| j.name.clone()).unwrap_or_default();
+        let edit = mocap::edit::Edit::AddJoint { parent: parent_name, name: name.clone(), offset };
+        match self.edit(character, &edit, &format!("Add {name}")) {
+            Ok(()) => {
+                let joint = self.stage.actors.get(character).and_then(|c| c.clip()?.skeleton().find(&name));
+                self.selected = joint.map(|joint| Selection { character, joint });
+                self.pose();
+            }
+            Err(message) => self.error = Some(message),
+        }
     }
 
     /// Starts a new character for the creator (a root joint, 60 frames at 30 fps)

@@ -219,3 +219,31 @@ fn dragging_a_ring_turns_the_selected_joint_about_its_axis() {
     assert!((angle - 0.5).abs() < 0.03 && turn_axis.dot(axis) > 0.99, "a half-radian turn about the ring's axis: {angle} about {turn_axis}");
     assert!(v.has_corrections());
 }
+
+#[test]
+fn the_creator_drags_a_new_bone_out_of_the_selected_joint() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::default();
+    v.new_character();
+    run(&ctx, &mut v, 0.0, vec![]);
+    run(&ctx, &mut v, 0.05, vec![]);
+    assert!(v.grow_bone("Arm") && v.growing());
+    let hips = v.stage.actors[0].extra.pose[0].translation;
+    let from = v.screen_position(hips).unwrap();
+    let to = from + egui::vec2(80.0, -40.0);
+    let mut t = 0.1;
+    run(&ctx, &mut v, t, vec![egui::Event::PointerMoved(from), button(from, true)]);
+    for k in 1..=5 {
+        t += 0.05;
+        run(&ctx, &mut v, t, vec![egui::Event::PointerMoved(from + (to - from) * (k as f32 / 5.0))]);
+    }
+    run(&ctx, &mut v, t + 0.05, vec![button(to, false)]);
+    run(&ctx, &mut v, t + 0.1, vec![]);
+    assert!(!v.growing());
+    let arm = v.stage.actors[0].clip().unwrap().skeleton().find("Arm").expect("the new joint");
+    assert_eq!(v.selected_name(), Some("Arm"), "the new joint is selected");
+    let end = v.stage.actors[0].extra.pose[arm].translation;
+    let on_screen = v.screen_position(end).unwrap();
+    assert!(on_screen.distance(to) < 2.0, "the bone ends where the pointer let go: {on_screen:?} vs {to:?}");
+    assert_eq!(v.snapshot().undo.as_deref(), Some("Add Arm"));
+}

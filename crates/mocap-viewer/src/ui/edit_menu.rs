@@ -25,6 +25,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     let selected = viewer.selected.filter(|s| s.character == index).and_then(|s| clip.skeleton().joints().get(s.joint)).map(|j| j.name.clone());
     ui.label(egui::RichText::new(format!("Editing {name}")).weak());
     let mut edit: Option<(Edit, String)> = None;
+    let mut grow: Option<String> = None;
     if let Some((a, b)) = viewer.playback.range {
         if ui.button(format!("Trim to the loop range ({a}–{b})")).clicked() {
             edit = Some((Edit::Trim { first: a.min(b), last: a.max(b) }, format!("Trim {a}–{b}")));
@@ -66,7 +67,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             rename(ui, joint, &mut edit);
             let is_end = clip.skeleton().find(joint).is_some_and(|j| clip.skeleton().is_end_site(j));
             if !is_end {
-                add_child(ui, joint, &mut edit);
+                add_child(ui, joint, &mut edit, &mut grow);
                 channels(ui, joint, &mut edit);
             }
             let offset = clip.skeleton().find(joint).and_then(|j| clip.skeleton().joints().get(j)).map(|j| j.offset);
@@ -91,6 +92,10 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     ui.separator();
     if ui.button("Save as BVH").on_hover_text("Download this character with every edit baked in").clicked() {
         viewer.save_requested = true;
+        ui.close();
+    }
+    if let Some(name) = grow {
+        viewer.grow_bone(&name);
         ui.close();
     }
     if let Some((e, label)) = edit {
@@ -133,8 +138,9 @@ fn layer_menu(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize, joint: &str)
     });
 }
 
-/// Adds a child joint to the selected joint: its name and offset.
-fn add_child(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>) {
+/// Adds a child joint to the selected joint: its name and offset, or dragged out
+/// in the view (`grow` gets the name).
+fn add_child(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>, grow: &mut Option<String>) {
     ui.menu_button(format!("Add a child to {joint}"), |ui| {
         let id = egui::Id::unique("add-child");
         let (mut name, mut xyz): (String, [f32; 3]) = ui.ctx().data(|d| d.get_temp(id)).unwrap_or_else(|| ("Joint".to_owned(), [0.0, 0.3, 0.0]));
@@ -148,10 +154,15 @@ fn add_child(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>) 
                 ui.add(egui::DragValue::new(v).speed(0.01).prefix(axis));
             }
         });
-        if ui.button("Add").clicked() {
-            let offset = mocap::glam::Vec3::from_array(xyz);
-            *edit = Some((Edit::AddJoint { parent: joint.to_owned(), name: name.trim().to_owned(), offset }, format!("Add {}", name.trim())));
-        }
+        ui.horizontal(|ui| {
+            if ui.button("Add").clicked() {
+                let offset = mocap::glam::Vec3::from_array(xyz);
+                *edit = Some((Edit::AddJoint { parent: joint.to_owned(), name: name.trim().to_owned(), offset }, format!("Add {}", name.trim())));
+            }
+            if ui.button("Drag it out in the view").on_hover_text("Then drag from the selected joint: the new bone ends where you let go").clicked() {
+                *grow = Some(name.trim().to_owned());
+            }
+        });
         ui.ctx().data_mut(|d| d.insert_temp(id, (name, xyz)));
     });
 }
