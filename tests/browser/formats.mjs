@@ -145,7 +145,8 @@ try {
     await waitFrames(page, 3);
     const a = await view3d(page, shot('md2-run-a'));
     const t0 = (await state(page)).time;
-    await page.waitForTimeout(250);
+    // The playhead moves on (however slowly the software GPU draws).
+    await waitState(page, (s, t) => s.playing && s.time !== t, t0);
     await waitFrames(page, 2);
     const b = await view3d(page, shot('md2-run-b'));
     const s2 = await state(page);
