@@ -429,20 +429,17 @@ impl Pipelines {
             cull_back: true,
             sample_count,
         };
-        let shadow = pipeline::build(
-            device,
-            &shadow_pass_layout,
-            &PipelineSpec {
-                label: "mocap shadow casters",
-                vertex_entry: "vs_shadow",
-                color: None,
-                depth_format: shadow::FORMAT,
-                depth_bias: wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 },
-                cull_back: false,
-                sample_count: 1,
-                ..base
-            },
-        );
+        // Depth-only passes into the shadow map: every caster's `vs_shadow`, no colour.
+        let depth_only = PipelineSpec {
+            vertex_entry: "vs_shadow",
+            color: None,
+            depth_format: shadow::FORMAT,
+            depth_bias: wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 },
+            cull_back: false,
+            sample_count: 1,
+            ..base
+        };
+        let shadow = pipeline::build(device, &shadow_pass_layout, &PipelineSpec { label: "mocap shadow casters", ..depth_only });
         let floor = pipeline::build(
             device,
             &lit_layout,
@@ -511,18 +508,7 @@ impl Pipelines {
         let morph_shadow = pipeline::build(
             device,
             &shadow_pass_layout,
-            &PipelineSpec {
-                label: "mocap mesh shadows",
-                shader: &morph_shader,
-                vertex_entry: "vs_shadow",
-                buffers: &morph_buffers,
-                color: None,
-                depth_format: shadow::FORMAT,
-                depth_bias: wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 },
-                cull_back: false,
-                sample_count: 1,
-                ..base
-            },
+            &PipelineSpec { label: "mocap mesh shadows", shader: &morph_shader, buffers: &morph_buffers, ..depth_only },
         );
         let skinned = pipeline::build(
             device,
@@ -532,18 +518,7 @@ impl Pipelines {
         let skinned_shadow = pipeline::build(
             device,
             &skinned_shadow_layout,
-            &PipelineSpec {
-                label: "mocap skinned shadows",
-                shader: &skinned_shader,
-                vertex_entry: "vs_shadow",
-                buffers: &skinned_buffers,
-                color: None,
-                depth_format: shadow::FORMAT,
-                depth_bias: wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 },
-                cull_back: false,
-                sample_count: 1,
-                ..base
-            },
+            &PipelineSpec { label: "mocap skinned shadows", shader: &skinned_shader, buffers: &skinned_buffers, ..depth_only },
         );
         Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
     }

@@ -693,23 +693,20 @@ fn set_offset(clip: &Clip, name: &str, offset: Vec3) -> Result<Clip, EditError> 
     if !offset.is_finite() {
         return err(format!("offset of `{name}`: not finite"));
     }
-    let joints: Vec<(Joint, Option<usize>)> = skeleton
-        .joints()
-        .iter()
-        .enumerate()
-        .map(|(i, joint)| {
-            let mut joint = joint.clone();
-            if i == j {
-                joint.offset = offset;
-            }
-            (joint, Some(i))
-        })
-        .collect();
-    let sources: Vec<Option<usize>> = joints.iter().map(|(_, s)| *s).collect();
-    let moved = joints.into_iter().map(|(j, _)| j).collect();
     // A joint with position channels keeps its animated position; for it the rest
     // offset changes only the file's OFFSET line.
-    restructured(clip, moved, &sources)
+    with_joint_changed(clip, j, |joint| joint.offset = offset)
+}
+
+/// The clip with joint `j` changed by `change` (same joints and order; each
+/// frame's pose kept, written back for the changed joint's channels).
+fn with_joint_changed(clip: &Clip, j: usize, change: impl FnOnce(&mut Joint)) -> Result<Clip, EditError> {
+    let mut joints: Vec<Joint> = clip.skeleton().joints().to_vec();
+    if let Some(joint) = joints.get_mut(j) {
+        change(joint);
+    }
+    let sources: Vec<Option<usize>> = (0..joints.len()).map(Some).collect();
+    restructured(clip, joints, &sources)
 }
 
 fn set_channels(clip: &Clip, name: &str, position: bool, order: &str) -> Result<Clip, EditError> {
@@ -734,20 +731,7 @@ fn set_channels(clip: &Clip, name: &str, position: bool, order: &str) -> Result<
     if seen.len() != axes.len() || axes.len() != 3 {
         return err(format!("rotation order `{order}`: name each of X, Y and Z once"));
     }
-    let joints: Vec<(Joint, Option<usize>)> = skeleton
-        .joints()
-        .iter()
-        .enumerate()
-        .map(|(i, joint)| {
-            let mut joint = joint.clone();
-            if i == j {
-                let mut channels = if position { vec![Channel::Xposition, Channel::Yposition, Channel::Zposition] } else { Vec::new() };
-                channels.extend(axes.iter().copied());
-                joint.channels = channels;
-            }
-            (joint, Some(i))
-        })
-        .collect();
-    let sources: Vec<Option<usize>> = joints.iter().map(|(_, s)| *s).collect();
-    restructured(clip, joints.into_iter().map(|(j, _)| j).collect(), &sources)
+    let mut channels = if position { vec![Channel::Xposition, Channel::Yposition, Channel::Zposition] } else { Vec::new() };
+    channels.extend(axes);
+    with_joint_changed(clip, j, |joint| joint.channels = channels)
 }
