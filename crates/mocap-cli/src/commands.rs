@@ -374,7 +374,7 @@ pub fn ik(paths: &[PathBuf], request: &IkRequest) -> Result<ExitCode, String> {
     };
     let chain = match request.bones {
         Some(bones) => mocap::ik::Chain::up_from(skeleton, effector, bones.max(1)),
-        None => Ok(mocap::ik::default_chains(skeleton).into_iter().find(|(_, c)| c.effector() == effector).map(|(_, c)| c).unwrap_or(mocap::ik::Chain::up_from(skeleton, effector, 2).map_err(|e| e.to_string())?)),
+        None => mocap::ik::Chain::for_joint(skeleton, effector),
     }
     .map_err(|e| e.to_string())?;
     let solver = request.solver.unwrap_or(if chain.joints().len() == 3 { "two-bone" } else { "fabrik" });
@@ -382,8 +382,7 @@ pub fn ik(paths: &[PathBuf], request: &IkRequest) -> Result<ExitCode, String> {
     clip.local_pose_into(request.frame, &mut pose);
     // Within a ten-thousandth of the chain's length, with passes to spare (CCD
     // converges slowly on some chains; the others stop as soon as they are there).
-    let rest = mocap::fk::rest_positions(skeleton);
-    let length: f32 = chain.joints().windows(2).map(|w| rest[w[0]].distance(rest[w[1]])).sum();
+    let length = chain.rest_length(skeleton);
     let options = mocap::ik::Options { angle_unit: clip.motion().angle_unit(), iterations: 2000, tolerance: 1e-4 * length.max(1e-6), ..Default::default() };
     let result = match solver {
         "two-bone" if chain.joints().len() == 3 => {

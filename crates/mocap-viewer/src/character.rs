@@ -146,12 +146,8 @@ pub fn drag_joint(c: &mut Character, joint: usize, world: mocap::glam::Vec3, tim
             ik::Solve { distance: 0.0, reached: true, iterations: 1 }
         }
         Some(_) => {
-            let chain = ik::default_chains(skeleton).into_iter().map(|(_, c)| c).find(|c| c.effector() == joint);
-            let chain = chain.or_else(|| ik::Chain::up_from(skeleton, joint, 2).ok())?;
-            let length: f32 = {
-                let rest = mocap::fk::rest_positions(skeleton);
-                chain.joints().windows(2).map(|w| rest[w[0]].distance(rest[w[1]])).sum()
-            };
+            let chain = ik::Chain::for_joint(skeleton, joint).ok()?;
+            let length = chain.rest_length(skeleton);
             let options = ik::Options { angle_unit: clip.motion().angle_unit(), iterations: 64, tolerance: 1e-4 * length.max(1e-6), ..ik::Options::default() };
             let solve = if chain.joints().len() == 3 {
                 // Bend the way the limb bends now (knees forward, elbows back).

@@ -88,6 +88,23 @@ impl Chain {
         Chain::new(skeleton, root, effector)
     }
 
+    /// The chain that moves `joint` when it is dragged: its limb when it ends one of
+    /// the [`default_chains`] (a hand, a foot), else the two bones above it.
+    pub fn for_joint(skeleton: &Skeleton, joint: usize) -> Result<Chain, ChainError> {
+        match default_chains(skeleton).into_iter().map(|(_, c)| c).find(|c| c.effector() == joint) {
+            Some(chain) => Ok(chain),
+            None => Chain::up_from(skeleton, joint, 2),
+        }
+    }
+
+    /// Total length of the chain's bones in the rest pose (file units): the scale
+    /// for a solve's tolerance.
+    pub fn rest_length(&self, skeleton: &Skeleton) -> f32 {
+        let rest = crate::fk::rest_positions(skeleton);
+        let at = |j: usize| rest.get(j).copied().unwrap_or(Vec3::ZERO);
+        self.joints.windows(2).map(|w| at(w[0]).distance(at(w[1]))).sum()
+    }
+
     /// The joints, root first.
     pub fn joints(&self) -> &[usize] {
         &self.joints
