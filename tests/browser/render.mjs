@@ -97,7 +97,7 @@ try {
     await waitState(page, (s) => s.drawMode === 'capsules');
   });
 
-  await step('in Pose mode, dragging a hand in the view moves it to the pointer', async () => {
+  await step('in Edit mode, dragging a hand in the view moves it to the pointer', async () => {
     await changeAndRender(page, (v) => { v.pause(); v.seek(30); v.applyViewState('draw=joints,interp,pose'); });
     const s0 = await waitState(page, (s) => s.poseMode === true);
     const start = await page.evaluate(() => window.mocapViewer.jointScreenPosition(0, 'LeftHand'));
@@ -116,7 +116,7 @@ try {
     const now = await page.evaluate(() => window.mocapViewer.jointScreenPosition(0, 'LeftHand'));
     const d = Math.hypot(now[0] - end[0], now[1] - end[1]);
     check(d < 4, `the hand is under the pointer (${now} vs ${end}, ${d.toFixed(1)} px)`);
-    check(s.view.includes('pose') && s0.view.includes('pose'), 'Pose mode is in the fragment');
+    check(s.view.includes('pose') && s0.view.includes('pose'), 'Edit mode is in the fragment');
     await view(page, shot('pose-drag'));
     await page.evaluate(() => window.mocapViewer.resetPose());
     const r = await waitState(page, (s) => s.clips[0].corrected === false);

@@ -32,7 +32,7 @@ pub struct Look {
     /// The generated body of a clip (body mode), built on first use: `None` not
     /// tried yet, `Some(None)` when the skeleton gets none (too many bones).
     pub body: Option<Option<Body>>,
-    /// A pose corrected by dragging a joint (Pose mode), shown at its frame.
+    /// A pose corrected by dragging a joint (Edit mode), shown at its frame.
     pub correction: Option<Correction>,
     /// The clip's own pose (world, metres) while a correction is shown, drawn as a ghost.
     pub ghost: Vec<Transform>,

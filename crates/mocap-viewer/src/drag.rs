@@ -1,4 +1,4 @@
-//! Dragging joints in the 3D view (Pose mode): where joints are on screen, which
+//! Dragging joints in the 3D view (Edit mode): where joints are on screen, which
 //! one the pointer grabs, and where on screen a point goes back into the world.
 //!
 //! A grabbed joint moves in the plane through where it was, facing the camera, so

@@ -27,7 +27,7 @@ pub enum Action {
     ToggleDrawMode,
     /// Frame the whole motion again.
     ResetCamera,
-    /// Turn the dragged pose corrections into keys (k in Pose mode with a correction).
+    /// Turn the dragged pose corrections into keys (k in Edit mode with a correction).
     SetKey,
     /// Take back the last clip edit (Ctrl+Z).
     Undo,
@@ -36,7 +36,7 @@ pub enum Action {
 }
 
 /// Key bindings, listed for the help text.
-pub const HELP: &str = "Space play/pause · ←/→ step · Home/End first/last · z/Z zoom · j/k orbit · 1 2 3 views · f follow root · a axes · m capsules/sticks/body · r reset view · k in Pose mode: set key · Ctrl+Z undo · Ctrl+Shift+Z / Ctrl+Y redo · drag: left orbit, right/middle pan, wheel zoom";
+pub const HELP: &str = "Space play/pause · ←/→ step · Home/End first/last · z/Z zoom · j/k orbit · 1 2 3 views · f follow root · a axes · m capsules/sticks/body · r reset view · k in Edit mode: set key · Ctrl+Z undo · Ctrl+Shift+Z / Ctrl+Y redo · drag: left orbit, right/middle pan, wheel zoom";
 
 /// Reads this frame's key presses (ignored while a text field has focus).
 pub fn read_actions(ctx: &egui::Context, out: &mut Vec<Action>) {

@@ -19,7 +19,7 @@ pub struct ViewSettings {
     pub follow_root: bool,
     /// Interpolate between frames while playing (paused views are always frame-exact).
     pub interpolate: bool,
-    /// Pose mode: dragging a joint in the view moves it and its chain follows by IK.
+    /// Edit mode: dragging a joint in the view moves it and its chain follows by IK.
     pub pose_mode: bool,
     /// Pin each foot to the floor while it is in contact (legs solved by IK).
     pub foot_lock: bool,

@@ -30,7 +30,7 @@ pub struct ClipSummary {
     pub model_frame: Option<(usize, String)>,
     /// For a model: the skin file in use.
     pub skin: Option<String>,
-    /// Whether a pose correction (by dragging in Pose mode) is shown at its frame.
+    /// Whether a pose correction (by dragging in Edit mode) is shown at its frame.
     pub corrected: bool,
     /// With foot locking on: frames each foot is in contact (per leg).
     pub foot_contacts: Vec<usize>,
@@ -107,7 +107,7 @@ pub struct Snapshot {
     pub draw_mode: &'static str,
     /// Whether floor shadows are drawn.
     pub shadows: bool,
-    /// Whether Pose mode (drag joints by IK) is on.
+    /// Whether Edit mode (drag joints by IK) is on.
     pub pose_mode: bool,
     /// Last load error, shown in the page.
     pub error: Option<String>,

@@ -84,6 +84,10 @@ pub struct Viewer {
     /// A character with unsaved edits the user asked to close: the viewer asks first.
     pub pending_close: Option<usize>,
     ring_drag: Option<RingDrag>,
+    /// The press of the joint grab in progress, and whether it only switched the
+    /// character being edited (a press on another character's joint selects it;
+    /// Edit mode acts on one character at a time).
+    grab: Option<(egui::Pos2, bool)>,
     /// The creator's "drag out a new bone" from a joint, while it is armed or held.
     grow: Option<Grow>,
     viewport: Viewport,
@@ -328,6 +332,7 @@ impl Viewer {
         });
         if joint_drag.is_none() {
             self.ring_drag = None;
+            self.grab = None;
             self.finish_new_bone();
         }
         if let Some(d) = joint_drag {
@@ -342,9 +347,19 @@ impl Viewer {
                     t.target = d.target;
                 }
             } else {
+                let switching = match self.grab {
+                    Some((press, switching)) if press == d.press => switching,
+                    _ => {
+                        let switching = d.handle.character != self.current();
+                        self.grab = Some((d.press, switching));
+                        switching
+                    }
+                };
                 self.set_playing(false);
                 self.selected = Some(Selection { character: d.handle.character, joint: d.handle.joint });
-                self.drag_joint(d.handle.character, d.handle.joint, d.target);
+                if !switching {
+                    self.drag_joint(d.handle.character, d.handle.joint, d.target);
+                }
             }
             ui.ctx().request_repaint();
         }
@@ -374,7 +389,7 @@ impl Viewer {
             }
             (Action::Zoom(f), _) => self.camera.zoom(f),
             (Action::Orbit(px), _) if px > 0.0 && self.settings.pose_mode && self.has_corrections() => {
-                // In Pose mode with a correction, k sets the key instead of orbiting.
+                // In Edit mode with a correction, k sets the key instead of orbiting.
                 if let Err(message) = self.set_key() {
                     self.error = Some(message);
                 }
@@ -455,9 +470,9 @@ impl Viewer {
         }
     }
 
-    /// The joints that can be grabbed in Pose mode: every joint of every visible
+    /// The joints that can be grabbed in Edit mode: every joint of every visible
     /// clip character (End Sites included: a finger tip is a fine handle), where it
-    /// was last drawn. Empty outside Pose mode.
+    /// was last drawn. Empty outside Edit mode.
     pub fn handles(&self) -> Vec<crate::drag::Handle> {
         let mut out = Vec::new();
         if let Some(t) = &self.tentacle {
@@ -545,7 +560,7 @@ impl Viewer {
     }
 
     /// Starts a new character for the creator (a root joint, 60 frames at 30 fps)
-    /// in place of everything open, selected and in Pose mode: add joints from the
+    /// in place of everything open, selected and in Edit mode: add joints from the
     /// Edit menu, pose them by dragging and Set key, then Save as BVH.
     pub fn new_character(&mut self) {
         let clip = mocap::edit::new_character(60, 30.0);
@@ -751,9 +766,9 @@ impl Viewer {
         Ok(keyed)
     }
 
-    /// Pose mode: the rotation rings of the selected joint (its local X, Y, Z in
+    /// Edit mode: the rotation rings of the selected joint (its local X, Y, Z in
     /// red, green, blue), as handles and as segments to draw; `None` when there is
-    /// no selected joint of a clip, or outside Pose mode.
+    /// no selected joint of a clip, or outside Edit mode.
     fn rings(&self) -> Option<(Vec<crate::drag::Handle>, Vec<(mocap::glam::Vec3, mocap::glam::Vec3, usize)>)> {
         if !self.settings.pose_mode {
             return None;
@@ -788,7 +803,7 @@ impl Viewer {
     }
 
     /// Sets joint `joint` of character `character` to a local rotation at the frame
-    /// shown (typed values in Pose mode): a correction like a drag, keyed by Set key.
+    /// shown (typed values in Edit mode): a correction like a drag, keyed by Set key.
     pub fn rotate_joint(&mut self, character: usize, joint: usize, rotation: mocap::glam::Quat) -> bool {
         let time = self.playback.time;
         let Some(c) = self.stage.actors.get_mut(character) else { return false };

@@ -25,14 +25,14 @@ pub struct Viewport {
     pub backend: Option<String>,
     /// Where the view was last drawn and with which camera.
     pub geometry: Option<ViewGeometry>,
-    /// The joint held by the pointer (Pose mode), from the press to the release,
+    /// The joint held by the pointer (Edit mode), from the press to the release,
     /// and where the press was.
     grabbed: Option<(Handle, egui::Pos2)>,
 }
 
 impl Viewport {
     /// Lays out the view in `rect`, handles camera input and draws `scene`. A left
-    /// press on one of `handles` (Pose mode) grabs that joint instead of orbiting;
+    /// press on one of `handles` (Edit mode) grabs that joint instead of orbiting;
     /// while it is held, the joint's target under the pointer is returned each frame.
     pub fn show(
         &mut self,

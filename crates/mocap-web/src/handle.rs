@@ -85,7 +85,7 @@ impl MocapViewer {
         self.with_viewer(|v| v.add_asset(file_name, clip));
     }
 
-    /// Pose mode: moves joint `name` of character `character` (0-based) to world
+    /// Edit mode: moves joint `name` of character `character` (0-based) to world
     /// position `x, y, z` (metres, as drawn) at the frame shown, by IK; the clip's
     /// own pose shows as a ghost. Returns whether the target was reached (`false`
     /// also when there is no such joint).
@@ -199,15 +199,22 @@ impl MocapViewer {
 
     /// Layers character `source`'s clip on the subtree of joint `subtree` of
     /// character `index` (override, or `additive`), one undoable step; returns
-    /// the error message, or `undefined` when done.
+    /// the error message, or `undefined` when done. `map` lists explicit joint
+    /// matches as `"Base=Layer,Base2=Layer2"` (an empty layer name leaves that
+    /// base joint out); other joints are matched by name.
     #[wasm_bindgen(js_name = addLayer)]
-    pub fn add_layer(&self, index: u32, source: u32, subtree: &str, weight: Option<f32>, additive: Option<bool>) -> Option<String> {
+    pub fn add_layer(&self, index: u32, source: u32, subtree: &str, weight: Option<f32>, additive: Option<bool>, map: Option<String>) -> Option<String> {
         let blend = if additive.unwrap_or(false) { mocap::layer::Blend::Additive } else { mocap::layer::Blend::Override };
-        let layer = mocap::layer::Layer { weight: weight.unwrap_or(1.0), blend, ..mocap::layer::Layer::on(subtree) };
+        let mut pairs = Vec::new();
+        for item in map.as_deref().unwrap_or("").split(',').filter(|s| !s.trim().is_empty()) {
+            let Some((b, l)) = item.split_once('=') else { return Some(format!("{item}: a map entry is Base=Layer")) };
+            pairs.push((b.trim().to_owned(), l.trim().to_owned()));
+        }
+        let layer = mocap::layer::Layer { weight: weight.unwrap_or(1.0), blend, map: pairs, ..mocap::layer::Layer::on(subtree) };
         self.with_viewer(|v| v.add_layer(index as usize, source as usize, &layer).err()).flatten()
     }
 
-    /// Keys the poses corrected by dragging (Pose mode) at their frames, fading over
+    /// Keys the poses corrected by dragging (Edit mode) at their frames, fading over
     /// `window` frames on each side (3 by default); returns the error message, or
     /// `undefined` when done.
     #[wasm_bindgen(js_name = setKey)]
@@ -222,7 +229,7 @@ impl MocapViewer {
     }
 
     /// Starts a new character for the creator (a root joint, 60 frames) in place of
-    /// everything open, in Pose mode.
+    /// everything open, in Edit mode.
     #[wasm_bindgen(js_name = newCharacter)]
     pub fn new_character(&self) {
         self.with_viewer(|v| v.new_character());
@@ -251,7 +258,7 @@ impl MocapViewer {
         self.with_viewer(|v| v.redo()).flatten()
     }
 
-    /// Pose mode by typing: sets joint `name` of character `character` to the local
+    /// Edit mode by typing: sets joint `name` of character `character` to the local
     /// rotation Z, X, Y degrees (intrinsic) at the frame shown; Set key keeps it.
     /// Returns whether there is such a joint.
     #[wasm_bindgen(js_name = rotateJoint)]

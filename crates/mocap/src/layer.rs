@@ -40,7 +40,8 @@ pub struct Layer {
     pub fade_out: f64,
     /// Override or additive.
     pub blend: Blend,
-    /// Explicit matches (base name, layer name) that win over name matching.
+    /// Explicit matches (base name, layer name) that win over name matching; an
+    /// empty layer name leaves the base joint out of the layer.
     pub map: Vec<(String, String)>,
 }
 
@@ -106,7 +107,8 @@ pub fn canonical_name(name: &str) -> String {
 }
 
 /// Matches the base joints of the subtree rooted at `root` to layer joints:
-/// explicit pairs first, then equal names, then equal [`canonical_name`]s.
+/// explicit pairs first (a pair with an empty layer name leaves that joint out),
+/// then equal names, then equal [`canonical_name`]s.
 /// Returns (base joint, layer joint) pairs.
 pub fn match_joints(base: &crate::Skeleton, layer: &crate::Skeleton, root: usize, map: &[(String, String)]) -> Vec<(usize, usize)> {
     let joints = base.joints();
@@ -119,8 +121,12 @@ pub fn match_joints(base: &crate::Skeleton, layer: &crate::Skeleton, root: usize
         .filter(|&i| inside[i] && !joints[i].is_end_site())
         .filter_map(|i| {
             let name = &joints[i].name;
-            let explicit = map.iter().find(|(b, _)| b == name).and_then(|(_, l)| layer.find(l));
-            let matched = explicit.or_else(|| layer.find(name)).or_else(|| {
+            let explicit = map.iter().find(|(b, _)| b == name);
+            if explicit.is_some_and(|(_, l)| l.is_empty()) {
+                // Mapped to nothing: the joint keeps the base's motion.
+                return None;
+            }
+            let matched = explicit.and_then(|(_, l)| layer.find(l)).or_else(|| layer.find(name)).or_else(|| {
                 let c = canonical_name(name);
                 canonical.iter().position(|x| *x == c).filter(|&k| !layer.is_end_site(k))
             });

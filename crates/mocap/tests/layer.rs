@@ -69,6 +69,27 @@ fn joints_named_by_another_convention_match() {
 }
 
 #[test]
+fn an_explicit_map_wins_and_can_leave_a_joint_out() {
+    let base = walk();
+    let wave = edit(&base, &Edit::Reverse).unwrap();
+    let root = base.skeleton().find("RightShoulder").unwrap();
+    let (arm, fore, hand) = ["RightArm", "RightForeArm", "RightHand"].map(|n| base.skeleton().find(n).unwrap()).into();
+    // RightArm played by the layer's LeftArm; RightHand left out.
+    let map = vec![("RightArm".to_owned(), "LeftArm".to_owned()), ("RightHand".to_owned(), String::new())];
+    let pairs = layer::match_joints(base.skeleton(), wave.skeleton(), root, &map);
+    let left_arm = wave.skeleton().find("LeftArm").unwrap();
+    assert!(pairs.contains(&(arm, left_arm)), "{pairs:?}");
+    assert!(pairs.iter().any(|&(b, l)| b == fore && l == fore));
+    assert!(!pairs.iter().any(|&(b, _)| b == hand), "the hand is left out: {pairs:?}");
+    let out = layer::apply(&base, &wave, &Layer { map, ..Layer::on("RightShoulder") }).unwrap();
+    let (o, w, b) = (local(&out, 20), local(&wave, 20), local(&base, 20));
+    assert!(o.rotation[arm].dot(w.rotation[left_arm]).abs() > 0.9999, "the arm plays the layer's left arm");
+    let cols = base.skeleton().joints()[hand].columns();
+    assert_eq!(&out.motion().row(20)[cols.clone()], &base.motion().row(20)[cols], "the hand keeps the base");
+    assert!(o.rotation[hand].dot(b.rotation[hand]).abs() > 0.9999);
+}
+
+#[test]
 fn weight_fades_and_additive() {
     let base = walk();
     let wave = edit(&base, &Edit::Reverse).unwrap();

@@ -23,7 +23,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     });
 }
 
-/// Pose mode: the selected joint's local rotation as Z, X, Y degrees (intrinsic, the
+/// Edit mode: the selected joint's local rotation as Z, X, Y degrees (intrinsic, the
 /// usual BVH order), editable; a change is a correction at this frame (Set key keys it).
 fn rotate_row(ui: &mut egui::Ui, viewer: &mut Viewer) {
     use mocap::glam::{EulerRot, Quat};

@@ -119,24 +119,54 @@ fn contact_marks(ui: &egui::Ui, viewer: &Viewer, slider: &egui::Response, timing
     }
 }
 
-/// The current character's keyed frames as small diamonds on the scrub bar.
-fn key_marks(ui: &egui::Ui, viewer: &Viewer, slider: &egui::Response, timing: crate::playback::Timing) {
+/// The current character's keyed frames as small diamonds on the scrub bar. A
+/// diamond can be dragged along the bar: a ghost follows the pointer, snapped to
+/// frames, and the key moves there (one undoable step) where it is let go.
+fn key_marks(ui: &egui::Ui, viewer: &mut Viewer, slider: &egui::Response, timing: crate::playback::Timing) {
     let keys = viewer.history.keys(viewer.current());
     if keys.is_empty() {
         return;
     }
-    let Some(c) = viewer.current_character() else { return };
+    let Some(timeline) = viewer.current_character().map(|c| c.asset.timeline()) else { return };
     let rail = egui::Rect::from_min_max(slider.rect.left_top(), egui::pos2(slider.rect.right() - 60.0, slider.rect.bottom()));
     let span = timing.duration().max(1e-9);
+    let x_of = |frame: usize| rail.left() + (timeline.time_of(frame) / span) as f32 * rail.width();
     let y = rail.center().y;
+    let mut moved = None;
     for k in keys {
-        let x = rail.left() + (c.asset.timeline().time_of(k) / span) as f32 * rail.width();
-        if x <= rail.right() {
-            let d = 5.0;
-            let points = vec![egui::pos2(x, y - d), egui::pos2(x + d, y), egui::pos2(x, y + d), egui::pos2(x - d, y)];
-            ui.painter().add(egui::Shape::convex_polygon(points, egui::Color32::from_rgb(255, 200, 40), egui::Stroke::new(1.0, egui::Color32::BLACK)));
+        let x = x_of(k);
+        if x > rail.right() {
+            continue;
+        }
+        let hit = ui.interact(egui::Rect::from_center_size(egui::pos2(x, y), egui::vec2(12.0, 14.0)), ui.scope_id().with(("key", k)), egui::Sense::drag());
+        let hover = hit.hovered() || hit.dragged();
+        diamond(ui, x, y, if hover { 6.5 } else { 5.0 }, egui::Color32::from_rgb(255, 200, 40));
+        let hit = hit.on_hover_text(format!("Key at frame {k}: drag along the bar to move it"));
+        if let Some(p) = hit.interact_pointer_pos().filter(|_| hit.dragged() || hit.drag_stopped()) {
+            let time = (((p.x - rail.left()) / rail.width().max(1.0)) as f64 * span).clamp(0.0, timeline.duration());
+            let to = timeline.nearest(time).min(timeline.last());
+            diamond(ui, x_of(to), y, 5.0, egui::Color32::from_rgba_unmultiplied(255, 230, 120, 150));
+            ui.painter().text(egui::pos2(x_of(to), rail.top() - 2.0), egui::Align2::CENTER_BOTTOM, to.to_string(), egui::FontId::monospace(11.0), ui.visuals().strong_text_color());
+            if hit.drag_stopped() && to != k {
+                moved = Some((k, to));
+            }
         }
     }
+    if let Some((from, to)) = moved {
+        match viewer.move_key(from, to) {
+            Ok(()) => {
+                viewer.set_playing(false);
+                viewer.seek(to);
+            }
+            Err(message) => viewer.error = Some(message),
+        }
+    }
+}
+
+/// A key diamond of half-size `d` at (`x`, `y`).
+fn diamond(ui: &egui::Ui, x: f32, y: f32, d: f32, fill: egui::Color32) {
+    let points = vec![egui::pos2(x, y - d), egui::pos2(x + d, y), egui::pos2(x, y + d), egui::pos2(x - d, y)];
+    ui.painter().add(egui::Shape::convex_polygon(points, fill, egui::Stroke::new(1.0, egui::Color32::BLACK)));
 }
 
 /// The embed layout's timeline: play/pause and the scrub bar on one row.

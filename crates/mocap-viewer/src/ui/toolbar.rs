@@ -1,5 +1,5 @@
 //! Top bar: Open, Add and Share buttons, layout, draw mode, the View menu (panels
-//! and view toggles), foot lock and Pose mode, and the Camera, Edit and Demos menus.
+//! and view toggles), foot lock and Edit mode, and the Camera, Edit and Demos menus.
 
 use crate::camera::Waypoint;
 use crate::keys::{Action, HELP};
@@ -36,7 +36,8 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.menu_button("View", |ui| view_menu(ui, viewer));
             ui.separator();
             ui.checkbox(&mut viewer.settings.foot_lock, "Foot lock").on_hover_text("Pin each foot to the floor while it is in contact (legs solved by IK); contacts show on the timeline");
-            ui.checkbox(&mut viewer.settings.pose_mode, "Pose").on_hover_text("Drag a joint in the view: its chain follows by IK (the clip's own pose shows as a ghost)");
+            let editing = viewer.current_character().map_or(String::new(), |c| format!("Editing {}. ", c.name));
+            ui.checkbox(&mut viewer.settings.pose_mode, "Edit mode").on_hover_text(format!("{editing}Edit mode acts on the selected joint's character: drag a joint and its chain follows by IK, or turn it with its rotation rings; the clip's own pose shows as a ghost. A press on another character's joint switches to it."));
             if viewer.has_corrections() {
                 if ui.button("Set key").on_hover_text("Key the corrected pose at this frame (k); it fades over the key window").clicked() {
                     viewer.apply(Action::SetKey);
