@@ -111,6 +111,9 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
     if let Err(e) = run(node("api.mjs").arg(&url).arg(&dist).arg(&out).arg(&chromium)) {
         failures.push(format!("JavaScript API: {e}"));
     }
+    if let Err(e) = run(node("editing.mjs").arg(&url).arg(&out).arg(&chromium)) {
+        failures.push(format!("editing through the page's controls: {e}"));
+    }
     if let Err(e) = run(node("nogpu.mjs").arg(&url).arg(&out).arg(&chromium)) {
         failures.push(format!("no-gpu message: {e}"));
     }

@@ -81,6 +81,8 @@ pub struct Viewer {
     pub history: crate::history::History,
     /// Set when the user pressed "Save as BVH"; the host saves [`Viewer::save_bvh`] and clears it.
     pub save_requested: bool,
+    /// The Layer window, while it is open.
+    pub layer_dialog: Option<ui::layer_window::LayerDialog>,
     /// A character with unsaved edits the user asked to close: the viewer asks first.
     pub pending_close: Option<usize>,
     ring_drag: Option<RingDrag>,
@@ -366,6 +368,7 @@ impl Viewer {
         if self.tentacle.is_some() {
             ui::tentacle::show(ui, self);
         }
+        ui::layer_window::show(ui.ctx(), self);
         self.confirm_close(ui.ctx());
         if self.playback.playing && !self.stage.actors.is_empty() {
             ui.ctx().request_repaint();

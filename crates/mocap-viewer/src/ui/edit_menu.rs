@@ -106,97 +106,13 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     }
 }
 
-/// Layers another open clip on the selected joint's subtree: weight, fades,
-/// override or additive, and which layer joint plays each joint of the subtree
-/// (proposed by name across the common conventions; the user can change each or
-/// leave it out).
+/// Opens the Layer window for the selected joint's subtree.
 fn layer_menu(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize, joint: &str) {
-    let others: Vec<(usize, String)> = (viewer.stage.actors.iter().enumerate()).filter(|(i, c)| *i != index && c.clip().is_some()).map(|(i, c)| (i, c.name.clone())).collect();
-    ui.menu_button(format!("Layer on {joint}'s subtree"), |ui| {
-        if others.is_empty() {
-            ui.label("Open (Add…) the clip to layer first");
-            return;
-        }
-        let id = egui::Id::unique("layer-settings");
-        let (mut weight, mut fade_in, mut fade_out, mut additive): (f32, f64, f64, bool) = ui.ctx().data(|d| d.get_temp(id)).unwrap_or((1.0, 0.0, 0.0, false));
-        ui.add(egui::Slider::new(&mut weight, 0.0..=1.0).text("weight"));
-        ui.horizontal(|ui| {
-            ui.add(egui::DragValue::new(&mut fade_in).range(0.0..=60.0).speed(0.05).prefix("fade in ").suffix(" s"));
-            ui.add(egui::DragValue::new(&mut fade_out).range(0.0..=60.0).speed(0.05).prefix("fade out ").suffix(" s"));
-        });
-        ui.checkbox(&mut additive, "Additive (add the layer's change from its first frame)");
-        ui.ctx().data_mut(|d| d.insert_temp(id, (weight, fade_in, fade_out, additive)));
-        for (source, name) in others {
-            ui.separator();
-            let map_id = egui::Id::unique(("layer-map", index, source, joint));
-            let mut map: Vec<(String, String)> = ui.ctx().data(|d| d.get_temp(map_id)).unwrap_or_default();
-            let rows = mapping_rows(viewer, index, source, joint, &map);
-            let matched = rows.iter().filter(|r| r.1.is_some()).count();
-            ui.collapsing(format!("Joints of {name} ({matched} of {} matched)", rows.len()), |ui| {
-                mapping_grid(ui, &rows, &mut map, (index, source));
-            });
-            ui.ctx().data_mut(|d| d.insert_temp(map_id, map.clone()));
-            if ui.button(format!("Layer {name}")).on_hover_text("Each joint of the subtree plays the layer joint shown above it").clicked() {
-                let blend = if additive { mocap::layer::Blend::Additive } else { mocap::layer::Blend::Override };
-                let layer = mocap::layer::Layer { weight, fade_in, fade_out, blend, map, ..mocap::layer::Layer::on(joint) };
-                if let Err(message) = viewer.add_layer(index, source, &layer) {
-                    viewer.error = Some(message);
-                }
-                ui.close();
-            }
-        }
-    });
-}
-
-/// For each joint of the base's subtree under `joint`: its name, the layer
-/// joint that would play it with `map` (or none), and every layer joint name.
-type MappingRow = (String, Option<String>, std::rc::Rc<Vec<String>>);
-
-fn mapping_rows(viewer: &Viewer, index: usize, source: usize, joint: &str, map: &[(String, String)]) -> Vec<MappingRow> {
-    let (Some(base), Some(layer)) = (viewer.stage.actors.get(index).and_then(|c| c.clip()), viewer.stage.actors.get(source).and_then(|c| c.clip())) else {
-        return Vec::new();
-    };
-    let (bs, ls) = (base.skeleton(), layer.skeleton());
-    let Some(root) = bs.find(joint) else { return Vec::new() };
-    let names = std::rc::Rc::new(ls.joints().iter().enumerate().filter(|(k, _)| !ls.is_end_site(*k)).map(|(_, j)| j.name.clone()).collect::<Vec<_>>());
-    let pairs = mocap::layer::match_joints(bs, ls, root, map);
-    let inside = mocap::layer::match_joints(bs, bs, root, &[]);
-    inside
-        .iter()
-        .filter_map(|&(b, _)| {
-            let base_name = bs.joints().get(b)?.name.clone();
-            let played = pairs.iter().find(|(pb, _)| *pb == b).and_then(|&(_, l)| ls.joints().get(l)).map(|j| j.name.clone());
-            Some((base_name, played, names.clone()))
-        })
-        .collect()
-}
-
-/// The mapping table: a row per subtree joint with a menu of layer joints.
-fn mapping_grid(ui: &mut egui::Ui, rows: &[MappingRow], map: &mut Vec<(String, String)>, ids: (usize, usize)) {
-    egui::ScrollArea::vertical().max_height(240.0).show(ui, |ui| {
-        egui::Grid::new(("layer-map-grid", ids)).striped(true).show(ui, |ui| {
-            for (base, played, names) in rows {
-                ui.label(base);
-                let shown = played.as_deref().unwrap_or("— (keeps the base)");
-                let mut choice: Option<Option<String>> = None;
-                egui::ComboBox::from_id_salt(("layer-map-row", ids, base.as_str())).selected_text(shown).show_ui(ui, |ui| {
-                    if ui.selectable_label(played.is_none(), "— (keeps the base)").clicked() {
-                        choice = Some(None);
-                    }
-                    for n in names.iter() {
-                        if ui.selectable_label(played.as_deref() == Some(n.as_str()), n).clicked() {
-                            choice = Some(Some(n.clone()));
-                        }
-                    }
-                });
-                if let Some(choice) = choice {
-                    map.retain(|(b, _)| b != base);
-                    map.push((base.clone(), choice.unwrap_or_default()));
-                }
-                ui.end_row();
-            }
-        });
-    });
+    let hint = "Play another open clip on this joint's subtree: weight, fades, override or additive, and which joint plays which";
+    if ui.button(format!("Layer on {joint}'s subtree…")).on_hover_text(hint).clicked() {
+        viewer.layer_dialog = Some(super::layer_window::LayerDialog::new(index, joint));
+        ui.close();
+    }
 }
 
 /// Adds a child joint to the selected joint: its name and offset, or dragged out

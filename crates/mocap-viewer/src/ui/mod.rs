@@ -4,6 +4,7 @@ pub mod edit_menu;
 pub mod hierarchy;
 pub mod info;
 pub mod inspector;
+pub mod layer_window;
 pub mod model_info;
 pub mod overlay;
 pub mod side;

@@ -41,10 +41,10 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                 let here = viewer.frame();
                 if viewer.history.keys(viewer.current()).contains(&here) {
                     let mut result = None;
-                    if ui.button("⏴ move").on_hover_text("Move this key one frame earlier").clicked() && here > 0 {
+                    if ui.button("← move").on_hover_text("Move this key one frame earlier").clicked() && here > 0 {
                         result = Some(viewer.move_key(here, here - 1).map(|()| here - 1));
                     }
-                    if ui.button("move ⏵").on_hover_text("Move this key one frame later").clicked() && here < timing.last() {
+                    if ui.button("move →").on_hover_text("Move this key one frame later").clicked() && here < timing.last() {
                         result = Some(viewer.move_key(here, here + 1).map(|()| here + 1));
                     }
                     if ui.button("✕ key").on_hover_text("Delete this key (later edits are made again)").clicked() {

@@ -1,0 +1,181 @@
+// Editing through the page's own controls, as a person does it: the Edit mode
+// checkbox, a hand dragged in the view, `k` to key it, the key's diamond dragged
+// along the timeline, Edit ▸ Reverse and Ctrl+Z, and Edit ▸ Layer with a joint
+// mapped by hand in its table. The positions clicked are those of the default
+// 1280×800 layout (toolbar, tree and menus), checked by the state after each.
+// node editing.mjs <url> <outDir> <chromium>
+import fs from 'node:fs';
+import path from 'node:path';
+import { changeAndRender, launch, reporter, slowClick, waitState } from './common.mjs';
+
+const [base, outDir, chromiumPath] = process.argv.slice(2);
+const { check, step, finish } = reporter('editing');
+const shot = (name) => path.join(outDir, `editing-${name}.png`);
+const walk = fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url)).toString();
+
+/** Decodes a PNG screenshot (in a blank page, away from the viewer's CSP): { width, data }. */
+async function decode(context, png) {
+  const page = await context.newPage();
+  try {
+    return await page.evaluate(async (b64) => {
+      const img = new Image();
+      img.src = `data:image/png;base64,${b64}`;
+      await img.decode();
+      const c = new OffscreenCanvas(img.width, img.height);
+      const g = c.getContext('2d');
+      g.drawImage(img, 0, 0);
+      return { width: img.width, data: Array.from(g.getImageData(0, 0, img.width, img.height).data) };
+    }, png.toString('base64'));
+  } finally {
+    await page.close();
+  }
+}
+
+/** The mean x of the key-diamond yellow pixels in a screenshot strip (or null). */
+async function diamondX(context, png) {
+  const { width, data: d } = await decode(context, png);
+  let sum = 0;
+  let n = 0;
+  for (let i = 0; i < d.length; i += 4) {
+    if (d[i] > 230 && d[i + 1] > 170 && d[i + 1] < 225 && d[i + 2] < 90) {
+      sum += (i / 4) % width;
+      n += 1;
+    }
+  }
+  return n > 4 ? sum / n : null;
+}
+
+/**
+ * Opens a toolbar menu by clicking it at `x`, then waits until its popup covers the
+ * left edge of the 3D view at (`probeX`, 150) (the popup's flat fill, not the sky);
+ * clicks again if it did not open. Returns whether it opened.
+ */
+async function openMenu(context, page, x, probeX) {
+  for (let attempt = 0; attempt < 3; attempt++) {
+    await slowClick(page, x, 12);
+    for (let k = 0; k < 10; k++) {
+      await page.waitForTimeout(100);
+      const { data: d } = await decode(context, await page.screenshot({ clip: { x: probeX, y: 150, width: 4, height: 4 } }));
+      if (d[0] < 34 && d[1] < 34 && d[2] < 34 && Math.abs(d[2] - d[0]) < 4) return true;
+    }
+  }
+  return false;
+}
+
+/** The channel values of joint `name` at `frame` in BVH text. */
+function channelsOf(text, name, frame) {
+  const [hierarchy, motion] = text.split(/\nMOTION\s*\n/);
+  let column = 0;
+  let at = null;
+  let current = null;
+  for (const line of hierarchy.split('\n')) {
+    const words = line.trim().split(/\s+/);
+    if (words[0] === 'ROOT' || words[0] === 'JOINT') current = words[1];
+    if (words[0] === 'CHANNELS') {
+      const n = Number(words[1]);
+      if (current === name) at = [column, n];
+      column += n;
+    }
+  }
+  const rows = motion.split('\n').slice(2).filter((l) => l.trim().length > 0);
+  const values = rows[frame].trim().split(/\s+/).map(Number);
+  return at ? values.slice(at[0], at[0] + at[1]) : null;
+}
+
+const { context, page, close, errors } = await launch(chromiumPath, 'webgl2');
+try {
+  await page.goto(base);
+  await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 2);
+
+  await step('Edit mode by its checkbox, a hand dragged and keyed with k, its diamond dragged along the timeline', async () => {
+    await changeAndRender(page, (v) => { v.pause(); v.seek(20); });
+    await slowClick(page, 755, 12);
+    const on = await waitState(page, (s) => s.poseMode === true);
+    check(on.poseMode, 'the Edit mode checkbox turns Edit mode on');
+    const [x, y] = await page.evaluate(() => Array.from(window.mocapViewer.jointScreenPosition(0, 'LeftHand')));
+    await page.mouse.move(x, y);
+    await page.mouse.down();
+    for (let k = 1; k <= 8; k++) {
+      await page.mouse.move(x + 5 * k, y - 4 * k);
+      await page.waitForTimeout(60);
+    }
+    await page.mouse.up();
+    await waitState(page, (s) => s.clips[0].corrected === true);
+    await page.keyboard.press('k');
+    const keyed = await waitState(page, (s) => s.clips[0].keys.length === 1);
+    check(keyed.clips[0].keys[0] === 20 && keyed.undo === 'Key at frame 20', `k keys frame 20 (${keyed.clips[0].keys}, undo "${keyed.undo}")`);
+    await changeAndRender(page, (v) => v.pause());
+    const strip = await page.screenshot({ clip: { x: 0, y: 750, width: 1280, height: 20 } });
+    const x20 = await diamondX(context, strip);
+    check(x20 !== null, `the key's diamond is on the scrub bar (x ${x20})`);
+    // The bar starts at x 8; frame 20 is at x20, so frame 40 is twice as far.
+    const x40 = 8 + 2 * (x20 - 8);
+    await page.mouse.move(x20, 760);
+    await page.mouse.down();
+    for (let k = 1; k <= 10; k++) {
+      await page.mouse.move(x20 + (x40 - x20) * k / 10, 760);
+      await page.waitForTimeout(50);
+    }
+    await page.screenshot({ path: shot('key-drag') });
+    await page.mouse.up();
+    const moved = await waitState(page, (s) => s.clips[0].keys.length === 1 && s.clips[0].keys[0] !== 20);
+    const to = moved.clips[0].keys[0];
+    check(Math.abs(to - 40) <= 1 && moved.frame === to && !moved.playing, `the key moved to frame ${to} and the playhead with it (frame ${moved.frame})`);
+    check(/key/i.test(moved.undo ?? ''), `moving it is one undoable step ("${moved.undo}")`);
+  });
+
+  await step('Edit ▸ Reverse clicked, then Ctrl+Z', async () => {
+    const before = await page.evaluate(() => window.mocapViewer.saveBvh(0)[1]);
+    check(await openMenu(context, page, 931, 990), 'the Edit menu opens');
+    await page.screenshot({ path: shot('menu') });
+    await slowClick(page, 944, 135);
+    const reversed = await waitState(page, (s) => s.undo === 'Reverse');
+    check(reversed.clips[0].frames === 67 && reversed.clips[0].edited, `Reverse is made and can be undone ("${reversed.undo}")`);
+    await page.keyboard.press('Control+z');
+    const undone = await waitState(page, (s) => s.redo === 'Reverse');
+    const after = await page.evaluate(() => window.mocapViewer.saveBvh(0)[1]);
+    check(after === before, `Ctrl+Z gives back the clip as it was (undo now "${undone.undo}")`);
+  });
+
+  await step('Edit ▸ Layer on RightShoulder with RightArm mapped to the layer\'s LeftArm in its table', async () => {
+    await page.evaluate((t) => window.mocapViewer.add('second.bvh', new TextEncoder().encode(t)), walk);
+    await waitState(page, (s) => s.clips.length === 2);
+    // The layer plays the walk backwards, so what it drives differs from the base.
+    const reversed = await page.evaluate(() => window.mocapViewer.edit(1, 'reverse') ?? null);
+    check(reversed === null, `the second clip is reversed (${reversed})`);
+    await changeAndRender(page, (v) => { v.pause(); v.seek(20); v.applyViewState('draw=joints,interp'); });
+    await slowClick(page, 117, 360);
+    await waitState(page, (s) => s.selectedJoint === 'RightShoulder' && s.selectedCharacter === 0);
+    check(await openMenu(context, page, 950, 990), 'the Edit menu opens');
+    await slowClick(page, 1036, 434);
+    await changeAndRender(page, (v) => v.pause());
+    await page.screenshot({ path: shot('layer-window') });
+    await slowClick(page, 790, 301);
+    await changeAndRender(page, (v) => v.pause());
+    await page.screenshot({ path: shot('layer-combo') });
+    await slowClick(page, 757, 489);
+    await changeAndRender(page, (v) => v.pause());
+    await slowClick(page, 790, 324);
+    await changeAndRender(page, (v) => v.pause());
+    await slowClick(page, 787, 351);
+    await changeAndRender(page, (v) => v.pause());
+    await page.screenshot({ path: shot('layer-mapped') });
+    await slowClick(page, 650, 379);
+    const layered = await waitState(page, (s) => (s.undo ?? '').startsWith('Layer'));
+    check(layered.undo === 'Layer second.bvh on RightShoulder', `Layer is one undoable edit ("${layered.undo}")`);
+    const text = await page.evaluate(() => window.mocapViewer.saveBvh(0)[1]);
+    const near = (a, b) => a && b && a.length === b.length && a.every((x, i) => Math.abs(x - b[i]) < 0.01);
+    for (const f of [10, 50]) {
+      const arm = channelsOf(text, 'RightArm', f);
+      check(near(arm, channelsOf(walk, 'LeftArm', 66 - f)), `frame ${f}: RightArm plays the layer's LeftArm, chosen in the table (${arm})`);
+      const fore = channelsOf(text, 'RightForeArm', f);
+      check(near(fore, channelsOf(walk, 'RightForeArm', f)) && !near(fore, channelsOf(walk, 'RightForeArm', 66 - f)),
+        `frame ${f}: RightForeArm, left out in the table, keeps the base (${fore})`);
+      check(near(channelsOf(text, 'LeftArm', f), channelsOf(walk, 'LeftArm', f)), `frame ${f}: LeftArm, outside the subtree, is unchanged`);
+    }
+  });
+  check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
+} finally {
+  await close();
+}
+finish('editing');
