@@ -216,22 +216,30 @@ try {
         await tick();
         const p = v.jointWorldPosition(0, 'Hand');
         const reached = v.dragJoint(0, 'Hand', p[0] + dx, p[1] - 0.2, p[2]);
-        const error = v.setKey(4) ?? null;
+        // The creator keys by default between keys (key-frame animation).
+        const error = v.setKey() ?? null;
         await tick();
         poses.push({ reached, error, at: v.jointWorldPosition(0, 'Hand'), target: [p[0] + dx, p[1] - 0.2, p[2]] });
       }
+      v.seek(25);
+      await tick();
+      const between = Array.from(v.jointWorldPosition(0, 'Hand'));
+      const keys = v.state().clips[0].keys;
       v.play();
       await new Promise((r) => setTimeout(r, 600));
       const playing = v.state();
       v.pause();
       const [name, text] = v.saveBvh(0);
-      return { errors, poses, playing, name, text };
+      return { errors, poses, playing, name, text, between, keys };
     });
     check(made.errors.length === 0, `joints added (${made.errors})`);
     for (const p of made.poses) {
       const d = Math.hypot(p.at[0] - p.target[0], p.at[1] - p.target[1], p.at[2] - p.target[2]);
       check(p.reached && p.error === null && d < 5e-3, `a keyed pose holds (${d.toFixed(4)} m)`);
     }
+    const [a, b] = made.poses.map((p) => p.at[0]);
+    check(made.keys.join() === '10,40' && Math.min(a, b) + 0.05 < made.between[0] && made.between[0] < Math.max(a, b) - 0.05,
+      `keys ${made.keys}; halfway between them the hand is between its keyed places (x ${made.between[0].toFixed(3)} between ${a.toFixed(3)} and ${b.toFixed(3)})`);
     check(made.playing.playing && made.playing.time > 0, `it plays (${made.playing.time.toFixed(2)} s)`);
     check(made.name === 'character-edited.bvh', `saved as ${made.name}`);
     await dropFiles(page, [{ name: made.name, bytes: Buffer.from(made.text) }]);

@@ -108,9 +108,13 @@ impl History {
         for change in mine {
             if let Some(k) = change.unkey {
                 // A key deleted or moved: take the latest key at that frame out.
-                let at = edits.iter().rposition(|e| matches!(e, mocap::edit::Edit::Correct { frame, .. } if *frame == k));
+                let at = edits.iter().rposition(|e| e.key_frame() == Some(k));
                 if let Some(i) = at {
                     edits.remove(i);
+                }
+                let to = change.edit.as_ref().and_then(|e| e.key_frame());
+                for e in &mut edits {
+                    e.follow_key(k, to);
                 }
                 if let Some(e) = &change.edit {
                     edits.insert(at.unwrap_or(edits.len()), e.clone());

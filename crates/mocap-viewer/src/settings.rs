@@ -25,6 +25,10 @@ pub struct ViewSettings {
     pub foot_lock: bool,
     /// Frames on each side over which a key fades in and out.
     pub key_window: usize,
+    /// Keys interpolate from key to key (key-frame animation: slerp between the
+    /// keyed poses, held before the first and after the last) instead of fading
+    /// over `key_window` (corrections of a dense take).
+    pub key_between: bool,
 }
 
 impl Default for ViewSettings {
@@ -40,6 +44,7 @@ impl Default for ViewSettings {
             pose_mode: false,
             foot_lock: false,
             key_window: 3,
+            key_between: false,
         }
     }
 }

@@ -570,6 +570,7 @@ impl Viewer {
         self.open_assets(vec![("character.bvh".to_owned(), mocap::Asset::Clip(clip))]);
         self.set_playing(false);
         self.settings.pose_mode = true;
+        self.settings.key_between = true;
         self.selected = Some(Selection { character: 0, joint: 0 });
         self.camera.target = mocap::glam::Vec3::new(0.0, 1.0, 0.0);
         self.camera.distance = 4.0;
@@ -588,7 +589,7 @@ impl Viewer {
         let clip = c.clip().ok_or_else(|| format!("{}: a model has no motion to edit", c.name))?;
         let edited = mocap::edit::apply(clip, edit).map_err(|e| format!("{}: {e}", c.name))?;
         use mocap::edit::Edit;
-        let key = if let Edit::Correct { frame, .. } = edit { Some(*frame) } else { None };
+        let key = edit.key_frame();
         let retimes = matches!(edit, Edit::Trim { .. } | Edit::Resample { .. } | Edit::Reverse | Edit::PingPong);
         self.commit(character, edited, label, key, retimes, Some(edit.clone()), None);
         Ok(())
@@ -608,17 +609,18 @@ impl Viewer {
     }
 
     fn rekey(&mut self, frame: usize, to: Option<usize>) -> Result<(), String> {
-        use mocap::edit::Edit;
         let character = self.current();
         if !self.history.keys(character).contains(&frame) {
             return Err(format!("no key at frame {frame}"));
         }
         let (base, mut edits) = self.history.effective(character).ok_or_else(|| format!("no key at frame {frame}"))?;
-        let at = edits.iter().rposition(|e| matches!(e, Edit::Correct { frame: f, .. } if *f == frame)).ok_or_else(|| format!("the key at frame {frame} was made before a layer: it cannot be changed now"))?;
-        let moved = match (to, edits.remove(at)) {
-            (Some(to), Edit::Correct { rotations, translations, window, .. }) => Some(Edit::Correct { frame: to, rotations, translations, window }),
-            _ => None,
-        };
+        let at = edits.iter().rposition(|e| e.key_frame() == Some(frame)).ok_or_else(|| format!("the key at frame {frame} was made before a layer: it cannot be changed now"))?;
+        let removed = edits.remove(at);
+        let moved = to.and_then(|to| removed.at_frame(to));
+        // Keys interpolated between keys follow the one deleted or moved.
+        for e in &mut edits {
+            e.follow_key(frame, to);
+        }
         if let Some(m) = &moved {
             // In the same place in the sequence (later renames still apply after it).
             edits.insert(at, m.clone());
@@ -749,9 +751,12 @@ impl Viewer {
     }
 
     /// Turns the pose corrections made by dragging into keys: each character's
-    /// correction becomes one undoable edit ([`mocap::edit::Edit::Correct`]) at its
-    /// frame, fading over [`crate::settings::ViewSettings::key_window`] frames on each
-    /// side. Returns how many characters were keyed.
+    /// correction becomes one undoable edit at its frame: a correction fading over
+    /// [`crate::settings::ViewSettings::key_window`] frames on each side
+    /// ([`mocap::edit::Edit::Correct`]), or with
+    /// [`crate::settings::ViewSettings::key_between`] a key of key-frame animation
+    /// interpolated to and from the character's other keys ([`mocap::edit::Edit::Key`]).
+    /// Returns how many characters were keyed.
     pub fn set_key(&mut self) -> Result<usize, String> {
         let window = self.settings.key_window;
         let mut keyed = 0;
@@ -762,7 +767,13 @@ impl Viewer {
             let name = |j: usize| clip.skeleton().joints().get(j).map(|x| x.name.clone());
             let rotations = correction.rotations.iter().filter_map(|&(j, q)| Some((name(j)?, q))).collect();
             let translations = correction.translations.iter().filter_map(|&(j, t)| Some((name(j)?, t))).collect();
-            let edit = mocap::edit::Edit::Correct { frame: correction.frame, rotations, translations, window };
+            let frame = correction.frame;
+            let edit = if self.settings.key_between {
+                let keys = self.history.keys(index).into_iter().filter(|k| *k != frame).collect();
+                mocap::edit::Edit::Key { frame, rotations, translations, keys }
+            } else {
+                mocap::edit::Edit::Correct { frame, rotations, translations, window }
+            };
             self.edit(index, &edit, &format!("Key at frame {}", correction.frame))?;
             keyed += 1;
         }

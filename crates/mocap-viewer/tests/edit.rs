@@ -154,7 +154,8 @@ fn the_creator_makes_a_character_that_poses_keys_and_saves() {
     assert!(v.stage.actors[0].extra.pose[hand].translation.distance(target) < 2e-3);
     v.seek(0);
     v.pose();
-    assert!(v.stage.actors[0].extra.pose[hand].translation.distance(start) < 1e-4, "other frames keep the rest pose");
+    assert!(v.settings.key_between, "the creator keys between keys");
+    assert!(v.stage.actors[0].extra.pose[hand].translation.distance(target) < 2e-3, "one key holds on every frame");
     // Keys show on the timeline and the playhead steps between them.
     assert_eq!(v.snapshot().clips[0].keys, [30]);
     assert_eq!(v.step_key(true), Some(30));
@@ -173,6 +174,26 @@ fn the_creator_makes_a_character_that_poses_keys_and_saves() {
     let mut dropped = Viewer::default();
     dropped.load(&name, text.as_bytes()).unwrap();
     assert_eq!(dropped.snapshot().clips[0].joint_names, names);
+    // A second key at frame 50: the motion goes from one key to the other.
+    v.seek(50);
+    v.pose();
+    let second = target + Vec3::new(-0.5, 0.1, 0.0);
+    assert!(v.drag_joint(0, hand, second).unwrap().reached);
+    v.set_key().unwrap();
+    assert_eq!(v.snapshot().clips[0].keys, [30, 50]);
+    let hand_at = |v: &mut Viewer, f: usize| {
+        v.seek(f);
+        v.pose();
+        v.stage.actors[0].extra.pose[hand].translation
+    };
+    assert!(hand_at(&mut v, 30).distance(target) < 2e-3 && hand_at(&mut v, 50).distance(second) < 2e-3, "each key holds its pose");
+    let mid = hand_at(&mut v, 40);
+    assert!(mid.x < target.x - 0.1 && mid.x > second.x + 0.1, "halfway, the hand is between the keys: {mid} ({target} → {second})");
+    assert!(hand_at(&mut v, 10).distance(target) < 2e-3 && hand_at(&mut v, 59).distance(second) < 2e-3, "held before the first key and after the last");
+    // Deleting the first key: the second one, alone, holds everywhere.
+    v.delete_key(30).unwrap();
+    assert_eq!(v.snapshot().clips[0].keys, [50]);
+    assert!(hand_at(&mut v, 30).distance(second) < 2e-3, "the key list of the remaining key followed");
 }
 
 #[test]
@@ -207,7 +228,7 @@ fn keys_can_be_deleted_and_moved_under_later_edits() {
     v.load("walk.bvh", WALK).unwrap();
     let original = clip(&v);
     let arm = original.skeleton().find("LeftArm").unwrap();
-    let mut at = |f: usize| {
+    let at = |f: usize| {
         let mut p = mocap::LocalPose::default();
         original.local_pose_into(f, &mut p);
         p.rotation[arm]

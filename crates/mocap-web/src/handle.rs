@@ -214,14 +214,19 @@ impl MocapViewer {
         self.with_viewer(|v| v.add_layer(index as usize, source as usize, &layer).err()).flatten()
     }
 
-    /// Keys the poses corrected by dragging (Edit mode) at their frames, fading over
-    /// `window` frames on each side (3 by default); returns the error message, or
-    /// `undefined` when done.
+    /// Keys the poses corrected by dragging (Edit mode) at their frames: fading over
+    /// `window` frames on each side (3 by default), or with `between` true
+    /// interpolated from key to key (key-frame animation; the creator's default);
+    /// returns the error message, or `undefined` when done.
     #[wasm_bindgen(js_name = setKey)]
-    pub fn set_key(&self, window: Option<u32>) -> Option<String> {
+    pub fn set_key(&self, window: Option<u32>, between: Option<bool>) -> Option<String> {
         self.with_viewer(|v| {
             if let Some(w) = window {
                 v.settings.key_window = w as usize;
+                v.settings.key_between = false;
+            }
+            if let Some(b) = between {
+                v.settings.key_between = b;
             }
             v.set_key().err()
         })

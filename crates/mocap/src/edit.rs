@@ -84,6 +84,22 @@ pub enum Edit {
         /// Frames on each side over which the correction fades.
         window: usize,
     },
+    /// A key of key-frame animation: the named joints take these local rotations
+    /// (and roots these positions) at `frame` exactly, and every frame between two
+    /// keys of `keys` (with `frame` among them) is interpolated from the poses at
+    /// those keys: rotations by slerp, positions linearly, so the motion goes
+    /// smoothly from key to key; frames before the first key and after the last
+    /// hold its pose.
+    Key {
+        /// The frame keyed.
+        frame: usize,
+        /// Joint names and their local rotations at the frame.
+        rotations: Vec<(String, Quat)>,
+        /// Joint names and their local translations at the frame (moved roots).
+        translations: Vec<(String, Vec3)>,
+        /// The other keyed frames (any order; repeats and `frame` itself are fine).
+        keys: Vec<usize>,
+    },
     /// Add a joint under `parent` at `offset` (three rotation channels, rest pose on
     /// every frame); the parent's End Site, if it had one, gives way, and the new
     /// joint gets its own.
@@ -122,6 +138,37 @@ pub enum Edit {
     },
 }
 
+impl Edit {
+    /// The frame of a key ([`Edit::Correct`] or [`Edit::Key`]); `None` for other edits.
+    pub fn key_frame(&self) -> Option<usize> {
+        match self {
+            Edit::Correct { frame, .. } | Edit::Key { frame, .. } => Some(*frame),
+            _ => None,
+        }
+    }
+
+    /// The same key at frame `to` (`None` when this is not a key).
+    pub fn at_frame(&self, to: usize) -> Option<Edit> {
+        let mut e = self.clone();
+        match &mut e {
+            Edit::Correct { frame, .. } | Edit::Key { frame, .. } => *frame = to,
+            _ => return None,
+        }
+        Some(e)
+    }
+
+    /// After the key at `from` was deleted (`to` = `None`) or moved to `to`: a
+    /// [`Edit::Key`]'s list of other keys follows. Other edits are unchanged.
+    pub fn follow_key(&mut self, from: usize, to: Option<usize>) {
+        if let Edit::Key { keys, .. } = self {
+            if keys.contains(&from) {
+                keys.retain(|k| *k != from);
+                keys.extend(to);
+            }
+        }
+    }
+}
+
 /// Why an edit cannot be made.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("{0}")]
@@ -155,6 +202,10 @@ pub fn apply(clip: &Clip, edit: &Edit) -> Result<Clip, EditError> {
         Edit::Rename { from, to } => rename(&clip, from, to),
         Edit::RemoveJoint { name, fold } => remove_joint(&clip, name, *fold),
         Edit::Correct { frame, rotations, translations, window } => correct(&clip, *frame, rotations, translations, *window),
+        Edit::Key { frame, rotations, translations, keys } => {
+            let keyed = correct(&clip, *frame, rotations, translations, 0)?;
+            tween(&keyed, keys.iter().copied().chain([*frame]).collect())
+        }
         Edit::AddJoint { parent, name, offset } => add_joint(&clip, parent, name, *offset),
         Edit::SetOffset { name, offset } => set_offset(&clip, name, *offset),
         Edit::SetChannels { name, position, order } => set_channels(&clip, name, *position, order),
@@ -560,6 +611,36 @@ fn correct(clip: &Clip, frame: usize, rotations: &[(String, Quat)], translations
         .collect();
     let skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| EditError(e.to_string()))?;
     from_locals(clip, skeleton, clip.frame_time(), &poses)
+}
+
+/// Interpolates every frame from the poses at the frames `keys` (see
+/// [`Edit::Key`]): slerp of rotations and lerp of positions between consecutive
+/// keys, the first key's pose before it and the last key's after it.
+fn tween(clip: &Clip, mut keys: Vec<usize>) -> Result<Clip, EditError> {
+    let n = clip.frame_count();
+    if let Some(k) = keys.iter().find(|&&k| k >= n) {
+        return err(format!("key at frame {k}: the clip has frames 0 to {}", n.saturating_sub(1)));
+    }
+    keys.sort_unstable();
+    keys.dedup();
+    let (Some(&first), Some(&last)) = (keys.first(), keys.last()) else { return Ok(clip.clone()) };
+    let source = locals(clip);
+    let mut poses = source.clone();
+    for (f, pose) in poses.iter_mut().enumerate() {
+        let (a, b) = match keys.binary_search(&f) {
+            Ok(_) => continue,
+            Err(0) => (first, first),
+            Err(i) if i >= keys.len() => (last, last),
+            Err(i) => (keys[i - 1], keys[i]),
+        };
+        let t = if b > a { (f - a) as f32 / (b - a) as f32 } else { 0.0 };
+        let (pa, pb) = (&source[a], &source[b]);
+        for j in 0..pose.rotation.len().min(pa.rotation.len()).min(pb.rotation.len()) {
+            pose.rotation[j] = pa.rotation[j].slerp(pb.rotation[j], t).normalize();
+            pose.translation[j] = pa.translation[j].lerp(pb.translation[j], t);
+        }
+    }
+    from_locals(clip, clip.skeleton().clone(), clip.frame_time(), &poses)
 }
 
 /// A new character for the creator: a root joint `Hips` one metre up with all six

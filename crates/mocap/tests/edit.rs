@@ -228,3 +228,30 @@ fn the_creator_builds_a_character_that_saves_and_reads_back() {
     let head = without.skeleton().find("Head").unwrap();
     assert_eq!(without.skeleton().joints()[head].parent, Some(0));
 }
+
+#[test]
+fn keys_interpolate_from_key_to_key_and_hold_outside() {
+    use mocap::glam::Quat;
+    let mut c = mocap::edit::new_character(60, 30.0);
+    c = apply(&c, &Edit::AddJoint { parent: "Hips".into(), name: "Arm".into(), offset: Vec3::new(0.0, 0.5, 0.0) }).unwrap();
+    let turn = |deg: f32| vec![("Arm".to_owned(), Quat::from_rotation_z(deg.to_radians()))];
+    let a = apply(&c, &Edit::Key { frame: 10, rotations: turn(80.0), translations: vec![("Hips".into(), Vec3::new(0.0, 1.0, 0.0))], keys: vec![] }).unwrap();
+    let arm = a.skeleton().find("Arm").unwrap();
+    let angle = |clip: &Clip, f: usize| {
+        let mut p = mocap::LocalPose::default();
+        clip.local_pose_into(f, &mut p);
+        let (axis, angle) = p.rotation[arm].to_axis_angle();
+        angle.to_degrees() * axis.z.signum()
+    };
+    for f in [0, 10, 35, 59] {
+        assert!((angle(&a, f) - 80.0).abs() < 1e-3, "one key holds everywhere: frame {f} at {}", angle(&a, f));
+    }
+    let b = apply(&a, &Edit::Key { frame: 40, rotations: turn(-40.0), translations: vec![("Hips".into(), Vec3::new(3.0, 1.0, 0.0))], keys: vec![10] }).unwrap();
+    for (f, want) in [(0, 80.0), (10, 80.0), (20, 40.0), (25, 20.0), (30, 0.0), (40, -40.0), (59, -40.0)] {
+        assert!((angle(&b, f) - want).abs() < 1e-2, "frame {f}: {} not {want}", angle(&b, f));
+    }
+    let hips_x = |f: usize| positions(&b, f)[0].x;
+    assert!((hips_x(25) - hips_x(10) - (hips_x(40) - hips_x(10)) * 0.5).abs() < 1e-4, "the root moves linearly between keys");
+    round_trips(&b);
+    assert!(apply(&a, &Edit::Key { frame: 40, rotations: turn(0.0), translations: vec![], keys: vec![99] }).is_err(), "a key past the end is refused");
+}
