@@ -41,8 +41,10 @@
 mod normals;
 #[cfg(test)]
 mod tests;
+mod write;
 
 pub use normals::NORMALS;
+pub use write::{build, from_y_up, pack_frame, write, WriteError};
 
 use crate::error::ParseError;
 
