@@ -299,6 +299,19 @@ fn row_of(skeleton: &Skeleton, local: &LocalPose, unit: AngleUnit, out: &mut Vec
     }
 }
 
+/// A clip of `skeleton` from one local pose per frame (translations for joints
+/// with position channels, rotations decomposed in each joint's channel order,
+/// degrees), `frame_time` seconds apart.
+pub fn clip_from_poses(skeleton: Skeleton, frame_time: f64, poses: &[LocalPose]) -> Result<Clip, EditError> {
+    let mut data = Vec::with_capacity(skeleton.channel_count() * poses.len());
+    for p in poses {
+        row_of(&skeleton, p, AngleUnit::Degrees, &mut data);
+    }
+    let width = skeleton.channel_count();
+    let motion = Motion::new(frame_time, width, poses.len(), data).ok_or_else(|| EditError("no valid motion from these poses".into()))?;
+    Clip::new(skeleton, motion).map_err(|e| EditError(e.to_string()))
+}
+
 /// The clip from local poses (same skeleton).
 fn from_locals(clip: &Clip, skeleton: Skeleton, frame_time: f64, poses: &[LocalPose]) -> Result<Clip, EditError> {
     let unit = clip.motion().angle_unit();

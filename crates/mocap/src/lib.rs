@@ -24,6 +24,7 @@ pub mod bake;
 pub mod batch;
 pub mod body;
 pub mod bva;
+pub mod capture;
 pub mod bvh;
 pub mod channel;
 pub mod clip;

@@ -11,7 +11,7 @@
 //! assert_eq!(again, md2);
 //! ```
 
-use super::{to_y_up, Animation, Frame, Md2, Triangle, FRAME_HEADER_SIZE, FRAME_NAME_SIZE, HEADER_SIZE, IDENT, NORMALS, SKIN_NAME_SIZE, VERSION};
+use super::{Animation, Frame, Md2, Triangle, FRAME_HEADER_SIZE, FRAME_NAME_SIZE, HEADER_SIZE, IDENT, NORMALS, SKIN_NAME_SIZE, VERSION};
 use glam::Vec3;
 
 /// Why frames cannot be packed into an MD2.
@@ -173,6 +173,7 @@ pub fn build(frames: &[(String, Vec<Vec3>)], triangles: &[[u32; 3]]) -> Result<M
 
 #[cfg(test)]
 mod tests {
+    use super::super::to_y_up;
     use super::*;
 
     #[test]

@@ -1,0 +1,520 @@
+//! Skeletal motion from a vertex-animated model (a Quake 2 MD2): the capture.
+//!
+//! Inputs: the model's vertex frames and a [`Rig`] (a skeleton posed inside its
+//! set-up frame, bone spins, vertex binding; [`Rig::fit`] makes one for any
+//! humanoid). Output: a [`Capture`]: a skeletal [`Clip`] (joint rotations
+//! relative to the parent, the root's translation; one frame per model frame at
+//! 10 fps) with the model's animations as frame ranges, every joint's position
+//! and every bone's rotation per frame, and a [`Report`].
+//!
+//! Per joint, four tracked vertices ([`track::joint_sets`]) keep their set-up
+//! distances to it; in each frame the joint is where the four spheres meet, found
+//! by successive approximation ([`spheres::successive`], started from the joint's
+//! place in the previous frame) and checked by the closed form
+//! ([`spheres::least_squares`]): the report gives where they disagree, and each
+//! joint's residual (how far the solved joint is from its four spheres). A joint
+//! with no valid vertex set, or a frame that does not converge, takes the
+//! closed-form answer if it has one, else follows its parent rigidly; the report
+//! says which. A bone's rotation comes from its direction and its spin (tracked
+//! by a triangle, [`track::spin_triangle`]); a joint with two or more children
+//! takes its rotation from two of its bones' directions.
+//!
+//! Work is split by frame ([`Capturer::step`]) so a caller can show progress.
+//! Nothing recurses: joints are visited in parent-before-child order.
+
+pub mod frames;
+pub mod rig;
+pub mod spheres;
+pub mod track;
+
+pub use rig::{Rig, RigError, RigJoint};
+
+use crate::channel::Channel;
+use crate::clip::Clip;
+use crate::md2::{Animation, Md2};
+use crate::pose::LocalPose;
+use crate::skeleton::{EulerConvention, Joint, Skeleton};
+use glam::{Mat3, Quat, Vec3};
+use spheres::{Settings, Sphere};
+
+/// Settings of a capture.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Largest accepted change of a distance between two tracked vertices over
+    /// the frames, as a share of the model's height (MD2 positions are 8-bit:
+    /// one step is about 0.4 % of a frame's size).
+    pub rigid_tolerance: f32,
+    /// Most rounds of successive approximation per joint and frame.
+    pub max_rounds: usize,
+    /// Vertices tracked per joint: four (the source's method), or more to average
+    /// out noise (every one is another sphere in the same iteration).
+    pub vertices_per_joint: usize,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options { rigid_tolerance: 0.015, max_rounds: 2000, vertices_per_joint: 4 }
+    }
+}
+
+/// Why there is no capture.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("capture: {0}")]
+pub struct CaptureError(pub String);
+
+/// What happened to one joint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointReport {
+    /// The joint's name.
+    pub name: String,
+    /// The four tracked vertices and the bone they are bound to, or why the joint has none.
+    pub tracked: Result<track::JointSet, String>,
+    /// Largest distance from the solved joint to one of its spheres (mesh units).
+    pub max_residual: f64,
+    /// Mean over frames of that distance.
+    pub mean_residual: f64,
+    /// Frames where successive approximation did not converge, with why.
+    pub failures: Vec<(usize, String)>,
+    /// Largest distance between the successive and the closed-form answers.
+    pub max_disagreement: f64,
+    /// Frame of that largest disagreement.
+    pub disagreement_frame: usize,
+    /// Whether the bone leaving this joint has a tracked spin.
+    pub spin: bool,
+}
+
+/// The capture's report.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    /// Per joint, in rig order.
+    pub joints: Vec<JointReport>,
+    /// The model's height (mesh units), the scale of the tolerances.
+    pub height: f32,
+}
+
+impl Report {
+    /// A plain-text table: per joint its vertices, residuals, convergence and
+    /// agreement with the closed form.
+    pub fn text(&self) -> String {
+        let mut out = format!("{:<16} {:<24} {:>10} {:>10} {:>8} {:>12}  spin\n", "joint", "vertices (bone)", "max resid", "mean", "failed", "vs closed");
+        for j in &self.joints {
+            let tracked = match &j.tracked {
+                Ok(s) => format!("{:?} ({})", s.vertices, s.bone),
+                Err(_) => "none".to_owned(),
+            };
+            out.push_str(&format!(
+                "{:<16} {:<24} {:>10.4} {:>10.4} {:>8} {:>12.4}  {}\n",
+                j.name,
+                tracked,
+                j.max_residual,
+                j.mean_residual,
+                j.failures.len(),
+                j.max_disagreement,
+                if j.spin { "yes" } else { "no" }
+            ));
+        }
+        for j in &self.joints {
+            if let Err(why) = &j.tracked {
+                out.push_str(&format!("no vertex set: {why}\n"));
+            }
+            if let Some((f, why)) = j.failures.first() {
+                out.push_str(&format!("{}: frame {f} did not converge ({why}){}\n", j.name, if j.failures.len() > 1 { format!(" and {} more frames", j.failures.len() - 1) } else { String::new() }));
+            }
+        }
+        out
+    }
+}
+
+/// A finished capture.
+#[derive(Clone, Debug)]
+pub struct Capture {
+    /// The skeletal clip (rig joints; rotations relative to the parent, root
+    /// translation), one frame per model frame.
+    pub clip: Clip,
+    /// The model's animations, as frame ranges of the clip.
+    pub animations: Vec<Animation>,
+    /// The model's frame names.
+    pub frame_names: Vec<String>,
+    /// Per frame, every joint's position (mesh units, Y-up).
+    pub positions: Vec<Vec<Vec3>>,
+    /// Per frame, every joint's rotation from the set-up pose (world).
+    pub rotations: Vec<Vec<Quat>>,
+    /// The report.
+    pub report: Report,
+}
+
+impl Capture {
+    /// The clip of one animation (its frame range), or `None` without one of that name.
+    pub fn animation_clip(&self, name: &str) -> Option<Clip> {
+        let a = self.animations.iter().find(|a| a.name == name)?;
+        crate::edit::apply(&self.clip, &crate::edit::Edit::Trim { first: a.first, last: a.last }).ok()
+    }
+
+    /// The capture in the source's per-frame layout ([`frames`]).
+    pub fn frames(&self) -> frames::CaptureFrames {
+        let bones = self.report.joints.iter().map(|j| j.name.clone()).collect();
+        let records = self
+            .positions
+            .iter()
+            .zip(&self.rotations)
+            .enumerate()
+            .map(|(f, (p, r))| frames::FrameRecord::from_y_up(self.frame_names.get(f).cloned().unwrap_or_default(), p, r))
+            .collect();
+        frames::CaptureFrames { bones, frames: records }
+    }
+}
+
+/// Every frame's vertex positions (Y-up, mesh units).
+pub fn model_frames(md2: &Md2) -> Vec<Vec<Vec3>> {
+    let mut scratch = Vec::new();
+    (0..md2.frames.len())
+        .map(|f| {
+            md2.frame_positions(f, &mut scratch);
+            scratch.iter().map(|p| Vec3::from_array(*p)).collect()
+        })
+        .collect()
+}
+
+/// A capture in progress: the tracked vertices are chosen, frames are solved one
+/// [`Capturer::step`] at a time.
+pub struct Capturer {
+    frames: Vec<Vec<Vec3>>,
+    names: Vec<String>,
+    animations: Vec<Animation>,
+    rig: Rig,
+    sets: Vec<Result<track::JointSet, String>>,
+    spins: Vec<Option<track::SpinTrack>>,
+    children: Vec<Vec<usize>>,
+    /// Per joint without a vertex set: the vertices of the bones meeting there
+    /// (nearest first), which it follows as a best-fit rigid body.
+    followed: Vec<Vec<usize>>,
+    settings: Settings,
+    height: f32,
+    done: usize,
+    positions: Vec<Vec<Vec3>>,
+    rotations: Vec<Vec<Quat>>,
+    reports: Vec<JointReport>,
+    residual_sums: Vec<f64>,
+}
+
+impl Capturer {
+    /// Starts a capture of `md2` with `rig` (see the module documentation).
+    pub fn new(md2: &Md2, rig: &Rig, options: &Options) -> Result<Capturer, CaptureError> {
+        let frames = model_frames(md2);
+        let triangles: Vec<[usize; 3]> = md2.triangles.iter().map(|t| t.vertices.map(usize::from)).collect();
+        let names = md2.frames.iter().map(|f| f.name.clone()).collect();
+        Capturer::from_frames(frames, names, md2.animations.clone(), &triangles, rig, options)
+    }
+
+    /// Starts a capture of vertex frames (Y-up) with their names, animations and
+    /// triangles.
+    pub fn from_frames(frames: Vec<Vec<Vec3>>, names: Vec<String>, animations: Vec<Animation>, triangles: &[[usize; 3]], rig: &Rig, options: &Options) -> Result<Capturer, CaptureError> {
+        let vertices = frames.first().map_or(0, Vec::len);
+        rig.check_for(vertices, frames.len()).map_err(|e| CaptureError(e.to_string()))?;
+        let setup = &frames[rig.setup_frame];
+        let (lo, hi) = setup.iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        let height = (hi - lo).max_element().max(1e-6);
+        let sets = track::joint_sets(&frames, rig, options.rigid_tolerance * height, options.vertices_per_joint);
+        let children = rig.children();
+        let spins = (0..rig.joints.len())
+            .map(|j| match children.get(j).map(Vec::as_slice) {
+                Some([c]) => track::spin_triangle(setup, triangles, rig, j, *c),
+                _ => None,
+            })
+            .collect::<Vec<_>>();
+        let reports = rig
+            .joints
+            .iter()
+            .zip(&sets)
+            .zip(&spins)
+            .map(|((j, s), spin)| JointReport {
+                name: j.name.clone(),
+                tracked: s.clone(),
+                max_residual: 0.0,
+                mean_residual: 0.0,
+                failures: Vec::new(),
+                max_disagreement: 0.0,
+                disagreement_frame: 0,
+                spin: spin.is_some(),
+            })
+            .collect();
+        let settings = Settings { max_rounds: options.max_rounds, ..Settings::for_scale(f64::from(height)) };
+        let n = rig.joints.len();
+        let followed = (0..n)
+            .map(|j| {
+                if sets.get(j).is_some_and(Result::is_ok) {
+                    return Vec::new();
+                }
+                let at = Vec3::from_array(rig.joints[j].position);
+                let mine = |b: Option<usize>| b.is_some_and(|b| b == j || rig.joints.get(b).is_some_and(|x| x.parent == Some(j)));
+                let mut near: Vec<usize> = (0..vertices).filter(|&v| mine(rig.binding[v])).collect();
+                near.sort_by(|&a, &b| setup[a].distance(at).total_cmp(&setup[b].distance(at)));
+                near.truncate(64);
+                near
+            })
+            .collect();
+        Ok(Capturer {
+            names,
+            animations,
+            rig: rig.clone(),
+            sets,
+            spins,
+            children,
+            followed,
+            settings,
+            height,
+            done: 0,
+            positions: Vec::with_capacity(frames.len()),
+            rotations: Vec::with_capacity(frames.len()),
+            frames,
+            reports,
+            residual_sums: vec![0.0; n],
+        })
+    }
+
+    /// (frames solved, frames in all).
+    pub fn progress(&self) -> (usize, usize) {
+        (self.done, self.frames.len())
+    }
+
+    /// Solves the next frame; false when every frame is solved.
+    pub fn step(&mut self) -> bool {
+        let Some(vertices) = self.frames.get(self.done) else { return false };
+        let f = self.done;
+        let n = self.rig.joints.len();
+        let setup_at = |j: usize| self.rig.joints.get(j).map_or(Vec3::ZERO, |x| Vec3::from_array(x.position));
+        // 1. Tracked joints: where their spheres meet.
+        let mut solved: Vec<Option<Vec3>> = vec![None; n];
+        for j in 0..n {
+            let Some(Ok(set)) = self.sets.get(j) else { continue };
+            let spheres: Vec<Sphere> = set.vertices.iter().zip(&set.radii).map(|(&v, &r)| Sphere { center: vertices[v].as_dvec3(), radius: r }).collect();
+            // Start from the closed-form point (a frame can move far from the last
+            // one: a jump), else from where the joint was in the last frame.
+            let closed = spheres::least_squares(&spheres, f64::INFINITY).ok();
+            let previous = self.positions.last().and_then(|p| p.get(j)).copied().unwrap_or_else(|| setup_at(j)).as_dvec3();
+            let start = closed.map_or(previous, |c| c.point);
+            let report = &mut self.reports[j];
+            let point = match spheres::successive(&spheres, start, &self.settings) {
+                Ok(s) => {
+                    if let Some(c) = closed {
+                        let d = (c.point - s.point).length();
+                        if d > report.max_disagreement {
+                            report.max_disagreement = d;
+                            report.disagreement_frame = f;
+                        }
+                    }
+                    Some(s.point)
+                }
+                Err(e) => {
+                    report.failures.push((f, e.to_string()));
+                    closed.map(|c| c.point).filter(|p| p.is_finite())
+                }
+            };
+            if let Some(p) = point {
+                let r = spheres::residual(&spheres, p);
+                report.max_residual = report.max_residual.max(r);
+                self.residual_sums[j] += r;
+                solved[j] = Some(p.as_vec3());
+            }
+        }
+        // 2. In parent-before-child order: untracked joints follow their parent;
+        //    every joint's rotation from its children (and spin).
+        let mut pos = vec![Vec3::ZERO; n];
+        let mut rot = vec![Quat::IDENTITY; n];
+        for j in 0..n {
+            let parent = self.rig.joints[j].parent;
+            let follow = self.follow(j, vertices);
+            pos[j] = match (solved[j].or(follow), parent) {
+                (Some(p), _) => p,
+                (None, Some(p)) => pos[p] + rot[p] * (setup_at(j) - setup_at(p)),
+                (None, None) => setup_at(j) + centroid(vertices) - centroid(&self.frames[self.rig.setup_frame]),
+            };
+            for &c in self.children.get(j).into_iter().flatten() {
+                if let Some(p) = solved[c] {
+                    // Provisional: a child's solved place is needed for this joint's rotation.
+                    pos[c] = p;
+                }
+            }
+            let inherited = parent.map_or(Quat::IDENTITY, |p| rot[p]);
+            rot[j] = self.rotation(j, &pos, &solved, vertices, inherited);
+        }
+        self.positions.push(pos);
+        self.rotations.push(rot);
+        self.done += 1;
+        true
+    }
+
+    /// An untracked joint's place: where the best-fit rigid motion of the vertices
+    /// of its bones (from the set-up frame to this one) takes it; `None` with
+    /// fewer than three of them.
+    fn follow(&self, j: usize, vertices: &[Vec3]) -> Option<Vec3> {
+        let list = self.followed.get(j).filter(|l| l.len() >= 3)?;
+        let setup = self.frames.get(self.rig.setup_frame)?;
+        let (c0, c1) = (centroid(&list.iter().map(|&v| setup[v]).collect::<Vec<_>>()), centroid(&list.iter().map(|&v| vertices[v]).collect::<Vec<_>>()));
+        let pairs: Vec<(Vec3, Vec3)> = list.iter().map(|&v| (setup[v] - c0, vertices[v] - c1)).collect();
+        let q = fit_rotation(&pairs)?;
+        Some(c1 + q * (Vec3::from_array(self.rig.joints.get(j)?.position) - c0))
+    }
+
+    /// Joint `j`'s rotation from the set-up pose: from two bone directions when
+    /// two or more children are solved, from one direction and its spin, or the
+    /// shortest turn of the bone from `inherited` (the parent's rotation).
+    fn rotation(&self, j: usize, pos: &[Vec3], solved: &[Option<Vec3>], vertices: &[Vec3], inherited: Quat) -> Quat {
+        let setup_at = |k: usize| self.rig.joints.get(k).map_or(Vec3::ZERO, |x| Vec3::from_array(x.position));
+        let mut kids: Vec<usize> = self.children.get(j).into_iter().flatten().copied().filter(|&c| solved[c].is_some() && setup_at(c) != setup_at(j)).collect();
+        kids.sort_by(|&a, &b| setup_at(b).distance(setup_at(j)).total_cmp(&setup_at(a).distance(setup_at(j))));
+        let Some(&first) = kids.first() else { return inherited };
+        let (a0, a1) = (setup_at(first) - setup_at(j), pos[first] - pos[j]);
+        // Two or more bones not all in one line: the rotation that best turns their
+        // set-up directions into today's.
+        let spread = kids[1..].iter().any(|&k| (setup_at(k) - setup_at(j)).normalize_or_zero().cross(a0.normalize_or_zero()).length() > 0.2);
+        if spread {
+            let pairs: Vec<(Vec3, Vec3)> = kids.iter().map(|&k| (setup_at(k) - setup_at(j), pos[k] - pos[j])).collect();
+            return fit_rotation(&pairs).unwrap_or(inherited);
+        }
+        if let (Some(track), Some(spin)) = (&self.spins[j], self.rig.joints[j].spin) {
+            if let Some(now) = track.spin(vertices, pos[j], pos[first]) {
+                return from_frames(a0, Vec3::from_array(spin), a1, now).unwrap_or(inherited);
+            }
+        }
+        Quat::from_rotation_arc((inherited * a0).normalize_or_zero(), a1.normalize_or_zero()) * inherited
+    }
+
+    /// Ends the capture: the clip, the animations and the report.
+    pub fn finish(mut self) -> Result<Capture, CaptureError> {
+        while self.step() {}
+        let frames = self.positions.len().max(1) as f64;
+        for (r, sum) in self.reports.iter_mut().zip(&self.residual_sums) {
+            r.mean_residual = sum / frames;
+        }
+        let clip = self.clip()?;
+        Ok(Capture {
+            clip,
+            animations: self.animations,
+            frame_names: self.names,
+            positions: self.positions,
+            rotations: self.rotations,
+            report: Report { joints: self.reports, height: self.height },
+        })
+    }
+
+    /// The skeletal clip: offsets from the set-up pose, the root with position
+    /// channels, leaves as End Sites.
+    fn clip(&self) -> Result<Clip, CaptureError> {
+        let rot_channels = vec![Channel::Zrotation, Channel::Xrotation, Channel::Yrotation];
+        let joints: Vec<Joint> = self
+            .rig
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(j, joint)| {
+                let at = Vec3::from_array(joint.position);
+                let offset = joint.parent.and_then(|p| self.rig.joints.get(p)).map_or(at, |p| at - Vec3::from_array(p.position));
+                if joint.parent.is_none() {
+                    let mut channels = vec![Channel::Xposition, Channel::Yposition, Channel::Zposition];
+                    channels.extend(rot_channels.iter().copied());
+                    Joint::new(joint.name.clone(), None, offset, channels)
+                } else if self.children.get(j).is_none_or(Vec::is_empty) {
+                    Joint::end_site(joint.name.clone(), joint.parent, offset)
+                } else {
+                    Joint::new(joint.name.clone(), joint.parent, offset, rot_channels.clone())
+                }
+            })
+            .collect();
+        let skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| CaptureError(e.to_string()))?;
+        let poses: Vec<LocalPose> = self
+            .positions
+            .iter()
+            .zip(&self.rotations)
+            .map(|(pos, rot)| {
+                let mut local = LocalPose::default();
+                for (j, joint) in skeleton.joints().iter().enumerate() {
+                    let parent = joint.parent.map_or(Quat::IDENTITY, |p| rot[p]);
+                    local.rotation.push((parent.inverse() * rot[j]).normalize());
+                    local.translation.push(if joint.parent.is_none() { pos[j] } else { joint.offset });
+                    local.scale.push(Vec3::ONE);
+                }
+                local
+            })
+            .collect();
+        crate::edit::clip_from_poses(skeleton, crate::morph::FRAME_TIME, &poses).map_err(|e| CaptureError(e.to_string()))
+    }
+}
+
+/// The rotation taking the frame of (`a0`, across `b0`) to that of (`a1`, `b1`).
+fn from_frames(a0: Vec3, b0: Vec3, a1: Vec3, b1: Vec3) -> Option<Quat> {
+    let basis = |a: Vec3, b: Vec3| {
+        let x = a.normalize_or_zero();
+        let y = (b - x * b.dot(x)).normalize_or_zero();
+        (x != Vec3::ZERO && y != Vec3::ZERO).then(|| Mat3::from_cols(x, y, x.cross(y)))
+    };
+    let (m0, m1) = (basis(a0, b0)?, basis(a1, b1)?);
+    let q = Quat::from_mat3(&(m1 * m0.transpose())).normalize();
+    q.is_finite().then_some(q)
+}
+
+/// The rotation `q` minimising `Σ |q · aᵢ − bᵢ|²` over the pairs (`aᵢ`, `bᵢ`)
+/// (Horn's quaternion method: the eigenvector of the largest eigenvalue of a
+/// 4 × 4 symmetric matrix, found by power iteration on it shifted to be positive).
+pub fn fit_rotation(pairs: &[(Vec3, Vec3)]) -> Option<Quat> {
+    let mut s = [[0.0f64; 3]; 3];
+    for (a, b) in pairs {
+        let (a, b) = (a.as_dvec3(), b.as_dvec3());
+        for (r, ar) in [a.x, a.y, a.z].into_iter().enumerate() {
+            for (c, bc) in [b.x, b.y, b.z].into_iter().enumerate() {
+                s[r][c] += ar * bc;
+            }
+        }
+    }
+    let [[xx, xy, xz], [yx, yy, yz], [zx, zy, zz]] = s;
+    let n = [
+        [xx + yy + zz, yz - zy, zx - xz, xy - yx],
+        [yz - zy, xx - yy - zz, xy + yx, zx + xz],
+        [zx - xz, xy + yx, -xx + yy - zz, yz + zy],
+        [xy - yx, zx + xz, yz + zy, -xx - yy + zz],
+    ];
+    let shift: f64 = n.iter().map(|row| row.iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max);
+    if !(shift > 0.0) || !shift.is_finite() {
+        return None;
+    }
+    let mut v = [1.0f64, 0.1, 0.1, 0.1];
+    for _ in 0..200 {
+        let mut w = [0.0f64; 4];
+        for r in 0..4 {
+            w[r] = v[r] * shift + (0..4).map(|c| n[r][c] * v[c]).sum::<f64>();
+        }
+        let len = w.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(len > 0.0) {
+            return None;
+        }
+        v = w.map(|x| x / len);
+    }
+    let q = Quat::from_xyzw(v[1] as f32, v[2] as f32, v[3] as f32, v[0] as f32).normalize();
+    q.is_finite().then_some(q)
+}
+
+fn centroid(points: &[Vec3]) -> Vec3 {
+    if points.is_empty() {
+        return Vec3::ZERO;
+    }
+    points.iter().copied().sum::<Vec3>() / points.len() as f32
+}
+
+/// Captures every frame of `md2` with `rig` (see the module documentation).
+pub fn capture(md2: &Md2, rig: &Rig, options: &Options) -> Result<Capture, CaptureError> {
+    Capturer::new(md2, rig, options)?.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fit_rotation_recovers_a_turn() {
+        let q = Quat::from_euler(glam::EulerRot::ZXY, 0.7, -0.3, 1.9);
+        let points = [Vec3::X, Vec3::new(0.0, 2.0, 0.5), Vec3::new(-1.0, 0.3, 1.0), Vec3::new(0.2, -0.4, -2.0)];
+        let pairs: Vec<(Vec3, Vec3)> = points.iter().map(|p| (*p, q * *p)).collect();
+        let got = fit_rotation(&pairs).unwrap();
+        assert!(got.dot(q).abs() > 0.99999, "{got} vs {q}");
+    }
+}
