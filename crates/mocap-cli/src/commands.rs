@@ -345,6 +345,88 @@ pub fn layer(base: &Path, layer: &Path, request: &LayerRequest, output: &Path) -
     Ok(ExitCode::SUCCESS)
 }
 
+/// What `mocap capture` is asked.
+pub struct CaptureRequest<'a> {
+    /// The MD2 model.
+    pub model: &'a Path,
+    /// A rig file, else the automatic fit.
+    pub rig: Option<&'a Path>,
+    /// A motion file whose skeleton is fitted (without a rig).
+    pub skeleton: Option<&'a Path>,
+    /// Only this animation.
+    pub animation: Option<&'a str>,
+    /// One BVH per animation too.
+    pub split: bool,
+    /// Vertices per joint.
+    pub vertices: usize,
+    /// Where to save the rig used.
+    pub save_rig: Option<&'a Path>,
+    /// Where to write the per-frame layout.
+    pub frames_out: Option<&'a Path>,
+    /// The BVH to write.
+    pub output: &'a Path,
+}
+
+/// `mocap capture`: skeletal motion from an MD2 model's vertex animation.
+pub fn capture(request: &CaptureRequest) -> Result<ExitCode, String> {
+    let output = request.output;
+    if output.extension().and_then(|e| e.to_str()).is_none_or(|e| !e.eq_ignore_ascii_case("bvh")) {
+        return Err(format!("{}: capture writes .bvh files", output.display()));
+    }
+    let model_path = request.model;
+    let bytes = std::fs::read(model_path).map_err(|e| format!("{}: cannot read: {e}", model_path.display()))?;
+    let md2 = mocap::md2::parse(&bytes).map_err(|e| format!("{}:{}:{}: {}", model_path.display(), e.line, e.column, e.message))?;
+    let frames = mocap::capture::model_frames(&md2);
+    let rig = match (request.rig, request.skeleton) {
+        (Some(path), _) => {
+            let text = std::fs::read_to_string(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+            mocap::capture::Rig::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?
+        }
+        (None, Some(path)) => {
+            let clip = read_clip(&[path.to_path_buf()])?;
+            let mut model = Vec::new();
+            mocap::local_to_model(clip.skeleton(), &mocap::LocalPose::rest(clip.skeleton()), &mut model);
+            mocap::capture::Rig::fit(&frames[0], 0, Some((clip.skeleton(), &model)))
+        }
+        (None, None) => mocap::capture::Rig::fit(&frames[0], 0, None),
+    };
+    if let Some(path) = request.save_rig {
+        std::fs::write(path, rig.to_json()).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    }
+    let options = mocap::capture::Options { vertices_per_joint: request.vertices.max(4), ..mocap::capture::Options::default() };
+    let started = std::time::Instant::now();
+    let cap = mocap::capture::capture(&md2, &rig, &options).map_err(|e| format!("{}: {e}", model_path.display()))?;
+    print!("{}", cap.report.text());
+    println!(
+        "{}: {} frames, {} joints ({} tracked) in {:.0} ms; animations: {}",
+        model_path.display(),
+        md2.frames.len(),
+        cap.report.joints.len(),
+        cap.report.joints.iter().filter(|j| j.tracked.is_ok()).count(),
+        started.elapsed().as_secs_f64() * 1000.0,
+        cap.animations.iter().map(|a| format!("{} {}–{}", a.name, a.first, a.last)).collect::<Vec<_>>().join(", ")
+    );
+    let clip = match request.animation {
+        Some(name) => cap.animation_clip(name).ok_or_else(|| {
+            format!("--animation {name}: {} has {}", model_path.display(), cap.animations.iter().map(|a| a.name.as_str()).collect::<Vec<_>>().join(", "))
+        })?,
+        None => cap.clip.clone(),
+    };
+    std::fs::write(output, mocap::bvh::write(&clip)).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+    if request.split {
+        let stem = output.file_stem().and_then(|s| s.to_str()).unwrap_or("capture");
+        for a in &cap.animations {
+            let Some(part) = cap.animation_clip(&a.name) else { continue };
+            let path = output.with_file_name(format!("{stem}-{}.bvh", a.name));
+            std::fs::write(&path, mocap::bvh::write(&part)).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        }
+    }
+    if let Some(path) = request.frames_out {
+        std::fs::write(path, mocap::capture::frames::write(&cap.frames())).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 /// What `mocap ik` is asked.
 pub struct IkRequest<'a> {
     /// The effector's name.

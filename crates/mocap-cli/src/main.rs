@@ -142,6 +142,40 @@ enum Command {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// Captures skeletal motion from a Quake 2 MD2 model's vertex animation:
+    /// joints where four tracked vertices' spheres meet, bone spins from tracked
+    /// triangles; prints each joint's residuals; writes BVH.
+    Capture {
+        /// The model (.md2).
+        model: PathBuf,
+        /// The rig (JSON: skeleton in the set-up frame, spins, binding); without
+        /// it a humanoid (or --skeleton) is fitted and bound automatically.
+        #[arg(long)]
+        rig: Option<PathBuf>,
+        /// Fit this motion file's skeleton (BVH, BVA, or ASF) instead of the
+        /// built-in humanoid (without --rig).
+        #[arg(long)]
+        skeleton: Option<PathBuf>,
+        /// Write only this animation's frames (the model's frame names: run, stand…).
+        #[arg(long)]
+        animation: Option<String>,
+        /// Also write one BVH per animation beside the output (OUT-run.bvh, …).
+        #[arg(long)]
+        split: bool,
+        /// Vertices tracked per joint (four is the source's method; more average out noise).
+        #[arg(long, default_value_t = 4)]
+        vertices: usize,
+        /// Save the rig used (JSON), to adjust it and capture again with --rig.
+        #[arg(long)]
+        save_rig: Option<PathBuf>,
+        /// Also write the capture in the source's per-frame layout (frame name,
+        /// bone translations, bone rotations in radians, doubles).
+        #[arg(long)]
+        frames_out: Option<PathBuf>,
+        /// Output file (.bvh).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// Converts a motion to BVH (every joint position kept) or BVA (each joint's world transform a segment).
     Convert {
         /// Input file(s): one motion file, or an Acclaim skeleton and motion (`SKEL.asf TAKE.amc`).
@@ -267,6 +301,17 @@ fn main() -> ExitCode {
             commands::ik(&files, &commands::IkRequest { joint: &joint, target: &target, frame, bones, solver: solver.as_deref() })
         }
         Command::Validate { paths } => commands::validate(&paths),
+        Command::Capture { model, rig, skeleton, animation, split, vertices, save_rig, frames_out, output } => commands::capture(&commands::CaptureRequest {
+            model: &model,
+            rig: rig.as_deref(),
+            skeleton: skeleton.as_deref(),
+            animation: animation.as_deref(),
+            split,
+            vertices,
+            save_rig: save_rig.as_deref(),
+            frames_out: frames_out.as_deref(),
+            output: &output,
+        }),
         Command::Render { mut files, skin, animation, frame, time, frames, sheet, columns, out, size, mode, camera } => {
             files.extend(skin);
             let shot = match (frame, time, frames, sheet) {

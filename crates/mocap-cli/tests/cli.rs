@@ -359,3 +359,39 @@ fn layer_puts_a_second_motion_on_a_subtree() {
     let r = mocap(&["layer", walk, "--subtree", "RightShoulder", wave, "--map", "nonsense", "-o", out]);
     assert!(!r.status.success() && stderr(&r).contains("expected BASE=LAYER"));
 }
+
+#[test]
+fn capture_turns_an_md2_into_bvh_with_a_report_a_rig_and_the_frame_layout() {
+    let Some(corpus) = corpus() else { return };
+    let dir = std::env::temp_dir().join(format!("mocap-capture-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = corpus.join("md2/waste/tris.md2");
+    let (out, rig, frames) = (dir.join("waste.bvh"), dir.join("rig.json"), dir.join("waste.cap"));
+    let o = mocap(&["capture", model.to_str().unwrap(), "--split", "--save-rig", rig.to_str().unwrap(), "--frames-out", frames.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report = stdout(&o);
+    assert!(report.contains("max resid") && report.contains("198 frames") && report.contains("run 40–45"), "{report}");
+    let all = mocap(&["info", out.to_str().unwrap(), "--json"]);
+    let v: Value = serde_json::from_str(&stdout(&all)).unwrap();
+    assert_eq!(v["frames"].as_u64(), Some(198));
+    assert_eq!(v["units"], "m", "written in metres, as the viewer reads the model");
+    let run = mocap(&["info", dir.join("waste-run.bvh").to_str().unwrap(), "--json"]);
+    let v: Value = serde_json::from_str(&stdout(&run)).unwrap();
+    assert_eq!(v["frames"].as_u64(), Some(6), "--split writes one BVH per animation");
+    let bytes = std::fs::read(&frames).unwrap();
+    assert_eq!(&bytes[..8], b"MOCAPCF1");
+    // The saved rig captures the same again, and one animation alone.
+    let again = dir.join("run.bvh");
+    let o = mocap(&["capture", model.to_str().unwrap(), "--rig", rig.to_str().unwrap(), "--animation", "run", "-o", again.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&again).unwrap(), std::fs::read(dir.join("waste-run.bvh")).unwrap());
+    // Errors say what is wrong.
+    let o = mocap(&["capture", model.to_str().unwrap(), "--animation", "fly", "-o", again.to_str().unwrap()]);
+    assert!(!o.status.success() && stderr(&o).contains("--animation fly: ") && stderr(&o).contains("stand"), "{}", stderr(&o));
+    std::fs::write(dir.join("bad.json"), "{\"format\": \"x\"").unwrap();
+    let o = mocap(&["capture", model.to_str().unwrap(), "--rig", dir.join("bad.json").to_str().unwrap(), "-o", again.to_str().unwrap()]);
+    assert!(!o.status.success() && stderr(&o).contains("bad.json: rig: line 1"), "{}", stderr(&o));
+    let o = mocap(&["capture", corpus.join("md2/assimp_malformed/malformed_zero_numvertices.md2").to_str().unwrap(), "-o", again.to_str().unwrap()]);
+    assert!(!o.status.success() && stderr(&o).contains("num_xyz is 0"), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -61,7 +61,8 @@ fn a_baked_walk_is_captured_back_close_to_the_truth() {
     let (mut positions, mut directions) = (Vec::new(), Vec::new());
     for f in 0..clip.frame_count() {
         let truth = clip.world_positions(f);
-        let got = cap.clip.world_positions(f);
+        // The clip is in metres; the model's units (here the walk's centimetres) are read as inches.
+        let got: Vec<Vec3> = cap.clip.world_positions(f).iter().map(|p| *p / cap.meters_per_unit).collect();
         assert_eq!(truth.len(), got.len());
         for (j, joint) in clip.skeleton().joints().iter().enumerate() {
             positions.push(truth[j].distance(got[j]) / height);

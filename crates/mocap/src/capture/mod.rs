@@ -129,7 +129,8 @@ impl Report {
 #[derive(Clone, Debug)]
 pub struct Capture {
     /// The skeletal clip (rig joints; rotations relative to the parent, root
-    /// translation), one frame per model frame.
+    /// translation), one frame per model frame, in metres (an MD2's Quake units
+    /// read as inches, as the viewer reads the model, so the two stand together).
     pub clip: Clip,
     /// The model's animations, as frame ranges of the clip.
     pub animations: Vec<Animation>,
@@ -141,6 +142,8 @@ pub struct Capture {
     pub rotations: Vec<Vec<Quat>>,
     /// The report.
     pub report: Report,
+    /// Metres per mesh unit (the clip is in metres, positions in mesh units).
+    pub meters_per_unit: f32,
 }
 
 impl Capture {
@@ -190,6 +193,8 @@ pub struct Capturer {
     followed: Vec<Vec<usize>>,
     settings: Settings,
     height: f32,
+    /// Metres per mesh unit: the clip is written in metres.
+    meters_per_unit: f32,
     done: usize,
     positions: Vec<Vec<Vec3>>,
     rotations: Vec<Vec<Quat>>,
@@ -203,11 +208,14 @@ impl Capturer {
         let frames = model_frames(md2);
         let triangles: Vec<[usize; 3]> = md2.triangles.iter().map(|t| t.vertices.map(usize::from)).collect();
         let names = md2.frames.iter().map(|f| f.name.clone()).collect();
-        Capturer::from_frames(frames, names, md2.animations.clone(), &triangles, rig, options)
+        let mut capturer = Capturer::from_frames(frames, names, md2.animations.clone(), &triangles, rig, options)?;
+        // Quake units, read as inches by the rule every MD2 follows (see `MorphMesh::units`).
+        capturer.meters_per_unit = crate::Units::guess(crate::morph::QUAKE_PLAYER_HEIGHT).meters_per_unit();
+        Ok(capturer)
     }
 
     /// Starts a capture of vertex frames (Y-up) with their names, animations and
-    /// triangles.
+    /// triangles; the clip keeps the frames' unit.
     pub fn from_frames(frames: Vec<Vec<Vec3>>, names: Vec<String>, animations: Vec<Animation>, triangles: &[[usize; 3]], rig: &Rig, options: &Options) -> Result<Capturer, CaptureError> {
         let vertices = frames.first().map_or(0, Vec::len);
         rig.check_for(vertices, frames.len()).map_err(|e| CaptureError(e.to_string()))?;
@@ -263,6 +271,7 @@ impl Capturer {
             followed,
             settings,
             height,
+            meters_per_unit: 1.0,
             done: 0,
             positions: Vec::with_capacity(frames.len()),
             rotations: Vec::with_capacity(frames.len()),
@@ -395,6 +404,7 @@ impl Capturer {
             positions: self.positions,
             rotations: self.rotations,
             report: Report { joints: self.reports, height: self.height },
+            meters_per_unit: self.meters_per_unit,
         })
     }
 
@@ -409,7 +419,7 @@ impl Capturer {
             .enumerate()
             .map(|(j, joint)| {
                 let at = Vec3::from_array(joint.position);
-                let offset = joint.parent.and_then(|p| self.rig.joints.get(p)).map_or(at, |p| at - Vec3::from_array(p.position));
+                let offset = joint.parent.and_then(|p| self.rig.joints.get(p)).map_or(at, |p| at - Vec3::from_array(p.position)) * self.meters_per_unit;
                 if joint.parent.is_none() {
                     let mut channels = vec![Channel::Xposition, Channel::Yposition, Channel::Zposition];
                     channels.extend(rot_channels.iter().copied());
@@ -431,7 +441,7 @@ impl Capturer {
                 for (j, joint) in skeleton.joints().iter().enumerate() {
                     let parent = joint.parent.map_or(Quat::IDENTITY, |p| rot[p]);
                     local.rotation.push((parent.inverse() * rot[j]).normalize());
-                    local.translation.push(if joint.parent.is_none() { pos[j] } else { joint.offset });
+                    local.translation.push(if joint.parent.is_none() { pos[j] * self.meters_per_unit } else { joint.offset });
                     local.scale.push(Vec3::ONE);
                 }
                 local

@@ -115,6 +115,53 @@ fn median(mut values: Vec<f32>) -> f32 {
     values.get(values.len() / 2).copied().unwrap_or(0.0)
 }
 
+/// Moves bones onto the centre lines of the mesh parts nearest to them, `rounds`
+/// times: the vertices are bound to their nearest bone; each bone with six or
+/// more fits a line to them (their centroid and main direction); each joint moves
+/// half-way to the mean of its places projected on the lines of its bones. So a
+/// template's arm hanging down beside a raised arm of the mesh is drawn into it.
+fn center_bones(joints: &mut [RigJoint], positions: &[Vec3], rounds: usize) {
+    for _ in 0..rounds {
+        let bones: Vec<(usize, usize)> = joints.iter().enumerate().filter_map(|(j, x)| x.parent.map(|p| (p, j))).collect();
+        let at = |j: &RigJoint| Vec3::from_array(j.position);
+        let mut members: Vec<Vec<Vec3>> = vec![Vec::new(); bones.len()];
+        for v in positions {
+            let nearest = bones.iter().enumerate().min_by(|(_, a), (_, b)| {
+                segment_distance(*v, at(&joints[a.0]), at(&joints[a.1])).total_cmp(&segment_distance(*v, at(&joints[b.0]), at(&joints[b.1])))
+            });
+            if let Some((k, _)) = nearest {
+                members[k].push(*v);
+            }
+        }
+        let mut sums = vec![(Vec3::ZERO, 0.0f32); joints.len()];
+        for (k, &(p, j)) in bones.iter().enumerate() {
+            let pts = &members[k];
+            if pts.len() < 6 {
+                continue;
+            }
+            let centre = pts.iter().copied().sum::<Vec3>() / pts.len() as f32;
+            // Main direction by power iteration on the scatter, from the bone's own.
+            let mut dir = (at(&joints[j]) - at(&joints[p])).normalize_or(Vec3::Y);
+            for _ in 0..8 {
+                let next: Vec3 = pts.iter().map(|x| (*x - centre) * (*x - centre).dot(dir)).sum();
+                dir = next.normalize_or(dir);
+            }
+            for end in [p, j] {
+                let x = at(&joints[end]);
+                let on_line = centre + dir * (x - centre).dot(dir);
+                sums[end].0 += on_line;
+                sums[end].1 += 1.0;
+            }
+        }
+        for (j, (sum, n)) in sums.iter().enumerate() {
+            if *n > 0.0 {
+                let x = at(&joints[j]);
+                joints[j].position = (x + (*sum / *n - x) * 0.5).to_array();
+            }
+        }
+    }
+}
+
 /// Distance from `p` to the segment `a`–`b`.
 pub fn segment_distance(p: Vec3, a: Vec3, b: Vec3) -> f32 {
     let ab = b - a;
@@ -196,6 +243,7 @@ impl Rig {
                     }
                 }
             }
+            center_bones(&mut joints, positions, 6);
         }
         // Inside the mesh's bounds, whatever the template said.
         if lo.is_finite() && hi.is_finite() {

@@ -196,7 +196,7 @@ mod tests {
         for p in [DVec3::new(0.4, 0.5, 0.3), DVec3::new(1.5, -0.7, 0.8), DVec3::new(-0.3, 2.0, -1.0)] {
             let s = spheres_around(p, &CENTERS);
             let a = successive(&s, p + DVec3::new(0.05, -0.05, 0.02), &settings).unwrap();
-            assert!((a.point - p).length() < 1e-6, "{p} → {}", a.point);
+            assert!((a.point - p).length() < 1e-5, "{p} → {}", a.point);
             let b = least_squares(&s, 1e-6).unwrap();
             assert!((b.point - p).length() < 1e-9, "{p} → {}", b.point);
         }
@@ -212,7 +212,7 @@ mod tests {
         let mirror = p - 2.0 * n * (p - CENTERS[0]).dot(n);
         assert!(residual(&s[..3], mirror) < 1e-9 && residual(&s, mirror) > 0.1);
         let a = successive(&s, mirror, &Settings::for_scale(1.0)).unwrap();
-        assert!((a.point - p).length() < 1e-6, "{} not {p}", a.point);
+        assert!((a.point - p).length() < 1e-5, "{} not {p}", a.point);
     }
 
     #[test]
