@@ -178,13 +178,15 @@ pub fn model_frames(md2: &Md2) -> Vec<Vec<Vec3>> {
         .collect()
 }
 
-/// A capture in progress: the tracked vertices are chosen, frames are solved one
-/// [`Capturer::step`] at a time.
+/// A capture in progress, one [`Capturer::step`] at a time: first each joint's
+/// tracked vertices are chosen, then each frame is solved.
 pub struct Capturer {
     frames: Vec<Vec<Vec3>>,
     names: Vec<String>,
     animations: Vec<Animation>,
     rig: Rig,
+    chooser: track::Chooser,
+    /// Vertex sets chosen so far (one [`Capturer::step`] per joint first).
     sets: Vec<Result<track::JointSet, String>>,
     spins: Vec<Option<track::SpinTrack>>,
     children: Vec<Vec<usize>>,
@@ -222,7 +224,6 @@ impl Capturer {
         let setup = &frames[rig.setup_frame];
         let (lo, hi) = setup.iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
         let height = (hi - lo).max_element().max(1e-6);
-        let sets = track::joint_sets(&frames, rig, options.rigid_tolerance * height, options.vertices_per_joint);
         let children = rig.children();
         let spins = (0..rig.joints.len())
             .map(|j| match children.get(j).map(Vec::as_slice) {
@@ -230,11 +231,39 @@ impl Capturer {
                 _ => None,
             })
             .collect::<Vec<_>>();
-        let reports = rig
+        let settings = Settings { max_rounds: options.max_rounds, ..Settings::for_scale(f64::from(height)) };
+        let n = rig.joints.len();
+        Ok(Capturer {
+            names,
+            animations,
+            rig: rig.clone(),
+            chooser: track::Chooser::new(rig, options.rigid_tolerance * height, options.vertices_per_joint),
+            sets: Vec::with_capacity(n),
+            spins,
+            children,
+            followed: Vec::new(),
+            settings,
+            height,
+            meters_per_unit: 1.0,
+            done: 0,
+            positions: Vec::with_capacity(frames.len()),
+            rotations: Vec::with_capacity(frames.len()),
+            frames,
+            reports: Vec::new(),
+            residual_sums: vec![0.0; n],
+        })
+    }
+
+    /// After the last joint's vertex set: the report rows and, for joints without
+    /// a set, the vertices they follow.
+    fn sets_done(&mut self) {
+        let rig = &self.rig;
+        let setup = &self.frames[rig.setup_frame];
+        self.reports = rig
             .joints
             .iter()
-            .zip(&sets)
-            .zip(&spins)
+            .zip(&self.sets)
+            .zip(&self.spins)
             .map(|((j, s), spin)| JointReport {
                 name: j.name.clone(),
                 tracked: s.clone(),
@@ -246,48 +275,38 @@ impl Capturer {
                 spin: spin.is_some(),
             })
             .collect();
-        let settings = Settings { max_rounds: options.max_rounds, ..Settings::for_scale(f64::from(height)) };
-        let n = rig.joints.len();
-        let followed = (0..n)
+        self.followed = (0..rig.joints.len())
             .map(|j| {
-                if sets.get(j).is_some_and(Result::is_ok) {
+                if self.sets.get(j).is_some_and(Result::is_ok) {
                     return Vec::new();
                 }
                 let at = Vec3::from_array(rig.joints[j].position);
                 let mine = |b: Option<usize>| b.is_some_and(|b| b == j || rig.joints.get(b).is_some_and(|x| x.parent == Some(j)));
-                let mut near: Vec<usize> = (0..vertices).filter(|&v| mine(rig.binding[v])).collect();
+                let mut near: Vec<usize> = (0..setup.len()).filter(|&v| mine(rig.binding[v])).collect();
                 near.sort_by(|&a, &b| setup[a].distance(at).total_cmp(&setup[b].distance(at)));
                 near.truncate(64);
                 near
             })
             .collect();
-        Ok(Capturer {
-            names,
-            animations,
-            rig: rig.clone(),
-            sets,
-            spins,
-            children,
-            followed,
-            settings,
-            height,
-            meters_per_unit: 1.0,
-            done: 0,
-            positions: Vec::with_capacity(frames.len()),
-            rotations: Vec::with_capacity(frames.len()),
-            frames,
-            reports,
-            residual_sums: vec![0.0; n],
-        })
     }
 
-    /// (frames solved, frames in all).
+    /// (steps done, steps in all): one step per joint (choosing its vertices),
+    /// then one per frame.
     pub fn progress(&self) -> (usize, usize) {
-        (self.done, self.frames.len())
+        (self.sets.len() + self.done, self.rig.joints.len() + self.frames.len())
     }
 
-    /// Solves the next frame; false when every frame is solved.
+    /// Chooses the next joint's vertices, or solves the next frame; false when
+    /// everything is done.
     pub fn step(&mut self) -> bool {
+        if self.sets.len() < self.rig.joints.len() {
+            let set = self.chooser.joint(&self.frames, &self.rig, self.sets.len());
+            self.sets.push(set);
+            if self.sets.len() == self.rig.joints.len() {
+                self.sets_done();
+            }
+            return true;
+        }
         let Some(vertices) = self.frames.get(self.done) else { return false };
         let f = self.done;
         let n = self.rig.joints.len();

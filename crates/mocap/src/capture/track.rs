@@ -67,44 +67,61 @@ fn drift(frames: &[Vec<Vec3>], a: usize, b: usize) -> f32 {
     }
 }
 
-/// Picks four vertices for every joint (see the module documentation): `frames`
-/// holds every frame's vertex positions, `tolerance` the largest accepted drift of
-/// a distance (mesh units). Per joint: its set, or why it has none.
-pub fn joint_sets(frames: &[Vec<Vec3>], rig: &Rig, tolerance: f32, count: usize) -> Vec<Result<JointSet, String>> {
-    let setup = frames.get(rig.setup_frame).map(Vec::as_slice).unwrap_or(&[]);
-    let bones = bones_at(rig);
-    let mut bound: Vec<Vec<usize>> = vec![Vec::new(); rig.joints.len()];
-    for (v, b) in rig.binding.iter().enumerate() {
-        if let Some(list) = b.and_then(|b| bound.get_mut(b)) {
-            list.push(v);
-        }
-    }
-    rig.joints
-        .iter()
-        .enumerate()
-        .map(|(j, joint)| {
-            let at = Vec3::from_array(joint.position);
-            let mut best: Option<JointSet> = None;
-            let mut why = format!("{}: no bone meets here", joint.name);
-            for &bone in bones.get(j).into_iter().flatten() {
-                let mut candidates: Vec<usize> = bound.get(bone).cloned().unwrap_or_default();
-                candidates.retain(|&v| setup.get(v).is_some());
-                candidates.sort_by(|&a, &b| setup[a].distance(at).total_cmp(&setup[b].distance(at)));
-                candidates.truncate(CANDIDATES);
-                match pick_four(frames, setup, at, &candidates, tolerance, count.max(4)) {
-                    Ok((vertices, d)) => {
-                        let radii = vertices.iter().map(|&v| f64::from(setup[v].distance(at))).collect();
-                        let set = JointSet { bone, vertices, radii, drift: d };
-                        if best.as_ref().is_none_or(|b| set.drift < b.drift) {
-                            best = Some(set);
-                        }
-                    }
-                    Err(reason) => why = format!("{}: bone {}: {reason}", joint.name, rig.joints.get(bone).map_or("?", |b| b.name.as_str())),
-                }
+/// What choosing a joint's vertices needs besides the frames and the rig: the
+/// bones meeting at each joint and the vertices bound to each bone.
+#[derive(Clone, Debug)]
+pub struct Chooser {
+    bones: Vec<Vec<usize>>,
+    bound: Vec<Vec<usize>>,
+    tolerance: f32,
+    count: usize,
+}
+
+impl Chooser {
+    /// A chooser for `rig`: `tolerance` is the largest accepted drift of a
+    /// distance (mesh units), `count` the vertices wanted per joint (at least 4).
+    pub fn new(rig: &Rig, tolerance: f32, count: usize) -> Chooser {
+        let mut bound: Vec<Vec<usize>> = vec![Vec::new(); rig.joints.len()];
+        for (v, b) in rig.binding.iter().enumerate() {
+            if let Some(list) = b.and_then(|b| bound.get_mut(b)) {
+                list.push(v);
             }
-            best.ok_or(why)
-        })
-        .collect()
+        }
+        Chooser { bones: bones_at(rig), bound, tolerance, count: count.max(4) }
+    }
+
+    /// Joint `j`'s set (see the module documentation), or why it has none.
+    pub fn joint(&self, frames: &[Vec<Vec3>], rig: &Rig, j: usize) -> Result<JointSet, String> {
+        let setup = frames.get(rig.setup_frame).map(Vec::as_slice).unwrap_or(&[]);
+        let joint = rig.joints.get(j).ok_or_else(|| format!("no joint {j}"))?;
+        let at = Vec3::from_array(joint.position);
+        let mut best: Option<JointSet> = None;
+        let mut why = format!("{}: no bone meets here", joint.name);
+        for &bone in self.bones.get(j).into_iter().flatten() {
+            let mut candidates: Vec<usize> = self.bound.get(bone).cloned().unwrap_or_default();
+            candidates.retain(|&v| setup.get(v).is_some());
+            candidates.sort_by(|&a, &b| setup[a].distance(at).total_cmp(&setup[b].distance(at)));
+            candidates.truncate(CANDIDATES);
+            match pick_four(frames, setup, at, &candidates, self.tolerance, self.count) {
+                Ok((vertices, d)) => {
+                    let radii = vertices.iter().map(|&v| f64::from(setup[v].distance(at))).collect();
+                    let set = JointSet { bone, vertices, radii, drift: d };
+                    if best.as_ref().is_none_or(|b| set.drift < b.drift) {
+                        best = Some(set);
+                    }
+                }
+                Err(reason) => why = format!("{}: bone {}: {reason}", joint.name, rig.joints.get(bone).map_or("?", |b| b.name.as_str())),
+            }
+        }
+        best.ok_or(why)
+    }
+}
+
+/// Picks the vertices of every joint (see the module documentation and
+/// [`Chooser`]): `frames` holds every frame's vertex positions.
+pub fn joint_sets(frames: &[Vec<Vec3>], rig: &Rig, tolerance: f32, count: usize) -> Vec<Result<JointSet, String>> {
+    let chooser = Chooser::new(rig, tolerance, count);
+    (0..rig.joints.len()).map(|j| chooser.joint(frames, rig, j)).collect()
 }
 
 /// Most candidates searched exhaustively for the best four.
