@@ -198,7 +198,8 @@ function wireFiles(viewer) {
 // Downloads the current character as BVH (Edit ▸ Save as BVH): the text comes from
 // the viewer; the page only hands it to the browser as a file.
 function saveFile(viewer) {
-  const saved = viewer.saveBvh();
+  // A file the viewer asked for (Save rig), else the current character as BVH.
+  const saved = viewer.takeDownload() ?? viewer.saveBvh();
   if (!saved) return;
   const [name, text] = saved;
   const url = URL.createObjectURL(new Blob([text], { type: 'text/plain' }));

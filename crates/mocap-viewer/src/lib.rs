@@ -12,6 +12,7 @@
 #[cfg(target_arch = "wasm32")]
 pub mod app;
 pub mod camera;
+pub mod capture;
 pub mod character;
 pub mod drag;
 pub mod history;

@@ -83,6 +83,14 @@ pub struct Viewer {
     pub save_requested: bool,
     /// The Layer window, while it is open.
     pub layer_dialog: Option<ui::layer_window::LayerDialog>,
+    /// A model capture in progress.
+    pub capture_job: Option<crate::capture::CaptureJob>,
+    /// What the last capture gave.
+    pub capture_result: Option<crate::capture::CaptureResult>,
+    /// A rig dropped (JSON) for the next capture.
+    pub capture_rig: Option<mocap::capture::Rig>,
+    /// A file to download instead of the BVH on the next save request (name, text).
+    pub download: Option<(String, String)>,
     /// A character with unsaved edits the user asked to close: the viewer asks first.
     pub pending_close: Option<usize>,
     ring_drag: Option<RingDrag>,
@@ -120,9 +128,22 @@ impl Viewer {
     /// [`OpenMode::Replace`] what opened replaces everything open; when nothing
     /// opens, what was open stays. Returns every error (also shown in the banner).
     pub fn open_files(&mut self, files: &[(&str, &[u8])], mode: OpenMode) -> Vec<String> {
+        let mut errors = Vec::new();
+        // A capture rig (JSON) is kept for the next capture, not opened.
+        let (rigs, files): (Vec<_>, Vec<_>) = files.iter().partition(|(name, _)| name.to_ascii_lowercase().ends_with(".json"));
+        for (name, bytes) in rigs {
+            if let Err(e) = self.use_rig(name, &String::from_utf8_lossy(bytes)) {
+                errors.push(e);
+            }
+        }
+        if files.is_empty() {
+            if !errors.is_empty() {
+                self.error = Some(errors.join("\n"));
+            }
+            return errors;
+        }
         let inputs: Vec<mocap::Input> = files.iter().map(|&(name, bytes)| mocap::Input { name, bytes }).collect();
         let mut assets = Vec::new();
-        let mut errors = Vec::new();
         for result in self.loader.load(&inputs) {
             match result {
                 Ok(loaded) => assets.push((loaded.name, loaded.asset)),
@@ -369,6 +390,9 @@ impl Viewer {
             ui::tentacle::show(ui, self);
         }
         ui::layer_window::show(ui.ctx(), self);
+        if self.step_capture() {
+            ui.ctx().request_repaint();
+        }
         self.confirm_close(ui.ctx());
         if self.playback.playing && !self.stage.actors.is_empty() {
             ui.ctx().request_repaint();

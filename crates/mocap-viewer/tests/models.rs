@@ -125,3 +125,44 @@ fn the_ui_draws_a_model_with_its_panels() {
     assert!(s.error.is_none() && s.time > 0.0);
     assert!(s.tree_labels.is_empty(), "a model has no joints to list");
 }
+
+#[test]
+fn capture_skeleton_adds_a_clip_inside_the_model_and_its_rig_can_be_saved_and_dropped_back() {
+    let Some(mut v) = faerie() else { return };
+    assert!(v.start_capture(0).is_ok());
+    let (done, total) = v.capture_progress().unwrap();
+    assert!(done == 0 && total > 198, "joints then frames: {total} steps");
+    // A few budgets of work: progress moves, nothing is added yet.
+    v.step_capture();
+    let (later, _) = v.capture_progress().unwrap_or((total, total));
+    assert!(later > 0);
+    v.finish_capture_now();
+    assert!(v.capture_progress().is_none());
+    let s = v.snapshot();
+    assert_eq!(s.clips.len(), 2);
+    assert_eq!(s.clips[1].name, "faerie-capture.bvh");
+    assert_eq!(s.clips[1].frames, 198);
+    assert_eq!(s.layout, "overlay", "the skeleton shows inside the mesh");
+    assert_eq!(s.clips[0].animation.as_deref(), Some("all"), "the model plays every frame, in step with the clip");
+    let result = v.capture_result.clone().unwrap();
+    assert!(result.report.joints.iter().filter(|j| j.tracked.is_ok()).count() > 15);
+    assert!(result.animations.iter().any(|(n, a, b)| n == "run" && b - a == 5));
+    // Save rig downloads JSON; dropped back, the next capture uses it.
+    let (name, json) = v.rig_download().unwrap();
+    assert_eq!(name, "faerie-rig.json");
+    assert!(v.open_files(&[("faerie-rig.json", json.as_bytes())], OpenMode::Add).is_empty());
+    assert!(v.capture_rig.is_some() && v.snapshot().clips.len() == 2, "a rig is kept, not opened");
+    v.start_capture(0).unwrap();
+    v.finish_capture_now();
+    assert_eq!(v.snapshot().clips.len(), 3);
+    assert_eq!(v.capture_result.as_ref().unwrap().rig, result.rig, "the dropped rig was used");
+    // A bad rig, a rig for another model, a clip: clear errors, nothing lost.
+    let errors = v.open_files(&[("bad.json", b"{\"format\": 1}")], OpenMode::Add);
+    assert!(errors[0].starts_with("bad.json: rig:"), "{errors:?}");
+    let mut other = result.rig.clone();
+    other.binding.truncate(10);
+    v.capture_rig = Some(other);
+    assert!(v.start_capture(0).unwrap_err().contains("binds 10 vertices"));
+    assert!(v.start_capture(1).unwrap_err().contains("only a model"));
+    assert_eq!(v.snapshot().clips.len(), 3);
+}

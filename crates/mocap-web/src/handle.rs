@@ -160,6 +160,51 @@ impl MocapViewer {
         v.save_bvh(index).map(|(name, text)| vec![name, text])
     }
 
+    /// A file the viewer asked to download instead of the BVH (Save rig):
+    /// `[fileName, text]`, taken (asked once), or `undefined`.
+    #[wasm_bindgen(js_name = takeDownload)]
+    pub fn take_download(&self) -> Option<Vec<String>> {
+        let mut v = self.viewer.try_borrow_mut().ok()?;
+        v.download.take().map(|(name, text)| vec![name, text])
+    }
+
+    /// Captures the skeletal motion of model `index` (an MD2): with the rig given
+    /// by `useRig` if it fits, else an automatic fit. It runs a little per drawn
+    /// frame (see `captureProgress`); with `now` true it finishes before returning.
+    /// The captured clip joins the stage beside the model, in overlay. Returns the
+    /// error message, or `undefined` when started.
+    pub fn capture(&self, index: u32, now: Option<bool>) -> Option<String> {
+        self.with_viewer(|v| {
+            let started = v.start_capture(index as usize);
+            if started.is_ok() && now.unwrap_or(false) {
+                v.finish_capture_now();
+            }
+            started.err()
+        })
+        .flatten()
+    }
+
+    /// `[stepsDone, stepsInAll]` while a capture runs, else `undefined`.
+    #[wasm_bindgen(js_name = captureProgress)]
+    pub fn capture_progress(&self) -> Option<Vec<u32>> {
+        let v = self.viewer.try_borrow().ok()?;
+        v.capture_progress().map(|(a, b)| vec![a as u32, b as u32])
+    }
+
+    /// The last capture's per-joint report (text), or `undefined`.
+    #[wasm_bindgen(js_name = captureReport)]
+    pub fn capture_report(&self) -> Option<String> {
+        let v = self.viewer.try_borrow().ok()?;
+        v.capture_result.as_ref().map(|r| r.report.text())
+    }
+
+    /// Keeps a capture rig (JSON text, as `mocap capture --save-rig` or Save rig
+    /// writes it) for the next capture; returns the error message, or `undefined`.
+    #[wasm_bindgen(js_name = useRig)]
+    pub fn use_rig(&self, name: &str, text: &str) -> Option<String> {
+        self.with_viewer(|v| v.use_rig(name, text).err()).flatten()
+    }
+
     /// Applies a clip edit to character `index`, one undoable step: `'reverse'`,
     /// `'ping-pong'`, `'in-place'`, `'in-place-turning'`, `'up-z'`, `'trim:A:B'`,
     /// `'fps:N'`, `'knit:N'`, `'scale:F'`, `'rename:OLD:NEW'`, `'remove:JOINT'` or

@@ -35,6 +35,8 @@ pub struct MorphMesh {
     normals: Vec<[f32; 3]>,
     tex_coords: Vec<[f32; 2]>,
     indices: Vec<u32>,
+    /// The file vertex each drawing vertex was split from.
+    sources: Vec<u32>,
     frame_names: Vec<String>,
     animations: Vec<Animation>,
     /// Skin file names the model names (may be empty).
@@ -98,6 +100,7 @@ impl MorphMesh {
             normals,
             tex_coords,
             indices,
+            sources: sources.iter().map(|&(v, _)| u32::from(v)).collect(),
             frame_names: model.frames.iter().map(|f| f.name.clone()).collect(),
             animations: model.animations.clone(),
             skins: model.skins.clone(),
@@ -109,6 +112,29 @@ impl MorphMesh {
         mesh.bounds = bounds_of(&mesh.positions);
         mesh.first_bounds = bounds_of(mesh.frame_positions(0));
         mesh
+    }
+
+    /// Every frame's positions per file vertex (before the split per texture
+    /// coordinate; Y-up, file units): what a capture tracks. A file vertex no
+    /// triangle uses stays at the origin.
+    pub fn source_frames(&self) -> Vec<Vec<Vec3>> {
+        (0..self.frame_count())
+            .map(|f| {
+                let mut out = vec![Vec3::ZERO; self.source_counts.vertices];
+                for (p, &v) in self.frame_positions(f).iter().zip(&self.sources) {
+                    if let Some(o) = out.get_mut(v as usize) {
+                        *o = Vec3::from(*p);
+                    }
+                }
+                out
+            })
+            .collect()
+    }
+
+    /// The triangles as file vertex indices.
+    pub fn source_triangles(&self) -> Vec<[usize; 3]> {
+        let at = |i: u32| self.sources.get(i as usize).map_or(0, |&v| v as usize);
+        self.indices.chunks_exact(3).map(|t| [at(t[0]), at(t[1]), at(t[2])]).collect()
     }
 
     /// Drawing vertices per frame.

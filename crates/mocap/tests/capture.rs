@@ -171,6 +171,12 @@ fn corpus_characters_are_captured_by_the_automatic_fit() {
         let again = mocap::bvh::parse(mocap::bvh::write(&cap.clip).as_bytes()).unwrap();
         assert_eq!(again.frame_count(), md2.frames.len());
         assert!(cap.animation_clip("run").is_some_and(|c| c.frame_count() == 6), "{path}: the run animation has its 6 frames");
+        // The viewer captures from the drawing mesh (vertices split per texture
+        // coordinate, welded back): the same motion, in metres.
+        let mesh = mocap::MorphMesh::from_md2(&md2);
+        let from_mesh = capture::Capturer::from_mesh(&mesh, &rig, &Options::default()).unwrap().finish().unwrap();
+        assert_eq!(from_mesh.positions, cap.positions, "{path}");
+        assert_eq!(from_mesh.meters_per_unit, 0.0254);
     }
 }
 

@@ -1,5 +1,6 @@
 //! The egui panels, one per file.
 
+pub mod capture;
 pub mod edit_menu;
 pub mod hierarchy;
 pub mod info;

@@ -11,6 +11,8 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.separator();
             if let Some((c, model)) = current.and_then(|c| Some((c, c.model()?))) {
                 super::model_info::show(ui, c, model);
+                let index = viewer.current().min(viewer.stage.actors.len().saturating_sub(1));
+                super::capture::show(ui, viewer, index);
                 return;
             }
             if viewer.settings.pose_mode {

@@ -216,6 +216,19 @@ impl Capturer {
         Ok(capturer)
     }
 
+    /// Starts a capture of a model's mesh (file vertices, its unit: the clip is in
+    /// metres like the model on the stage).
+    pub fn from_mesh(mesh: &crate::MorphMesh, rig: &Rig, options: &Options) -> Result<Capturer, CaptureError> {
+        let mut capturer = Capturer::from_frames(mesh.source_frames(), mesh.frame_names().to_vec(), mesh.animations().to_vec(), &mesh.source_triangles(), rig, options)?;
+        capturer.meters_per_unit = mesh.units().meters_per_unit();
+        Ok(capturer)
+    }
+
+    /// The vertex frames being captured.
+    pub fn frames(&self) -> &[Vec<Vec3>] {
+        &self.frames
+    }
+
     /// Starts a capture of vertex frames (Y-up) with their names, animations and
     /// triangles; the clip keeps the frames' unit.
     pub fn from_frames(frames: Vec<Vec<Vec3>>, names: Vec<String>, animations: Vec<Animation>, triangles: &[[usize; 3]], rig: &Rig, options: &Options) -> Result<Capturer, CaptureError> {
