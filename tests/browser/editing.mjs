@@ -174,6 +174,35 @@ try {
       check(near(channelsOf(text, 'LeftArm', f), channelsOf(walk, 'LeftArm', f)), `frame ${f}: LeftArm, outside the subtree, is unchanged`);
     }
   });
+  await step('Capture skeleton clicked on an MD2 model: progress, then the skeleton inside the mesh', async () => {
+    await page.goto(`${base}?url=corpus/md2/waste/tris.md2&url=corpus/md2/waste/waste.pcx`);
+    await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 2);
+    const orangeIn = async () => {
+      const { data: d } = await decode(context, await page.screenshot({ clip: { x: 330, y: 120, width: 520, height: 480 } }));
+      let n = 0;
+      for (let i = 0; i < d.length; i += 4) if (d[i] > 200 && d[i + 1] > 110 && d[i + 1] < 190 && d[i + 2] < 120) n += 1;
+      return n;
+    };
+    await changeAndRender(page, (v) => { v.seek(40); v.pause(); });
+    const before = await orangeIn();
+    await changeAndRender(page, (v) => { v.seek(0); v.pause(); });
+    await slowClick(page, 1064, 565);
+    let seen = null;
+    for (let i = 0; i < 400 && !seen; i++) {
+      seen = await page.evaluate(() => window.mocapViewer.captureProgress() ?? null);
+      if (!seen) await page.waitForTimeout(5);
+    }
+    check(seen && seen.length === 2 && seen[1] > 198, `the button starts a capture that reports progress (${seen})`);
+    const s = await waitState(page, (s) => s.clips.length === 2, undefined, 120000);
+    check(s.layout === 'overlay' && s.clips[1].name === 'tris-capture.bvh' && s.clips[1].frames === 198 && s.clips[0].animation === 'all',
+      `the captured clip joins in overlay, every frame in step (${s.layout}, ${s.clips.map((c) => `${c.name} ${c.frames}`).join(', ')})`);
+    const report = await page.evaluate(() => window.mocapViewer.captureReport());
+    check(/max resid/.test(report) && /Hips/.test(report), 'the per-joint report is there');
+    await changeAndRender(page, (v) => { v.seek(40); v.pause(); });
+    await page.screenshot({ path: shot('capture'), clip: { x: 330, y: 120, width: 520, height: 480 } });
+    const orange = await orangeIn();
+    check(orange > before + 300, `the orange skeleton is drawn over the model (${orange} orange pixels, ${before} before the capture)`);
+  });
   check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
 } finally {
   await close();
