@@ -39,11 +39,17 @@ pub struct CaptureResult {
 }
 
 impl Viewer {
-    /// Starts capturing model `index` (with the dropped rig if it fits the model,
-    /// else an automatic fit). The work is done a little per frame ([`BUDGET_MS`]).
+    /// Starts capturing model `index` (with the rig being set up on it, else the
+    /// dropped one if it fits the model, else an automatic fit). The work is done a little per frame ([`BUDGET_MS`]).
     pub fn start_capture(&mut self, index: usize) -> Result<(), String> {
         let c = self.stage.actors.get(index).ok_or_else(|| format!("no character {}", index + 1))?;
-        let model = c.model().ok_or_else(|| format!("{}: only a model (MD2) can be captured", c.name))?;
+        c.model().ok_or_else(|| format!("{}: only a model (MD2) can be captured", c.name))?;
+        let editing = self.rig_edit.as_ref().is_some_and(|e| e.model == index);
+        if editing {
+            self.finish_rig_edit();
+        }
+        let Some(c) = self.stage.actors.get(index) else { return Err(format!("no character {}", index + 1)) };
+        let Some(model) = c.model() else { return Err(format!("{}: only a model (MD2) can be captured", c.name)) };
         let mesh = &model.mesh;
         let rig = match self.capture_rig.take() {
             Some(rig) if rig.binding.len() == mesh.source_counts.vertices => rig,
@@ -126,10 +132,18 @@ impl Viewer {
         Ok(())
     }
 
-    /// The last capture's rig as a JSON download (`NAME-rig.json`).
+    /// The rig being set up, else the last capture's, as a JSON download
+    /// (`NAME-rig.json`).
     pub fn rig_download(&self) -> Option<(String, String)> {
+        let stem = |name: &str| {
+            let base = name.rsplit(['/', '\\']).next().unwrap_or(name).to_owned();
+            base.rsplit_once('.').map_or(base.clone(), |(s, _)| s.to_owned())
+        };
+        if let Some(e) = &self.rig_edit {
+            let name = self.stage.actors.get(e.model).map_or("model".to_owned(), |c| stem(&c.name));
+            return Some((format!("{name}-rig.json"), e.rig.to_json()));
+        }
         let r = self.capture_result.as_ref()?;
-        let stem = r.clip.strip_suffix("-capture.bvh").unwrap_or(&r.clip);
-        Some((format!("{stem}-rig.json"), r.rig.to_json()))
+        Some((format!("{}-rig.json", stem(&r.model)), r.rig.to_json()))
     }
 }

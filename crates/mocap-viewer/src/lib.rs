@@ -21,6 +21,7 @@ pub mod layout;
 pub mod panels;
 pub mod playback;
 pub mod pose_scene;
+pub mod rig_edit;
 pub mod selection;
 pub mod settings;
 pub mod snapshot;

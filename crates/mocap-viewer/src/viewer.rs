@@ -87,8 +87,10 @@ pub struct Viewer {
     pub capture_job: Option<crate::capture::CaptureJob>,
     /// What the last capture gave.
     pub capture_result: Option<crate::capture::CaptureResult>,
-    /// A rig dropped (JSON) for the next capture.
+    /// A rig dropped (JSON) or set up for the next capture.
     pub capture_rig: Option<mocap::capture::Rig>,
+    /// A capture rig being set up on a model.
+    pub rig_edit: Option<crate::rig_edit::RigEdit>,
     /// A file to download instead of the BVH on the next save request (name, text).
     pub download: Option<(String, String)>,
     /// A character with unsaved edits the user asked to close: the viewer asks first.
@@ -100,8 +102,8 @@ pub struct Viewer {
     grab: Option<(egui::Pos2, bool)>,
     /// The creator's "drag out a new bone" from a joint, while it is armed or held.
     grow: Option<Grow>,
-    viewport: Viewport,
-    scene: Scene,
+    pub(crate) viewport: Viewport,
+    pub(crate) scene: Scene,
     pose_scratch: mocap::stage::PoseScratch,
     last_time: Option<f64>,
     actions: Vec<Action>,
@@ -365,6 +367,8 @@ impl Viewer {
             } else if let Some(axis) = d.handle.ring {
                 self.set_playing(false);
                 self.drag_ring(d, axis);
+            } else if [crate::rig_edit::RIG_JOINT, crate::rig_edit::RIG_SPIN, crate::rig_edit::RIG_PAINT].contains(&d.handle.character) {
+                self.drag_rig(d.handle, d.target, d.pointer);
             } else if d.handle.character == crate::drag::TARGET {
                 if let Some(t) = &mut self.tentacle {
                     t.target = d.target;
@@ -489,6 +493,7 @@ impl Viewer {
                 self.scene.overlay_lines.push(mocap_render::Line { a, b, color: RING[k % 3], width_px: 2.5 });
             }
         }
+        self.rig_overlay();
         if let Some(demo) = &mut self.tentacle {
             self.scene.spheres.push(mocap_render::Sphere { center: demo.target, radius: 0.07, color: [235, 70, 60, 255] });
             if let Some(tip) = self.stage.actors.first().and_then(|c| c.extra.pose.last()) {
@@ -504,6 +509,10 @@ impl Viewer {
         let mut out = Vec::new();
         if let Some(t) = &self.tentacle {
             out.push(crate::drag::Handle { character: crate::drag::TARGET, joint: 0, world: t.target, ring: None });
+        }
+        if self.rig_edit.is_some() {
+            out.extend(self.rig_handles());
+            return out;
         }
         if !self.settings.pose_mode {
             return out;

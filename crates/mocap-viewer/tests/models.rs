@@ -166,3 +166,39 @@ fn capture_skeleton_adds_a_clip_inside_the_model_and_its_rig_can_be_saved_and_dr
     assert!(v.start_capture(1).unwrap_err().contains("only a model"));
     assert_eq!(v.snapshot().clips.len(), 3);
 }
+
+#[test]
+fn a_rig_is_set_up_by_hand_and_used_by_the_capture() {
+    use mocap::glam::Vec3;
+    use mocap_viewer::rig_edit::{RIG_JOINT, RIG_SPIN};
+    let Some(mut v) = faerie() else { return };
+    v.start_rig_edit(0, None).unwrap();
+    let handles = v.rig_handles();
+    let joints = v.rig_edit.as_ref().unwrap().rig.joints.len();
+    assert_eq!(handles.iter().filter(|h| h.character == RIG_JOINT).count(), joints);
+    assert!(handles.iter().any(|h| h.character == RIG_SPIN));
+    assert_eq!(v.handles().len(), handles.len(), "while a rig is set up, its handles are the ones grabbed");
+    // Drag the left hand 5 cm up: the rig joint follows (file units).
+    let hand = v.rig_edit.as_ref().unwrap().rig.joints.iter().position(|j| j.name == "LeftHand").unwrap();
+    let h = *handles.iter().find(|h| h.character == RIG_JOINT && h.joint == hand).unwrap();
+    let before = Vec3::from_array(v.rig_edit.as_ref().unwrap().rig.joints[hand].position);
+    v.drag_rig(h, h.world + Vec3::new(0.0, 0.05, 0.0), egui::Pos2::ZERO);
+    let after = Vec3::from_array(v.rig_edit.as_ref().unwrap().rig.joints[hand].position);
+    assert!((after - before - Vec3::new(0.0, 0.05 / 0.0254, 0.0)).length() < 1e-3, "{before} → {after}");
+    assert_eq!(v.rig_edit.as_ref().unwrap().selected, Some(hand));
+    // A spin handle turns the bone's spin, kept across it.
+    let s = *handles.iter().find(|h| h.character == RIG_SPIN).unwrap();
+    v.drag_rig(s, s.world + Vec3::new(0.0, 0.0, 0.1), egui::Pos2::ZERO);
+    let rig = v.rig_edit.as_ref().unwrap().rig.clone();
+    let j = &rig.joints[s.joint];
+    let child = rig.children()[s.joint][0];
+    let axis = (Vec3::from_array(rig.joints[child].position) - Vec3::from_array(j.position)).normalize();
+    assert!(Vec3::from_array(j.spin.unwrap()).dot(axis).abs() < 1e-4);
+    v.bind_rig();
+    v.finish_rig_edit();
+    assert!(v.rig_edit.is_none());
+    v.start_capture(0).unwrap();
+    v.finish_capture_now();
+    assert_eq!(v.capture_result.as_ref().unwrap().rig.joints[hand].position, after.to_array(), "the capture used the rig set up");
+    assert!(v.start_rig_edit(1, None).unwrap_err().contains("on a model"));
+}

@@ -184,6 +184,45 @@ impl MocapViewer {
         .flatten()
     }
 
+    /// Starts setting up a capture rig on model `index` (Fit skeleton): a humanoid,
+    /// or the skeleton of clip character `template`, fitted in its first frame.
+    /// Returns the error message, or `undefined`.
+    #[wasm_bindgen(js_name = fitSkeleton)]
+    pub fn fit_skeleton(&self, index: u32, template: Option<u32>) -> Option<String> {
+        self.with_viewer(|v| v.start_rig_edit(index as usize, template.map(|t| t as usize)).err()).flatten()
+    }
+
+    /// Where rig joint `name` (of the rig being set up) is on the page (`[x, y]`,
+    /// CSS pixels), or `undefined`.
+    #[wasm_bindgen(js_name = rigJointScreenPosition)]
+    pub fn rig_joint_screen_position(&self, name: &str) -> Option<Vec<f32>> {
+        let v = self.viewer.try_borrow().ok()?;
+        let e = v.rig_edit.as_ref()?;
+        let j = e.rig.joints.iter().position(|j| j.name == name)?;
+        let world = v.stage.actors.get(e.model)?.world_matrix().transform_point3(mocap::glam::Vec3::from_array(e.rig.joints[j].position));
+        let p = v.screen_position(world)?;
+        Some(vec![p.x, p.y])
+    }
+
+    /// The rig being set up (else the one kept for the next capture) as JSON, or `undefined`.
+    #[wasm_bindgen(js_name = rigJson)]
+    pub fn rig_json(&self) -> Option<String> {
+        let v = self.viewer.try_borrow().ok()?;
+        v.rig_edit.as_ref().map(|e| &e.rig).or(v.capture_rig.as_ref()).map(|r| r.to_json())
+    }
+
+    /// Binds every vertex of the rig being set up to its nearest bone.
+    #[wasm_bindgen(js_name = bindRig)]
+    pub fn bind_rig(&self) {
+        self.with_viewer(|v| v.bind_rig());
+    }
+
+    /// Ends the rig set-up, keeping the rig for the next capture.
+    #[wasm_bindgen(js_name = finishRig)]
+    pub fn finish_rig(&self) {
+        self.with_viewer(|v| v.finish_rig_edit());
+    }
+
     /// `[stepsDone, stepsInAll]` while a capture runs, else `undefined`.
     #[wasm_bindgen(js_name = captureProgress)]
     pub fn capture_progress(&self) -> Option<Vec<u32>> {

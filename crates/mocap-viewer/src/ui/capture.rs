@@ -1,6 +1,7 @@
-//! The model panel's capture section: Capture skeleton (with a progress bar
-//! while it runs), what the last capture gave (joints tracked, residuals, joints
-//! without vertices, the animations as frame ranges), and Save rig.
+//! The model panel's capture section: the rig set-up (Fit skeleton, Bind, paint
+//! the binding, Done), Capture skeleton (with a progress bar while it runs), what
+//! the last capture gave (joints tracked, residuals, joints without vertices, the
+//! animations as frame ranges), and Save rig.
 
 use crate::viewer::Viewer;
 
@@ -13,7 +14,12 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
         ui.add(egui::ProgressBar::new(share).show_percentage().text(format!("capturing: step {done} of {total}")));
         return;
     }
-    let rig_note = viewer.capture_rig.as_ref().map(|r| format!("with the dropped rig ({} joints)", r.joints.len()));
+    rig_setup(ui, viewer, index);
+    let rig_note = if viewer.rig_edit.as_ref().is_some_and(|e| e.model == index) {
+        Some("with the rig being set up".to_owned())
+    } else {
+        viewer.capture_rig.as_ref().map(|r| format!("with the rig set up or dropped ({} joints)", r.joints.len()))
+    };
     let hint = "Turn the model's vertex animation into skeletal motion: a humanoid fitted in its first frame (or a rig dropped as JSON), four tracked vertices per joint";
     if ui.button("Capture skeleton").on_hover_text(hint).clicked() {
         if let Err(e) = viewer.start_capture(index) {
@@ -48,5 +54,57 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
     if ui.button("Save rig").on_hover_text("Download the rig used (JSON); drop it back with the model to capture with it").clicked() {
         viewer.download = viewer.rig_download();
         viewer.save_requested = true;
+    }
+}
+
+/// Fit skeleton, and while a rig is set up on this model: Bind, painting, the
+/// binding view, Save rig and Done.
+fn rig_setup(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
+    let editing = viewer.rig_edit.as_ref().is_some_and(|e| e.model == index);
+    if !editing {
+        let clips: Vec<(usize, String)> = viewer.stage.actors.iter().enumerate().filter(|(_, c)| c.clip().is_some()).map(|(i, c)| (i, c.name.clone())).collect();
+        ui.horizontal(|ui| {
+            let hint = "Place a skeleton in the model's first frame to adjust by hand: drag its joints and spin handles, bind, paint";
+            if ui.button("Fit skeleton").on_hover_text(hint).clicked() {
+                if let Err(e) = viewer.start_rig_edit(index, None) {
+                    viewer.error = Some(e);
+                }
+            }
+            for (i, name) in clips {
+                if ui.small_button(format!("fit {name}")).on_hover_text("Fit this clip's skeleton (its first pose) instead of the humanoid").clicked() {
+                    if let Err(e) = viewer.start_rig_edit(index, Some(i)) {
+                        viewer.error = Some(e);
+                    }
+                }
+            }
+        });
+        return;
+    }
+    let Some(e) = viewer.rig_edit.as_mut() else { return };
+    let selected = e.selected.and_then(|j| e.rig.joints.get(j)).map(|j| j.name.clone());
+    ui.label(egui::RichText::new("Drag the crosses (joints) to where they belong and the cyan handles to turn each bone's up; the model shows its set-up frame.").weak());
+    ui.label(format!("Selected: {}", selected.as_deref().unwrap_or("none (press a joint)")));
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut e.show_binding, "Show binding");
+        ui.add_enabled(selected.is_some(), egui::Checkbox::new(&mut e.painting, "Paint"))
+            .on_hover_text("Drag over the model: the vertices under the pointer go to the selected joint's bone (the one ending at it)");
+    });
+    let mut bind = false;
+    let mut done = false;
+    let mut save = false;
+    ui.horizontal(|ui| {
+        bind = ui.button("Bind").on_hover_text("Bind every vertex to its nearest bone").clicked();
+        save = ui.button("Save rig").on_hover_text("Download the rig (JSON)").clicked();
+        done = ui.button("Done").on_hover_text("Keep the rig for the next capture and stop editing").clicked();
+    });
+    if bind {
+        viewer.bind_rig();
+    }
+    if save {
+        viewer.download = viewer.rig_download();
+        viewer.save_requested = true;
+    }
+    if done {
+        viewer.finish_rig_edit();
     }
 }

@@ -30,6 +30,17 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             act(ui, play, "Play / pause (Space)", Action::TogglePlay);
             act(ui, ">", "Step forward (→)", Action::Step(1));
             act(ui, ">|", "Last frame (End)", Action::Last);
+            if viewer.has_corrections() {
+                // Keying sits here, on the timeline's row, so the view above never moves.
+                ui.separator();
+                if ui.button("Set key").on_hover_text("Key the corrected pose at this frame (k)").clicked() {
+                    viewer.apply(Action::SetKey);
+                }
+                key_mode(ui, &mut viewer.settings);
+                if ui.button("Reset pose").on_hover_text("Forget the poses corrected by dragging").clicked() {
+                    viewer.reset_pose();
+                }
+            }
             if !viewer.history.keys(viewer.current()).is_empty() {
                 ui.separator();
                 if ui.button("◀ key").on_hover_text("Previous keyed frame").clicked() {
@@ -182,4 +193,14 @@ fn minimal(ui: &mut egui::Ui, viewer: &mut Viewer, play: &str, frame: usize, tim
         }
     });
     ui.add_space(2.0);
+}
+
+/// How a key spreads: fading over ± N frames (fixing a dense take) or
+/// interpolated between keys (key-frame animation).
+fn key_mode(ui: &mut egui::Ui, settings: &mut crate::settings::ViewSettings) {
+    ui.selectable_value(&mut settings.key_between, true, "between keys").on_hover_text("Key-frame animation: the pose goes smoothly (slerp) from key to key and holds before the first and after the last");
+    ui.selectable_value(&mut settings.key_between, false, "fade").on_hover_text("A correction of a dense take: it fades in and out over the frames set beside");
+    if !settings.key_between {
+        ui.add(egui::DragValue::new(&mut settings.key_window).range(0..=60).prefix("± ").suffix(" frames")).on_hover_text("Frames on each side over which the key fades in and out");
+    }
 }

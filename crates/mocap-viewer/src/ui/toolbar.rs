@@ -38,15 +38,6 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             ui.checkbox(&mut viewer.settings.foot_lock, "Foot lock").on_hover_text("Pin each foot to the floor while it is in contact (legs solved by IK); contacts show on the timeline");
             let editing = viewer.current_character().map_or(String::new(), |c| format!("Editing {}. ", c.name));
             ui.checkbox(&mut viewer.settings.pose_mode, "Edit mode").on_hover_text(format!("{editing}Edit mode acts on the selected joint's character: drag a joint and its chain follows by IK, or turn it with its rotation rings; the clip's own pose shows as a ghost. A press on another character's joint switches to it."));
-            if viewer.has_corrections() {
-                if ui.button("Set key").on_hover_text("Key the corrected pose at this frame (k); it fades over the key window").clicked() {
-                    viewer.apply(Action::SetKey);
-                }
-                key_mode(ui, &mut viewer.settings);
-                if ui.button("Reset pose").on_hover_text("Forget the poses corrected by dragging").clicked() {
-                    viewer.reset_pose();
-                }
-            }
             ui.separator();
             ui.menu_button("Camera", |ui| camera_menu(ui, viewer));
             ui.menu_button("Edit", |ui| super::edit_menu::show(ui, viewer));
@@ -104,15 +95,5 @@ fn layout_choice(ui: &mut egui::Ui, viewer: &mut Viewer) {
     ui.selectable_value(&mut layout, Layout::Overlay, "Overlay").on_hover_text("Characters on top of each other, to compare");
     if layout != viewer.stage.layout {
         viewer.set_layout(layout);
-    }
-}
-
-/// How a key spreads: fading over ± N frames (fixing a dense take) or
-/// interpolated between keys (key-frame animation).
-fn key_mode(ui: &mut egui::Ui, settings: &mut crate::settings::ViewSettings) {
-    ui.selectable_value(&mut settings.key_between, true, "between keys").on_hover_text("Key-frame animation: the pose goes smoothly (slerp) from key to key and holds before the first and after the last");
-    ui.selectable_value(&mut settings.key_between, false, "fade").on_hover_text("A correction of a dense take: it fades in and out over the frames set beside");
-    if !settings.key_between {
-        ui.add(egui::DragValue::new(&mut settings.key_window).range(0..=60).prefix("± ").suffix(" frames")).on_hover_text("Frames on each side over which the key fades in and out");
     }
 }
