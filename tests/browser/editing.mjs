@@ -186,7 +186,7 @@ try {
     await changeAndRender(page, (v) => { v.seek(40); v.pause(); });
     const before = await orangeIn();
     await changeAndRender(page, (v) => { v.seek(0); v.pause(); });
-    await slowClick(page, 1064, 565);
+    await slowClick(page, 1064, 588);
     let seen = null;
     for (let i = 0; i < 400 && !seen; i++) {
       seen = await page.evaluate(() => window.mocapViewer.captureProgress() ?? null);
@@ -202,6 +202,39 @@ try {
     await page.screenshot({ path: shot('capture'), clip: { x: 330, y: 120, width: 520, height: 480 } });
     const orange = await orangeIn();
     check(orange > before + 300, `the orange skeleton is drawn over the model (${orange} orange pixels, ${before} before the capture)`);
+  });
+  await step('Fit skeleton on the model, a joint dragged in the view, Done: the next capture uses that rig', async () => {
+    await page.goto(`${base}?url=corpus/md2/waste/tris.md2&url=corpus/md2/waste/waste.pcx`);
+    await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 2);
+    await changeAndRender(page, (v) => v.pause());
+    await slowClick(page, 1048, 565);
+    await waitState(page, (s) => s.frame === 0 && !s.playing);
+    const rig0 = JSON.parse(await page.evaluate(() => window.mocapViewer.rigJson() ?? 'null'));
+    check(rig0 && rig0.format === 'mocap-capture-rig' && rig0.joints.length > 15, `Fit skeleton makes a rig (${rig0 && rig0.joints.length} joints)`);
+    await changeAndRender(page, (v) => v.pause());
+    const [x, y] = Array.from(await page.evaluate(() => window.mocapViewer.rigJointScreenPosition('Head_End')));
+    await page.mouse.move(x, y);
+    await page.mouse.down();
+    for (let k = 1; k <= 6; k++) {
+      await page.mouse.move(x + 4 * k, y - 3 * k);
+      await page.waitForTimeout(50);
+    }
+    await page.mouse.up();
+    await changeAndRender(page, (v) => v.pause());
+    await page.screenshot({ path: shot('rig-setup') });
+    const rig1 = JSON.parse(await page.evaluate(() => window.mocapViewer.rigJson()));
+    const moved = (j) => rig1.joints.find((x) => x.name === j).position.some((c, i) => Math.abs(c - rig0.joints.find((x) => x.name === j).position[i]) > 0.5);
+    check(moved('Head_End') && !moved('Hips'), 'dragging a cross moves that rig joint only');
+    const [px, py] = Array.from(await page.evaluate(() => window.mocapViewer.rigJointScreenPosition('Head_End')));
+    check(Math.hypot(px - (x + 24), py - (y - 18)) < 4, `the joint is under the pointer (${px.toFixed(0)},${py.toFixed(0)})`);
+    await slowClick(page, 1149, 654);
+    await changeAndRender(page, (v) => v.pause());
+    const kept = JSON.parse(await page.evaluate(() => window.mocapViewer.rigJson() ?? 'null'));
+    check(kept && JSON.stringify(kept.joints) === JSON.stringify(rig1.joints), 'Done keeps the rig for the next capture');
+    const error = await page.evaluate(() => window.mocapViewer.capture(0, true) ?? null);
+    const s = await waitState(page, (s) => s.clips.length === 2);
+    const report = await page.evaluate(() => window.mocapViewer.captureReport());
+    check(error === null && s.clips[1].name === 'tris-capture.bvh' && report.split('\n').filter((l) => /^Head_End /.test(l)).length === 1, `captured with it (${error})`);
   });
   check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
 } finally {
