@@ -105,9 +105,7 @@ impl Viewer {
                 return;
             }
         };
-        let base = job.name.rsplit(['/', '\\']).next().unwrap_or(&job.name);
-        let stem = base.rsplit_once('.').map_or(base, |(s, _)| s);
-        let clip_name = format!("{stem}-capture.bvh");
+        let clip_name = format!("{}-capture.bvh", crate::character::file_stem(&job.name));
         // Both play every frame, in step.
         self.set_animation(job.model, "all");
         self.add_asset(&clip_name, capture.clip);
@@ -135,12 +133,9 @@ impl Viewer {
     /// The rig being set up, else the last capture's, as a JSON download
     /// (`NAME-rig.json`).
     pub fn rig_download(&self) -> Option<(String, String)> {
-        let stem = |name: &str| {
-            let base = name.rsplit(['/', '\\']).next().unwrap_or(name).to_owned();
-            base.rsplit_once('.').map_or(base.clone(), |(s, _)| s.to_owned())
-        };
+        let stem = crate::character::file_stem;
         if let Some(e) = &self.rig_edit {
-            let name = self.stage.actors.get(e.model).map_or("model".to_owned(), |c| stem(&c.name));
+            let name = self.stage.actors.get(e.model).map_or("model".to_owned(), |c| stem(&c.name).to_owned());
             return Some((format!("{name}-rig.json"), e.rig.to_json()));
         }
         let r = self.capture_result.as_ref()?;

@@ -268,3 +268,10 @@ pub fn next_color(open: &[Character]) -> [u8; 4] {
     let unused = PALETTE.iter().find(|c| !open.iter().any(|o| o.extra.color == **c));
     unused.copied().unwrap_or(PALETTE[open.len() % PALETTE.len()])
 }
+
+/// A character's file name without folders and extension (`walk` for
+/// `data/walk.bvh`), for the names of files made from it.
+pub fn file_stem(name: &str) -> &str {
+    let base = name.rsplit(['/', '\\']).next().unwrap_or(name);
+    base.rsplit_once('.').map_or(base, |(s, _)| s)
+}

@@ -748,8 +748,7 @@ impl Viewer {
     pub fn save_bvh(&self, index: usize) -> Option<(String, String)> {
         let c = self.stage.actors.get(index)?;
         let clip = c.clip()?;
-        let base = c.name.rsplit(['/', '\\']).next().unwrap_or(&c.name);
-        let stem = base.rsplit_once('.').map_or(base, |(s, _)| s);
+        let stem = character::file_stem(&c.name);
         let stem = stem.strip_suffix("-edited").unwrap_or(stem);
         let name = if self.history.edited(index) { format!("{stem}-edited.bvh") } else { format!("{stem}.bvh") };
         Some((name, mocap::bvh::write(clip)))

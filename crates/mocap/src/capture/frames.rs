@@ -20,6 +20,7 @@
 //! allocation) and every name's terminator, and reports the byte offset of what
 //! is wrong.
 
+use crate::md2::write::name_field;
 use glam::{EulerRot, Mat3, Quat, Vec3};
 
 /// The file's first eight bytes.
@@ -85,13 +86,6 @@ impl FrameRecord {
         let m = FLIP * Mat3::from_quat(q) * FLIP;
         Some((Vec3::new(t[0] as f32, t[1] as f32, -t[2] as f32), Quat::from_mat3(&m)))
     }
-}
-
-fn name_field(name: &str, size: usize, out: &mut Vec<u8>) {
-    let bytes = name.as_bytes();
-    let keep = bytes.len().min(size - 1);
-    out.extend_from_slice(&bytes[..keep]);
-    out.resize(out.len() + size - keep, 0);
 }
 
 /// The bytes of `capture` (names longer than their field are cut).

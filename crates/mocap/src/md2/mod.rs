@@ -41,7 +41,7 @@
 mod normals;
 #[cfg(test)]
 mod tests;
-mod write;
+pub(crate) mod write;
 
 pub use normals::NORMALS;
 pub use write::{build, from_y_up, pack_frame, write, WriteError};

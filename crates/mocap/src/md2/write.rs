@@ -84,7 +84,7 @@ pub fn write(md2: &Md2) -> Vec<u8> {
 }
 
 /// `name` in a NUL-padded field of `size` bytes (cut to leave room for the NUL).
-fn name_field(name: &str, size: usize, out: &mut Vec<u8>) {
+pub(crate) fn name_field(name: &str, size: usize, out: &mut Vec<u8>) {
     let bytes = name.as_bytes();
     let keep = bytes.len().min(size - 1);
     out.extend_from_slice(&bytes[..keep]);
