@@ -48,3 +48,65 @@ for (const mode of ['webgl2', 'webgpu']) {
     await close();
   }
 }
+
+// Side by side with the three.js BVH example's set-up (tests/browser/three/bvh.html:
+// BVHLoader + SkeletonHelper + a grid, three from npm), one after the other in
+// the same headless Chromium with software WebGL2 at 1280x800: frame time with
+// one character and with 16, and drop to first drawn frame, as ratios.
+{
+  const walkText = fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url), 'utf8');
+  const { context, page, close } = await launch(chromiumPath, 'webgl2');
+  const msPerFrame = async (p, counter) => p.evaluate(async (counter) => {
+    const read = () => (counter === 'viewer' ? window.mocapViewer.state().framesRendered : window.threeBench.frames);
+    await new Promise((r) => setTimeout(r, 1000));
+    const f0 = read();
+    const t0 = performance.now();
+    await new Promise((r) => setTimeout(r, 4000));
+    return (performance.now() - t0) / Math.max(1, read() - f0);
+  }, counter);
+  try {
+    const rows = [];
+    // The viewer: the default page (walk.bvh, capsules, shadows), then 16 characters.
+    await page.goto(url);
+    await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
+    await page.evaluate(() => window.mocapViewer.play());
+    const v1 = await msPerFrame(page, 'viewer');
+    await page.evaluate((t) => {
+      const bytes = new TextEncoder().encode(t);
+      for (let i = 1; i < 16; i++) window.mocapViewer.add(`walk${i}.bvh`, bytes);
+      window.mocapViewer.play();
+    }, walkText);
+    await waitState(page, (s) => s.clips.length === 16);
+    const v16 = await msPerFrame(page, 'viewer');
+    await page.evaluate(() => window.mocapViewer.pause());
+    // three.js, the same cases.
+    const three = await context.newPage();
+    await three.goto(`${url}bench/three/bvh.html`);
+    await three.waitForFunction(() => window.threeBench && window.threeBench.frames > 3, null, { timeout: 60000 });
+    await three.evaluate((t) => window.openBvh(t, 1), walkText);
+    const t1 = await msPerFrame(three, 'three');
+    await three.evaluate((t) => window.openBvh(t, 16), walkText);
+    const t16 = await msPerFrame(three, 'three');
+    rows.push(['frames per second, 1 character', 1000 / v1, 1000 / t1, 'higher is better; aim >= 0.5']);
+    rows.push(['frames per second, 16 characters', 1000 / v16, 1000 / t16, 'higher is better; aim >= 0.5']);
+    if (bigFile) {
+      const text = fs.readFileSync(bigFile, 'utf8');
+      await three.evaluate((t) => { window.threeBench.firstFrameMs = null; window.openBvh(t, 1); }, text);
+      await three.waitForFunction(() => window.threeBench.firstFrameMs !== null, null, { timeout: 120000 });
+      const threeDrop = await three.evaluate(() => window.threeBench.firstFrameMs);
+      await three.close();
+      await page.goto(url);
+      await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
+      await dropFile(page, path.basename(bigFile), fs.readFileSync(bigFile));
+      await page.waitForFunction(() => window.mocapLastLoad && window.mocapLastLoad.dropToFrameMs, null, { timeout: 60000 });
+      const viewerDrop = await page.evaluate(() => window.mocapLastLoad.dropToFrameMs);
+      rows.push([`drop to first drawn frame, ${path.basename(bigFile)} (ms)`, viewerDrop, threeDrop, 'lower is better; aim <= 0.5']);
+    }
+    console.log('side by side with the three.js BVH example (software WebGL2, 1280x800):');
+    for (const [what, ours, theirs, aim] of rows) {
+      console.log(`  ${what.padEnd(48)} viewer ${ours.toFixed(1).padStart(7)}  three.js ${theirs.toFixed(1).padStart(7)}  ratio ${(ours / theirs).toFixed(2)} (${aim})`);
+    }
+  } finally {
+    await close();
+  }
+}

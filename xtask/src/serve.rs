@@ -44,7 +44,9 @@ fn handle(mut stream: TcpStream, dir: &Path) -> std::io::Result<()> {
     let path = path.split(['?', '#']).next().unwrap_or("/");
     let file = resolve(dir, path)
         .or_else(|| resolve(&root().join("data"), path.strip_prefix("/data/")?))
-        .or_else(|| resolve(&root().join("../shared/corpus"), path.strip_prefix("/corpus/")?));
+        .or_else(|| resolve(&root().join("../shared/corpus"), path.strip_prefix("/corpus/")?))
+        // The benchmark's three.js page and three itself (tests/browser/node_modules).
+        .or_else(|| resolve(&root().join("tests/browser"), path.strip_prefix("/bench/")?));
     match file.and_then(|f| std::fs::read(&f).ok().map(|b| (f, b))) {
         Some((f, body)) => {
             let head = format!(

@@ -104,13 +104,14 @@ pub fn chromium() -> Result<String, String> {
     Ok("/usr/bin/chromium".to_owned())
 }
 
-/// Node.js + playwright-core under `tests/browser/node_modules` (never downloads browsers).
+/// Node.js, playwright-core and three (for the benchmark's comparison page) under
+/// `tests/browser/node_modules` (never downloads browsers).
 pub fn playwright() -> Result<(), String> {
     if !have("node") || !have("npm") {
         apt_install(&["nodejs", "npm"])?;
     }
     let dir = root().join("tests/browser");
-    if !dir.join("node_modules/playwright-core").is_dir() {
+    if !dir.join("node_modules/playwright-core").is_dir() || !dir.join("node_modules/three").is_dir() {
         run(Command::new("npm").args(["install", "--no-audit", "--no-fund"]).current_dir(&dir).env("PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD", "1"))?;
     }
     Ok(())
