@@ -169,6 +169,8 @@ impl Viewer {
     /// frame drawn afterwards shows frame 0 (the clock restarts).
     pub fn open_assets(&mut self, assets: Vec<(String, mocap::Asset)>) {
         self.tentacle = None;
+        self.rig_edit = None;
+        self.capture_job = None;
         self.history.clear();
         self.playback.time = 0.0;
         self.last_time = None;
@@ -220,6 +222,20 @@ impl Viewer {
             Some(s) if s.character > index => Some(Selection { character: s.character - 1, ..s }),
             other => other,
         };
+        // A rig set up or a capture running on a model follows it, or ends with it.
+        let shift = |model: usize| match model.cmp(&index) {
+            std::cmp::Ordering::Equal => None,
+            std::cmp::Ordering::Greater => Some(model - 1),
+            std::cmp::Ordering::Less => Some(model),
+        };
+        self.rig_edit = self.rig_edit.take().and_then(|mut e| shift(e.model).map(|m| {
+            e.model = m;
+            e
+        }));
+        self.capture_job = self.capture_job.take().and_then(|mut j| shift(j.model).map(|m| {
+            j.model = m;
+            j
+        }));
         true
     }
 

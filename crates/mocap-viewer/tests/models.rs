@@ -202,3 +202,20 @@ fn a_rig_is_set_up_by_hand_and_used_by_the_capture() {
     assert_eq!(v.capture_result.as_ref().unwrap().rig.joints[hand].position, after.to_array(), "the capture used the rig set up");
     assert!(v.start_rig_edit(1, None).unwrap_err().contains("on a model"));
 }
+
+#[test]
+fn closing_characters_keeps_the_rig_and_the_capture_on_their_model() {
+    let Some(mut v) = faerie() else { return };
+    v.add("walk.bvh", WALK).unwrap();
+    // Model second: close the walk before it, the rig follows the model.
+    let dir = corpus_dir().unwrap().join("md2/irrlicht_faerie");
+    v.add("faerie.md2", &std::fs::read(dir.join("faerie.md2")).unwrap()).unwrap();
+    v.start_rig_edit(2, None).unwrap();
+    v.start_capture(0).unwrap();
+    assert!(v.remove(1));
+    assert_eq!(v.rig_edit.as_ref().map(|e| e.model), Some(1));
+    assert!(v.remove(0), "closing the model being captured ends the capture");
+    assert!(v.capture_job.is_none() && v.rig_edit.as_ref().map(|e| e.model) == Some(0));
+    v.load("walk.bvh", WALK).unwrap();
+    assert!(v.rig_edit.is_none(), "opening files in place of everything ends the set-up");
+}
