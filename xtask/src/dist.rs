@@ -10,6 +10,14 @@ const TARGET: &str = "wasm32-unknown-unknown";
 
 /// Builds `dist/`; `fast` skips LTO and wasm-opt for quicker iteration. Returns the dist path.
 pub fn dist(fast: bool) -> Result<PathBuf, String> {
+    dist_with(fast, false)
+}
+
+/// [`dist`], and with `opt` wasm-opt even where the system has none recent enough:
+/// then binaryen from npm (its JavaScript build: minutes on two cores, so only on
+/// request: `cargo xtask dist --opt`, and `bench-web`). Prints the wasm's size, raw
+/// and gzipped, before and after.
+pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
     let root = root();
     let profile = if fast { "web-fast" } else { "web-release" };
     let target_dir = root.join("target/wasm");
@@ -34,7 +42,7 @@ pub fn dist(fast: bool) -> Result<PathBuf, String> {
     run(&mut cargo)?;
     let wasm = target_dir.join(TARGET).join(profile).join("mocap_web.wasm");
     if !fast {
-        optimize(&wasm);
+        optimize(&wasm, opt);
     }
 
     let dist = root.join("dist");
@@ -46,6 +54,8 @@ pub fn dist(fast: bool) -> Result<PathBuf, String> {
         .args(["--target", "web", "--remove-name-section", "--remove-producers-section", "--out-dir"])
         .arg(&pkg)
         .arg(&wasm))?;
+    let (raw, gz) = sizes(&pkg.join("mocap_web_bg.wasm"));
+    println!("xtask: mocap_web_bg.wasm {raw} bytes, {gz} gzipped");
     copy(&root.join("index.html"), &dist.join("index.html"))?;
     copy_dir(&root.join("web"), &dist.join("web"))?;
     println!("dist: {}", dist.display());
@@ -56,20 +66,15 @@ pub fn dist(fast: bool) -> Result<PathBuf, String> {
 /// externref table when run after wasm-bindgen and grows the gzipped size before it.
 const MIN_WASM_OPT: u32 = 116;
 
-/// Shrinks the cargo output with `wasm-opt -Os` (before wasm-bindgen) when a recent
-/// enough binaryen is available; keeps the input on any failure.
-fn optimize(wasm: &Path) {
-    let Some(wasm_opt) = setup::wasm_opt() else {
-        eprintln!("xtask: wasm-opt not found; skipping size optimisation");
+/// Shrinks the cargo output with `wasm-opt -Os --strip-debug` (before
+/// wasm-bindgen) when a recent enough binaryen is available (the system's, or with
+/// `npm_fallback` npm's); keeps the input on any failure.
+fn optimize(wasm: &Path, npm_fallback: bool) {
+    let system = setup::wasm_opt().map(PathBuf::from).filter(|w| wasm_opt_version(w) >= MIN_WASM_OPT);
+    let Some(wasm_opt) = system.or_else(|| npm_fallback.then(setup::npm_wasm_opt).flatten()) else {
+        eprintln!("xtask: no wasm-opt {MIN_WASM_OPT} or newer (cargo xtask dist --opt uses npm's binaryen); skipping size optimisation");
         return;
     };
-    let version = crate::util::output(Command::new(wasm_opt).arg("--version"))
-        .and_then(|v| v.split_whitespace().nth(2).and_then(|n| n.parse::<u32>().ok()))
-        .unwrap_or(0);
-    if version < MIN_WASM_OPT {
-        eprintln!("xtask: wasm-opt version {version} is older than {MIN_WASM_OPT}; skipping it");
-        return;
-    }
     let out = wasm.with_extension("opt.wasm");
     let features = [
         "--enable-bulk-memory",
@@ -79,12 +84,35 @@ fn optimize(wasm: &Path) {
         "--enable-reference-types",
         "--enable-multivalue",
     ];
-    let ok = run(Command::new(wasm_opt).arg("-Os").args(features).arg(wasm).arg("-o").arg(&out)).is_ok();
+    let before = sizes(wasm);
+    let started = std::time::Instant::now();
+    let ok = run(Command::new(&wasm_opt).args(["-Os", "--strip-debug"]).args(features).arg(wasm).arg("-o").arg(&out)).is_ok();
     if ok && std::fs::rename(&out, wasm).is_ok() {
+        let after = sizes(wasm);
+        println!(
+            "xtask: wasm-opt -Os in {:.0} s: {} -> {} bytes raw, {} -> {} gzipped",
+            started.elapsed().as_secs_f64(),
+            before.0,
+            after.0,
+            before.1,
+            after.1
+        );
         return;
     }
     let _ = std::fs::remove_file(&out);
     eprintln!("xtask: wasm-opt failed; keeping the unoptimised wasm");
+}
+
+/// A wasm-opt's version number (0 when it cannot say).
+fn wasm_opt_version(wasm_opt: &Path) -> u32 {
+    crate::util::output(Command::new(wasm_opt).arg("--version")).and_then(|v| v.split_whitespace().nth(2).and_then(|n| n.parse::<u32>().ok())).unwrap_or(0)
+}
+
+/// A file's size raw and gzipped (`gzip -9`; 0 when gzip is missing).
+pub fn sizes(file: &Path) -> (u64, u64) {
+    let raw = std::fs::metadata(file).map_or(0, |m| m.len());
+    let gz = crate::util::output(Command::new("sh").arg("-c").arg(format!("gzip -9 -c '{}' | wc -c", file.display()))).and_then(|s| s.trim().parse().ok()).unwrap_or(0);
+    (raw, gz)
 }
 
 fn copy(from: &Path, to: &Path) -> Result<(), String> {

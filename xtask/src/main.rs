@@ -2,7 +2,7 @@
 //!
 //! - `gen-walk`            regenerate `data/walk.bvh` (our procedural walk cycle) and
 //!                         `data/walk.bva` (the same walk converted by `mocap`)
-//! - `dist [--fast]`        build the web viewer into `dist/` (static, relative URLs)
+//! - `dist [--fast|--opt]`  build the web viewer into `dist/` (static, relative URLs; --opt: wasm-opt from npm when the system's is too old)
 //! - `serve [--port P]`    build, then serve `dist/` on http://127.0.0.1:P (default 8080)
 //! - `test`                `cargo test --workspace`, then the headless browser tests
 //! - `bench-web`           drop-to-first-frame, frame time and transfer size in the browser
@@ -24,12 +24,12 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("gen-walk") => gen_walk(),
-        Some("dist") => dist::dist(args.iter().any(|a| a == "--fast")).map(|_| ()),
+        Some("dist") => dist::dist_with(args.iter().any(|a| a == "--fast"), args.iter().any(|a| a == "--opt")).map(|_| ()),
         Some("serve") => serve::serve_command(&args[1..]),
         Some("test") => browser::test_all(&args[1..]),
         Some("bench-web") => browser::bench(),
         Some("setup") => setup::setup_all(),
-        _ => Err("usage: cargo xtask <gen-walk | dist [--fast] | serve [--port P] | test | bench-web | setup>".to_string()),
+        _ => Err("usage: cargo xtask <gen-walk | dist [--fast|--opt] | serve [--port P] | test | bench-web | setup>".to_string()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

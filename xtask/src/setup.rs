@@ -117,6 +117,17 @@ pub fn playwright() -> Result<(), String> {
     Ok(())
 }
 
+/// npm's binaryen (its JavaScript build of wasm-opt), installed into
+/// `tests/browser/node_modules` on first use without touching package.json.
+pub fn npm_wasm_opt() -> Option<PathBuf> {
+    let dir = root().join("tests/browser");
+    let bin = dir.join("node_modules/.bin/wasm-opt");
+    if !bin.is_file() {
+        let _ = run(Command::new("npm").args(["install", "--no-save", "--no-audit", "--no-fund", "binaryen@132.0.0"]).current_dir(&dir));
+    }
+    bin.is_file().then_some(bin)
+}
+
 /// `wasm-opt` if present; tries to install binaryen once when missing.
 pub fn wasm_opt() -> Option<&'static str> {
     if !have("wasm-opt") {
