@@ -124,6 +124,35 @@ export async function slowClick(page, x, y) {
   await page.mouse.up();
 }
 
+/** A mouse drag from (`x`, `y`) by (`dx`, `dy`) in `steps` moves `pause` ms apart, as a hand would. */
+export async function drag(page, x, y, dx, dy, steps = 8, pause = 60) {
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  for (let k = 1; k <= steps; k++) {
+    await page.mouse.move(x + dx * k / steps, y + dy * k / steps);
+    await page.waitForTimeout(pause);
+  }
+  await page.mouse.up();
+}
+
+/** Decodes PNG bytes in a blank page of `context` (away from the viewer's CSP): `{ width, data }` (RGBA). */
+export async function decodePng(context, png) {
+  const page = await context.newPage();
+  try {
+    return await page.evaluate(async (b64) => {
+      const img = new Image();
+      img.src = `data:image/png;base64,${b64}`;
+      await img.decode();
+      const c = new OffscreenCanvas(img.width, img.height);
+      const g = c.getContext('2d');
+      g.drawImage(img, 0, 0);
+      return { width: img.width, data: Array.from(g.getImageData(0, 0, img.width, img.height).data) };
+    }, png.toString('base64'));
+  } finally {
+    await page.close();
+  }
+}
+
 /** Screenshot of the central 3D area (between the side panels). */
 export function view3d(page, file) {
   return page.screenshot({ path: file, clip: { x: 330, y: 120, width: 520, height: 420 } });

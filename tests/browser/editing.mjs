@@ -6,34 +6,16 @@
 // node editing.mjs <url> <outDir> <chromium>
 import fs from 'node:fs';
 import path from 'node:path';
-import { changeAndRender, launch, reporter, slowClick, waitState } from './common.mjs';
+import { changeAndRender, decodePng, drag, launch, reporter, slowClick, waitState } from './common.mjs';
 
 const [base, outDir, chromiumPath] = process.argv.slice(2);
 const { check, step, finish } = reporter('editing');
 const shot = (name) => path.join(outDir, `editing-${name}.png`);
 const walk = fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url)).toString();
 
-/** Decodes a PNG screenshot (in a blank page, away from the viewer's CSP): { width, data }. */
-async function decode(context, png) {
-  const page = await context.newPage();
-  try {
-    return await page.evaluate(async (b64) => {
-      const img = new Image();
-      img.src = `data:image/png;base64,${b64}`;
-      await img.decode();
-      const c = new OffscreenCanvas(img.width, img.height);
-      const g = c.getContext('2d');
-      g.drawImage(img, 0, 0);
-      return { width: img.width, data: Array.from(g.getImageData(0, 0, img.width, img.height).data) };
-    }, png.toString('base64'));
-  } finally {
-    await page.close();
-  }
-}
-
 /** The mean x of the key-diamond yellow pixels in a screenshot strip (or null). */
 async function diamondX(context, png) {
-  const { width, data: d } = await decode(context, png);
+  const { width, data: d } = await decodePng(context, png);
   let sum = 0;
   let n = 0;
   for (let i = 0; i < d.length; i += 4) {
@@ -55,7 +37,7 @@ async function openMenu(context, page, x, probeX) {
     await slowClick(page, x, 12);
     for (let k = 0; k < 10; k++) {
       await page.waitForTimeout(100);
-      const { data: d } = await decode(context, await page.screenshot({ clip: { x: probeX, y: 150, width: 4, height: 4 } }));
+      const { data: d } = await decodePng(context, await page.screenshot({ clip: { x: probeX, y: 150, width: 4, height: 4 } }));
       if (d[0] < 34 && d[1] < 34 && d[2] < 34 && Math.abs(d[2] - d[0]) < 4) return true;
     }
   }
@@ -93,13 +75,7 @@ try {
     const on = await waitState(page, (s) => s.poseMode === true);
     check(on.poseMode, 'the Edit mode checkbox turns Edit mode on');
     const [x, y] = await page.evaluate(() => Array.from(window.mocapViewer.jointScreenPosition(0, 'LeftHand')));
-    await page.mouse.move(x, y);
-    await page.mouse.down();
-    for (let k = 1; k <= 8; k++) {
-      await page.mouse.move(x + 5 * k, y - 4 * k);
-      await page.waitForTimeout(60);
-    }
-    await page.mouse.up();
+    await drag(page, x, y, 40, -32);
     await waitState(page, (s) => s.clips[0].corrected === true);
     await page.keyboard.press('k');
     const keyed = await waitState(page, (s) => s.clips[0].keys.length === 1);
@@ -178,7 +154,7 @@ try {
     await page.goto(`${base}?url=corpus/md2/waste/tris.md2&url=corpus/md2/waste/waste.pcx`);
     await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 2);
     const orangeIn = async () => {
-      const { data: d } = await decode(context, await page.screenshot({ clip: { x: 330, y: 120, width: 520, height: 480 } }));
+      const { data: d } = await decodePng(context, await page.screenshot({ clip: { x: 330, y: 120, width: 520, height: 480 } }));
       let n = 0;
       for (let i = 0; i < d.length; i += 4) if (d[i] > 200 && d[i + 1] > 110 && d[i + 1] < 190 && d[i + 2] < 120) n += 1;
       return n;
@@ -213,13 +189,7 @@ try {
     check(rig0 && rig0.format === 'mocap-capture-rig' && rig0.joints.length > 15, `Fit skeleton makes a rig (${rig0 && rig0.joints.length} joints)`);
     await changeAndRender(page, (v) => v.pause());
     const [x, y] = Array.from(await page.evaluate(() => window.mocapViewer.rigJointScreenPosition('Head_End')));
-    await page.mouse.move(x, y);
-    await page.mouse.down();
-    for (let k = 1; k <= 6; k++) {
-      await page.mouse.move(x + 4 * k, y - 3 * k);
-      await page.waitForTimeout(50);
-    }
-    await page.mouse.up();
+    await drag(page, x, y, 24, -18, 6, 50);
     await changeAndRender(page, (v) => v.pause());
     await page.screenshot({ path: shot('rig-setup') });
     const rig1 = JSON.parse(await page.evaluate(() => window.mocapViewer.rigJson()));

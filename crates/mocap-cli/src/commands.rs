@@ -376,26 +376,34 @@ pub fn capture(request: &CaptureRequest) -> Result<ExitCode, String> {
     let model_path = request.model;
     let bytes = std::fs::read(model_path).map_err(|e| format!("{}: cannot read: {e}", model_path.display()))?;
     let md2 = mocap::md2::parse(&bytes).map_err(|e| format!("{}:{}:{}: {}", model_path.display(), e.line, e.column, e.message))?;
-    let frames = mocap::capture::model_frames(&md2);
-    let rig = match (request.rig, request.skeleton) {
-        (Some(path), _) => {
+    use mocap::capture::{Capturer, RigChoice};
+    let given = match request.rig {
+        Some(path) => {
             let text = std::fs::read_to_string(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-            mocap::capture::Rig::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?
+            Some(mocap::capture::Rig::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))?)
         }
+        None => None,
+    };
+    let template = match (&given, request.skeleton) {
         (None, Some(path)) => {
             let clip = read_clip(&[path.to_path_buf()])?;
             let mut model = Vec::new();
             mocap::local_to_model(clip.skeleton(), &mocap::LocalPose::rest(clip.skeleton()), &mut model);
-            mocap::capture::Rig::fit(&frames[0], 0, Some((clip.skeleton(), &model)))
+            Some((clip, model))
         }
-        (None, None) => mocap::capture::Rig::fit(&frames[0], 0, None),
+        _ => None,
     };
-    if let Some(path) = request.save_rig {
-        std::fs::write(path, rig.to_json()).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-    }
+    let choice = match (&given, &template) {
+        (Some(rig), _) => RigChoice::Given(rig),
+        (None, t) => RigChoice::Fit(t.as_ref().map(|(clip, model)| (clip.skeleton(), model.as_slice()))),
+    };
     let options = mocap::capture::Options { vertices_per_joint: request.vertices.max(4), ..mocap::capture::Options::default() };
     let started = std::time::Instant::now();
-    let cap = mocap::capture::capture(&md2, &rig, &options).map_err(|e| format!("{}: {e}", model_path.display()))?;
+    let capturer = Capturer::new(&md2, choice, &options).map_err(|e| format!("{}: {e}", model_path.display()))?;
+    if let Some(path) = request.save_rig {
+        std::fs::write(path, capturer.rig().to_json()).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    }
+    let cap = capturer.finish().map_err(|e| format!("{}: {e}", model_path.display()))?;
     print!("{}", cap.report.text());
     println!(
         "{}: {} frames, {} joints ({} tracked) in {:.0} ms; animations: {}",

@@ -7,7 +7,7 @@
 
 use crate::layout::Layout;
 use crate::viewer::Viewer;
-use mocap::capture::{Capturer, Options, Report, Rig};
+use mocap::capture::{Capturer, Options, Report, Rig, RigChoice};
 
 /// Milliseconds of capture work per drawn frame.
 pub const BUDGET_MS: f64 = 12.0;
@@ -18,8 +18,6 @@ pub struct CaptureJob {
     pub model: usize,
     /// The model's name.
     pub name: String,
-    /// The rig used.
-    pub rig: Rig,
     capturer: Capturer,
 }
 
@@ -42,29 +40,19 @@ impl Viewer {
     /// Starts capturing model `index` (with the rig being set up on it, else the
     /// dropped one if it fits the model, else an automatic fit). The work is done a little per frame ([`BUDGET_MS`]).
     pub fn start_capture(&mut self, index: usize) -> Result<(), String> {
-        let c = self.stage.actors.get(index).ok_or_else(|| format!("no character {}", index + 1))?;
-        c.model().ok_or_else(|| format!("{}: only a model (MD2) can be captured", c.name))?;
-        let editing = self.rig_edit.as_ref().is_some_and(|e| e.model == index);
-        if editing {
+        if self.rig_edit.as_ref().is_some_and(|e| e.model == index) {
             self.finish_rig_edit();
         }
-        let Some(c) = self.stage.actors.get(index) else { return Err(format!("no character {}", index + 1)) };
-        let Some(model) = c.model() else { return Err(format!("{}: only a model (MD2) can be captured", c.name)) };
-        let mesh = &model.mesh;
-        let rig = match self.capture_rig.take() {
-            Some(rig) if rig.binding.len() == mesh.source_counts.vertices => rig,
-            Some(rig) => {
-                let message = format!("the rig binds {} vertices but {} has {}", rig.binding.len(), c.name, mesh.source_counts.vertices);
-                self.capture_rig = Some(rig);
-                return Err(message);
-            }
-            None => {
-                let frames = mesh.source_frames();
-                Rig::fit(frames.first().map_or(&[][..], Vec::as_slice), 0, None)
-            }
-        };
-        let capturer = Capturer::from_mesh(mesh, &rig, &Options::default()).map_err(|e| format!("{}: {e}", c.name))?;
-        self.capture_job = Some(CaptureJob { model: index, name: c.name.clone(), rig, capturer });
+        let c = self.stage.actors.get(index).ok_or_else(|| format!("no character {}", index + 1))?;
+        let model = c.model().ok_or_else(|| format!("{}: only a model (MD2) can be captured", c.name))?;
+        let vertices = model.mesh.source_counts.vertices;
+        if let Some(rig) = self.capture_rig.as_ref().filter(|r| r.binding.len() != vertices) {
+            return Err(format!("the rig binds {} vertices but {} has {vertices}", rig.binding.len(), c.name));
+        }
+        let rig = self.capture_rig.take();
+        let choice = rig.as_ref().map_or(RigChoice::Fit(None), RigChoice::Given);
+        let capturer = Capturer::from_mesh(&model.mesh, choice, &Options::default()).map_err(|e| format!("{}: {e}", c.name))?;
+        self.capture_job = Some(CaptureJob { model: index, name: c.name.clone(), capturer });
         Ok(())
     }
 
@@ -118,7 +106,7 @@ impl Viewer {
             model: job.name,
             clip: clip_name,
             report: capture.report,
-            rig: job.rig,
+            rig: capture.rig,
             animations: capture.animations.iter().map(|a| (a.name.clone(), a.first, a.last)).collect(),
         });
     }

@@ -87,6 +87,18 @@ impl Correction {
     }
 }
 
+/// The local pose at the frame shown at `time` with that frame's corrections so
+/// far applied, and the correction to add to (a new one when the frame has none).
+/// The pose is taken out of `scratch`; put it back when done.
+fn corrected_pose(c: &Character, time: f64, scratch: &mut PoseScratch) -> (mocap::LocalPose, Correction) {
+    let frame = c.frame_at(time);
+    c.sample_local(time, Interpolation::Step, scratch);
+    let mut local = std::mem::take(&mut scratch.local);
+    let correction = c.extra.correction.clone().filter(|k| k.frame == frame).unwrap_or(Correction { frame, ghost: true, ..Correction::default() });
+    correction.apply(&mut local);
+    (local, correction)
+}
+
 /// Sets joint `joint`'s local rotation at the frame shown at `time` (a correction,
 /// like a drag: ghosted, keyed by Set key). `None` for a model or an unknown joint.
 pub fn rotate_joint(c: &mut Character, joint: usize, rotation: mocap::glam::Quat, time: f64, scratch: &mut PoseScratch) -> Option<()> {
@@ -94,11 +106,7 @@ pub fn rotate_joint(c: &mut Character, joint: usize, rotation: mocap::glam::Quat
     if joint >= clip.skeleton().len() || clip.skeleton().is_end_site(joint) || !rotation.is_finite() {
         return None;
     }
-    let frame = c.frame_at(time);
-    c.sample_local(time, Interpolation::Step, scratch);
-    let mut local = std::mem::take(&mut scratch.local);
-    let mut correction = c.extra.correction.clone().filter(|k| k.frame == frame).unwrap_or(Correction { frame, ghost: true, ..Correction::default() });
-    correction.apply(&mut local);
+    let (mut local, mut correction) = corrected_pose(c, time, scratch);
     if let Some(slot) = local.rotation.get_mut(joint) {
         *slot = rotation.normalize();
     }
@@ -131,11 +139,7 @@ pub fn drag_joint(c: &mut Character, joint: usize, world: mocap::glam::Vec3, tim
     if !target.is_finite() {
         return None;
     }
-    let frame = c.frame_at(time);
-    c.sample_local(time, Interpolation::Step, scratch);
-    let mut local = std::mem::take(&mut scratch.local);
-    let mut correction = c.extra.correction.clone().filter(|k| k.frame == frame).unwrap_or(Correction { frame, ghost: true, ..Correction::default() });
-    correction.apply(&mut local);
+    let (mut local, mut correction) = corrected_pose(c, time, scratch);
     let solve = match parent {
         None => {
             // A root: its local translation is its model position.

@@ -86,7 +86,7 @@ impl Viewer {
             return e.setup.iter().enumerate().map(|(v, p)| Handle { character: RIG_PAINT, joint: v, world: m.transform_point3(*p), ring: None }).collect();
         }
         let mut out: Vec<Handle> = e.rig.joints.iter().enumerate().map(|(j, x)| Handle { character: RIG_JOINT, joint: j, world: m.transform_point3(Vec3::from_array(x.position)), ring: None }).collect();
-        out.extend(spin_handles(&e.rig).into_iter().map(|(j, p)| Handle { character: RIG_SPIN, joint: j, world: m.transform_point3(p), ring: None }));
+        out.extend(spins(&e.rig).into_iter().map(|(j, _, p)| Handle { character: RIG_SPIN, joint: j, world: m.transform_point3(p), ring: None }));
         out
     }
 
@@ -159,10 +159,7 @@ impl Viewer {
                 lines.push(mocap_render::Line { a: p - d * size, b: p + d * size, color, width_px: 3.0 });
             }
         }
-        for (j, tip) in spin_handles(&e.rig) {
-            let children = e.rig.children();
-            let Some(&[c]) = children.get(j).map(Vec::as_slice) else { continue };
-            let mid = (Vec3::from_array(e.rig.joints[j].position) + Vec3::from_array(e.rig.joints[c].position)) * 0.5;
+        for (_, mid, tip) in spins(&e.rig) {
             lines.push(mocap_render::Line { a: at(mid), b: at(tip), color: [60, 230, 240, 255], width_px: 2.0 });
         }
         if e.show_binding || e.painting {
@@ -175,9 +172,9 @@ impl Viewer {
     }
 }
 
-/// Spin handles: per single-child joint, the tip of its spin drawn from mid-bone
-/// (a third of the bone long), in file units.
-fn spin_handles(rig: &Rig) -> Vec<(usize, Vec3)> {
+/// Spin handles: per single-child joint, the middle of its bone and the tip of
+/// its spin drawn from there (a third of the bone long), in file units.
+fn spins(rig: &Rig) -> Vec<(usize, Vec3, Vec3)> {
     let children = rig.children();
     rig.joints
         .iter()
@@ -188,8 +185,8 @@ fn spin_handles(rig: &Rig) -> Vec<(usize, Vec3)> {
             let axis = (b - a).normalize_or_zero();
             let spin = Vec3::from_array(joint.spin?);
             let across = (spin - axis * spin.dot(axis)).normalize_or_zero();
-            (across != Vec3::ZERO).then(|| (a + b) * 0.5 + across * a.distance(b) / 3.0)
-                .map(|p| (j, p))
+            let mid = (a + b) * 0.5;
+            (across != Vec3::ZERO).then(|| (j, mid, mid + across * a.distance(b) / 3.0))
         })
         .collect()
 }

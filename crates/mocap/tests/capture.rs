@@ -195,24 +195,3 @@ fn float_frames(clip: &Clip) -> Vec<Vec<Vec3>> {
         })
         .collect()
 }
-
-#[test]
-#[ignore]
-fn diagnose_waste() {
-    let Some(dir) = common::corpus_dir() else { return };
-    let md2 = mocap::md2::parse(&std::fs::read(dir.join("md2/waste/tris.md2")).unwrap()).unwrap();
-    let frames = capture::model_frames(&md2);
-    let rig = Rig::fit(&frames[0], 0, None);
-    let options = Options::default();
-    let sets = capture::track::joint_sets(&frames, &rig, 0.01 * 56.0, 8);
-    let spine = sets[1].as_ref().unwrap();
-    println!("spine set {:?} radii {:?} drift {}", spine.vertices, spine.radii, spine.drift);
-    for f in [0usize, 67, 68, 69] {
-        let spheres: Vec<capture::spheres::Sphere> = spine.vertices.iter().zip(&spine.radii).map(|(&v, &r)| capture::spheres::Sphere { center: frames[f][v].as_dvec3(), radius: r }).collect();
-        let ls = capture::spheres::least_squares(&spheres, 1e9).unwrap();
-        let st = capture::spheres::Settings { meet: 1e9, ..capture::spheres::Settings::for_scale(56.0) };
-        let su = capture::spheres::successive(&spheres, ls.point, &st);
-        println!("frame {f}: closed {:?} resid {:.3}; successive from it {:?}", ls.point, ls.residual, su.map(|s| (s.point, s.residual, s.rounds)));
-    }
-    let _ = options;
-}

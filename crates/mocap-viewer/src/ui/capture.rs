@@ -27,30 +27,8 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
         }
     }
     ui.label(egui::RichText::new(rig_note.unwrap_or_else(|| "automatic fit (drop a rig .json to use yours)".to_owned())).weak());
-    let Some(result) = viewer.capture_result.clone() else { return };
-    let joints = &result.report.joints;
-    let tracked = joints.iter().filter(|j| j.tracked.is_ok()).count();
-    let worst = joints.iter().map(|j| j.max_residual).fold(0.0, f64::max);
-    let failed: usize = joints.iter().map(|j| j.failures.len()).sum();
-    egui::Grid::new("capture").num_columns(2).striped(true).show(ui, |ui| {
-        let mut row = |k: &str, v: String| {
-            ui.label(k);
-            ui.label(v);
-            ui.end_row();
-        };
-        row("Captured", format!("{} → {}", result.model, result.clip));
-        row("Joints", format!("{tracked} of {} tracked", joints.len()));
-        row("Residual", format!("≤ {worst:.3} ({:.2} % of the height)", worst / f64::from(result.report.height.max(1e-6)) * 100.0));
-        row("Not converged", format!("{failed} joint-frames"));
-    });
-    for j in joints.iter().filter(|j| j.tracked.is_err()) {
-        ui.label(egui::RichText::new(format!("{}: follows its bones' vertices (no rigid four)", j.name)).weak());
-    }
-    ui.collapsing("Animations (frame ranges)", |ui| {
-        for (name, first, last) in &result.animations {
-            ui.label(format!("{name}: {first}–{last}"));
-        }
-    });
+    let Some(result) = &viewer.capture_result else { return };
+    last_capture(ui, result);
     if ui.button("Save rig").on_hover_text("Download the rig used (JSON); drop it back with the model to capture with it").clicked() {
         viewer.download = viewer.rig_download();
         viewer.save_requested = true;
@@ -107,4 +85,32 @@ fn rig_setup(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
     if done {
         viewer.finish_rig_edit();
     }
+}
+
+/// What the last capture gave: joints tracked, residual, joints without vertices,
+/// the animations as frame ranges.
+fn last_capture(ui: &mut egui::Ui, result: &crate::capture::CaptureResult) {
+    let joints = &result.report.joints;
+    let tracked = joints.iter().filter(|j| j.tracked.is_ok()).count();
+    let worst = joints.iter().map(|j| j.max_residual).fold(0.0, f64::max);
+    let failed: usize = joints.iter().map(|j| j.failures.len()).sum();
+    egui::Grid::new("capture").num_columns(2).striped(true).show(ui, |ui| {
+        let mut row = |k: &str, v: String| {
+            ui.label(k);
+            ui.label(v);
+            ui.end_row();
+        };
+        row("Captured", format!("{} → {}", result.model, result.clip));
+        row("Joints", format!("{tracked} of {} tracked", joints.len()));
+        row("Residual", format!("≤ {worst:.3} ({:.2} % of the height)", worst / f64::from(result.report.height.max(1e-6)) * 100.0));
+        row("Not converged", format!("{failed} joint-frames"));
+    });
+    for j in joints.iter().filter(|j| j.tracked.is_err()) {
+        ui.label(egui::RichText::new(format!("{}: follows its bones' vertices (no rigid four)", j.name)).weak());
+    }
+    ui.collapsing("Animations (frame ranges)", |ui| {
+        for (name, first, last) in &result.animations {
+            ui.label(format!("{name}: {first}–{last}"));
+        }
+    });
 }

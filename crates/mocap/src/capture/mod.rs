@@ -37,6 +37,23 @@ use crate::skeleton::{EulerConvention, Joint, Skeleton};
 use glam::{Mat3, Quat, Vec3};
 use spheres::{Settings, Sphere};
 
+/// The rig a capture uses: a given one, or one fitted into the model's first
+/// frame ([`Rig::fit`]: a humanoid, or the given skeleton in the given pose), so
+/// the frames are decoded once whichever it is.
+#[derive(Clone, Copy, Debug)]
+pub enum RigChoice<'a> {
+    /// This rig.
+    Given(&'a Rig),
+    /// Fit one: `None` for the humanoid, else a skeleton and its model transforms.
+    Fit(Option<(&'a crate::Skeleton, &'a [crate::Transform])>),
+}
+
+impl<'a> From<&'a Rig> for RigChoice<'a> {
+    fn from(rig: &'a Rig) -> RigChoice<'a> {
+        RigChoice::Given(rig)
+    }
+}
+
 /// Settings of a capture.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Options {
@@ -144,6 +161,8 @@ pub struct Capture {
     pub report: Report,
     /// Metres per mesh unit (the clip is in metres, positions in mesh units).
     pub meters_per_unit: f32,
+    /// The rig used (given or fitted).
+    pub rig: Rig,
 }
 
 impl Capture {
@@ -189,6 +208,7 @@ pub struct Capturer {
     /// Vertex sets chosen so far (one [`Capturer::step`] per joint first).
     sets: Vec<Result<track::JointSet, String>>,
     spins: Vec<Option<track::SpinTrack>>,
+    /// Each joint's children, longest bone first.
     children: Vec<Vec<usize>>,
     /// Per joint without a vertex set: the vertices of the bones meeting there
     /// (nearest first), which it follows as a best-fit rigid body.
@@ -206,7 +226,7 @@ pub struct Capturer {
 
 impl Capturer {
     /// Starts a capture of `md2` with `rig` (see the module documentation).
-    pub fn new(md2: &Md2, rig: &Rig, options: &Options) -> Result<Capturer, CaptureError> {
+    pub fn new<'a>(md2: &Md2, rig: impl Into<RigChoice<'a>>, options: &Options) -> Result<Capturer, CaptureError> {
         let frames = model_frames(md2);
         let triangles: Vec<[usize; 3]> = md2.triangles.iter().map(|t| t.vertices.map(usize::from)).collect();
         let names = md2.frames.iter().map(|f| f.name.clone()).collect();
@@ -218,7 +238,7 @@ impl Capturer {
 
     /// Starts a capture of a model's mesh (file vertices, its unit: the clip is in
     /// metres like the model on the stage).
-    pub fn from_mesh(mesh: &crate::MorphMesh, rig: &Rig, options: &Options) -> Result<Capturer, CaptureError> {
+    pub fn from_mesh<'a>(mesh: &crate::MorphMesh, rig: impl Into<RigChoice<'a>>, options: &Options) -> Result<Capturer, CaptureError> {
         let mut capturer = Capturer::from_frames(mesh.source_frames(), mesh.frame_names().to_vec(), mesh.animations().to_vec(), &mesh.source_triangles(), rig, options)?;
         capturer.meters_per_unit = mesh.units().meters_per_unit();
         Ok(capturer)
@@ -229,15 +249,33 @@ impl Capturer {
         &self.frames
     }
 
+    /// The rig used (given or fitted).
+    pub fn rig(&self) -> &Rig {
+        &self.rig
+    }
+
     /// Starts a capture of vertex frames (Y-up) with their names, animations and
     /// triangles; the clip keeps the frames' unit.
-    pub fn from_frames(frames: Vec<Vec<Vec3>>, names: Vec<String>, animations: Vec<Animation>, triangles: &[[usize; 3]], rig: &Rig, options: &Options) -> Result<Capturer, CaptureError> {
+    pub fn from_frames<'a>(frames: Vec<Vec<Vec3>>, names: Vec<String>, animations: Vec<Animation>, triangles: &[[usize; 3]], rig: impl Into<RigChoice<'a>>, options: &Options) -> Result<Capturer, CaptureError> {
+        let fitted;
+        let rig = match rig.into() {
+            RigChoice::Given(rig) => rig,
+            RigChoice::Fit(template) => {
+                fitted = Rig::fit(frames.first().map_or(&[][..], Vec::as_slice), 0, template);
+                &fitted
+            }
+        };
         let vertices = frames.first().map_or(0, Vec::len);
         rig.check_for(vertices, frames.len()).map_err(|e| CaptureError(e.to_string()))?;
         let setup = &frames[rig.setup_frame];
         let (lo, hi) = setup.iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
         let height = (hi - lo).max_element().max(1e-6);
-        let children = rig.children();
+        // Each joint's children, longest bone first (the primary one of a rotation).
+        let mut children = rig.children();
+        let length = |j: usize, c: usize| Vec3::from_array(rig.joints[c].position).distance(Vec3::from_array(rig.joints[j].position));
+        for (j, kids) in children.iter_mut().enumerate() {
+            kids.sort_by(|&a, &b| length(j, b).total_cmp(&length(j, a)));
+        }
         let spins = (0..rig.joints.len())
             .map(|j| match children.get(j).map(Vec::as_slice) {
                 Some([c]) => track::spin_triangle(setup, triangles, rig, j, *c),
@@ -402,8 +440,8 @@ impl Capturer {
     /// shortest turn of the bone from `inherited` (the parent's rotation).
     fn rotation(&self, j: usize, pos: &[Vec3], solved: &[Option<Vec3>], vertices: &[Vec3], inherited: Quat) -> Quat {
         let setup_at = |k: usize| self.rig.joints.get(k).map_or(Vec3::ZERO, |x| Vec3::from_array(x.position));
-        let mut kids: Vec<usize> = self.children.get(j).into_iter().flatten().copied().filter(|&c| solved[c].is_some() && setup_at(c) != setup_at(j)).collect();
-        kids.sort_by(|&a, &b| setup_at(b).distance(setup_at(j)).total_cmp(&setup_at(a).distance(setup_at(j))));
+        // Children are kept longest first (see `from_frames`).
+        let kids: Vec<usize> = self.children.get(j).into_iter().flatten().copied().filter(|&c| solved[c].is_some() && setup_at(c) != setup_at(j)).collect();
         let Some(&first) = kids.first() else { return inherited };
         let (a0, a1) = (setup_at(first) - setup_at(j), pos[first] - pos[j]);
         // Two or more bones not all in one line: the rotation that best turns their
@@ -437,6 +475,7 @@ impl Capturer {
             rotations: self.rotations,
             report: Report { joints: self.reports, height: self.height },
             meters_per_unit: self.meters_per_unit,
+            rig: self.rig,
         })
     }
 
