@@ -333,7 +333,12 @@ impl Rig {
 
     /// Reads and checks a rig file (see [`Rig::check`]).
     pub fn from_json(text: &str) -> Result<Rig, RigError> {
-        let rig: Rig = serde_json::from_str(text).map_err(|e| RigError(format!("line {}, column {}: {e}", e.line(), e.column())))?;
+        let rig: Rig = serde_json::from_str(text).map_err(|e| {
+            // serde_json ends its message with the position; say it once, first.
+            let message = e.to_string();
+            let message = message.rfind(" at line ").map_or(message.as_str(), |i| &message[..i]);
+            RigError(format!("line {}, column {}: {message}", e.line(), e.column()))
+        })?;
         if rig.format != FORMAT {
             return fail(format!("format is {:?}, not {FORMAT:?}", rig.format));
         }
