@@ -359,6 +359,8 @@ pub struct CaptureRequest<'a> {
     pub split: bool,
     /// Vertices per joint.
     pub vertices: usize,
+    /// Stored vertex places, not their rigid parts' best fit.
+    pub raw_vertices: bool,
     /// Where to save the rig used.
     pub save_rig: Option<&'a Path>,
     /// Where to write the per-frame layout.
@@ -397,7 +399,7 @@ pub fn capture(request: &CaptureRequest) -> Result<ExitCode, String> {
         (Some(rig), _) => RigChoice::Given(rig),
         (None, t) => RigChoice::Fit(t.as_ref().map(|(clip, model)| (clip.skeleton(), model.as_slice()))),
     };
-    let options = mocap::capture::Options { vertices_per_joint: request.vertices.max(4), ..mocap::capture::Options::default() };
+    let options = mocap::capture::Options { vertices_per_joint: request.vertices.max(4), average_shapes: !request.raw_vertices, ..mocap::capture::Options::default() };
     let started = std::time::Instant::now();
     let capturer = Capturer::new(&md2, choice, &options).map_err(|e| format!("{}: {e}", model_path.display()))?;
     if let Some(path) = request.save_rig {

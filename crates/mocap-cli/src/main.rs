@@ -165,6 +165,10 @@ enum Command {
         /// Vertices tracked per joint (four is the source's method; more average out noise).
         #[arg(long, default_value_t = 4)]
         vertices: usize,
+        /// Use each tracked vertex's stored (8-bit) place as it is, not the best
+        /// fit of its rigid part averaged over all frames (the source's method; noisier).
+        #[arg(long)]
+        raw_vertices: bool,
         /// Save the rig used (JSON), to adjust it and capture again with --rig.
         #[arg(long)]
         save_rig: Option<PathBuf>,
@@ -301,13 +305,14 @@ fn main() -> ExitCode {
             commands::ik(&files, &commands::IkRequest { joint: &joint, target: &target, frame, bones, solver: solver.as_deref() })
         }
         Command::Validate { paths } => commands::validate(&paths),
-        Command::Capture { model, rig, skeleton, animation, split, vertices, save_rig, frames_out, output } => commands::capture(&commands::CaptureRequest {
+        Command::Capture { model, rig, skeleton, animation, split, vertices, raw_vertices, save_rig, frames_out, output } => commands::capture(&commands::CaptureRequest {
             model: &model,
             rig: rig.as_deref(),
             skeleton: skeleton.as_deref(),
             animation: animation.as_deref(),
             split,
             vertices,
+            raw_vertices,
             save_rig: save_rig.as_deref(),
             frames_out: frames_out.as_deref(),
             output: &output,

@@ -3,7 +3,8 @@
 //! Ground truth by construction: the generated body skinned to the walk, baked
 //! into an MD2 (8-bit vertices), captured with the walk's skeleton as the rig, and
 //! compared with the walk (joint positions as shares of the figure's height, bone
-//! directions in degrees); the same without the 8-bit step is exact. On the corpus's MD2 characters: the
+//! directions in degrees): every joint within 0.5 % and every long bone within 1°
+//! on every frame; the same without the 8-bit step is exact. On the corpus's MD2 characters: the
 //! automatic fit and bind, every tracked joint converging on every frame, and the
 //! captured joints inside the model's bounds.
 
@@ -35,6 +36,27 @@ fn baked_walk(clip: &Clip) -> Vec<u8> {
     mocap::md2::write(&mocap::md2::build(&frames, &triangles).unwrap())
 }
 
+/// Joint position errors (share of the height) over every joint and frame, and
+/// bone direction errors (degrees) of the bones longer than a tenth of the height.
+fn errors(clip: &Clip, cap: &capture::Capture) -> (Vec<f32>, Vec<f32>) {
+    let height = clip.pose_extent();
+    let (mut positions, mut directions) = (Vec::new(), Vec::new());
+    for f in 0..clip.frame_count() {
+        let truth = clip.world_positions(f);
+        // The clip is in metres; the model's units (here the walk's centimetres) are read as inches.
+        let got: Vec<Vec3> = cap.clip.world_positions(f).iter().map(|p| *p / cap.meters_per_unit).collect();
+        assert_eq!(truth.len(), got.len());
+        for (j, joint) in clip.skeleton().joints().iter().enumerate() {
+            positions.push(truth[j].distance(got[j]) / height);
+            if let Some(p) = joint.parent.filter(|_| joint.offset.length() > 0.1 * height) {
+                let (a, b) = ((truth[j] - truth[p]).normalize_or_zero(), (got[j] - got[p]).normalize_or_zero());
+                directions.push(a.dot(b).clamp(-1.0, 1.0).acos().to_degrees());
+            }
+        }
+    }
+    (positions, directions)
+}
+
 /// Sorted copy's value at share `q` (0–1).
 fn percentile(values: &[f32], q: f64) -> f32 {
     let mut v = values.to_vec();
@@ -55,31 +77,23 @@ fn a_baked_walk_is_captured_back_close_to_the_truth() {
     let cap = capture::capture(&md2, &rig, &Options::default()).unwrap();
     println!("{}", cap.report.text());
     assert!(cap.report.joints.iter().all(|j| j.tracked.is_ok() && j.failures.is_empty()), "every joint tracked and converging");
-    let height = clip.pose_extent();
-    // Joint positions (share of the height) over every joint and frame, and bone
-    // directions (degrees) of the bones longer than a tenth of the height.
-    let (mut positions, mut directions) = (Vec::new(), Vec::new());
-    for f in 0..clip.frame_count() {
-        let truth = clip.world_positions(f);
-        // The clip is in metres; the model's units (here the walk's centimetres) are read as inches.
-        let got: Vec<Vec3> = cap.clip.world_positions(f).iter().map(|p| *p / cap.meters_per_unit).collect();
-        assert_eq!(truth.len(), got.len());
-        for (j, joint) in clip.skeleton().joints().iter().enumerate() {
-            positions.push(truth[j].distance(got[j]) / height);
-            if let Some(p) = joint.parent.filter(|_| joint.offset.length() > 0.1 * height) {
-                let (a, b) = ((truth[j] - truth[p]).normalize_or_zero(), (got[j] - got[p]).normalize_or_zero());
-                directions.push(a.dot(b).clamp(-1.0, 1.0).acos().to_degrees());
-            }
-        }
-    }
+    let (positions, directions) = errors(&clip, &cap);
     let (p50, p95, max) = (percentile(&positions, 0.5), percentile(&positions, 0.95), percentile(&positions, 1.0));
     let (d50, d95, dmax) = (percentile(&directions, 0.5), percentile(&directions, 0.95), percentile(&directions, 1.0));
     println!("joint error, share of the height: median {:.3} %, 95th percentile {:.3} %, worst {:.3} %", p50 * 100.0, p95 * 100.0, max * 100.0);
     println!("long-bone direction error: median {d50:.2}°, 95th percentile {d95:.2}°, worst {dmax:.2}°");
-    // One 8-bit step of this figure is 0.4 % of its height: the capture's median
-    // is within a step, nearly all of it within half a percent.
-    assert!(p50 < 0.0025 && p95 < 0.005 && max < 0.01, "joint errors {p50} {p95} {max}");
-    assert!(d50 < 1.0 && d95 < 2.5, "bone directions {d50}° {d95}°");
+    // One 8-bit step of this figure is 0.4 % of its height. The figures:
+    // every joint on every frame within 0.5 % of the height, every long bone
+    // within 1°.
+    assert!(max < 0.005, "joint errors: median {p50}, 95th percentile {p95}, worst {max}");
+    assert!(dmax < 1.0, "bone directions: median {d50}°, 95th percentile {d95}°, worst {dmax}°");
+    // The source's method alone (each vertex's stored 8-bit place) is noisier:
+    // averaging the rigid parts' shapes is what reaches those figures.
+    let raw = capture::capture(&md2, &rig, &Options { average_shapes: false, ..Options::default() }).unwrap();
+    let (raw_positions, _) = errors(&clip, &raw);
+    let raw_max = percentile(&raw_positions, 1.0);
+    println!("stored vertex places: worst joint error {:.3} %", raw_max * 100.0);
+    assert!(raw_max > max && raw_max < 0.01, "stored places {raw_max}, averaged {max}");
     // The captured clip is a normal clip: it saves as BVH and reads back.
     let again = mocap::bvh::parse(mocap::bvh::write(&cap.clip).as_bytes()).unwrap();
     assert_eq!(again.frame_count(), clip.frame_count());

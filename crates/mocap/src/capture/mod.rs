@@ -8,7 +8,11 @@
 //! and every bone's rotation per frame, and a [`Report`].
 //!
 //! Per joint, four tracked vertices ([`track::joint_sets`]) keep their set-up
-//! distances to it; in each frame the joint is where the four spheres meet, found
+//! distances to it. Their places in each frame are, by default, the best fit of
+//! the rigid part they belong to, its shape averaged over all frames
+//! ([`shape::RigidShape`]; MD2's 8-bit noise is divided among the part's
+//! vertices), or their stored places ([`Options::average_shapes`] off). In each
+//! frame the joint is where the four spheres meet, found
 //! by successive approximation ([`spheres::successive`], started from the joint's
 //! place in the previous frame) and checked by the closed form
 //! ([`spheres::least_squares`]): the report gives where they disagree, and each
@@ -24,6 +28,7 @@
 
 pub mod frames;
 pub mod rig;
+pub mod shape;
 pub mod spheres;
 pub mod track;
 
@@ -66,11 +71,16 @@ pub struct Options {
     /// Vertices tracked per joint: four (the source's method), or more to average
     /// out noise (every one is another sphere in the same iteration).
     pub vertices_per_joint: usize,
+    /// Whether the tracked vertices are placed, in each frame, by the best fit of
+    /// their rigid part's shape averaged over all frames ([`shape::RigidShape`]),
+    /// which divides MD2's 8-bit noise among the part's vertices; false uses each
+    /// vertex's stored place as it is (the source's method, noisier).
+    pub average_shapes: bool,
 }
 
 impl Default for Options {
     fn default() -> Options {
-        Options { rigid_tolerance: 0.015, max_rounds: 2000, vertices_per_joint: 4 }
+        Options { rigid_tolerance: 0.015, max_rounds: 2000, vertices_per_joint: 4, average_shapes: true }
     }
 }
 
@@ -207,12 +217,15 @@ pub struct Capturer {
     chooser: track::Chooser,
     /// Vertex sets chosen so far (one [`Capturer::step`] per joint first).
     sets: Vec<Result<track::JointSet, String>>,
+    /// Per joint with a set, its rigid part (with [`Options::average_shapes`]).
+    parts: Vec<Option<TrackedPart>>,
+    average_shapes: bool,
     spins: Vec<Option<track::SpinTrack>>,
     /// Each joint's children, longest bone first.
     children: Vec<Vec<usize>>,
     /// Per joint without a vertex set: the vertices of the bones meeting there
-    /// (nearest first), which it follows as a best-fit rigid body.
-    followed: Vec<Vec<usize>>,
+    /// (the 64 nearest), which it follows as a best-fit rigid body.
+    followed: Vec<Option<shape::RigidShape>>,
     settings: Settings,
     height: f32,
     /// Metres per mesh unit: the clip is written in metres.
@@ -290,6 +303,8 @@ impl Capturer {
             rig: rig.clone(),
             chooser: track::Chooser::new(rig, options.rigid_tolerance * height, options.vertices_per_joint),
             sets: Vec::with_capacity(n),
+            parts: Vec::with_capacity(n),
+            average_shapes: options.average_shapes,
             spins,
             children,
             followed: Vec::new(),
@@ -326,17 +341,19 @@ impl Capturer {
                 spin: spin.is_some(),
             })
             .collect();
+        let frames = &self.frames;
+        let average = self.average_shapes;
         self.followed = (0..rig.joints.len())
             .map(|j| {
                 if self.sets.get(j).is_some_and(Result::is_ok) {
-                    return Vec::new();
+                    return None;
                 }
                 let at = Vec3::from_array(rig.joints[j].position);
                 let mine = |b: Option<usize>| b.is_some_and(|b| b == j || rig.joints.get(b).is_some_and(|x| x.parent == Some(j)));
                 let mut near: Vec<usize> = (0..setup.len()).filter(|&v| mine(rig.binding[v])).collect();
                 near.sort_by(|&a, &b| setup[a].distance(at).total_cmp(&setup[b].distance(at)));
                 near.truncate(64);
-                near
+                part_shape(frames, rig.setup_frame, near, average)
             })
             .collect();
     }
@@ -351,8 +368,15 @@ impl Capturer {
     /// everything is done.
     pub fn step(&mut self) -> bool {
         if self.sets.len() < self.rig.joints.len() {
-            let set = self.chooser.joint(&self.frames, &self.rig, self.sets.len());
+            let j = self.sets.len();
+            let mut set = self.chooser.joint(&self.frames, &self.rig, j);
+            let at = self.rig.joints.get(j).map_or(Vec3::ZERO, |x| Vec3::from_array(x.position));
+            let part = match &mut set {
+                Ok(set) if self.average_shapes => TrackedPart::new(&self.frames, self.rig.setup_frame, set, at),
+                _ => None,
+            };
             self.sets.push(set);
+            self.parts.push(part);
             if self.sets.len() == self.rig.joints.len() {
                 self.sets_done();
             }
@@ -366,7 +390,13 @@ impl Capturer {
         let mut solved: Vec<Option<Vec3>> = vec![None; n];
         for j in 0..n {
             let Some(Ok(set)) = self.sets.get(j) else { continue };
-            let spheres: Vec<Sphere> = set.vertices.iter().zip(&set.radii).map(|(&v, &r)| Sphere { center: vertices[v].as_dvec3(), radius: r }).collect();
+            // The tracked vertices' places: by their part's best fit, or as stored.
+            let fitted = self.parts.get(j).and_then(Option::as_ref).and_then(|p| Some((p, p.shape.fit(vertices)?)));
+            let centers: Vec<Vec3> = match fitted {
+                Some((part, motion)) => part.points.iter().map(|&p| motion.apply(p)).collect(),
+                None => set.vertices.iter().map(|&v| vertices[v]).collect(),
+            };
+            let spheres: Vec<Sphere> = centers.iter().zip(&set.radii).map(|(c, &r)| Sphere { center: c.as_dvec3(), radius: r }).collect();
             // Start from the closed-form point (a frame can move far from the last
             // one: a jump), else from where the joint was in the last frame.
             let closed = spheres::least_squares(&spheres, f64::INFINITY).ok();
@@ -427,12 +457,8 @@ impl Capturer {
     /// of its bones (from the set-up frame to this one) takes it; `None` with
     /// fewer than three of them.
     fn follow(&self, j: usize, vertices: &[Vec3]) -> Option<Vec3> {
-        let list = self.followed.get(j).filter(|l| l.len() >= 3)?;
-        let setup = self.frames.get(self.rig.setup_frame)?;
-        let (c0, c1) = (centroid(&list.iter().map(|&v| setup[v]).collect::<Vec<_>>()), centroid(&list.iter().map(|&v| vertices[v]).collect::<Vec<_>>()));
-        let pairs: Vec<(Vec3, Vec3)> = list.iter().map(|&v| (setup[v] - c0, vertices[v] - c1)).collect();
-        let q = fit_rotation(&pairs)?;
-        Some(c1 + q * (Vec3::from_array(self.rig.joints.get(j)?.position) - c0))
+        let shape = self.followed.get(j)?.as_ref()?;
+        Some(shape.fit(vertices)?.apply(Vec3::from_array(self.rig.joints.get(j)?.position)))
     }
 
     /// Joint `j`'s rotation from the set-up pose: from two bone directions when
@@ -536,7 +562,8 @@ fn from_frames(a0: Vec3, b0: Vec3, a1: Vec3, b1: Vec3) -> Option<Quat> {
 
 /// The rotation `q` minimising `Σ |q · aᵢ − bᵢ|²` over the pairs (`aᵢ`, `bᵢ`)
 /// (Horn's quaternion method: the eigenvector of the largest eigenvalue of a
-/// 4 × 4 symmetric matrix, found by power iteration on it shifted to be positive).
+/// 4 × 4 symmetric matrix, found by power iteration on it shifted to be positive,
+/// by repeated squaring).
 pub fn fit_rotation(pairs: &[(Vec3, Vec3)]) -> Option<Quat> {
     let mut s = [[0.0f64; 3]; 3];
     for (a, b) in pairs {
@@ -558,20 +585,65 @@ pub fn fit_rotation(pairs: &[(Vec3, Vec3)]) -> Option<Quat> {
     if !(shift > 0.0) || !shift.is_finite() {
         return None;
     }
-    let mut v = [1.0f64, 0.1, 0.1, 0.1];
-    for _ in 0..200 {
-        let mut w = [0.0f64; 4];
+    // (N + shift·I)^1024 by ten squarings (each scaled to stay finite), applied
+    // to a start vector: 1024 steps of power iteration for 640 multiply-adds.
+    let mut m = n;
+    for (r, row) in m.iter_mut().enumerate() {
+        row[r] += shift;
+    }
+    for _ in 0..10 {
+        let mut sq = [[0.0f64; 4]; 4];
         for r in 0..4 {
-            w[r] = v[r] * shift + (0..4).map(|c| n[r][c] * v[c]).sum::<f64>();
+            for c in 0..4 {
+                sq[r][c] = (0..4).map(|k| m[r][k] * m[k][c]).sum();
+            }
         }
-        let len = w.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if !(len > 0.0) {
+        let scale = sq.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+        if !(scale > 0.0) || !scale.is_finite() {
             return None;
         }
-        v = w.map(|x| x / len);
+        m = sq.map(|row| row.map(|x| x / scale));
     }
+    let start = [1.0f64, 0.1, 0.1, 0.1];
+    let w: [f64; 4] = std::array::from_fn(|r| (0..4).map(|c| m[r][c] * start[c]).sum());
+    let len = w.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !(len > 0.0) {
+        return None;
+    }
+    let v = w.map(|x| x / len);
     let q = Quat::from_xyzw(v[1] as f32, v[2] as f32, v[3] as f32, v[0] as f32).normalize();
     q.is_finite().then_some(q)
+}
+
+/// A joint's tracked vertices placed by their rigid part: the part's shape
+/// averaged over the frames, and the tracked vertices' places in it (in the
+/// set's order), found once so a frame only fits the shape.
+struct TrackedPart {
+    shape: shape::RigidShape,
+    points: Vec<Vec3>,
+}
+
+impl TrackedPart {
+    /// The part of `set` averaged over `frames`; sets the set's radii to the
+    /// averaged places' distances to the joint at `at`. `None` when the part has
+    /// too few vertices or lacks a tracked one.
+    fn new(frames: &[Vec<Vec3>], setup: usize, set: &mut track::JointSet, at: Vec3) -> Option<TrackedPart> {
+        let shape = part_shape(frames, setup, set.part.clone(), true)?;
+        let place = |v: usize| shape.vertices.iter().position(|&x| x == v).and_then(|i| shape.reference.get(i)).copied();
+        let points = set.vertices.iter().map(|&v| place(v)).collect::<Option<Vec<Vec3>>>()?;
+        set.radii = points.iter().map(|p| f64::from(p.distance(at))).collect();
+        Some(TrackedPart { shape, points })
+    }
+}
+
+/// The shape of the part `vertices`: averaged over the frames (two rounds), or
+/// as frame `setup` has it.
+fn part_shape(frames: &[Vec<Vec3>], setup: usize, vertices: Vec<usize>, average: bool) -> Option<shape::RigidShape> {
+    if average {
+        shape::RigidShape::average(frames, setup, vertices, 2)
+    } else {
+        shape::RigidShape::in_frame(frames, setup, vertices)
+    }
 }
 
 fn centroid(points: &[Vec3]) -> Vec3 {

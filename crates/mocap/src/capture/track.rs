@@ -33,6 +33,9 @@ pub struct JointSet {
     pub radii: Vec<f64>,
     /// The largest change of a distance between two of them over all frames.
     pub drift: f32,
+    /// The rigid part they belong to: the bone's vertices (near the joint) rigid
+    /// with every tracked one, the tracked ones included.
+    pub part: Vec<usize>,
 }
 
 /// Bones meeting at each joint: the one ending there and those leaving it.
@@ -103,9 +106,9 @@ impl Chooser {
             candidates.sort_by(|&a, &b| setup[a].distance(at).total_cmp(&setup[b].distance(at)));
             candidates.truncate(CANDIDATES);
             match pick_four(frames, setup, at, &candidates, self.tolerance, self.count) {
-                Ok((vertices, d)) => {
+                Ok((vertices, d, part)) => {
                     let radii = vertices.iter().map(|&v| f64::from(setup[v].distance(at))).collect();
-                    let set = JointSet { bone, vertices, radii, drift: d };
+                    let set = JointSet { bone, vertices, radii, drift: d, part };
                     if best.as_ref().is_none_or(|b| set.drift < b.drift) {
                         best = Some(set);
                     }
@@ -134,8 +137,8 @@ const SEARCH: usize = 24;
 /// `λ` the smallest eigenvalue of `Σ uᵢ uᵢᵀ` (`uᵢ` the unit direction from vertex
 /// `i` to the joint; the larger, the less noise in the distances moves the solved
 /// joint), `drift` the largest change of a distance between two of them. Returns
-/// the four and their drift.
-fn pick_four(frames: &[Vec<Vec3>], setup: &[Vec3], at: Vec3, candidates: &[usize], tolerance: f32, count: usize) -> Result<(Vec<usize>, f32), String> {
+/// the four, their drift and the rigid part (see [`JointSet::part`]).
+fn pick_four(frames: &[Vec<Vec3>], setup: &[Vec3], at: Vec3, candidates: &[usize], tolerance: f32, count: usize) -> Result<(Vec<usize>, f32, Vec<usize>), String> {
     let n = candidates.len();
     if n < 4 {
         return Err(format!("{n} vertices bound, four are needed"));
@@ -226,7 +229,8 @@ fn pick_four(frames: &[Vec<Vec3>], setup: &[Vec3], at: Vec3, candidates: &[usize
         }
     }
     let d = chosen.iter().flat_map(|&a| chosen.iter().map(move |&b| (a, b))).filter(|(a, b)| a != b).map(|(a, b)| drifts[a * n + b]).fold(0.0, f32::max);
-    Ok((chosen.iter().map(|&k| candidates[k]).collect(), d))
+    let part = cluster.iter().copied().filter(|&c| chosen.iter().all(|&x| x == c || rigid(x, c))).map(|k| candidates[k]).collect();
+    Ok((chosen.iter().map(|&k| candidates[k]).collect(), d, part))
 }
 
 /// Smallest eigenvalue of `Σ uᵢ uᵢᵀ` (symmetric 3 × 3), by the trigonometric
