@@ -137,7 +137,10 @@ function nextRenderedFrame(viewer, since) {
 // and changes nothing.
 async function loadFiles(viewer, files, add, t0) {
   const size = files.reduce((n, f) => n + f.size, 0);
-  const big = size > 512 * 1024;
+  // Files that take a while to read (about a second per 64 MB on a slow
+  // machine) show a message first; waiting for it to be painted costs a frame,
+  // which on a software GPU is a good part of reading a smaller file.
+  const big = size > 64 * 1024 * 1024;
   const names = files.map((f) => f.name);
   if (big) {
     showStatus(`Loading ${names.join(', ')} (${(size / 1048576).toFixed(1)} MB)…`);

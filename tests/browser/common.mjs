@@ -135,19 +135,27 @@ export async function drag(page, x, y, dx, dy, steps = 8, pause = 60) {
   await page.mouse.up();
 }
 
-/** Decodes PNG bytes in a blank page of `context` (away from the viewer's CSP): `{ width, data }` (RGBA). */
+/**
+ * Decodes PNG bytes in a blank page of `context` (away from the viewer's CSP):
+ * `{ width, data }`, `data` the RGBA bytes as a Buffer.
+ */
 export async function decodePng(context, png) {
   const page = await context.newPage();
   try {
-    return await page.evaluate(async (b64) => {
+    const { width, b64 } = await page.evaluate(async (src) => {
       const img = new Image();
-      img.src = `data:image/png;base64,${b64}`;
+      img.src = `data:image/png;base64,${src}`;
       await img.decode();
       const c = new OffscreenCanvas(img.width, img.height);
       const g = c.getContext('2d');
       g.drawImage(img, 0, 0);
-      return { width: img.width, data: Array.from(g.getImageData(0, 0, img.width, img.height).data) };
+      const bytes = g.getImageData(0, 0, img.width, img.height).data;
+      // Back as base64 (a plain array of millions of numbers is slow to pass).
+      let bin = '';
+      for (let i = 0; i < bytes.length; i += 0x8000) bin += String.fromCharCode(...bytes.subarray(i, i + 0x8000));
+      return { width: img.width, b64: btoa(bin) };
     }, png.toString('base64'));
+    return { width, data: Buffer.from(b64, 'base64') };
   } finally {
     await page.close();
   }

@@ -12,7 +12,7 @@
 //   opens the pair on that animation.
 import fs from 'node:fs';
 import path from 'node:path';
-import { launch, state, waitState, waitFrames, changeAndRender, dropFiles, waitDropped, view3d, reporter } from './common.mjs';
+import { launch, state, waitState, waitFrames, changeAndRender, decodePng, dropFiles, waitDropped, view3d, reporter } from './common.mjs';
 
 const [url, mode, outDir, chromiumPath, acclaimPath] = process.argv.slice(2);
 const acclaim = JSON.parse(fs.readFileSync(acclaimPath, 'utf8'));
@@ -21,37 +21,21 @@ const { check, step, finish } = reporter(`${mode} formats`);
 const read = (p) => fs.readFileSync(p);
 const base = (p) => path.basename(p);
 
-/** Pixel statistics of a PNG, and how many pixels differ from `other` (decoded in a blank page). */
+/** Pixel statistics of a PNG, and how many pixels differ from `other`. */
 async function pixels(context, png, other) {
-  const page = await context.newPage();
-  try {
-    return await page.evaluate(async ([a, b]) => {
-      const decode = async (b64) => {
-        const img = new Image();
-        img.src = `data:image/png;base64,${b64}`;
-        await img.decode();
-        const c = new OffscreenCanvas(img.width, img.height);
-        const g = c.getContext('2d');
-        g.drawImage(img, 0, 0);
-        return g.getImageData(0, 0, img.width, img.height).data;
-      };
-      const d = await decode(a);
-      const r = b ? await decode(b) : null;
-      let saturated = 0;
-      let changed = 0;
-      for (let i = 0; i < d.length; i += 4) {
-        const hi = Math.max(d[i], d[i + 1], d[i + 2]);
-        const lo = Math.min(d[i], d[i + 1], d[i + 2]);
-        // Strong colour: the faerie skin's red wings and green dress, never the grey
-        // floor, the dark background or the neutral material.
-        if (hi - lo > 70) saturated += 1;
-        if (r && Math.abs(d[i] - r[i]) + Math.abs(d[i + 1] - r[i + 1]) + Math.abs(d[i + 2] - r[i + 2]) > 30) changed += 1;
-      }
-      return { saturated, changed };
-    }, [png.toString('base64'), other ? other.toString('base64') : null]);
-  } finally {
-    await page.close();
+  const { data: d } = await decodePng(context, png);
+  const r = other ? (await decodePng(context, other)).data : null;
+  let saturated = 0;
+  let changed = 0;
+  for (let i = 0; i < d.length; i += 4) {
+    const hi = Math.max(d[i], d[i + 1], d[i + 2]);
+    const lo = Math.min(d[i], d[i + 1], d[i + 2]);
+    // Strong colour: the faerie skin's red wings and green dress, never the grey
+    // floor, the dark background or the neutral material.
+    if (hi - lo > 70) saturated += 1;
+    if (r && Math.abs(d[i] - r[i]) + Math.abs(d[i + 1] - r[i + 1]) + Math.abs(d[i + 2] - r[i + 2]) > 30) changed += 1;
   }
+  return { saturated, changed };
 }
 
 const { context, page, close, errors } = await launch(chromiumPath, mode);

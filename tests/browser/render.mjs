@@ -1,45 +1,30 @@
 // Browser tests of what the 3D view draws: capsules by default with floor shadows,
 // the m key and the fragment switch to sticks and turn shadows off, and the view
-// keeps drawing correctly when the window is resized or the pixel ratio is 2.
+// keeps drawing correctly when the window is resized or the pixel ratio is 2;
+// the fast look while playing (quality=fast|auto|full) and nothing drawn at rest.
 // Usage: node render.mjs URL MODE OUT_DIR CHROMIUM
 import path from 'node:path';
-import { changeAndRender, launch, reporter, state, waitState } from './common.mjs';
+import { changeAndRender, decodePng, launch, reporter, state, waitState } from './common.mjs';
 
 const [base, mode, outDir, chromiumPath] = process.argv.slice(2);
 const { check, step, finish } = reporter(`render ${mode}`);
 const shot = (name) => path.join(outDir, `render-${mode}-${name}.png`);
 
-/** Counts pixels of a PNG (decoded in a blank page, away from the viewer's CSP). */
+/** Counts pixels of a PNG: lit figure, blue joint balls, and (with `reference`) pixels darker than it. */
 async function pixelStats(context, png, reference) {
-  const page = await context.newPage();
-  try {
-    return await page.evaluate(async ([a, b]) => {
-      const decode = async (b64) => {
-        const img = new Image();
-        img.src = `data:image/png;base64,${b64}`;
-        await img.decode();
-        const c = new OffscreenCanvas(img.width, img.height);
-        const g = c.getContext('2d');
-        g.drawImage(img, 0, 0);
-        return g.getImageData(0, 0, img.width, img.height).data;
-      };
-      const d = await decode(a);
-      const r = b ? await decode(b) : null;
-      let figure = 0;
-      let darker = 0;
-      let blue = 0;
-      for (let i = 0; i < d.length; i += 4) {
-        // Light grey, lit figure pixels (the default character colour).
-        if (d[i] > 150 && d[i + 1] > 150 && d[i + 2] > 150 && Math.abs(d[i] - d[i + 2]) < 40) figure += 1;
-        // The blue joint balls of stick mode.
-        if (d[i + 2] > 150 && d[i + 2] > d[i] + 60) blue += 1;
-        if (r && d[i] + d[i + 1] + d[i + 2] + 24 < r[i] + r[i + 1] + r[i + 2]) darker += 1;
-      }
-      return { figure, darker, blue };
-    }, [png.toString('base64'), reference ? reference.toString('base64') : null]);
-  } finally {
-    await page.close();
+  const { data: d } = await decodePng(context, png);
+  const r = reference ? (await decodePng(context, reference)).data : null;
+  let figure = 0;
+  let darker = 0;
+  let blue = 0;
+  for (let i = 0; i < d.length; i += 4) {
+    // Light grey, lit figure pixels (the default character colour).
+    if (d[i] > 150 && d[i + 1] > 150 && d[i + 2] > 150 && Math.abs(d[i] - d[i + 2]) < 40) figure += 1;
+    // The blue joint balls of stick mode.
+    if (d[i + 2] > 150 && d[i + 2] > d[i] + 60) blue += 1;
+    if (r && d[i] + d[i + 1] + d[i + 2] + 24 < r[i] + r[i + 1] + r[i + 2]) darker += 1;
   }
+  return { figure, darker, blue };
 }
 
 /** The 3D view between the side panels, as PNG bytes. */
@@ -129,6 +114,50 @@ try {
     await page.goto(`${base}#t=1&play=0&mode=sticks&shadows=1`);
     const s = await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 0);
     check(s.drawMode === 'sticks' && s.shadows, `drawMode ${s.drawMode}, shadows ${s.shadows}`);
+  });
+
+  await step('while playing slowly the view drops to one sample per pixel; at rest it is full quality', async () => {
+    await page.goto('about:blank');
+    await page.goto(`${base}#play=1&quality=fast`);
+    let s = await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3 && s.playing);
+    s = await waitState(page, (s) => s.reduced);
+    check(s.quality === 'fast' && s.view.includes('quality=fast'), `quality ${s.quality} (${s.view})`);
+    const png = await view(page, shot('reduced'));
+    const px = await pixelStats(context, png);
+    check(px.figure > 1000, `the figure is drawn in the fast look (${px.figure} pixels)`);
+    s = await changeAndRender(page, (v) => v.pause());
+    check(!s.reduced, 'the paused frame is drawn at full quality');
+    // Full: never reduced while playing.
+    await page.evaluate(() => { window.mocapViewer.applyViewState('quality=full'); window.mocapViewer.play(); });
+    let reduced = false;
+    for (let i = 0; i < 8; i++) {
+      s = await changeAndRender(page, () => {});
+      reduced ||= s.reduced;
+    }
+    check(s.quality === 'full' && !reduced, `quality=full keeps full quality while playing (${s.quality})`);
+    // Auto: reduced while playing exactly when frames are slower than 1/24 s.
+    await page.evaluate(() => window.mocapViewer.applyViewState('quality=auto'));
+    const ms = await page.evaluate(async () => {
+      const v = window.mocapViewer;
+      const f0 = v.state().framesRendered;
+      const t0 = performance.now();
+      await new Promise((r) => setTimeout(r, 1500));
+      return (performance.now() - t0) / Math.max(1, v.state().framesRendered - f0);
+    });
+    s = await state(page);
+    const slow = ms > (1000 / 24) * 1.2;
+    const quick = ms < (1000 / 24) * 0.8;
+    check(slow ? s.reduced : quick ? !s.reduced : true, `auto: ${ms.toFixed(0)} ms per frame, reduced ${s.reduced}`);
+    await page.evaluate(() => window.mocapViewer.pause());
+  });
+
+  await step('paused with no input, the page draws nothing', async () => {
+    await waitState(page, (s) => !s.playing);
+    await new Promise((r) => setTimeout(r, 500));
+    const before = (await state(page)).framesRendered;
+    await new Promise((r) => setTimeout(r, 1500));
+    const after = (await state(page)).framesRendered;
+    check(after === before, `no frame drawn in 1.5 s (${before} -> ${after})`);
   });
 
   await step('resizing the window keeps the figure drawn', async () => {

@@ -24,6 +24,7 @@
 
 #![warn(missing_docs)]
 
+mod blit;
 mod buffer;
 mod camera;
 mod capsule;
@@ -41,6 +42,7 @@ mod target;
 mod uniforms;
 mod renderer;
 
+pub use blit::{Blit, BlitSource};
 pub use camera::Camera;
 pub use color::srgb_to_linear;
 pub use figure::{DrawMode, FigureJoint, FigureStyle, HELPER_BONE, HIGHLIGHT_COLOR, JOINT_COLOR, MAX_FIGURE_BONES, PALETTE, body_radius, bone_radius, figure, push_figure};

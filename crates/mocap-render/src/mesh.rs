@@ -215,27 +215,7 @@ pub(crate) struct MeshCache {
 
 impl MeshCache {
     pub fn new(device: &wgpu::Device) -> MeshCache {
-        let skin_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("mocap skin"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
-        });
+        let skin_layout = crate::pipeline::color_texture_layout(device, "mocap skin");
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("mocap skin"),
             address_mode_u: wgpu::AddressMode::Repeat,

@@ -62,3 +62,34 @@ pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: 
         cache: None,
     })
 }
+
+/// A bind group layout of one 2D texture of `sample_type` (binding 0) and a
+/// sampler of `sampler` type (binding 1), read by fragment shaders.
+pub(crate) fn texture_layout(device: &wgpu::Device, label: &'static str, sample_type: wgpu::TextureSampleType, sampler: wgpu::SamplerBindingType) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Sampler(sampler),
+                count: None,
+            },
+        ],
+    })
+}
+
+/// [`texture_layout`] for a filterable colour texture and a filtering sampler.
+pub(crate) fn color_texture_layout(device: &wgpu::Device, label: &'static str) -> wgpu::BindGroupLayout {
+    texture_layout(device, label, wgpu::TextureSampleType::Float { filterable: true }, wgpu::SamplerBindingType::Filtering)
+}

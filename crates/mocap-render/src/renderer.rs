@@ -20,14 +20,18 @@ use crate::{Camera, RenderTarget, Scene, SkinnedDraw};
 use glam::Vec3;
 use wgpu::util::DeviceExt;
 
-/// Draws [`Scene`]s with one device, colour format and sample count.
+/// Draws [`Scene`]s with one device and colour format, into targets of its
+/// sample count or of any other (pipelines for another count are made on first use).
 pub struct SceneRenderer {
     format: wgpu::TextureFormat,
     sample_count: u32,
     uniforms: wgpu::Buffer,
+    frame_layout: wgpu::BindGroupLayout,
     frame_group: wgpu::BindGroup,
     shadow: ShadowMap,
     pipelines: Pipelines,
+    /// Pipelines for targets of other sample counts, made when first drawn into.
+    other_pipelines: Vec<(u32, Pipelines)>,
     fine_mesh: Mesh,
     coarse_mesh: Mesh,
     lines: GrowingBuffer,
@@ -141,9 +145,11 @@ impl SceneRenderer {
             format,
             sample_count,
             uniforms,
+            frame_layout,
             frame_group,
             shadow,
             pipelines,
+            other_pipelines: Vec::new(),
             fine_mesh: Mesh::new(device, capsule::FINE),
             coarse_mesh: Mesh::new(device, capsule::COARSE),
             lines: GrowingBuffer::new("mocap lines"),
@@ -179,7 +185,20 @@ impl SceneRenderer {
         self.draw_calls
     }
 
-    /// Records the draw of `scene` into `encoder`, targeting `target`.
+    /// Makes the pipelines for targets of `sample_count` samples if they are not
+    /// made yet ([`SceneRenderer::encode`] does on first use; doing it ahead
+    /// moves the shader compilation, slow on some platforms, to a chosen moment).
+    pub fn prepare_pipelines(&mut self, device: &wgpu::Device, sample_count: u32) {
+        if sample_count == self.sample_count || self.other_pipelines.iter().any(|(n, _)| *n == sample_count) {
+            return;
+        }
+        let layouts = Layouts { frame: &self.frame_layout, shadow: &self.shadow.layout, skin: &self.meshes.skin_layout, joints: &self.skinned.layout };
+        let pipelines = Pipelines::new(device, &layouts, self.format, sample_count);
+        self.other_pipelines.push((sample_count, pipelines));
+    }
+
+    /// Records the draw of `scene` into `encoder`, targeting `target` (of any
+    /// sample count).
     pub fn encode(
         &mut self,
         device: &wgpu::Device,
@@ -189,6 +208,7 @@ impl SceneRenderer {
         scene: &Scene,
         camera: &Camera,
     ) {
+        self.prepare_pipelines(device, target.sample_count());
         let shadows = self.upload(device, queue, target.size(), scene, camera);
         self.draw_calls = 0;
         if shadows {
@@ -218,17 +238,19 @@ impl SceneRenderer {
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
         pass.set_bind_group(1, &self.shadow.bind_group, &[]);
+        let samples = target.sample_count();
+        let pipelines = self.other_pipelines.iter().find(|(n, _)| *n == samples).map_or(&self.pipelines, |(_, p)| p);
         if scene.grid.is_some() {
-            pass.set_pipeline(&self.pipelines.floor);
+            pass.set_pipeline(&pipelines.floor);
             pass.draw(0..6, 0..1);
             self.draw_calls += 1;
             if shadows {
-                pass.set_pipeline(&self.pipelines.floor_shadow);
+                pass.set_pipeline(&pipelines.floor_shadow);
                 pass.draw(0..6, 0..1);
                 self.draw_calls += 1;
             }
         }
-        pass.set_pipeline(&self.pipelines.capsules);
+        pass.set_pipeline(&pipelines.capsules);
         for (mesh, instances) in [(&self.fine_mesh, &self.fine_capsules), (&self.coarse_mesh, &self.coarse_capsules)] {
             if let Some((buffer, count)) = instances.get() {
                 mesh.draw(&mut pass, buffer, count);
@@ -236,20 +258,20 @@ impl SceneRenderer {
             }
         }
         if self.meshes.has_draws() {
-            pass.set_pipeline(&self.pipelines.morph);
+            pass.set_pipeline(&pipelines.morph);
             self.draw_calls += self.meshes.draw(&mut pass, true);
         }
         if self.skinned.has_draws() {
-            pass.set_pipeline(&self.pipelines.skinned);
+            pass.set_pipeline(&pipelines.skinned);
             self.draw_calls += self.skinned.draw(&mut pass);
         }
         if let Some((buffer, count)) = self.spheres.get() {
-            pass.set_pipeline(&self.pipelines.spheres);
+            pass.set_pipeline(&pipelines.spheres);
             pass.set_vertex_buffer(0, buffer.slice(..));
             pass.draw(0..6, 0..count);
             self.draw_calls += 1;
         }
-        for (pipeline, lines) in [(&self.pipelines.lines, &self.lines), (&self.pipelines.overlay_lines, &self.overlay_lines)] {
+        for (pipeline, lines) in [(&pipelines.lines, &self.lines), (&pipelines.overlay_lines, &self.overlay_lines)] {
             if let Some((buffer, count)) = lines.get() {
                 pass.set_pipeline(pipeline);
                 pass.set_vertex_buffer(0, buffer.slice(..));

@@ -300,3 +300,50 @@ fn gpu_skinning_matches_the_cpu_blend() {
     let changed = gpu.chunks(4).zip(weights_view.chunks(4)).filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 30)).count();
     assert!(changed * 2 > drawn, "the weights view recolours the body ({changed} of {drawn})");
 }
+
+#[test]
+fn a_multisampled_renderer_also_draws_into_a_single_sample_target_and_blit_copies_it() {
+    let Some((device, queue, mut renderer, target)) = setup(4) else { return };
+    let single = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
+    let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
+    let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    scene.capsules.push(Capsule { a: Vec3::ZERO, b: Vec3::new(0.0, 2.5, 0.0), radius: 0.3, color: [200, 60, 60, 255] });
+    // The same scene into both: the images differ only along edges.
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let smooth = read_pixels(&device, &queue, &target);
+    renderer.render(&device, &queue, &single, &scene, &camera);
+    let fast = read_pixels(&device, &queue, &single);
+    let close = smooth.chunks(4).zip(fast.chunks(4)).filter(|(a, b)| a.iter().zip(b.iter()).all(|(x, y)| x.abs_diff(*y) <= 8)).count();
+    assert!(close as f32 > 0.9 * (SIZE * SIZE) as f32, "{close} of {} pixels alike", SIZE * SIZE);
+    let red = |p: &[u8]| p.chunks(4).filter(|p| p[0] > 100 && p[0] as u32 > 2 * p[1] as u32).count();
+    assert!(red(&fast) > 100, "the capsule is drawn with one sample");
+    // And back: the multisampled target still draws as before.
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    assert_eq!(read_pixels(&device, &queue, &target), smooth);
+
+    // Blit: the frame copied onto another pass's viewport, texel for texel.
+    let blit = mocap_render::Blit::new(&device, FORMAT);
+    let source = blit.source(&device, &target);
+    let copy = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
+    let mut encoder = device.create_command_encoder(&Default::default());
+    {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: None,
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &copy.color_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::BLACK), store: wgpu::StoreOp::Store },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        blit.draw(&mut pass, &source);
+    }
+    queue.submit([encoder.finish()]);
+    let copied = read_pixels(&device, &queue, &copy);
+    let rgb = |p: &[u8]| p.chunks(4).flat_map(|p| p[..3].to_vec()).collect::<Vec<u8>>();
+    assert_eq!(rgb(&copied), rgb(&smooth), "the copy is the frame, the right way up");
+}

@@ -20,6 +20,7 @@ pub mod keys;
 pub mod layout;
 pub mod panels;
 pub mod playback;
+pub mod quality;
 pub mod pose_scene;
 pub mod rig_edit;
 pub mod selection;

@@ -29,6 +29,8 @@ pub struct ViewSettings {
     /// keyed poses, held before the first and after the last) instead of fading
     /// over `key_window` (corrections of a dense take).
     pub key_between: bool,
+    /// The 3D view's quality: full, fast while moving, or automatic.
+    pub quality: crate::quality::Quality,
 }
 
 impl Default for ViewSettings {
@@ -45,6 +47,7 @@ impl Default for ViewSettings {
             foot_lock: false,
             key_window: 3,
             key_between: false,
+            quality: crate::quality::Quality::Auto,
         }
     }
 }

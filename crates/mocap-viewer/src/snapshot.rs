@@ -109,6 +109,10 @@ pub struct Snapshot {
     pub shadows: bool,
     /// Whether Edit mode (drag joints by IK) is on.
     pub pose_mode: bool,
+    /// The 3D view's quality setting: `auto`, `full` or `fast`.
+    pub quality: &'static str,
+    /// Whether the last frame was drawn in the fast look (see [`crate::quality`]).
+    pub reduced: bool,
     /// Last load error, shown in the page.
     pub error: Option<String>,
     /// Joint labels the hierarchy panel drew in its last frame.
@@ -144,6 +148,8 @@ impl Snapshot {
             draw_mode: v.settings.mode.name(),
             shadows: v.settings.shadows,
             pose_mode: v.settings.pose_mode,
+            quality: v.settings.quality.name(),
+            reduced: v.viewport.reduced,
             error: v.error.clone(),
             tree_labels,
             frames_rendered,

@@ -13,7 +13,7 @@
 //! at zero; `none` or absent when all are zero), `mode` `capsules`, `sticks` or `body`,
 //! `anim` the animations models play as `n:name` joined by `;` (`anim=1:run`; models
 //! not listed play all their frames; `none` or absent when all do),
-//! `shadows` 0/1, `draw` a comma list of `joints`, `axes`, `follow`, `interp`, `weights`, `pose`, `footlock`, and `panels` a comma list of `tree`, `inspector` (or
+//! `shadows` 0/1, `quality` `auto`, `full` or `fast` (see [`crate::quality`]), `draw` a comma list of `joints`, `axes`, `follow`, `interp`, `weights`, `pose`, `footlock`, and `panels` a comma list of `tree`, `inspector` (or
 //! `none`). Timeline frames (`f`, `range`, the frame shown) count in the frame time
 //! of the selection's character, else the first one. Unknown keys and unreadable
 //! values are ignored; missing keys leave the viewer as it is.
@@ -53,6 +53,8 @@ pub struct ViewState {
     pub mode: Option<crate::settings::DrawMode>,
     /// Soft shadows on the floor.
     pub shadows: Option<bool>,
+    /// The 3D view's quality.
+    pub quality: Option<crate::quality::Quality>,
     /// Draw flags: joints, axes, follow root, interpolate, weights view, pose mode.
     pub draw: Option<[bool; 7]>,
     /// Panels: hierarchy, inspector.
@@ -92,6 +94,7 @@ impl ViewState {
                 "draw" => s.draw = Some(flags(v, DRAW_NAMES)),
                 "mode" => s.mode = crate::settings::DrawMode::from_name(v),
                 "shadows" => s.shadows = flag(v),
+                "quality" => s.quality = crate::quality::Quality::from_name(v),
                 "panels" => s.panels = Some(flags(v, PANEL_NAMES)),
                 _ => {}
             }
@@ -141,6 +144,7 @@ impl ViewState {
         }
         parts.push(format!("mode={}", st.mode.name()));
         parts.push(format!("shadows={}", u8::from(st.shadows)));
+        parts.push(format!("quality={}", st.quality.name()));
         let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate, st.show_weights, st.pose_mode, st.foot_lock];
         parts.push(format!("draw={}", join_flags(draw, DRAW_NAMES)));
         let panels = [viewer.panels.hierarchy, viewer.panels.inspector];
@@ -194,6 +198,9 @@ impl ViewState {
         }
         if let Some(shadows) = self.shadows {
             viewer.settings.shadows = shadows;
+        }
+        if let Some(quality) = self.quality {
+            viewer.settings.quality = quality;
         }
         if let Some([tree, inspector]) = self.panels {
             viewer.panels.hierarchy = tree;
@@ -371,6 +378,8 @@ mod tests {
         assert_eq!((s.mode, s.shadows), (Some(crate::settings::DrawMode::Sticks), Some(false)));
         let s = ViewState::parse("mode=boxes&shadows=maybe");
         assert_eq!((s.mode, s.shadows), (None, None));
+        assert_eq!(ViewState::parse("quality=fast").quality, Some(crate::quality::Quality::Fast));
+        assert_eq!(ViewState::parse("quality=ultra").quality, None);
     }
 
     #[test]

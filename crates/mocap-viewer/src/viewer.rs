@@ -367,7 +367,7 @@ impl Viewer {
         let handles = self.handles();
         let mut joint_drag = None;
         egui::CentralPanel::no_frame().show(ui, |ui| {
-            let (_, dragged) = self.viewport.show(ui, render_state, &mut self.camera, &self.scene, &handles);
+            let (_, dragged) = self.viewport.show(ui, render_state, &mut self.camera, &self.scene, &handles, self.settings.quality, self.playback.playing && !self.stage.actors.is_empty());
             joint_drag = dragged;
             ui::overlay::show(ui, self);
         });

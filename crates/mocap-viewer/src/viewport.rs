@@ -2,17 +2,49 @@
 
 use crate::camera::OrbitCamera;
 use crate::drag::{self, Handle, JointDrag, ViewGeometry};
-use mocap_render::{RenderTarget, Scene, SceneRenderer};
+use crate::quality::{Adaptive, Quality};
+use mocap_render::{Blit, BlitSource, RenderTarget, Scene, SceneRenderer};
 
 /// Colour format of the offscreen image: egui composites in gamma space, so the
 /// scene is drawn with sRGB-encoded colours into a plain unorm texture, like egui's own.
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 
-/// GPU resources of the 3D view, created on first use.
+/// GPU resources of the 3D view, created on first use. The frame reaches the
+/// window through [`ShowFrame`], a copy inside egui's own pass.
 struct Gpu {
     renderer: SceneRenderer,
+    /// Full quality (multisampled when the adapter can).
     target: RenderTarget,
-    texture: egui::TextureId,
+    /// The fast look (one sample), made when first needed.
+    fast: Option<RenderTarget>,
+}
+
+/// What [`ShowFrame`] draws with: kept in egui-wgpu's callback resources.
+struct FrameCopy {
+    blit: Blit,
+    /// The full-quality target's frame.
+    full: BlitSource,
+    /// The fast target's frame.
+    fast: Option<BlitSource>,
+}
+
+/// The paint callback that copies the 3D view's finished frame onto its rect of
+/// the window (instead of an egui image: egui's image shader and blending cost
+/// several times more per pixel on software rasterisers).
+struct ShowFrame {
+    /// Copy the fast target's frame.
+    fast: bool,
+}
+
+impl egui_wgpu::CallbackTrait for ShowFrame {
+    fn paint(&self, _info: egui::PaintCallbackInfo, pass: &mut wgpu::RenderPass<'static>, resources: &egui_wgpu::CallbackResources) {
+        if let Some(copy) = resources.get::<FrameCopy>() {
+            let source = if self.fast { copy.fast.as_ref() } else { Some(&copy.full) };
+            if let Some(source) = source {
+                copy.blit.draw(pass, source);
+            }
+        }
+    }
 }
 
 /// The 3D view widget's non-plain state (GPU objects).
@@ -28,12 +60,19 @@ pub struct Viewport {
     /// The joint held by the pointer (Edit mode), from the press to the release,
     /// and where the press was.
     grabbed: Option<(Handle, egui::Pos2)>,
+    /// The automatic quality rule's memory.
+    adaptive: Adaptive,
+    /// Whether the last frame was drawn in the fast look.
+    pub reduced: bool,
 }
 
 impl Viewport {
     /// Lays out the view in `rect`, handles camera input and draws `scene`. A left
     /// press on one of `handles` (Edit mode) grabs that joint instead of orbiting;
     /// while it is held, the joint's target under the pointer is returned each frame.
+    /// `quality` and `playing` (with a drag in the view) choose the look
+    /// ([`crate::quality`]).
+    #[allow(clippy::too_many_arguments)]
     pub fn show(
         &mut self,
         ui: &mut egui::Ui,
@@ -41,6 +80,8 @@ impl Viewport {
         camera: &mut OrbitCamera,
         scene: &Scene,
         handles: &[Handle],
+        quality: Quality,
+        playing: bool,
     ) -> (egui::Response, Option<JointDrag>) {
         let rect = ui.available_rect_before_wrap();
         let response = ui.allocate_rect(rect, egui::Sense::click_and_drag());
@@ -59,17 +100,35 @@ impl Viewport {
         if self.backend.is_none() {
             self.backend = Some(format!("{:?}", rs.adapter.get_info().backend));
         }
+        let moving = playing || response.dragged() || joint_drag.is_some();
+        let dt = ui.input(|i| i.unstable_dt);
         let gpu = self.gpu.get_or_insert_with(|| create_gpu(rs, size));
+        // The fast look only differs from full quality when that is multisampled.
+        let fast = self.adaptive.decide(quality, moving, dt) && gpu.renderer.sample_count() > 1;
+        self.reduced = fast;
         if !gpu.target.matches(FORMAT, gpu.renderer.sample_count(), size) {
             gpu.target = RenderTarget::new(&rs.device, FORMAT, gpu.renderer.sample_count(), size);
-            rs.renderer.write().update_egui_texture_from_wgpu_texture(&rs.device, &gpu.target.color_view, wgpu::FilterMode::Linear, gpu.texture);
+            bind_frame(rs, &gpu.target, false);
         }
+        if fast && !gpu.fast.as_ref().is_some_and(|t| t.matches(FORMAT, 1, size)) {
+            let target = RenderTarget::new(&rs.device, FORMAT, 1, size);
+            bind_frame(rs, &target, true);
+            gpu.fast = Some(target);
+        }
+        let target = match &gpu.fast {
+            Some(t) if fast => t,
+            _ => &gpu.target,
+        };
         gpu.renderer.pixels_per_point = ppp;
         let cam = camera.to_camera(size[0] as f32 / size[1] as f32);
-        gpu.renderer.render(&rs.device, &rs.queue, &gpu.target, scene, &cam);
+        gpu.renderer.render(&rs.device, &rs.queue, target, scene, &cam);
+        if self.frames_rendered == 1 {
+            // The fast look's pipelines, after the first frame is out: compiled
+            // then, not in the middle of playback when frames are already slow.
+            gpu.renderer.prepare_pipelines(&rs.device, 1);
+        }
         self.frames_rendered += 1;
-        let uv = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1.0, 1.0));
-        ui.painter().image(gpu.texture, rect, uv, egui::Color32::WHITE);
+        ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ShowFrame { fast }));
         (response, joint_drag)
     }
 
@@ -98,8 +157,31 @@ fn create_gpu(rs: &egui_wgpu::RenderState, size: [u32; 2]) -> Gpu {
     let samples = if rs.adapter.get_texture_format_features(FORMAT).flags.sample_count_supported(4) { 4 } else { 1 };
     let renderer = SceneRenderer::new(&rs.device, FORMAT, samples);
     let target = RenderTarget::new(&rs.device, FORMAT, samples, size);
-    let texture = rs.renderer.write().register_native_texture(&rs.device, &target.color_view, wgpu::FilterMode::Linear);
-    Gpu { renderer, target, texture }
+    bind_frame(rs, &target, false);
+    Gpu { renderer, target, fast: None }
+}
+
+/// Points [`ShowFrame`] at `target`, the full-quality or the `fast` one (the
+/// first time, makes the copy pipeline for the window's format).
+fn bind_frame(rs: &egui_wgpu::RenderState, target: &RenderTarget, fast: bool) {
+    let mut renderer = rs.renderer.write();
+    let resources = &mut renderer.callback_resources;
+    match resources.get_mut::<FrameCopy>() {
+        Some(copy) => {
+            let source = copy.blit.source(&rs.device, target);
+            if fast {
+                copy.fast = Some(source);
+            } else {
+                copy.full = source;
+            }
+        }
+        // The first target bound is the full-quality one (see `create_gpu`).
+        None => {
+            let blit = Blit::new(&rs.device, rs.target_format);
+            let full = blit.source(&rs.device, target);
+            resources.insert(FrameCopy { blit, full, fast: None });
+        }
+    }
 }
 
 /// Orbit (left drag), pan (right/middle drag), zoom (wheel / pinch) when over the view.

@@ -60,6 +60,8 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "drawMode", s.draw_mode);
     set(&o, "shadows", s.shadows);
     set(&o, "poseMode", s.pose_mode);
+    set(&o, "quality", s.quality);
+    set(&o, "reduced", s.reduced);
     set(&o, "error", opt(&s.error));
     set(&o, "treeLabels", strings(&s.tree_labels));
     set(&o, "framesRendered", s.frames_rendered as f64);

@@ -144,13 +144,46 @@ fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LAN
 
 /// Calls `visit(frame, positions)` for every frame in order, with the world
 /// position of every joint (End Sites included). `positions` is reused.
-pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, mut visit: impl FnMut(usize, &[Vec3])) {
+pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, visit: impl FnMut(usize, &[Vec3])) {
+    for_each_frame_positions_in(skeleton, motion, 0..motion.frame_count(), visit);
+}
+
+/// Fewest joint transforms per thread worth a thread of its own.
+const PER_THREAD_MIN: usize = 1 << 16;
+
+/// [`for_each_frame_positions`] on several threads: the frames are cut into
+/// contiguous runs, one per thread (as many as the machine has, at most eight;
+/// one on the web or for small clips); each run starts from `init()` and visits
+/// its frames in order with `visit(&mut accumulator, frame, positions)`. Returns
+/// the accumulators in frame order, for the caller to combine.
+pub fn fold_frame_positions<A: Send>(skeleton: &Skeleton, motion: &Motion, init: impl Fn() -> A + Sync, visit: impl Fn(&mut A, usize, &[Vec3]) + Sync) -> Vec<A> {
     let frames = motion.frame_count();
+    let work = frames.saturating_mul(skeleton.len().max(1)) / PER_THREAD_MIN;
+    let threads = crate::parallel::max_threads().min(work).max(1);
+    // Runs of whole blocks of LANES frames.
+    let per = (frames.div_ceil(threads).div_ceil(LANES) * LANES).max(LANES);
+    let ranges: Vec<std::ops::Range<usize>> = (0..frames).step_by(per).map(|s| s..(s + per).min(frames)).collect();
+    let run = |range: std::ops::Range<usize>| {
+        let mut acc = init();
+        for_each_frame_positions_in(skeleton, motion, range, |f, p| visit(&mut acc, f, p));
+        acc
+    };
+    if ranges.is_empty() {
+        return vec![init()];
+    }
+    // A run only fails by a panic in `visit`: pass it on.
+    crate::parallel::map(ranges, run).into_iter().map(|r| r.unwrap_or_else(|| panic!("a frame-visiting thread panicked"))).collect()
+}
+
+/// [`for_each_frame_positions`] for the frames in `range` (clamped to the clip).
+pub fn for_each_frame_positions_in(skeleton: &Skeleton, motion: &Motion, range: std::ops::Range<usize>, mut visit: impl FnMut(usize, &[Vec3])) {
+    let frames = range.end.min(motion.frame_count());
+    let first = range.start.min(frames);
     let joints = skeleton.len();
     let simple = !skeleton.has_scale_channels() && !skeleton.has_length_channels();
     if !simple {
         let (mut local, mut model, mut positions) = (LocalPose::default(), Vec::<Transform>::new(), Vec::new());
-        for frame in 0..frames {
+        for frame in first..frames {
             from_row(skeleton, motion.row(frame), motion.angle_unit(), &mut local);
             local_to_model(skeleton, &local, &mut model);
             positions.clear();
@@ -162,7 +195,7 @@ pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, mut visit:
     let half = motion.angle_unit().radians_per_unit() * 0.5;
     let mut world = vec![JointLanes { q: [[0.0; LANES]; 4], t: [[0.0; LANES]; 3] }; joints];
     let mut positions = vec![Vec3::ZERO; joints];
-    let mut start = 0;
+    let mut start = first;
     while start < frames {
         let count = (frames - start).min(LANES);
         // Pad a short last block by repeating its last frame.
@@ -198,6 +231,27 @@ mod tests {
             }
         });
         assert_eq!(seen, clip.frame_count());
+    }
+
+    #[test]
+    fn threaded_runs_visit_every_frame_once_with_the_same_positions() {
+        // Enough frames and joints for several threads where the machine has them.
+        let clip = crate::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap();
+        let joints = clip.skeleton().len();
+        let frames = clip.frame_count();
+        let mut data = Vec::new();
+        for r in 0..(super::PER_THREAD_MIN * 3 / joints / frames + 1) * frames {
+            data.extend_from_slice(clip.motion().row(r % frames));
+        }
+        let motion = Motion::new(0.1, clip.motion().channel_count(), data.len() / clip.motion().channel_count(), data).unwrap();
+        let big = Clip::new(clip.skeleton().clone(), motion).unwrap();
+        let runs = super::fold_frame_positions(big.skeleton(), big.motion(), Vec::new, |acc: &mut Vec<(usize, Vec3)>, f, p| acc.push((f, p[joints - 1])));
+        let all: Vec<(usize, Vec3)> = runs.into_iter().flatten().collect();
+        assert_eq!(all.len(), big.frame_count());
+        for (i, (f, p)) in all.iter().enumerate() {
+            assert_eq!(*f, i, "frames in order, each once");
+            assert!((*p - big.world_positions(i)[joints - 1]).abs().max_element() < 1e-3);
+        }
     }
 
     #[test]

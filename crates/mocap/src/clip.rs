@@ -298,8 +298,8 @@ impl Clip {
             rest_positions(&self.skeleton).into_iter().for_each(|p| bounds.include(p));
             return bounds;
         }
-        self.for_each_frame_positions(|_, positions| positions.iter().for_each(|&p| bounds.include(p)));
-        bounds
+        let runs = crate::batch::fold_frame_positions(&self.skeleton, &self.motion, || Aabb::EMPTY, |b, _, positions| positions.iter().for_each(|&p| b.include(p)));
+        runs.iter().fold(bounds, |a, b| a.union(b))
     }
 
     /// Bounding box of the first frame's pose (the rest pose when there are no

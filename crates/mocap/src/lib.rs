@@ -41,6 +41,7 @@ pub mod load;
 pub mod md2;
 pub mod morph;
 pub mod motion;
+mod parallel;
 pub mod pose;
 pub mod sample;
 pub mod skeleton;

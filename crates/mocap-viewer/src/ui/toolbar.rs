@@ -86,6 +86,17 @@ fn view_menu(ui: &mut egui::Ui, viewer: &mut Viewer) {
     ui.checkbox(&mut viewer.settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");
     ui.checkbox(&mut viewer.settings.follow_root, "Follow root").on_hover_text("f");
     ui.checkbox(&mut viewer.settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
+    ui.separator();
+    quality_choice(ui, &mut viewer.settings.quality);
+}
+
+/// Quality: Auto / Full / Fast while moving.
+fn quality_choice(ui: &mut egui::Ui, quality: &mut crate::quality::Quality) {
+    use crate::quality::Quality;
+    ui.label("Quality");
+    ui.radio_value(quality, Quality::Auto, "Auto").on_hover_text("Smooth edges; one sample per pixel while moving when frames are slow");
+    ui.radio_value(quality, Quality::Full, "Full").on_hover_text("Smooth edges always");
+    ui.radio_value(quality, Quality::Fast, "Fast while moving").on_hover_text("One sample per pixel while playing or dragging; smooth edges at rest");
 }
 
 /// Spread / Overlay.

@@ -50,7 +50,7 @@ const PARALLEL_MIN_BYTES: usize = 1 << 20;
 pub(crate) fn parse_rows(data: &[u8], first_line: u32, first_column: u32, width: usize) -> Result<Rows, ParseError> {
     let origin = Origin { line: first_line, column_offset: first_column.saturating_sub(1) };
     let chunks = split_at_lines(data, thread_count(data.len()));
-    let counts: Vec<LineCount> = chunks.iter().map(|c| count_lines(c)).collect();
+    let counts: Vec<LineCount> = crate::parallel::map(chunks.clone(), |c| count_lines(c)).into_iter().collect::<Option<_>>().ok_or_else(thread_failed)?;
     let total_rows: usize = counts.iter().map(|c| c.content).sum();
     // A valid row of `width` values takes at least 2·width bytes (value + separator).
     let fits = total_rows.checked_mul(width).is_some_and(|n| n <= data.len());
@@ -89,33 +89,19 @@ pub(crate) fn parse_rows(data: &[u8], first_line: u32, first_column: u32, width:
 type Job<'a, 'b> = (&'a [u8], Origin, &'b mut [f32]);
 type JobResult = Result<(usize, RowNotes), ParseError>;
 
-#[cfg(not(target_family = "wasm"))]
 fn run_jobs(jobs: Vec<Job<'_, '_>>, width: usize) -> Vec<JobResult> {
-    if jobs.len() <= 1 {
-        return jobs.into_iter().map(|(c, o, out)| parse_chunk(c, o, width, out, false)).collect();
-    }
-    std::thread::scope(|scope| {
-        let handles: Vec<_> = jobs
-            .into_iter()
-            .map(|(c, o, out)| scope.spawn(move || parse_chunk(c, o, width, out, false)))
-            .collect();
-        handles
-            .into_iter()
-            .map(|h| h.join().unwrap_or_else(|_| Err(ParseError::new(0, 0, "internal error: a parser thread failed"))))
-            .collect()
-    })
+    crate::parallel::map(jobs, |(c, o, out)| parse_chunk(c, o, width, out, false)).into_iter().map(|r| r.unwrap_or_else(|| Err(thread_failed()))).collect()
 }
 
-#[cfg(target_family = "wasm")]
-fn run_jobs(jobs: Vec<Job<'_, '_>>, width: usize) -> Vec<JobResult> {
-    jobs.into_iter().map(|(c, o, out)| parse_chunk(c, o, width, out, false)).collect()
+fn thread_failed() -> ParseError {
+    ParseError::new(0, 0, "internal error: a parser thread failed")
 }
 
 fn thread_count(len: usize) -> usize {
-    if cfg!(target_family = "wasm") || len < PARALLEL_MIN_BYTES {
+    if len < PARALLEL_MIN_BYTES {
         return 1;
     }
-    std::thread::available_parallelism().map_or(1, |n| n.get()).min(8)
+    crate::parallel::max_threads()
 }
 
 /// Cuts `data` into about `parts` pieces, each ending just after a line break.
