@@ -1,7 +1,8 @@
 // Browser tests of what the 3D view draws: capsules by default with floor shadows,
 // the m key and the fragment switch to sticks and turn shadows off, and the view
 // keeps drawing correctly when the window is resized or the pixel ratio is 2;
-// the fast look while playing (quality=fast|auto|full) and nothing drawn at rest.
+// the fast look while playing (quality=fast|auto|full: one sample per pixel and the
+// window drawn at a lower resolution) and nothing drawn at rest.
 // Usage: node render.mjs URL MODE OUT_DIR CHROMIUM
 import path from 'node:path';
 import { changeAndRender, decodePng, launch, reporter, state, waitState } from './common.mjs';
@@ -122,11 +123,30 @@ try {
     let s = await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3 && s.playing);
     s = await waitState(page, (s) => s.reduced);
     check(s.quality === 'fast' && s.view.includes('quality=fast'), `quality ${s.quality} (${s.view})`);
+    // The fast look also draws the whole window at a lower resolution (the
+    // canvas's backing store shrinks; its size on the page stays).
+    const canvasSize = () => page.evaluate(() => {
+      const c = document.getElementById('viewer');
+      return { width: c.width, full: Math.round(c.getBoundingClientRect().width * devicePixelRatio) };
+    });
+    await page.waitForFunction(() => {
+      const c = document.getElementById('viewer');
+      return c.width < 0.8 * c.getBoundingClientRect().width * devicePixelRatio;
+    }, null, { timeout: 30000 }).catch(() => {});
+    let size = await canvasSize();
+    check(size.width < 0.8 * size.full && size.width > 0.4 * size.full, `the window is drawn at a lower resolution while reduced (${size.width} of ${size.full} pixels wide)`);
     const png = await view(page, shot('reduced'));
     const px = await pixelStats(context, png);
     check(px.figure > 1000, `the figure is drawn in the fast look (${px.figure} pixels)`);
     s = await changeAndRender(page, (v) => v.pause());
     check(!s.reduced, 'the paused frame is drawn at full quality');
+    // The change of scale asks for one more frame, at full resolution.
+    await page.waitForFunction(() => {
+      const c = document.getElementById('viewer');
+      return Math.abs(c.width - c.getBoundingClientRect().width * devicePixelRatio) <= 1;
+    }, null, { timeout: 30000 }).catch(() => {});
+    size = await canvasSize();
+    check(Math.abs(size.width - size.full) <= 1, `at rest the window is drawn at full resolution (${size.width} of ${size.full} pixels wide)`);
     // Full: never reduced while playing.
     await page.evaluate(() => { window.mocapViewer.applyViewState('quality=full'); window.mocapViewer.play(); });
     let reduced = false;

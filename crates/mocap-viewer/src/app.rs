@@ -12,6 +12,10 @@ pub struct ViewerApp {
     on_save_requested: Box<dyn FnMut()>,
     /// The panels' colour, which the window is cleared to (see [`ViewerApp::new`]).
     panel_fill: egui::Color32,
+    /// Applies a render scale to the whole window (see [`ViewerApp::on_render_scale`]).
+    on_render_scale: Option<Box<dyn FnMut(f32)>>,
+    /// The render scale last handed to `on_render_scale`.
+    render_scale: f32,
 }
 
 impl ViewerApp {
@@ -26,7 +30,30 @@ impl ViewerApp {
         ctx.set_theme(egui::ThemePreference::Dark);
         let mut panel_fill = egui::Color32::TRANSPARENT;
         ctx.style_mut_of(egui::Theme::Dark, |style| panel_fill = std::mem::replace(&mut style.visuals.panel_fill, egui::Color32::TRANSPARENT));
-        ViewerApp { viewer, on_open_requested, on_share_requested: Box::new(|| {}), on_save_requested: Box::new(|| {}), panel_fill }
+        ViewerApp { viewer, on_open_requested, on_share_requested: Box::new(|| {}), on_save_requested: Box::new(|| {}), panel_fill, on_render_scale: None, render_scale: 1.0 }
+    }
+
+    /// Sets how the host draws the whole window at a lower resolution: `f` gets
+    /// the scale per axis the view asks for whenever it changes
+    /// ([`crate::quality::FAST_RENDER_SCALE`] in the fast look, 1 otherwise) and
+    /// applies it from the next frame on. A change asks for that next frame, so
+    /// a view coming to rest is drawn again at full resolution. Without it, only
+    /// the 3D view's own look adapts.
+    pub fn on_render_scale(mut self, f: Box<dyn FnMut(f32)>) -> ViewerApp {
+        self.on_render_scale = Some(f);
+        self
+    }
+
+    /// Hands the host the view's render scale when it changed.
+    fn update_render_scale(&mut self, ctx: &egui::Context, reduced: bool) {
+        let scale = if reduced { crate::quality::FAST_RENDER_SCALE } else { 1.0 };
+        if let Some(f) = self.on_render_scale.as_mut()
+            && scale != self.render_scale
+        {
+            self.render_scale = scale;
+            f(scale);
+            ctx.request_repaint();
+        }
     }
 
     /// Sets what runs when the user presses "Save as BVH" (the host saves
@@ -49,11 +76,12 @@ impl eframe::App for ViewerApp {
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        let (open, share, save) = {
+        let (open, share, save, reduced) = {
             let Ok(mut viewer) = self.viewer.try_borrow_mut() else { return };
             viewer.ui(ui, frame.wgpu_render_state());
-            (std::mem::take(&mut viewer.open_requested), std::mem::take(&mut viewer.share_requested), std::mem::take(&mut viewer.save_requested))
+            (std::mem::take(&mut viewer.open_requested), std::mem::take(&mut viewer.share_requested), std::mem::take(&mut viewer.save_requested), viewer.viewport.reduced)
         };
+        self.update_render_scale(ui.ctx(), reduced);
         if save {
             (self.on_save_requested)();
         }

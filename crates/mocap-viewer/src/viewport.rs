@@ -103,9 +103,10 @@ impl Viewport {
         let moving = playing || response.dragged() || joint_drag.is_some();
         let dt = ui.input(|i| i.unstable_dt);
         let gpu = self.gpu.get_or_insert_with(|| create_gpu(rs, size));
-        // The fast look only differs from full quality when that is multisampled.
-        let fast = self.adaptive.decide(quality, moving, dt) && gpu.renderer.sample_count() > 1;
+        let fast = self.adaptive.decide(quality, moving, dt);
         self.reduced = fast;
+        // The fast look has its own target only when full quality is multisampled.
+        let fast = fast && gpu.renderer.sample_count() > 1;
         if !gpu.target.matches(FORMAT, gpu.renderer.sample_count(), size) {
             gpu.target = RenderTarget::new(&rs.device, FORMAT, gpu.renderer.sample_count(), size);
             bind_frame(rs, &gpu.target, false);

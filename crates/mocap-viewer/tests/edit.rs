@@ -204,7 +204,7 @@ fn the_edit_menu_draws_for_clips_models_and_nothing() {
     let draw = |v: &mut Viewer| {
         let input = egui::RawInput { screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(800.0, 1400.0))), ..Default::default() };
         let mut out = ctx.run_ui(input, |ui| {
-            egui::CentralPanel::default().show_inside(ui, |ui| mocap_viewer::ui::edit_menu::show(ui, v));
+            egui::CentralPanel::default().show(ui, |ui| mocap_viewer::ui::edit_menu::show(ui, v));
         });
         out.textures_delta.clear();
     };

@@ -94,9 +94,9 @@ fn view_menu(ui: &mut egui::Ui, viewer: &mut Viewer) {
 fn quality_choice(ui: &mut egui::Ui, quality: &mut crate::quality::Quality) {
     use crate::quality::Quality;
     ui.label("Quality");
-    ui.radio_value(quality, Quality::Auto, "Auto").on_hover_text("Smooth edges; one sample per pixel while moving when frames are slow");
-    ui.radio_value(quality, Quality::Full, "Full").on_hover_text("Smooth edges always");
-    ui.radio_value(quality, Quality::Fast, "Fast while moving").on_hover_text("One sample per pixel while playing or dragging; smooth edges at rest");
+    ui.radio_value(quality, Quality::Auto, "Auto").on_hover_text("Full quality at rest; while moving, when frames are slow: one sample per pixel and, in the browser, a lower resolution");
+    ui.radio_value(quality, Quality::Full, "Full").on_hover_text("Smooth edges and full resolution always");
+    ui.radio_value(quality, Quality::Fast, "Fast while moving").on_hover_text("One sample per pixel (and, in the browser, a lower resolution) while playing or dragging; full quality at rest");
 }
 
 /// Spread / Overlay.
