@@ -28,7 +28,10 @@ pub struct SceneRenderer {
     uniforms: wgpu::Buffer,
     frame_layout: wgpu::BindGroupLayout,
     frame_group: wgpu::BindGroup,
+    shadow_layout: wgpu::BindGroupLayout,
     shadow: ShadowMap,
+    /// The fast look's smaller map, made when first used.
+    fast_shadow: Option<ShadowMap>,
     pipelines: Pipelines,
     /// Pipelines for targets of other sample counts, made when first drawn into.
     other_pipelines: Vec<(u32, Pipelines)>,
@@ -50,6 +53,11 @@ pub struct SceneRenderer {
     draw_calls: u32,
     /// Physical pixels per logical pixel; scales line widths.
     pub pixels_per_point: f32,
+    /// Draw shadows from a 1024² map instead of 2048² (a quarter of the texels
+    /// to clear and fill each frame) with one lookup per pixel instead of four
+    /// (harder, blockier edges): for a fast look while the view moves. Off by
+    /// default.
+    pub fast_shadows: bool,
 }
 
 /// A unit-capsule mesh on the GPU.
@@ -136,10 +144,11 @@ impl SceneRenderer {
             layout: &frame_layout,
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniforms.as_entire_binding() }],
         });
-        let shadow = ShadowMap::new(device);
+        let shadow_layout = shadow::layout(device);
+        let shadow = ShadowMap::new(device, shadow::SIZE, &shadow_layout);
         let meshes = MeshCache::new(device);
         let skinned = SkinnedCache::new(device);
-        let layouts = Layouts { frame: &frame_layout, shadow: &shadow.layout, skin: &meshes.skin_layout, joints: &skinned.layout };
+        let layouts = Layouts { frame: &frame_layout, shadow: &shadow_layout, skin: &meshes.skin_layout, joints: &skinned.layout };
         let pipelines = Pipelines::new(device, &layouts, format, sample_count);
         SceneRenderer {
             format,
@@ -147,7 +156,9 @@ impl SceneRenderer {
             uniforms,
             frame_layout,
             frame_group,
+            shadow_layout,
             shadow,
+            fast_shadow: None,
             pipelines,
             other_pipelines: Vec::new(),
             fine_mesh: Mesh::new(device, capsule::FINE),
@@ -167,6 +178,7 @@ impl SceneRenderer {
             caster_scratch: Vec::new(),
             draw_calls: 0,
             pixels_per_point: 1.0,
+            fast_shadows: false,
         }
     }
 
@@ -192,7 +204,7 @@ impl SceneRenderer {
         if sample_count == self.sample_count || self.other_pipelines.iter().any(|(n, _)| *n == sample_count) {
             return;
         }
-        let layouts = Layouts { frame: &self.frame_layout, shadow: &self.shadow.layout, skin: &self.meshes.skin_layout, joints: &self.skinned.layout };
+        let layouts = Layouts { frame: &self.frame_layout, shadow: &self.shadow_layout, skin: &self.meshes.skin_layout, joints: &self.skinned.layout };
         let pipelines = Pipelines::new(device, &layouts, self.format, sample_count);
         self.other_pipelines.push((sample_count, pipelines));
     }
@@ -209,6 +221,9 @@ impl SceneRenderer {
         camera: &Camera,
     ) {
         self.prepare_pipelines(device, target.sample_count());
+        if self.fast_shadows && self.fast_shadow.is_none() {
+            self.fast_shadow = Some(ShadowMap::new(device, shadow::FAST_SIZE, &self.shadow_layout));
+        }
         let shadows = self.upload(device, queue, target.size(), scene, camera);
         self.draw_calls = 0;
         if shadows {
@@ -237,7 +252,7 @@ impl SceneRenderer {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
-        pass.set_bind_group(1, &self.shadow.bind_group, &[]);
+        pass.set_bind_group(1, &self.shadow_map().bind_group, &[]);
         let samples = target.sample_count();
         let pipelines = self.other_pipelines.iter().find(|(n, _)| *n == samples).map_or(&self.pipelines, |(_, p)| p);
         if scene.grid.is_some() {
@@ -288,12 +303,20 @@ impl SceneRenderer {
         queue.submit([encoder.finish()]);
     }
 
+    /// The shadow map this frame draws with (see [`SceneRenderer::fast_shadows`]).
+    fn shadow_map(&self) -> &ShadowMap {
+        match &self.fast_shadow {
+            Some(map) if self.fast_shadows => map,
+            _ => &self.shadow,
+        }
+    }
+
     fn encode_shadow_pass(&mut self, encoder: &mut wgpu::CommandEncoder) {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mocap shadow map"),
             color_attachments: &[],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &self.shadow.view,
+                view: &self.shadow_map().view,
                 depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
                 stencil_ops: None,
             }),
@@ -352,8 +375,9 @@ impl SceneRenderer {
         let skinned_bounds = scene.skinned.iter().filter_map(SkinnedDraw::world_bounds);
         let mesh_bounds = scene.meshes.iter().filter_map(|m| m.world_bounds()).chain(skinned_bounds).filter(|_| scene.shadows);
         let bounds = mesh_bounds.chain(caster_bounds(&self.caster_scratch)).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
-        let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y));
-        let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light.as_ref());
+        let map_size = self.shadow_map().size;
+        let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, map_size));
+        let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light.as_ref(), self.fast_shadows);
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.spheres.upload(device, queue, &self.sphere_scratch);
         self.fine_capsules.upload(device, queue, &self.fine_scratch);
@@ -461,7 +485,9 @@ impl Pipelines {
             sample_count: 1,
             ..base
         };
-        let shadow = pipeline::build(device, &shadow_pass_layout, &PipelineSpec { label: "mocap shadow casters", ..depth_only });
+        // Capsules are closed and wound like the lit pass's: only the faces
+        // towards the light are drawn (half the triangles to rasterise).
+        let shadow = pipeline::build(device, &shadow_pass_layout, &PipelineSpec { label: "mocap shadow casters", cull_back: true, ..depth_only });
         let floor = pipeline::build(
             device,
             &lit_layout,

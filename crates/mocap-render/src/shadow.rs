@@ -6,6 +6,9 @@ use glam::{Mat4, Vec3};
 
 /// Shadow map resolution (square).
 pub(crate) const SIZE: u32 = 2048;
+/// The fast look's shadow map resolution: a quarter of the texels to clear and
+/// draw every frame (a software rasteriser's cost), softer shadow edges.
+pub(crate) const FAST_SIZE: u32 = 1024;
 /// Depth format of the shadow map.
 pub(crate) const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -16,16 +19,24 @@ pub fn key_light_direction() -> Vec3 {
     Vec3::new(-0.6, 1.0, 0.35).normalize()
 }
 
-/// The shadow map texture and the bind group the lit pipelines sample it through.
+/// The layout the lit pipelines sample a [`ShadowMap`] through.
+pub(crate) fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    crate::pipeline::texture_layout(device, "mocap shadow", wgpu::TextureSampleType::Depth, wgpu::SamplerBindingType::Comparison)
+}
+
+/// The shadow map texture and the bind group (of [`layout`]) the lit pipelines
+/// sample it through.
 pub(crate) struct ShadowMap {
     pub view: wgpu::TextureView,
-    pub layout: wgpu::BindGroupLayout,
     pub bind_group: wgpu::BindGroup,
+    /// Texels per side.
+    pub size: u32,
 }
 
 impl ShadowMap {
-    pub fn new(device: &wgpu::Device) -> ShadowMap {
-        let size = SIZE.min(device.limits().max_texture_dimension_2d);
+    /// A map of `size`² texels (at most the device's texture limit).
+    pub fn new(device: &wgpu::Device, size: u32, layout: &wgpu::BindGroupLayout) -> ShadowMap {
+        let size = size.min(device.limits().max_texture_dimension_2d);
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("mocap shadow map"),
             size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: 1 },
@@ -46,16 +57,15 @@ impl ShadowMap {
             compare: Some(wgpu::CompareFunction::LessEqual),
             ..Default::default()
         });
-        let layout = crate::pipeline::texture_layout(device, "mocap shadow", wgpu::TextureSampleType::Depth, wgpu::SamplerBindingType::Comparison);
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("mocap shadow"),
-            layout: &layout,
+            layout,
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view) },
                 wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&sampler) },
             ],
         });
-        ShadowMap { view, layout, bind_group }
+        ShadowMap { view, bind_group, size }
     }
 }
 
@@ -99,9 +109,9 @@ fn floor_shadow_rect(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
 /// light holding the box and the floor under the far end of its shadows (so the
 /// floor lies inside the depth range), and the floor rectangle the shadows fall
 /// in. The fitted square is quantised (size in steps of 25%, centre on whole
-/// texels) so that shadows do not shimmer as the figures move. `None` for an
-/// empty or non-finite box.
-pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>) -> Option<LightFit> {
+/// texels of a map `size` texels across) so that shadows do not shimmer as the
+/// figures move. `None` for an empty or non-finite box.
+pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32) -> Option<LightFit> {
     let floor_y = floor_y.filter(|y| y.is_finite()).unwrap_or(min.y);
     let lo = Vec3::new(min.x, min.y.min(floor_y), min.z);
     if !(lo.is_finite() && max.is_finite() && (max - lo).min_element() >= 0.0) {
@@ -125,7 +135,7 @@ pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>) -> Option<Li
     // Square extent, grown to the next step of 1.25^k, with a margin for the filter.
     let half = ((b.x - a.x).max(b.y - a.y) * 0.5 * 1.05).max(1e-3);
     let half = 1.25f32.powf(half.log(1.25).ceil());
-    let texel = 2.0 * half / SIZE as f32;
+    let texel = 2.0 * half / size.max(1) as f32;
     let snap = |v: f32| (v / texel).round() * texel;
     let (cx, cy) = (snap((a.x + b.x) * 0.5), snap((a.y + b.y) * 0.5));
     // View space looks down -Z: depths are -z.
@@ -141,9 +151,12 @@ mod tests {
 
     #[test]
     fn fitted_box_and_floor_land_inside_the_map() {
-        let fit = fit_light(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), Some(-0.1)).unwrap();
+        let fit = fit_light(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), Some(-0.1), SIZE).unwrap();
         let (m, texel) = (fit.view_proj, fit.texel);
         assert!(texel > 0.0 && texel < 0.01);
+        // The fast map covers the same square with texels twice as large.
+        let fast = fit_light(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), Some(-0.1), FAST_SIZE).unwrap();
+        assert!((fast.texel - texel * (SIZE / FAST_SIZE) as f32).abs() < texel * 1e-3, "{} vs {texel}", fast.texel);
         for p in [Vec3::new(-1.0, -0.1, -0.5), Vec3::new(1.0, 1.8, 0.5), Vec3::new(0.0, 0.9, 0.0)] {
             let c = m.project_point3(p);
             assert!(c.x.abs() <= 1.0 && c.y.abs() <= 1.0 && (0.0..=1.0).contains(&c.z), "{p} -> {c}");
@@ -161,7 +174,7 @@ mod tests {
 
     #[test]
     fn empty_or_broken_boxes_give_none() {
-        assert!(fit_light(Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), None).is_none());
-        assert!(fit_light(Vec3::ZERO, Vec3::splat(f32::NAN), Some(0.0)).is_none());
+        assert!(fit_light(Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), None, SIZE).is_none());
+        assert!(fit_light(Vec3::ZERO, Vec3::splat(f32::NAN), Some(0.0), SIZE).is_none());
     }
 }
