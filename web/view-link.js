@@ -4,11 +4,17 @@
 /** Minimum time between two fragment updates (ms). */
 const UPDATE_MS = 400;
 
-/** Keeps `location.hash` equal to the viewer's view state; returns a stop function. */
+/**
+ * Keeps `location.hash` equal to the viewer's view state; returns a stop function.
+ * The viewer sends `mocap-view` after a frame that changed the state; the fragment
+ * follows at most every UPDATE_MS. Nothing runs while nothing changes.
+ */
 export function followViewState(viewer) {
   let stopped = false;
   let last = '';
-  const tick = () => {
+  let timer = null;
+  const update = () => {
+    timer = null;
     if (stopped) return;
     const view = viewer.viewState();
     // Without a clip (e.g. a link that failed) the fragment is left as the user gave it.
@@ -18,9 +24,12 @@ export function followViewState(viewer) {
       url.hash = view;
       history.replaceState(history.state, '', url);
     }
-    setTimeout(tick, UPDATE_MS);
   };
-  tick();
+  const onView = () => {
+    if (timer === null && !stopped) timer = setTimeout(update, UPDATE_MS);
+  };
+  update();
+  window.addEventListener('mocap-view', onView);
   const onHash = () => {
     const hash = location.hash.slice(1);
     if (hash && hash !== last) viewer.applyViewState(hash);
@@ -28,6 +37,8 @@ export function followViewState(viewer) {
   window.addEventListener('hashchange', onHash);
   return () => {
     stopped = true;
+    if (timer !== null) clearTimeout(timer);
+    window.removeEventListener('mocap-view', onView);
     window.removeEventListener('hashchange', onHash);
   };
 }

@@ -178,6 +178,40 @@ try {
     await new Promise((r) => setTimeout(r, 1500));
     const after = (await state(page)).framesRendered;
     check(after === before, `no frame drawn in 1.5 s (${before} -> ${after})`);
+    // Nor anything else scheduled: no timers, no animation-frame callbacks.
+    const scheduled = await page.evaluate(async () => {
+      const [timeout, raf, interval] = [window.setTimeout, window.requestAnimationFrame, window.setInterval];
+      const calls = { timeout: 0, raf: 0, interval: 0 };
+      window.setTimeout = (...a) => { calls.timeout++; return timeout(...a); };
+      window.requestAnimationFrame = (...a) => { calls.raf++; return raf(...a); };
+      window.setInterval = (...a) => { calls.interval++; return interval(...a); };
+      await new Promise((r) => timeout(r, 1500));
+      Object.assign(window, { setTimeout: timeout, requestAnimationFrame: raf, setInterval: interval });
+      return calls;
+    });
+    check(scheduled.timeout + scheduled.raf + scheduled.interval === 0, `nothing scheduled in 1.5 s at rest (${JSON.stringify(scheduled)})`);
+  });
+
+  await step('a hidden tab draws nothing, and plays on when shown', async () => {
+    // Headless Chromium keeps background tabs visible: the page is told it is
+    // hidden the way a browser tells it (document.hidden and visibilitychange).
+    await page.evaluate(() => window.mocapViewer.play());
+    await waitState(page, (s) => s.playing && s.framesRendered > 0);
+    const setHidden = (hidden) => page.evaluate((hidden) => {
+      Object.defineProperty(document, 'hidden', { configurable: true, get: () => hidden });
+      Object.defineProperty(document, 'visibilityState', { configurable: true, get: () => (hidden ? 'hidden' : 'visible') });
+      document.dispatchEvent(new Event('visibilitychange'));
+    }, hidden);
+    await setHidden(true);
+    await new Promise((r) => setTimeout(r, 300));
+    const before = (await state(page)).framesRendered;
+    await new Promise((r) => setTimeout(r, 1500));
+    const hidden = await state(page);
+    check(hidden.framesRendered === before && hidden.playing, `hidden and playing: no frame drawn in 1.5 s (${before} -> ${hidden.framesRendered})`);
+    await setHidden(false);
+    const shown = await waitState(page, (s, f) => s.framesRendered > f + 2, hidden.framesRendered);
+    check(shown.playing && shown.time !== hidden.time, `shown again: frames resume (${shown.framesRendered}) and playback goes on (t ${hidden.time.toFixed(2)} -> ${shown.time.toFixed(2)})`);
+    await page.evaluate(() => { delete document.hidden; delete document.visibilityState; window.mocapViewer.pause(); });
   });
 
   await step('resizing the window keeps the figure drawn', async () => {

@@ -16,6 +16,10 @@ pub struct ViewerApp {
     on_render_scale: Option<Box<dyn FnMut(f32)>>,
     /// The render scale last handed to `on_render_scale`.
     render_scale: f32,
+    /// Runs when the view state changed (see [`ViewerApp::on_view_change`]).
+    on_view_change: Option<Box<dyn FnMut()>>,
+    /// The view state at the end of the last frame.
+    last_view: String,
 }
 
 impl ViewerApp {
@@ -30,7 +34,7 @@ impl ViewerApp {
         ctx.set_theme(egui::ThemePreference::Dark);
         let mut panel_fill = egui::Color32::TRANSPARENT;
         ctx.style_mut_of(egui::Theme::Dark, |style| panel_fill = std::mem::replace(&mut style.visuals.panel_fill, egui::Color32::TRANSPARENT));
-        ViewerApp { viewer, on_open_requested, on_share_requested: Box::new(|| {}), on_save_requested: Box::new(|| {}), panel_fill, on_render_scale: None, render_scale: 1.0 }
+        ViewerApp { viewer, on_open_requested, on_share_requested: Box::new(|| {}), on_save_requested: Box::new(|| {}), panel_fill, on_render_scale: None, render_scale: 1.0, on_view_change: None, last_view: String::new() }
     }
 
     /// Sets how the host draws the whole window at a lower resolution: `f` gets
@@ -42,6 +46,25 @@ impl ViewerApp {
     pub fn on_render_scale(mut self, f: Box<dyn FnMut(f32)>) -> ViewerApp {
         self.on_render_scale = Some(f);
         self
+    }
+
+    /// Sets what runs after a frame whose view state ([`Viewer::view_fragment`])
+    /// differs from the last frame's: a host keeping the state somewhere (the
+    /// page's URL fragment) follows it without polling, so a page at rest does
+    /// no work at all.
+    pub fn on_view_change(mut self, f: Box<dyn FnMut()>) -> ViewerApp {
+        self.on_view_change = Some(f);
+        self
+    }
+
+    /// Tells the host when the view state changed.
+    fn update_view(&mut self, view: Option<String>) {
+        if let (Some(f), Some(view)) = (self.on_view_change.as_mut(), view)
+            && view != self.last_view
+        {
+            self.last_view = view;
+            f();
+        }
     }
 
     /// Hands the host the view's render scale when it changed.
@@ -76,12 +99,14 @@ impl eframe::App for ViewerApp {
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        let (open, share, save, reduced) = {
+        let (open, share, save, reduced, view) = {
             let Ok(mut viewer) = self.viewer.try_borrow_mut() else { return };
             viewer.ui(ui, frame.wgpu_render_state());
-            (std::mem::take(&mut viewer.open_requested), std::mem::take(&mut viewer.share_requested), std::mem::take(&mut viewer.save_requested), viewer.viewport.reduced)
+            let view = self.on_view_change.is_some().then(|| viewer.view_fragment());
+            (std::mem::take(&mut viewer.open_requested), std::mem::take(&mut viewer.share_requested), std::mem::take(&mut viewer.save_requested), viewer.viewport.reduced, view)
         };
         self.update_render_scale(ui.ctx(), reduced);
+        self.update_view(view);
         if save {
             (self.on_save_requested)();
         }

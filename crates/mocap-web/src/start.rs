@@ -96,7 +96,7 @@ async fn start_on(
                 if cc.wgpu_render_state.is_none() {
                     return Err("no wgpu renderer".into());
                 }
-                let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker)).on_share(Box::new(share_event)).on_save(Box::new(save_event)).on_render_scale(Box::new(eframe::web::set_render_scale));
+                let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker)).on_share(Box::new(share_event)).on_save(Box::new(save_event)).on_render_scale(Box::new(eframe::web::set_render_scale)).on_view_change(Box::new(view_event));
                 Ok(Box::new(app))
             }),
         )
@@ -108,6 +108,15 @@ async fn start_on(
 /// `window`; the page calls `saveBvh()` and downloads the file).
 fn save_event() {
     let event = web_sys::Event::new("mocap-save");
+    if let (Some(window), Ok(event)) = (web_sys::window(), event) {
+        let _ = window.dispatch_event(&event);
+    }
+}
+
+/// Tells the page that the view state changed (a `mocap-view` event on
+/// `window`, after the frame that changed it; the page updates the URL fragment).
+fn view_event() {
+    let event = web_sys::Event::new("mocap-view");
     if let (Some(window), Ok(event)) = (web_sys::window(), event) {
         let _ = window.dispatch_event(&event);
     }

@@ -87,6 +87,10 @@ pub(crate) struct NeedRepaint {
 
     /// Rate limit for repaint. 0 means "unlimited". The rate may still be limited by vsync.
     max_fps: u32,
+
+    /// Vendored change: the waker id of the runner to wake when a repaint is
+    /// asked for (0 before it runs; see `web_runner::wake`).
+    waker: std::sync::atomic::AtomicUsize,
 }
 
 impl NeedRepaint {
@@ -94,6 +98,7 @@ impl NeedRepaint {
         Self {
             next_repaint: Mutex::new(f64::NEG_INFINITY), // start with a repaint
             max_fps: max_fps.unwrap_or(0),
+            waker: std::sync::atomic::AtomicUsize::new(0),
         }
     }
 }
@@ -115,6 +120,9 @@ impl NeedRepaint {
         time = self.round_repaint_time_to_rate(time);
         let mut repaint_time = self.next_repaint.lock();
         *repaint_time = repaint_time.min(time);
+        let at = *repaint_time;
+        drop(repaint_time);
+        self.wake(at);
     }
 
     /// Request a repaint. Depending on the presence of rate limiting, this may not be instant.
@@ -122,10 +130,27 @@ impl NeedRepaint {
         let time = self.round_repaint_time_to_rate(super::now_sec());
         let mut repaint_time = self.next_repaint.lock();
         *repaint_time = repaint_time.min(time);
+        let at = *repaint_time;
+        drop(repaint_time);
+        self.wake(at);
     }
 
     pub fn repaint_asap(&self) {
         *self.next_repaint.lock() = f64::NEG_INFINITY;
+        self.wake(f64::NEG_INFINITY);
+    }
+
+    /// Vendored change: the runner to wake on repaint requests.
+    pub fn set_waker(&self, id: usize) {
+        self.waker.store(id, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// Vendored change: schedules the runner's next paint check for `at`.
+    fn wake(&self, at: f64) {
+        let id = self.waker.load(std::sync::atomic::Ordering::Relaxed);
+        if id != 0 {
+            super::web_runner::wake(id, at);
+        }
     }
 
     pub fn needs_repaint(&self) -> bool {

@@ -15,15 +15,24 @@ use web_sys::{Document, EventTarget, ShadowRoot};
 
 // ------------------------------------------------------------------------
 
-/// Calls `request_animation_frame` to schedule repaint.
+/// Paints if needed, then schedules the next paint check.
 ///
-/// It will only paint if needed, but will always call `request_animation_frame` immediately.
+/// Vendored change: upstream always called `request_animation_frame` again; now
+/// the next check is scheduled for when a repaint is due (an animation frame if
+/// it is due now, a timer if later, nothing if none is asked for: repaint
+/// requests schedule one then).
 pub(crate) fn paint_and_schedule(runner_ref: &WebRunner) -> Result<(), JsValue> {
     // Only paint and schedule if there has been no panic
     if let Some(mut runner_lock) = runner_ref.try_lock() {
         paint_if_needed(&mut runner_lock);
+        let at = runner_lock.needs_repaint.when_to_repaint();
         drop(runner_lock);
-        runner_ref.request_animation_frame()?;
+        let wait = at - super::now_sec();
+        if wait <= 0.0 {
+            runner_ref.request_animation_frame()?;
+        } else if wait.is_finite() {
+            runner_ref.schedule_after(wait)?;
+        }
     }
     Ok(())
 }

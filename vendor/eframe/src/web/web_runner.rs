@@ -91,6 +91,13 @@ impl WebRunner {
 
         events::install_event_handlers(self)?;
 
+        // Vendored change: repaint requests wake this runner (see `wake`).
+        if let Some(runner) = self.app_runner.borrow().as_ref() {
+            let id = NEXT_WAKER.with(|n| n.replace(n.get() + 1));
+            WAKERS.with(|w| w.borrow_mut().push((id, self.clone())));
+            runner.needs_repaint.set_waker(id);
+        }
+
         log::info!("event handlers installed.");
 
         Ok(())
@@ -132,6 +139,9 @@ impl WebRunner {
         if let Some(frame) = self.frame.take() {
             frame.cancel(&web_sys::window().unwrap());
         }
+
+        // Vendored change: no longer woken by repaint requests.
+        WAKERS.with(|w| w.borrow_mut().retain(|(_, r)| !Rc::ptr_eq(&r.frame, &self.frame)));
 
         if let Some(runner) = self.app_runner.replace(None) {
             runner.destroy();
@@ -235,56 +245,68 @@ impl WebRunner {
     /// It is safe to call `request_animation_frame` multiple times in quick succession,
     /// this function guarantees that only one animation frame is scheduled at a time.
     ///
-    /// A hidden browser tab (e.g. a backgrounded tab) does not receive
-    /// `requestAnimationFrame` callbacks, which would otherwise stop our paint loop
-    /// and prevent `App::update` from running in response to `request_repaint`.
-    /// To keep running in that case, we fall back to `setTimeout`, which keeps firing
-    /// while hidden (the browser throttles it to roughly once per second).
+    /// Vendored change: a hidden browser tab schedules nothing (upstream fell back
+    /// to `setTimeout` to keep painting while hidden); the `visibilitychange`
+    /// handler schedules a frame when the tab is shown again. A later repaint
+    /// waiting on a timer (see [`Self::schedule_after`]) is replaced by this frame.
     pub(crate) fn request_animation_frame(&self) -> Result<(), wasm_bindgen::JsValue> {
-        if self.frame.borrow().is_some() {
-            // there is already an animation frame in flight
+        let window = web_sys::window().unwrap();
+        if let Some(frame) = self.frame.borrow().as_ref() {
+            match frame.kind {
+                // There is already an animation frame in flight.
+                AnimationFrameKind::AnimationFrame => return Ok(()),
+                AnimationFrameKind::Timeout => frame.cancel(&window),
+            }
+        }
+        self.frame.borrow_mut().take();
+        if window.document().is_some_and(|document| document.hidden()) {
             return Ok(());
         }
-
-        let window = web_sys::window().unwrap();
-        let closure = Closure::once({
-            let web_runner = self.clone();
-            move || {
-                // We can paint now, so clear the animation frame.
-                // This drops the `closure` and allows another
-                // animation frame to be scheduled
-                let _ = web_runner.frame.take();
-                events::paint_and_schedule(&web_runner)
-            }
+        let closure = self.frame_closure();
+        let id = window.request_animation_frame(closure.as_ref().unchecked_ref())?;
+        self.frame.borrow_mut().replace(AnimationFrameRequest {
+            id,
+            kind: AnimationFrameKind::AnimationFrame,
+            at: f64::NEG_INFINITY,
+            _closure: closure,
         });
-
-        let hidden = window.document().is_some_and(|document| document.hidden());
-
-        let request = if hidden {
-            // The tab is hidden: `requestAnimationFrame` would not fire, so use a timer instead.
-            let id = window.set_timeout_with_callback_and_timeout_and_arguments_0(
-                closure.as_ref().unchecked_ref(),
-                // Browsers clamp background timers to ~1s, so the exact value has little effect
-                // while hidden, but keeps us responsive right after the tab is hidden:
-                10,
-            )?;
-            AnimationFrameRequest {
-                id,
-                kind: AnimationFrameKind::Timeout,
-                _closure: closure,
-            }
-        } else {
-            let id = window.request_animation_frame(closure.as_ref().unchecked_ref())?;
-            AnimationFrameRequest {
-                id,
-                kind: AnimationFrameKind::AnimationFrame,
-                _closure: closure,
-            }
-        };
-
-        self.frame.borrow_mut().replace(request);
-
         Ok(())
+    }
+
+    /// Vendored change: schedules a paint check in `seconds` (a repaint asked for
+    /// later, e.g. a tooltip's delay), unless something sooner is already in
+    /// flight. Hidden tabs schedule nothing.
+    pub(crate) fn schedule_after(&self, seconds: f64) -> Result<(), wasm_bindgen::JsValue> {
+        let at = super::now_sec() + seconds;
+        let window = web_sys::window().unwrap();
+        if let Some(frame) = self.frame.borrow().as_ref() {
+            if frame.at <= at {
+                return Ok(());
+            }
+            frame.cancel(&window);
+        }
+        self.frame.borrow_mut().take();
+        if window.document().is_some_and(|document| document.hidden()) {
+            return Ok(());
+        }
+        let closure = self.frame_closure();
+        let ms = (seconds * 1000.0).ceil().clamp(0.0, i32::MAX as f64) as i32;
+        let id = window.set_timeout_with_callback_and_timeout_and_arguments_0(closure.as_ref().unchecked_ref(), ms)?;
+        self.frame.borrow_mut().replace(AnimationFrameRequest { id, kind: AnimationFrameKind::Timeout, at, _closure: closure });
+        Ok(())
+    }
+
+    /// The callback of a scheduled frame: paints if needed and schedules what
+    /// comes next.
+    fn frame_closure(&self) -> Closure<dyn FnMut() -> Result<(), JsValue>> {
+        let web_runner = self.clone();
+        Closure::once(move || {
+            // We can paint now, so clear the animation frame.
+            // This drops the `closure` and allows another
+            // animation frame to be scheduled
+            let _ = web_runner.frame.take();
+            events::paint_and_schedule(&web_runner)
+        })
     }
 
     /// Cancel any in-flight frame request and schedule a fresh one.
@@ -311,6 +333,10 @@ struct AnimationFrameRequest {
     /// How the frame was scheduled, so we know how to cancel it.
     kind: AnimationFrameKind,
 
+    /// Vendored change: when it fires ([`super::now_sec`] scale; `-inf` for an
+    /// animation frame).
+    at: f64,
+
     /// The callback given to `request_animation_frame`, stored here both to prevent it
     /// from being canceled, and from having to `.forget()` it.
     _closure: Closure<dyn FnMut() -> Result<(), JsValue>>,
@@ -335,8 +361,33 @@ enum AnimationFrameKind {
     /// Scheduled with `requestAnimationFrame` (visible tab).
     AnimationFrame,
 
-    /// Scheduled with `setTimeout` (hidden tab).
+    /// Scheduled with `setTimeout` (vendored change: a repaint asked for later).
     Timeout,
+}
+
+thread_local! {
+    /// Vendored change: the running runners by waker id, which repaint requests
+    /// wake (the web is single-threaded; set by [`WebRunner::start`]).
+    static WAKERS: RefCell<Vec<(usize, WebRunner)>> = const { RefCell::new(Vec::new()) };
+    /// The next waker id (0 is none).
+    static NEXT_WAKER: std::cell::Cell<usize> = const { std::cell::Cell::new(1) };
+}
+
+/// Vendored change: a repaint of the runner with waker id `id` was asked for at
+/// `at` ([`super::now_sec`] scale): schedules its next paint check for then.
+/// Upstream polled with `requestAnimationFrame` every display frame, even with
+/// nothing to draw; now a page with nothing to draw schedules nothing.
+pub(crate) fn wake(id: usize, at: f64) {
+    let runner = WAKERS.with(|w| w.try_borrow().ok().and_then(|w| w.iter().find(|(i, _)| *i == id).map(|(_, r)| r.clone())));
+    if let Some(runner) = runner {
+        {
+            let wait = at - super::now_sec();
+            let result = if wait <= 0.0 { runner.request_animation_frame() } else { runner.schedule_after(wait) };
+            if let Err(err) = result {
+                log::error!("Failed to schedule a frame: {}", super::string_from_js_value(&err));
+            }
+        }
+    }
 }
 
 struct TargetEvent {
