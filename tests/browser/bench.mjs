@@ -102,6 +102,36 @@ function repeatRows(text, frames) {
       return window.mocapViewer.state().framesRendered - f0;
     });
     console.log(`paused, no input: ${idle} frames drawn in 2 s (aim: 0)`);
+    // ... nor any timer or animation-frame callback scheduled (no CPU at rest).
+    const scheduled = await page.evaluate(async () => {
+      const [timeout, raf] = [window.setTimeout, window.requestAnimationFrame];
+      let n = 0;
+      window.setTimeout = (...a) => { n++; return timeout(...a); };
+      window.requestAnimationFrame = (...a) => { n++; return raf(...a); };
+      await new Promise((r) => timeout(r, 2000));
+      Object.assign(window, { setTimeout: timeout, requestAnimationFrame: raf });
+      return n;
+    });
+    console.log(`paused, no input: ${scheduled} timers or animation frames scheduled in 2 s (aim: 0)`);
+    // Playing in a tab the browser reports hidden: frames drawn in 2 s (the aim is none).
+    const hiddenFrames = await page.evaluate(async () => {
+      const v = window.mocapViewer;
+      v.play();
+      const tell = (hidden) => {
+        Object.defineProperty(document, 'hidden', { configurable: true, get: () => hidden });
+        document.dispatchEvent(new Event('visibilitychange'));
+      };
+      tell(true);
+      await new Promise((r) => setTimeout(r, 300));
+      const f0 = v.state().framesRendered;
+      await new Promise((r) => setTimeout(r, 2000));
+      const frames = v.state().framesRendered - f0;
+      tell(false);
+      delete document.hidden;
+      v.pause();
+      return frames;
+    });
+    console.log(`playing in a hidden tab: ${hiddenFrames} frames drawn in 2 s (aim: 0)`);
     // three.js, the same cases.
     const three = await context.newPage();
     await three.goto(`${url}bench/three/bvh.html`);
