@@ -3,13 +3,19 @@
 /// A GPU buffer of instances, reallocated (doubling) when too small.
 pub(crate) struct GrowingBuffer {
     label: &'static str,
+    usage: wgpu::BufferUsages,
     buffer: Option<wgpu::Buffer>,
     len: u32,
 }
 
 impl GrowingBuffer {
     pub fn new(label: &'static str) -> GrowingBuffer {
-        GrowingBuffer { label, buffer: None, len: 0 }
+        GrowingBuffer { label, usage: wgpu::BufferUsages::VERTEX, buffer: None, len: 0 }
+    }
+
+    /// The same for indices.
+    pub fn indices(label: &'static str) -> GrowingBuffer {
+        GrowingBuffer { label, usage: wgpu::BufferUsages::INDEX, buffer: None, len: 0 }
     }
 
     /// Uploads `items` (the instances to draw), growing the buffer when needed.
@@ -24,7 +30,7 @@ impl GrowingBuffer {
             self.buffer = Some(device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(self.label),
                 size: needed.next_power_of_two().max(1024),
-                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                usage: self.usage | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             }));
         }

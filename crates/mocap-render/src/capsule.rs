@@ -99,10 +99,68 @@ pub(crate) fn unit_mesh(detail: Detail) -> (Vec<CapsuleVertex>, Vec<u16>) {
     (vertices, indices)
 }
 
+/// Places `mesh` (from [`unit_mesh`]) for every capsule in `capsules`, as the
+/// capsule shader's `place` does: positions (w = 1) into `positions` and the
+/// mesh's triangles, offset per capsule, into `indices`. One plain draw of
+/// these costs a software rasteriser far less than the same capsules
+/// instanced (it sets up every instance like a draw of its own).
+pub(crate) fn expand(capsules: &[CapsuleInstance], mesh: &(Vec<CapsuleVertex>, Vec<u16>), positions: &mut Vec<[f32; 4]>, indices: &mut Vec<u32>) {
+    use glam::Vec3;
+    positions.clear();
+    indices.clear();
+    let (vertices, triangles) = mesh;
+    for c in capsules {
+        let (a, b) = (Vec3::from(c.a), Vec3::from(c.b));
+        let axis = b - a;
+        let len = axis.length();
+        let z = if len > 1e-12 { axis / len.max(1e-20) } else { Vec3::Y };
+        let helper = if z.x.abs() > 0.8 { Vec3::Z } else { Vec3::X };
+        let x = helper.cross(z).normalize();
+        let y = z.cross(x);
+        let Ok(first) = u32::try_from(positions.len()) else { return };
+        for v in vertices {
+            let n = x * v.dir[0] + y * v.dir[1] + z * v.dir[2];
+            positions.push((a.lerp(b, v.end) + n * c.radius).extend(1.0).to_array());
+        }
+        indices.extend(triangles.iter().map(|&t| first + u32::from(t)));
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use glam::Vec3;
+
+    #[test]
+    fn expanded_capsules_lie_on_their_surfaces() {
+        let capsules = [
+            CapsuleInstance { a: [0.0, 0.0, 0.0], radius: 0.5, b: [1.0, 0.0, 0.0], color: [1.0; 4] },
+            CapsuleInstance { a: [0.0, 1.0, 2.0], radius: 0.25, b: [0.0, 3.0, 2.0], color: [1.0; 4] },
+            // A ball (a = b) takes the same mesh.
+            CapsuleInstance { a: [5.0, 5.0, 5.0], radius: 1.0, b: [5.0, 5.0, 5.0], color: [1.0; 4] },
+        ];
+        let mesh = unit_mesh(COARSE);
+        let (mut positions, mut indices) = (vec![[9.0; 4]], vec![7]);
+        expand(&capsules, &mesh, &mut positions, &mut indices);
+        assert_eq!(positions.len(), capsules.len() * mesh.0.len(), "the scratch is cleared first");
+        assert_eq!(indices.len(), capsules.len() * mesh.1.len());
+        for (k, c) in capsules.iter().enumerate() {
+            let (a, b) = (Vec3::from(c.a), Vec3::from(c.b));
+            let placed = &positions[k * mesh.0.len()..(k + 1) * mesh.0.len()];
+            for p in placed {
+                assert_eq!(p[3], 1.0);
+                let p = Vec3::new(p[0], p[1], p[2]);
+                // Distance to the segment a-b is the radius.
+                let ab = b - a;
+                let t = if ab.length_squared() > 0.0 { ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+                let d = (p - (a + ab * t)).length();
+                assert!((d - c.radius).abs() < 1e-5, "capsule {k}: {p} is {d} from its axis, radius {}", c.radius);
+            }
+            let first = (k * mesh.0.len()) as u32;
+            let tris = &indices[k * mesh.1.len()..(k + 1) * mesh.1.len()];
+            assert!(tris.iter().zip(&mesh.1).all(|(&i, &t)| i == first + u32::from(t)), "capsule {k}'s triangles index its own vertices");
+        }
+    }
 
     #[test]
     fn meshes_are_closed_and_face_outwards() {

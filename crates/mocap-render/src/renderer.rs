@@ -43,6 +43,12 @@ pub struct SceneRenderer {
     fine_capsules: GrowingBuffer,
     coarse_capsules: GrowingBuffer,
     casters: GrowingBuffer,
+    /// The fast look's casters placed on the CPU: positions and triangles.
+    placed_casters: GrowingBuffer,
+    placed_indices: GrowingBuffer,
+    coarse_unit: (Vec<capsule::CapsuleVertex>, Vec<u16>),
+    placed_scratch: Vec<[f32; 4]>,
+    index_scratch: Vec<u32>,
     meshes: MeshCache,
     skinned: SkinnedCache,
     line_scratch: Vec<LineInstance>,
@@ -55,8 +61,10 @@ pub struct SceneRenderer {
     pub pixels_per_point: f32,
     /// Draw shadows from a 1024² map instead of 2048² (a quarter of the texels
     /// to clear and fill each frame) with one lookup per pixel instead of four
-    /// (harder, blockier edges): for a fast look while the view moves. Off by
-    /// default.
+    /// (harder, blockier edges), the capsule casters placed on the CPU and drawn
+    /// in one plain draw (a software rasteriser sets up each instance of an
+    /// instanced draw like a draw of its own): for a fast look while the view
+    /// moves. Off by default.
     pub fast_shadows: bool,
 }
 
@@ -96,6 +104,8 @@ impl Mesh {
 
 struct Pipelines {
     shadow: wgpu::RenderPipeline,
+    /// Shadow casters placed on the CPU (the fast look).
+    shadow_placed: wgpu::RenderPipeline,
     floor: wgpu::RenderPipeline,
     floor_shadow: wgpu::RenderPipeline,
     capsules: wgpu::RenderPipeline,
@@ -169,6 +179,11 @@ impl SceneRenderer {
             fine_capsules: GrowingBuffer::new("mocap capsules"),
             coarse_capsules: GrowingBuffer::new("mocap small capsules"),
             casters: GrowingBuffer::new("mocap shadow casters"),
+            placed_casters: GrowingBuffer::new("mocap placed shadow casters"),
+            placed_indices: GrowingBuffer::indices("mocap placed shadow caster triangles"),
+            coarse_unit: capsule::unit_mesh(capsule::COARSE),
+            placed_scratch: Vec::new(),
+            index_scratch: Vec::new(),
             meshes,
             skinned,
             line_scratch: Vec::new(),
@@ -330,6 +345,13 @@ impl SceneRenderer {
             self.coarse_mesh.draw(&mut pass, buffer, count);
             self.draw_calls += 1;
         }
+        if let (Some((positions, _)), Some((indices, count))) = (self.placed_casters.get(), self.placed_indices.get()) {
+            pass.set_pipeline(&self.pipelines.shadow_placed);
+            pass.set_vertex_buffer(0, positions.slice(..));
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..count, 0, 0..1);
+            self.draw_calls += 1;
+        }
         if self.meshes.has_draws() {
             pass.set_pipeline(&self.pipelines.morph_shadow);
             self.draw_calls += self.meshes.draw(&mut pass, false);
@@ -383,7 +405,16 @@ impl SceneRenderer {
         self.fine_capsules.upload(device, queue, &self.fine_scratch);
         self.coarse_capsules.upload(device, queue, &self.coarse_scratch);
         let casters: &[CapsuleInstance] = if light.is_some() { &self.caster_scratch } else { &[] };
-        self.casters.upload(device, queue, casters);
+        if self.fast_shadows {
+            capsule::expand(casters, &self.coarse_unit, &mut self.placed_scratch, &mut self.index_scratch);
+            self.casters.upload(device, queue, &[] as &[CapsuleInstance]);
+        } else {
+            self.placed_scratch.clear();
+            self.index_scratch.clear();
+            self.casters.upload(device, queue, casters);
+        }
+        self.placed_casters.upload(device, queue, &self.placed_scratch);
+        self.placed_indices.upload(device, queue, &self.index_scratch);
         light.is_some()
     }
 }
@@ -488,6 +519,12 @@ impl Pipelines {
         // Capsules are closed and wound like the lit pass's: only the faces
         // towards the light are drawn (half the triangles to rasterise).
         let shadow = pipeline::build(device, &shadow_pass_layout, &PipelineSpec { label: "mocap shadow casters", cull_back: true, ..depth_only });
+        let placed = [Some(wgpu::VertexBufferLayout { array_stride: 16, step_mode: wgpu::VertexStepMode::Vertex, attributes: &wgpu::vertex_attr_array![0 => Float32x4] })];
+        let shadow_placed = pipeline::build(
+            device,
+            &shadow_pass_layout,
+            &PipelineSpec { label: "mocap placed shadow casters", vertex_entry: "vs_shadow_placed", buffers: &placed, cull_back: true, ..depth_only },
+        );
         let floor = pipeline::build(
             device,
             &lit_layout,
@@ -568,6 +605,6 @@ impl Pipelines {
             &skinned_shadow_layout,
             &PipelineSpec { label: "mocap skinned shadows", shader: &skinned_shader, buffers: &skinned_buffers, ..depth_only },
         );
-        Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
+        Pipelines { shadow, shadow_placed, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
     }
 }

@@ -124,26 +124,31 @@ fn a_shadow_falls_where_the_key_light_projects_its_caster() {
     scene.capsules.push(Capsule { a: ball, b: ball, radius: 0.3, color: [255, 0, 0, 255] });
     let pebble = Vec3::new(-1.5, 0.05, 1.0);
     scene.capsules.push(Capsule { a: pebble, b: pebble, radius: 0.05, color: [255, 0, 0, 255] });
-    renderer.render(&device, &queue, &target, &scene, &camera);
-    let pixels = read_pixels(&device, &queue, &target);
-    // Dark grey (shadowed floor) pixels: their centroid on screen.
-    let (mut sum, mut n) = ([0.0f32; 2], 0.0f32);
-    for (i, p) in pixels.chunks(4).enumerate() {
-        let luma = p[0] as u32 + p[1] as u32 + p[2] as u32;
-        if luma < 125 && (p[0] as i32 - p[2] as i32).abs() < 30 {
-            sum[0] += (i % SIZE as usize) as f32;
-            sum[1] += (i / SIZE as usize) as f32;
-            n += 1.0;
+    // Full quality, then the fast look (a smaller map, one lookup per pixel,
+    // casters placed on the CPU and drawn in one plain draw).
+    for fast in [false, true] {
+        renderer.fast_shadows = fast;
+        renderer.render(&device, &queue, &target, &scene, &camera);
+        let pixels = read_pixels(&device, &queue, &target);
+        // Dark grey (shadowed floor) pixels: their centroid on screen.
+        let (mut sum, mut n) = ([0.0f32; 2], 0.0f32);
+        for (i, p) in pixels.chunks(4).enumerate() {
+            let luma = p[0] as u32 + p[1] as u32 + p[2] as u32;
+            if luma < 125 && (p[0] as i32 - p[2] as i32).abs() < 30 {
+                sum[0] += (i % SIZE as usize) as f32;
+                sum[1] += (i / SIZE as usize) as f32;
+                n += 1.0;
+            }
         }
+        assert!(n > 30.0, "fast {fast}: the ball casts a shadow ({n} pixels)");
+        let light = mocap_render::key_light_direction();
+        let on_floor = ball - light * (ball.y / light.y);
+        let c = (camera.projection * camera.view).project_point3(on_floor);
+        let expected = [(c.x * 0.5 + 0.5) * SIZE as f32, (0.5 - c.y * 0.5) * SIZE as f32];
+        let found = [sum[0] / n, sum[1] / n];
+        let off = ((found[0] - expected[0]).powi(2) + (found[1] - expected[1]).powi(2)).sqrt();
+        assert!(off < 3.0, "fast {fast}: shadow centre at {found:?}, expected {expected:?}");
     }
-    assert!(n > 30.0, "the ball casts a shadow ({n} pixels)");
-    let light = mocap_render::key_light_direction();
-    let on_floor = ball - light * (ball.y / light.y);
-    let c = (camera.projection * camera.view).project_point3(on_floor);
-    let expected = [(c.x * 0.5 + 0.5) * SIZE as f32, (0.5 - c.y * 0.5) * SIZE as f32];
-    let found = [sum[0] / n, sum[1] / n];
-    let off = ((found[0] - expected[0]).powi(2) + (found[1] - expected[1]).powi(2)).sqrt();
-    assert!(off < 3.0, "shadow centre at {found:?}, expected {expected:?}");
 }
 
 /// A square facing the camera (two triangles) at `x` for each frame, with a

@@ -49,6 +49,13 @@ fn vs_shadow(v: CapsuleVertex) -> @builtin(position) vec4<f32> {
     return frame.light_view_proj * vec4<f32>(placed[0], 1.0);
 }
 
+// Depth-only pass into the shadow map, capsules placed on the CPU
+// (see capsule::expand): one plain draw instead of one instance each.
+@vertex
+fn vs_shadow_placed(@location(0) position: vec4<f32>) -> @builtin(position) vec4<f32> {
+    return frame.light_view_proj * position;
+}
+
 @fragment
 fn fs_main(in: Out) -> @location(0) vec4<f32> {
     let n = normalize(in.normal);
