@@ -2,6 +2,7 @@
 
 use crate::Capsule;
 use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
 use std::f32::consts::{FRAC_PI_2, TAU};
 
 /// Detail of a capsule mesh: vertices around the axis and latitude rings in each
@@ -99,15 +100,26 @@ pub(crate) fn unit_mesh(detail: Detail) -> (Vec<CapsuleVertex>, Vec<u16>) {
     (vertices, indices)
 }
 
-/// Places `mesh` (from [`unit_mesh`]) for every capsule in `capsules`, as the
-/// capsule shader's `place` does: positions (w = 1) into `positions` and the
-/// mesh's triangles, offset per capsule, into `indices`. One plain draw of
-/// these costs a software rasteriser far less than the same capsules
-/// instanced (it sets up every instance like a draw of its own).
-pub(crate) fn expand(capsules: &[CapsuleInstance], mesh: &(Vec<CapsuleVertex>, Vec<u16>), positions: &mut Vec<[f32; 4]>, indices: &mut Vec<u32>) {
-    use glam::Vec3;
-    positions.clear();
-    indices.clear();
+/// A capsule mesh vertex placed in the world on the CPU, lit like the
+/// instanced ones (see [`expand_lit`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub(crate) struct PlacedVertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    /// Linear colour.
+    pub color: [f32; 4],
+}
+
+/// Vertex attributes of [`PlacedVertex`] (locations 0-2).
+pub(crate) const PLACED_ATTRIBUTES: [wgpu::VertexAttribute; 3] = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x4];
+
+/// Places `mesh` (from [`unit_mesh`]) for every capsule, as the capsule
+/// shader's `place` does, calling `put` with each vertex's position and normal,
+/// and appends the mesh's triangles, offset per capsule, to `indices`
+/// (`first` is the number of vertices already placed). Stops before an index
+/// would pass `u32::MAX`.
+fn place_all(capsules: &[CapsuleInstance], mesh: &(Vec<CapsuleVertex>, Vec<u16>), mut first: usize, indices: &mut Vec<u32>, mut put: impl FnMut(&CapsuleInstance, Vec3, Vec3)) {
     let (vertices, triangles) = mesh;
     for c in capsules {
         let (a, b) = (Vec3::from(c.a), Vec3::from(c.b));
@@ -117,13 +129,32 @@ pub(crate) fn expand(capsules: &[CapsuleInstance], mesh: &(Vec<CapsuleVertex>, V
         let helper = if z.x.abs() > 0.8 { Vec3::Z } else { Vec3::X };
         let x = helper.cross(z).normalize();
         let y = z.cross(x);
-        let Ok(first) = u32::try_from(positions.len()) else { return };
+        let Ok(base) = u32::try_from(first) else { return };
+        if base.checked_add(vertices.len() as u32).is_none() {
+            return;
+        }
         for v in vertices {
             let n = x * v.dir[0] + y * v.dir[1] + z * v.dir[2];
-            positions.push((a.lerp(b, v.end) + n * c.radius).extend(1.0).to_array());
+            put(c, a.lerp(b, v.end) + n * c.radius, n);
         }
-        indices.extend(triangles.iter().map(|&t| first + u32::from(t)));
+        indices.extend(triangles.iter().map(|&t| base + u32::from(t)));
+        first += vertices.len();
     }
+}
+
+/// Appends `mesh` placed for every capsule: positions (w = 1) to `positions`,
+/// triangles to `indices`. One plain draw of these costs a software rasteriser
+/// far less than the same capsules instanced (it sets up every instance like a
+/// draw of its own).
+pub(crate) fn expand(capsules: &[CapsuleInstance], mesh: &(Vec<CapsuleVertex>, Vec<u16>), positions: &mut Vec<[f32; 4]>, indices: &mut Vec<u32>) {
+    let first = positions.len();
+    place_all(capsules, mesh, first, indices, |_, p, _| positions.push(p.extend(1.0).to_array()));
+}
+
+/// [`expand`] with normals and colours, for the lit pass.
+pub(crate) fn expand_lit(capsules: &[CapsuleInstance], mesh: &(Vec<CapsuleVertex>, Vec<u16>), vertices: &mut Vec<PlacedVertex>, indices: &mut Vec<u32>) {
+    let first = vertices.len();
+    place_all(capsules, mesh, first, indices, |c, p, n| vertices.push(PlacedVertex { position: p.to_array(), normal: n.to_array(), color: c.color }));
 }
 
 #[cfg(test)]
@@ -140,9 +171,9 @@ mod tests {
             CapsuleInstance { a: [5.0, 5.0, 5.0], radius: 1.0, b: [5.0, 5.0, 5.0], color: [1.0; 4] },
         ];
         let mesh = unit_mesh(COARSE);
-        let (mut positions, mut indices) = (vec![[9.0; 4]], vec![7]);
+        let (mut positions, mut indices) = (Vec::new(), Vec::new());
         expand(&capsules, &mesh, &mut positions, &mut indices);
-        assert_eq!(positions.len(), capsules.len() * mesh.0.len(), "the scratch is cleared first");
+        assert_eq!(positions.len(), capsules.len() * mesh.0.len());
         assert_eq!(indices.len(), capsules.len() * mesh.1.len());
         for (k, c) in capsules.iter().enumerate() {
             let (a, b) = (Vec3::from(c.a), Vec3::from(c.b));
@@ -159,6 +190,17 @@ mod tests {
             let first = (k * mesh.0.len()) as u32;
             let tris = &indices[k * mesh.1.len()..(k + 1) * mesh.1.len()];
             assert!(tris.iter().zip(&mesh.1).all(|(&i, &t)| i == first + u32::from(t)), "capsule {k}'s triangles index its own vertices");
+        }
+        // The lit version places the same points, with unit normals pointing
+        // out from the axis and the capsule's colour; appended after what is there.
+        let (mut lit, mut lit_indices) = (vec![PlacedVertex::zeroed()], Vec::new());
+        expand_lit(&capsules, &mesh, &mut lit, &mut lit_indices);
+        assert_eq!(lit.len(), 1 + positions.len());
+        assert!(lit_indices.iter().zip(&indices).all(|(&l, &i)| l == i + 1), "indices follow the vertex already there");
+        for (v, p) in lit[1..].iter().zip(&positions) {
+            assert_eq!(v.position, [p[0], p[1], p[2]]);
+            assert!((Vec3::from(v.normal).length() - 1.0).abs() < 1e-5);
+            assert_eq!(v.color, [1.0; 4]);
         }
     }
 

@@ -47,8 +47,14 @@ pub struct SceneRenderer {
     placed_casters: GrowingBuffer,
     placed_indices: GrowingBuffer,
     coarse_unit: (Vec<capsule::CapsuleVertex>, Vec<u16>),
+    fine_unit: (Vec<capsule::CapsuleVertex>, Vec<u16>),
     placed_scratch: Vec<[f32; 4]>,
     index_scratch: Vec<u32>,
+    /// The fast look's lit capsules placed on the CPU: vertices and triangles.
+    placed_capsules: GrowingBuffer,
+    placed_capsule_indices: GrowingBuffer,
+    lit_scratch: Vec<capsule::PlacedVertex>,
+    lit_index_scratch: Vec<u32>,
     meshes: MeshCache,
     skinned: SkinnedCache,
     line_scratch: Vec<LineInstance>,
@@ -59,13 +65,13 @@ pub struct SceneRenderer {
     draw_calls: u32,
     /// Physical pixels per logical pixel; scales line widths.
     pub pixels_per_point: f32,
-    /// Draw shadows from a 1024² map instead of 2048² (a quarter of the texels
-    /// to clear and fill each frame) with one lookup per pixel instead of four
-    /// (harder, blockier edges), the capsule casters placed on the CPU and drawn
-    /// in one plain draw (a software rasteriser sets up each instance of an
-    /// instanced draw like a draw of its own): for a fast look while the view
-    /// moves. Off by default.
-    pub fast_shadows: bool,
+    /// The fast look, for a view that moves on a slow (software) GPU: shadows
+    /// from a 1024² map instead of 2048² (a quarter of the texels to clear and
+    /// fill each frame) with one lookup per pixel instead of four (harder edges),
+    /// and the capsules, lit and casting, placed on the CPU and drawn in one
+    /// plain draw each (a software rasteriser sets up each instance of an
+    /// instanced draw like a draw of its own). Off by default.
+    pub fast_look: bool,
 }
 
 /// A unit-capsule mesh on the GPU.
@@ -103,6 +109,8 @@ impl Mesh {
 }
 
 struct Pipelines {
+    /// Capsules placed on the CPU (the fast look).
+    capsules_placed: wgpu::RenderPipeline,
     shadow: wgpu::RenderPipeline,
     /// Shadow casters placed on the CPU (the fast look).
     shadow_placed: wgpu::RenderPipeline,
@@ -182,8 +190,13 @@ impl SceneRenderer {
             placed_casters: GrowingBuffer::new("mocap placed shadow casters"),
             placed_indices: GrowingBuffer::indices("mocap placed shadow caster triangles"),
             coarse_unit: capsule::unit_mesh(capsule::COARSE),
+            fine_unit: capsule::unit_mesh(capsule::FINE),
             placed_scratch: Vec::new(),
             index_scratch: Vec::new(),
+            placed_capsules: GrowingBuffer::new("mocap placed capsules"),
+            placed_capsule_indices: GrowingBuffer::indices("mocap placed capsule triangles"),
+            lit_scratch: Vec::new(),
+            lit_index_scratch: Vec::new(),
             meshes,
             skinned,
             line_scratch: Vec::new(),
@@ -193,7 +206,7 @@ impl SceneRenderer {
             caster_scratch: Vec::new(),
             draw_calls: 0,
             pixels_per_point: 1.0,
-            fast_shadows: false,
+            fast_look: false,
         }
     }
 
@@ -236,7 +249,7 @@ impl SceneRenderer {
         camera: &Camera,
     ) {
         self.prepare_pipelines(device, target.sample_count());
-        if self.fast_shadows && self.fast_shadow.is_none() {
+        if self.fast_look && self.fast_shadow.is_none() {
             self.fast_shadow = Some(ShadowMap::new(device, shadow::FAST_SIZE, &self.shadow_layout));
         }
         let shadows = self.upload(device, queue, target.size(), scene, camera);
@@ -287,6 +300,13 @@ impl SceneRenderer {
                 self.draw_calls += 1;
             }
         }
+        if let (Some((vertices, _)), Some((indices, count))) = (self.placed_capsules.get(), self.placed_capsule_indices.get()) {
+            pass.set_pipeline(&pipelines.capsules_placed);
+            pass.set_vertex_buffer(0, vertices.slice(..));
+            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+            pass.draw_indexed(0..count, 0, 0..1);
+            self.draw_calls += 1;
+        }
         if self.meshes.has_draws() {
             pass.set_pipeline(&pipelines.morph);
             self.draw_calls += self.meshes.draw(&mut pass, true);
@@ -318,10 +338,10 @@ impl SceneRenderer {
         queue.submit([encoder.finish()]);
     }
 
-    /// The shadow map this frame draws with (see [`SceneRenderer::fast_shadows`]).
+    /// The shadow map this frame draws with (see [`SceneRenderer::fast_look`]).
     fn shadow_map(&self) -> &ShadowMap {
         match &self.fast_shadow {
-            Some(map) if self.fast_shadows => map,
+            Some(map) if self.fast_look => map,
             _ => &self.shadow,
         }
     }
@@ -399,20 +419,29 @@ impl SceneRenderer {
         let bounds = mesh_bounds.chain(caster_bounds(&self.caster_scratch)).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         let map_size = self.shadow_map().size;
         let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, map_size));
-        let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light.as_ref(), self.fast_shadows);
+        let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light.as_ref(), self.fast_look);
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.spheres.upload(device, queue, &self.sphere_scratch);
-        self.fine_capsules.upload(device, queue, &self.fine_scratch);
-        self.coarse_capsules.upload(device, queue, &self.coarse_scratch);
         let casters: &[CapsuleInstance] = if light.is_some() { &self.caster_scratch } else { &[] };
-        if self.fast_shadows {
+        self.placed_scratch.clear();
+        self.index_scratch.clear();
+        self.lit_scratch.clear();
+        self.lit_index_scratch.clear();
+        let none: &[CapsuleInstance] = &[];
+        if self.fast_look {
             capsule::expand(casters, &self.coarse_unit, &mut self.placed_scratch, &mut self.index_scratch);
-            self.casters.upload(device, queue, &[] as &[CapsuleInstance]);
+            capsule::expand_lit(&self.fine_scratch, &self.fine_unit, &mut self.lit_scratch, &mut self.lit_index_scratch);
+            capsule::expand_lit(&self.coarse_scratch, &self.coarse_unit, &mut self.lit_scratch, &mut self.lit_index_scratch);
+            self.fine_capsules.upload(device, queue, none);
+            self.coarse_capsules.upload(device, queue, none);
+            self.casters.upload(device, queue, none);
         } else {
-            self.placed_scratch.clear();
-            self.index_scratch.clear();
+            self.fine_capsules.upload(device, queue, &self.fine_scratch);
+            self.coarse_capsules.upload(device, queue, &self.coarse_scratch);
             self.casters.upload(device, queue, casters);
         }
+        self.placed_capsules.upload(device, queue, &self.lit_scratch);
+        self.placed_capsule_indices.upload(device, queue, &self.lit_index_scratch);
         self.placed_casters.upload(device, queue, &self.placed_scratch);
         self.placed_indices.upload(device, queue, &self.index_scratch);
         light.is_some()
@@ -554,6 +583,8 @@ impl Pipelines {
             },
         );
         let capsules = pipeline::build(device, &lit_layout, &base);
+        let placed_lit = [Some(wgpu::VertexBufferLayout { array_stride: std::mem::size_of::<capsule::PlacedVertex>() as u64, step_mode: wgpu::VertexStepMode::Vertex, attributes: &capsule::PLACED_ATTRIBUTES })];
+        let capsules_placed = pipeline::build(device, &lit_layout, &PipelineSpec { label: "mocap placed capsules", vertex_entry: "vs_placed", buffers: &placed_lit, ..base });
         let spheres = pipeline::build(
             device,
             &lit_layout,
@@ -605,6 +636,6 @@ impl Pipelines {
             &skinned_shadow_layout,
             &PipelineSpec { label: "mocap skinned shadows", shader: &skinned_shader, buffers: &skinned_buffers, ..depth_only },
         );
-        Pipelines { shadow, shadow_placed, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
+        Pipelines { capsules_placed, shadow, shadow_placed, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
     }
 }

@@ -31,10 +31,10 @@ pub(crate) struct FrameUniforms {
 
 
 impl FrameUniforms {
-    /// The block for one frame; `fast_shadows` samples the shadow map once per
+    /// The block for one frame; `fast_look` samples the shadow map once per
     /// pixel instead of four times.
-    pub fn new(camera: &Camera, size: [u32; 2], format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>, fast_shadows: bool) -> FrameUniforms {
-        let eye = camera.view.inverse().w_axis.truncate().extend(if fast_shadows { 1.0 } else { 0.0 });
+    pub fn new(camera: &Camera, size: [u32; 2], format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>, fast_look: bool) -> FrameUniforms {
+        let eye = camera.view.inverse().w_axis.truncate().extend(if fast_look { 1.0 } else { 0.0 });
         let (light_view_proj, texel, strength, shadow_rect) = match light {
             Some(fit) => (fit.view_proj, fit.texel, 1.0, fit.floor_rect),
             None => (Mat4::IDENTITY, 0.0, 0.0, [0.0; 4]),

@@ -95,6 +95,15 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
     // floor beside it (the pole itself covers only a disc from above).
     let darker = bare.chunks(4).zip(lit.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
     assert!(darker > 20, "a shadow darkens the floor: {darker} pixels");
+    // The fast look: the same capsule (placed on the CPU) and its shadow.
+    renderer.fast_look = true;
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let fast = read_pixels(&device, &queue, &target);
+    renderer.fast_look = false;
+    let fast_red = fast.chunks(4).filter(|p| p[0] > 100 && p[0] as u32 > 2 * p[1] as u32).count();
+    assert!(fast_red.abs_diff(red) * 10 <= red, "fast look: the capsule covers about the same pixels ({fast_red} against {red})");
+    let fast_darker = bare.chunks(4).zip(fast.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
+    assert!(fast_darker > 20, "fast look: a shadow darkens the floor: {fast_darker} pixels");
     scene.shadows = false;
     renderer.render(&device, &queue, &target, &scene, &camera);
     let unshadowed = read_pixels(&device, &queue, &target);
@@ -127,7 +136,7 @@ fn a_shadow_falls_where_the_key_light_projects_its_caster() {
     // Full quality, then the fast look (a smaller map, one lookup per pixel,
     // casters placed on the CPU and drawn in one plain draw).
     for fast in [false, true] {
-        renderer.fast_shadows = fast;
+        renderer.fast_look = fast;
         renderer.render(&device, &queue, &target, &scene, &camera);
         let pixels = read_pixels(&device, &queue, &target);
         // Dark grey (shadowed floor) pixels: their centroid on screen.

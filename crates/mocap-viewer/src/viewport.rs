@@ -121,7 +121,7 @@ impl Viewport {
             _ => &gpu.target,
         };
         gpu.renderer.pixels_per_point = ppp;
-        gpu.renderer.fast_shadows = self.reduced;
+        gpu.renderer.fast_look = self.reduced;
         let cam = camera.to_camera(size[0] as f32 / size[1] as f32);
         gpu.renderer.render(&rs.device, &rs.queue, target, scene, &cam);
         if self.frames_rendered == 1 {

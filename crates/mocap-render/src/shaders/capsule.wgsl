@@ -49,6 +49,24 @@ fn vs_shadow(v: CapsuleVertex) -> @builtin(position) vec4<f32> {
     return frame.light_view_proj * vec4<f32>(placed[0], 1.0);
 }
 
+// The same capsules placed on the CPU (see capsule::expand_lit): one plain
+// draw instead of one instance each.
+struct PlacedVertex {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec4<f32>,
+};
+
+@vertex
+fn vs_placed(v: PlacedVertex) -> Out {
+    var out: Out;
+    out.position = frame.projection * frame.view * vec4<f32>(v.position, 1.0);
+    out.color = v.color;
+    out.world = v.position;
+    out.normal = v.normal;
+    return out;
+}
+
 // Depth-only pass into the shadow map, capsules placed on the CPU
 // (see capsule::expand): one plain draw instead of one instance each.
 @vertex
