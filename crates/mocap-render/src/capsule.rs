@@ -18,6 +18,9 @@ pub(crate) const FINE: Detail = Detail { segments: 12, rings: 3 };
 /// For small or distant capsules and the shadow pass (24 triangles).
 pub(crate) const COARSE: Detail = Detail { segments: 6, rings: 1 };
 
+/// A unit capsule's vertices and triangles (see [`unit_mesh`]).
+pub(crate) type UnitMesh = (Vec<CapsuleVertex>, Vec<u16>);
+
 /// One vertex of the unit capsule: a unit direction in the capsule's frame (axis =
 /// +Z) and which end it hangs from (0 = `a`, 1 = `b`). Placed as
 /// `mix(a, b, end) + radius * basis * dir`, which is also the normal.
@@ -60,7 +63,7 @@ impl CapsuleInstance {
 /// The unit capsule: a UV sphere cut at its equator, the lower half at end `a`
 /// and the upper half at end `b`, joined by the cylinder. Counter-clockwise
 /// triangles seen from outside.
-pub(crate) fn unit_mesh(detail: Detail) -> (Vec<CapsuleVertex>, Vec<u16>) {
+pub(crate) fn unit_mesh(detail: Detail) -> UnitMesh {
     let Detail { segments, rings } = detail;
     let mut vertices = Vec::new();
     // Rings from the `a` pole up to its equator, then from `b`'s equator to its pole.
@@ -119,7 +122,7 @@ pub(crate) const PLACED_ATTRIBUTES: [wgpu::VertexAttribute; 3] = wgpu::vertex_at
 /// and appends the mesh's triangles, offset per capsule, to `indices`
 /// (`first` is the number of vertices already placed). Stops before an index
 /// would pass `u32::MAX`.
-fn place_all(capsules: &[CapsuleInstance], mesh: &(Vec<CapsuleVertex>, Vec<u16>), mut first: usize, indices: &mut Vec<u32>, mut put: impl FnMut(&CapsuleInstance, Vec3, Vec3)) {
+fn place_all(capsules: &[CapsuleInstance], mesh: &UnitMesh, mut first: usize, indices: &mut Vec<u32>, mut put: impl FnMut(&CapsuleInstance, Vec3, Vec3)) {
     let (vertices, triangles) = mesh;
     for c in capsules {
         let (a, b) = (Vec3::from(c.a), Vec3::from(c.b));
@@ -146,13 +149,13 @@ fn place_all(capsules: &[CapsuleInstance], mesh: &(Vec<CapsuleVertex>, Vec<u16>)
 /// triangles to `indices`. One plain draw of these costs a software rasteriser
 /// far less than the same capsules instanced (it sets up every instance like a
 /// draw of its own).
-pub(crate) fn expand(capsules: &[CapsuleInstance], mesh: &(Vec<CapsuleVertex>, Vec<u16>), positions: &mut Vec<[f32; 4]>, indices: &mut Vec<u32>) {
+pub(crate) fn expand(capsules: &[CapsuleInstance], mesh: &UnitMesh, positions: &mut Vec<[f32; 4]>, indices: &mut Vec<u32>) {
     let first = positions.len();
     place_all(capsules, mesh, first, indices, |_, p, _| positions.push(p.extend(1.0).to_array()));
 }
 
 /// [`expand`] with normals and colours, for the lit pass.
-pub(crate) fn expand_lit(capsules: &[CapsuleInstance], mesh: &(Vec<CapsuleVertex>, Vec<u16>), vertices: &mut Vec<PlacedVertex>, indices: &mut Vec<u32>) {
+pub(crate) fn expand_lit(capsules: &[CapsuleInstance], mesh: &UnitMesh, vertices: &mut Vec<PlacedVertex>, indices: &mut Vec<u32>) {
     let first = vertices.len();
     place_all(capsules, mesh, first, indices, |c, p, n| vertices.push(PlacedVertex { position: p.to_array(), normal: n.to_array(), color: c.color }));
 }

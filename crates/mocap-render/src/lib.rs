@@ -34,6 +34,7 @@ mod grid;
 mod lines;
 mod mesh;
 mod pipeline;
+mod placed;
 mod scene;
 mod shadow;
 mod skinned;

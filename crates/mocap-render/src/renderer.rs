@@ -13,6 +13,7 @@ use crate::lines::{LINE_ATTRIBUTES, LineInstance};
 use crate::mesh::MeshCache;
 use crate::skinned::SkinnedCache;
 use crate::pipeline::{self, PipelineSpec, instances};
+use crate::placed::PlacedMesh;
 use crate::shadow::{self, ShadowMap};
 use crate::spheres::{SPHERE_ATTRIBUTES, SphereInstance};
 use crate::uniforms::FrameUniforms;
@@ -43,18 +44,10 @@ pub struct SceneRenderer {
     fine_capsules: GrowingBuffer,
     coarse_capsules: GrowingBuffer,
     casters: GrowingBuffer,
-    /// The fast look's casters placed on the CPU: positions and triangles.
-    placed_casters: GrowingBuffer,
-    placed_indices: GrowingBuffer,
-    coarse_unit: (Vec<capsule::CapsuleVertex>, Vec<u16>),
-    fine_unit: (Vec<capsule::CapsuleVertex>, Vec<u16>),
-    placed_scratch: Vec<[f32; 4]>,
-    index_scratch: Vec<u32>,
-    /// The fast look's lit capsules placed on the CPU: vertices and triangles.
-    placed_capsules: GrowingBuffer,
-    placed_capsule_indices: GrowingBuffer,
-    lit_scratch: Vec<capsule::PlacedVertex>,
-    lit_index_scratch: Vec<u32>,
+    /// The fast look's shadow casters placed on the CPU (positions).
+    placed_casters: PlacedMesh<[f32; 4]>,
+    /// The fast look's lit capsules placed on the CPU.
+    placed_capsules: PlacedMesh<capsule::PlacedVertex>,
     meshes: MeshCache,
     skinned: SkinnedCache,
     line_scratch: Vec<LineInstance>,
@@ -74,8 +67,9 @@ pub struct SceneRenderer {
     pub fast_look: bool,
 }
 
-/// A unit-capsule mesh on the GPU.
+/// A unit-capsule mesh on the GPU, and on the CPU for placing it there.
 struct Mesh {
+    unit: capsule::UnitMesh,
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     index_count: u32,
@@ -83,19 +77,21 @@ struct Mesh {
 
 impl Mesh {
     fn new(device: &wgpu::Device, detail: capsule::Detail) -> Mesh {
-        let (vertices, indices) = capsule::unit_mesh(detail);
+        let unit = capsule::unit_mesh(detail);
+        let (vertices, indices) = &unit;
         Mesh {
             vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("mocap capsule mesh"),
-                contents: bytemuck::cast_slice(&vertices),
+                contents: bytemuck::cast_slice(vertices),
                 usage: wgpu::BufferUsages::VERTEX,
             }),
             indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("mocap capsule indices"),
-                contents: bytemuck::cast_slice(&indices),
+                contents: bytemuck::cast_slice(indices),
                 usage: wgpu::BufferUsages::INDEX,
             }),
             index_count: indices.len() as u32,
+            unit,
         }
     }
 
@@ -187,16 +183,8 @@ impl SceneRenderer {
             fine_capsules: GrowingBuffer::new("mocap capsules"),
             coarse_capsules: GrowingBuffer::new("mocap small capsules"),
             casters: GrowingBuffer::new("mocap shadow casters"),
-            placed_casters: GrowingBuffer::new("mocap placed shadow casters"),
-            placed_indices: GrowingBuffer::indices("mocap placed shadow caster triangles"),
-            coarse_unit: capsule::unit_mesh(capsule::COARSE),
-            fine_unit: capsule::unit_mesh(capsule::FINE),
-            placed_scratch: Vec::new(),
-            index_scratch: Vec::new(),
-            placed_capsules: GrowingBuffer::new("mocap placed capsules"),
-            placed_capsule_indices: GrowingBuffer::indices("mocap placed capsule triangles"),
-            lit_scratch: Vec::new(),
-            lit_index_scratch: Vec::new(),
+            placed_casters: PlacedMesh::new("mocap placed shadow casters"),
+            placed_capsules: PlacedMesh::new("mocap placed capsules"),
             meshes,
             skinned,
             line_scratch: Vec::new(),
@@ -300,13 +288,7 @@ impl SceneRenderer {
                 self.draw_calls += 1;
             }
         }
-        if let (Some((vertices, _)), Some((indices, count))) = (self.placed_capsules.get(), self.placed_capsule_indices.get()) {
-            pass.set_pipeline(&pipelines.capsules_placed);
-            pass.set_vertex_buffer(0, vertices.slice(..));
-            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..count, 0, 0..1);
-            self.draw_calls += 1;
-        }
+        self.draw_calls += self.placed_capsules.draw(&mut pass, &pipelines.capsules_placed);
         if self.meshes.has_draws() {
             pass.set_pipeline(&pipelines.morph);
             self.draw_calls += self.meshes.draw(&mut pass, true);
@@ -365,13 +347,7 @@ impl SceneRenderer {
             self.coarse_mesh.draw(&mut pass, buffer, count);
             self.draw_calls += 1;
         }
-        if let (Some((positions, _)), Some((indices, count))) = (self.placed_casters.get(), self.placed_indices.get()) {
-            pass.set_pipeline(&self.pipelines.shadow_placed);
-            pass.set_vertex_buffer(0, positions.slice(..));
-            pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..count, 0, 0..1);
-            self.draw_calls += 1;
-        }
+        self.draw_calls += self.placed_casters.draw(&mut pass, &self.pipelines.shadow_placed);
         if self.meshes.has_draws() {
             pass.set_pipeline(&self.pipelines.morph_shadow);
             self.draw_calls += self.meshes.draw(&mut pass, false);
@@ -423,15 +399,14 @@ impl SceneRenderer {
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.spheres.upload(device, queue, &self.sphere_scratch);
         let casters: &[CapsuleInstance] = if light.is_some() { &self.caster_scratch } else { &[] };
-        self.placed_scratch.clear();
-        self.index_scratch.clear();
-        self.lit_scratch.clear();
-        self.lit_index_scratch.clear();
+        self.placed_casters.clear();
+        self.placed_capsules.clear();
         let none: &[CapsuleInstance] = &[];
         if self.fast_look {
-            capsule::expand(casters, &self.coarse_unit, &mut self.placed_scratch, &mut self.index_scratch);
-            capsule::expand_lit(&self.fine_scratch, &self.fine_unit, &mut self.lit_scratch, &mut self.lit_index_scratch);
-            capsule::expand_lit(&self.coarse_scratch, &self.coarse_unit, &mut self.lit_scratch, &mut self.lit_index_scratch);
+            let (casters_out, lit) = (&mut self.placed_casters, &mut self.placed_capsules);
+            capsule::expand(casters, &self.coarse_mesh.unit, &mut casters_out.vertices, &mut casters_out.indices);
+            capsule::expand_lit(&self.fine_scratch, &self.fine_mesh.unit, &mut lit.vertices, &mut lit.indices);
+            capsule::expand_lit(&self.coarse_scratch, &self.coarse_mesh.unit, &mut lit.vertices, &mut lit.indices);
             self.fine_capsules.upload(device, queue, none);
             self.coarse_capsules.upload(device, queue, none);
             self.casters.upload(device, queue, none);
@@ -440,10 +415,8 @@ impl SceneRenderer {
             self.coarse_capsules.upload(device, queue, &self.coarse_scratch);
             self.casters.upload(device, queue, casters);
         }
-        self.placed_capsules.upload(device, queue, &self.lit_scratch);
-        self.placed_capsule_indices.upload(device, queue, &self.lit_index_scratch);
-        self.placed_casters.upload(device, queue, &self.placed_scratch);
-        self.placed_indices.upload(device, queue, &self.index_scratch);
+        self.placed_capsules.upload(device, queue);
+        self.placed_casters.upload(device, queue);
         light.is_some()
     }
 }

@@ -1,8 +1,8 @@
 //! How the 3D view trades looks for speed: full quality (multisampled edges, the
-//! display's resolution), a fast look (one sample per pixel, a shadow map of a
-//! quarter of the texels and, where the host supports it, the window drawn at
-//! [`FAST_RENDER_SCALE`] of the display's resolution and scaled up), or the
-//! automatic rule between them.
+//! display's resolution), a fast look (one sample per pixel, the renderer's
+//! `SceneRenderer::fast_look` (cheaper shadows, capsules placed on the CPU) and,
+//! where the host supports it, the window drawn at [`FAST_RENDER_SCALE`] of the
+//! display's resolution and scaled up), or the automatic rule between them.
 //!
 //! The automatic rule ([`Adaptive::decide`]): a view at rest (nothing playing,
 //! nothing dragged) is always drawn at full quality. While it moves, frames are

@@ -27,12 +27,7 @@ pub(crate) fn paint_and_schedule(runner_ref: &WebRunner) -> Result<(), JsValue> 
         paint_if_needed(&mut runner_lock);
         let at = runner_lock.needs_repaint.when_to_repaint();
         drop(runner_lock);
-        let wait = at - super::now_sec();
-        if wait <= 0.0 {
-            runner_ref.request_animation_frame()?;
-        } else if wait.is_finite() {
-            runner_ref.schedule_after(wait)?;
-        }
+        runner_ref.schedule(at)?;
     }
     Ok(())
 }

@@ -248,36 +248,20 @@ impl WebRunner {
     /// Vendored change: a hidden browser tab schedules nothing (upstream fell back
     /// to `setTimeout` to keep painting while hidden); the `visibilitychange`
     /// handler schedules a frame when the tab is shown again. A later repaint
-    /// waiting on a timer (see [`Self::schedule_after`]) is replaced by this frame.
+    /// waiting on a timer (see [`Self::schedule`]) is replaced by this frame.
     pub(crate) fn request_animation_frame(&self) -> Result<(), wasm_bindgen::JsValue> {
-        let window = web_sys::window().unwrap();
-        if let Some(frame) = self.frame.borrow().as_ref() {
-            match frame.kind {
-                // There is already an animation frame in flight.
-                AnimationFrameKind::AnimationFrame => return Ok(()),
-                AnimationFrameKind::Timeout => frame.cancel(&window),
-            }
-        }
-        self.frame.borrow_mut().take();
-        if window.document().is_some_and(|document| document.hidden()) {
-            return Ok(());
-        }
-        let closure = self.frame_closure();
-        let id = window.request_animation_frame(closure.as_ref().unchecked_ref())?;
-        self.frame.borrow_mut().replace(AnimationFrameRequest {
-            id,
-            kind: AnimationFrameKind::AnimationFrame,
-            at: f64::NEG_INFINITY,
-            _closure: closure,
-        });
-        Ok(())
+        self.schedule(f64::NEG_INFINITY)
     }
 
-    /// Vendored change: schedules a paint check in `seconds` (a repaint asked for
-    /// later, e.g. a tooltip's delay), unless something sooner is already in
-    /// flight. Hidden tabs schedule nothing.
-    pub(crate) fn schedule_after(&self, seconds: f64) -> Result<(), wasm_bindgen::JsValue> {
-        let at = super::now_sec() + seconds;
+    /// Vendored change: schedules a paint check for `at` ([`super::now_sec`]
+    /// scale): an animation frame if it is due now, a timer if later (a repaint
+    /// asked for later, e.g. a tooltip's delay), nothing for `+inf`. Something
+    /// already in flight for no later is kept; a later timer is replaced. Hidden
+    /// tabs schedule nothing.
+    pub(crate) fn schedule(&self, at: f64) -> Result<(), wasm_bindgen::JsValue> {
+        if at == f64::INFINITY {
+            return Ok(());
+        }
         let window = web_sys::window().unwrap();
         if let Some(frame) = self.frame.borrow().as_ref() {
             if frame.at <= at {
@@ -290,9 +274,16 @@ impl WebRunner {
             return Ok(());
         }
         let closure = self.frame_closure();
-        let ms = (seconds * 1000.0).ceil().clamp(0.0, i32::MAX as f64) as i32;
-        let id = window.set_timeout_with_callback_and_timeout_and_arguments_0(closure.as_ref().unchecked_ref(), ms)?;
-        self.frame.borrow_mut().replace(AnimationFrameRequest { id, kind: AnimationFrameKind::Timeout, at, _closure: closure });
+        let wait = at - super::now_sec();
+        let request = if wait <= 0.0 {
+            let id = window.request_animation_frame(closure.as_ref().unchecked_ref())?;
+            AnimationFrameRequest { id, kind: AnimationFrameKind::AnimationFrame, at: f64::NEG_INFINITY, _closure: closure }
+        } else {
+            let ms = (wait * 1000.0).ceil().min(i32::MAX as f64) as i32;
+            let id = window.set_timeout_with_callback_and_timeout_and_arguments_0(closure.as_ref().unchecked_ref(), ms)?;
+            AnimationFrameRequest { id, kind: AnimationFrameKind::Timeout, at, _closure: closure }
+        };
+        self.frame.borrow_mut().replace(request);
         Ok(())
     }
 
@@ -379,14 +370,8 @@ thread_local! {
 /// nothing to draw; now a page with nothing to draw schedules nothing.
 pub(crate) fn wake(id: usize, at: f64) {
     let runner = WAKERS.with(|w| w.try_borrow().ok().and_then(|w| w.iter().find(|(i, _)| *i == id).map(|(_, r)| r.clone())));
-    if let Some(runner) = runner {
-        {
-            let wait = at - super::now_sec();
-            let result = if wait <= 0.0 { runner.request_animation_frame() } else { runner.schedule_after(wait) };
-            if let Err(err) = result {
-                log::error!("Failed to schedule a frame: {}", super::string_from_js_value(&err));
-            }
-        }
+    if let Some(Err(err)) = runner.map(|runner| runner.schedule(at)) {
+        log::error!("Failed to schedule a frame: {}", super::string_from_js_value(&err));
     }
 }
 
