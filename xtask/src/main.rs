@@ -2,6 +2,7 @@
 //!
 //! - `gen-walk`            regenerate `data/walk.bvh` (our procedural walk cycle) and
 //!                         `data/walk.bva` (the same walk converted by `mocap`)
+//! - `gen-fonts`           regenerate `data/fonts/` (the viewer's fonts, made from egui's)
 //! - `dist [--fast|--opt]`  build the web viewer into `dist/` (static, relative URLs; --opt: wasm-opt from npm when the system's is too old)
 //! - `serve [--port P]`    build, then serve `dist/` on http://127.0.0.1:P (default 8080)
 //! - `test`                `cargo test --workspace`, then the headless browser tests
@@ -13,6 +14,7 @@
 
 mod browser;
 mod dist;
+mod fonts;
 mod serve;
 mod setup;
 mod util;
@@ -24,12 +26,13 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("gen-walk") => gen_walk(),
+        Some("gen-fonts") => fonts::gen_fonts(),
         Some("dist") => dist::dist_with(args.iter().any(|a| a == "--fast"), args.iter().any(|a| a == "--opt")).map(|_| ()),
         Some("serve") => serve::serve_command(&args[1..]),
         Some("test") => browser::test_all(&args[1..]),
         Some("bench-web") => browser::bench(),
         Some("setup") => setup::setup_all(),
-        _ => Err("usage: cargo xtask <gen-walk | dist [--fast|--opt] | serve [--port P] | test | bench-web | setup>".to_string()),
+        _ => Err("usage: cargo xtask <gen-walk | gen-fonts | dist [--fast|--opt] | serve [--port P] | test | bench-web | setup>".to_string()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

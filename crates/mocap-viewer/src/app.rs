@@ -23,7 +23,7 @@ pub struct ViewerApp {
 }
 
 impl ViewerApp {
-    /// Wraps `viewer` (and picks the dark theme, to match the 3D view); `on_open_requested`
+    /// Wraps `viewer` (and installs the viewer's [`crate::fonts`] and picks the dark theme, to match the 3D view); `on_open_requested`
     /// runs when the user presses "Open…" ([`OpenMode::Replace`]) or "Add…" ([`OpenMode::Add`]).
     ///
     /// Panels are left unpainted and the window is cleared to their colour
@@ -31,6 +31,7 @@ impl ViewerApp {
     /// (its shader, blending) costs about as much per pixel on a software
     /// rasteriser as the whole 3D view.
     pub fn new(ctx: &egui::Context, viewer: Rc<RefCell<Viewer>>, on_open_requested: Box<dyn FnMut(OpenMode)>) -> ViewerApp {
+        crate::fonts::install(ctx);
         ctx.set_theme(egui::ThemePreference::Dark);
         let mut panel_fill = egui::Color32::TRANSPARENT;
         ctx.style_mut_of(egui::Theme::Dark, |style| panel_fill = std::mem::replace(&mut style.visuals.panel_fill, egui::Color32::TRANSPARENT));

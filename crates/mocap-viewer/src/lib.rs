@@ -15,6 +15,7 @@ pub mod camera;
 pub mod capture;
 pub mod character;
 pub mod drag;
+pub mod fonts;
 pub mod history;
 pub mod keys;
 pub mod layout;

@@ -107,7 +107,7 @@ fn closing_an_edited_character_asks_first() {
         let mut out = ctx.run_ui(input, |ui| v.ui(ui, None));
         out.textures_delta.clear();
     };
-    // What the ✕ button does for an edited character: ask, keep it open meanwhile.
+    // What the × button does for an edited character: ask, keep it open meanwhile.
     v.pending_close = Some(1);
     run(&mut v, 0.0);
     run(&mut v, 0.1);

@@ -200,7 +200,7 @@ fn header_row(ui: &mut egui::Ui, index: usize, c: &mut Character, folded: &mut F
         ui.checkbox(&mut c.visible, "").on_hover_text("Show this character");
         let name = egui::RichText::new(format!("{}. {}", index + 1, c.name)).strong();
         ui.label(if c.visible { name } else { name.weak() }).on_hover_text(&c.name);
-        remove = ui.small_button("✕").on_hover_text("Close this character").clicked();
+        remove = ui.small_button("×").on_hover_text("Close this character").clicked();
     });
     remove
 }

@@ -58,7 +58,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                     if ui.button("move →").on_hover_text("Move this key one frame later").clicked() && here < timing.last() {
                         result = Some(viewer.move_key(here, here + 1).map(|()| here + 1));
                     }
-                    if ui.button("✕ key").on_hover_text("Delete this key (later edits are made again)").clicked() {
+                    if ui.button("× key").on_hover_text("Delete this key (later edits are made again)").clicked() {
                         result = Some(viewer.delete_key(here).map(|()| here));
                     }
                     match result {

@@ -1,0 +1,113 @@
+//! The viewer's fonts (`data/fonts/`, cut down by `cargo xtask gen-fonts`) have a
+//! glyph for every character the viewer, the page's JS API and the core's
+//! messages write, and the whole UI draws without falling back to a box.
+
+use mocap_viewer::Viewer;
+use std::path::{Path, PathBuf};
+
+const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
+
+/// A context with the viewer's fonts, which panics on a character no font has.
+fn context() -> egui::Context {
+    let ctx = egui::Context::default();
+    mocap_viewer::fonts::install(&ctx);
+    ctx.set_missing_glyph_policy(egui::MissingGlyphPolicy::Panic);
+    frame(&ctx, None, 0.0);
+    ctx
+}
+
+fn frame(ctx: &egui::Context, mut viewer: Option<&mut Viewer>, time: f64) {
+    let input = egui::RawInput {
+        time: Some(time),
+        screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))),
+        ..Default::default()
+    };
+    let mut output = ctx.run_ui(input, |ui| {
+        if let Some(v) = viewer.as_deref_mut() {
+            v.ui(ui, None);
+        }
+    });
+    output.textures_delta.clear();
+}
+
+/// Every `.rs` file under `dir`.
+fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())).flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            sources(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// The characters inside string literals of `text` (comments skipped).
+fn literal_chars(text: &str) -> Vec<char> {
+    let mut chars = Vec::new();
+    for line in text.lines().filter(|l| !l.trim_start().starts_with("//")) {
+        let (mut inside, mut escaped) = (false, false);
+        for c in line.chars() {
+            match (inside, escaped, c) {
+                (true, false, '\\') => escaped = true,
+                (_, false, '"') => inside = !inside,
+                (true, _, c) => {
+                    escaped = false;
+                    chars.push(c);
+                }
+                _ => {}
+            }
+        }
+    }
+    chars
+}
+
+#[test]
+fn every_character_in_the_viewers_strings_has_a_glyph_in_both_families() {
+    let crates = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut files = Vec::new();
+    for dir in ["mocap-viewer/src", "mocap-web/src", "mocap/src"] {
+        sources(&crates.join(dir), &mut files);
+    }
+    let mut wanted: Vec<char> = (' '..='~').collect();
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        wanted.extend(literal_chars(&text).into_iter().filter(|c| !c.is_ascii()));
+    }
+    wanted.sort_unstable();
+    wanted.dedup();
+    assert!(wanted.contains(&'→') && wanted.contains(&'…'), "the scan finds the viewer's strings: {wanted:?}");
+    let ctx = context();
+    for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
+        let font = egui::FontId::new(14.0, family.clone());
+        let missing: String = ctx.fonts_mut(|f| wanted.iter().copied().filter(|&c| !f.has_glyph(&font, c)).collect());
+        assert!(missing.is_empty(), "{family:?} has no glyph for {missing:?}");
+    }
+}
+
+#[test]
+fn the_cut_fonts_keep_what_each_family_is_for() {
+    let ctx = context();
+    let sans = egui::FontId::proportional(14.0);
+    let mono = egui::FontId::monospace(14.0);
+    ctx.fonts_mut(|f| {
+        // Joint and file names in Latin, Greek and Cyrillic scripts (Ubuntu's coverage).
+        assert!(f.has_glyphs(&sans, "Łódź Ωμέγα Привет ŠŽČ ñ"));
+        assert!(f.has_glyphs(&mono, "0123456789 -+.,: frame / s"));
+    });
+}
+
+#[test]
+fn the_whole_ui_draws_without_a_missing_glyph() {
+    let ctx = context();
+    let mut v = Viewer::default();
+    frame(&ctx, Some(&mut v), 0.1);
+    v.load("walk.bvh", WALK).expect("walk.bvh");
+    v.add("again.bvh", WALK).expect("second character");
+    v.select(Some(7));
+    frame(&ctx, Some(&mut v), 0.2);
+    frame(&ctx, Some(&mut v), 0.3);
+    let _ = v.load("bad.bvh", b"HIERARCHY\nJOINT");
+    frame(&ctx, Some(&mut v), 0.4);
+    assert!(v.snapshot().error.is_some(), "the error banner was drawn");
+}
