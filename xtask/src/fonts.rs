@@ -6,12 +6,12 @@
 //! tables) that make up most of their size; egui renders anti-aliased text and
 //! hints with skrifa's auto-hinter when a font has no programs. Without them, and
 //! with Hack cut to the characters a monospaced number or label needs, the two
-//! fonts go from 319 KB to about 79 KB gzipped in the page's download.
+//! fonts go from 319 KB to about 71 KB gzipped in the page's download.
 //!
-//! - `ui-sans.ttf`: Ubuntu Light, every character it has, no hinting, no glyph
-//!   names; renamed "Ubuntu Light derivative mocap" as the Ubuntu Font Licence
+//! - `ui-sans.ttf`: Ubuntu Light, every character it has but polytonic Greek,
+//!   no hinting, no glyph names; renamed "Ubuntu Light derivative mocap" as the Ubuntu Font Licence
 //!   asks of a modified version (`data/fonts/UFL.txt`).
-//! - `ui-mono.ttf`: Hack, ASCII, Latin-1, punctuation, arrows and a few
+//! - `ui-mono.ttf`: Hack, ASCII, Latin-1's signs, punctuation, arrows and a few
 //!   mathematical and geometric signs, no hinting (`data/fonts/Hack-LICENSE.txt`).
 //!
 //! `data/fonts/SOURCES` records hashes of the sources, the recipe and the
@@ -25,30 +25,32 @@ use std::process::Command;
 /// fontTools version the fonts are made with (pinned: its output is stable for one version).
 const FONTTOOLS: &str = "fonttools==4.68.0";
 
-/// Characters kept from Hack (the proportional font falls back to it for arrows
-/// and shapes Ubuntu lacks; monospaced text falls back to Ubuntu for the rest).
-const MONO_UNICODES: &str = "U+0020-007E,U+00A0-00FF,U+2010-2027,U+2030-203A,U+2190-2199,U+2212,U+2248,U+221E,U+2264,U+2265,U+25A0,U+25A1,U+25B2-25C5,U+25CB,U+25CF";
+/// Characters kept from Ubuntu Light: all it has but polytonic Greek (U+1F00-1FFF).
+const SANS_UNICODES: &str = "U+0000-1EFF,U+2000-FFFF";
 
-/// The recipe, run by fontTools' Python: `subset(source, unicodes, out, rename)`.
+/// Characters kept from Hack (the proportional font falls back to it for arrows
+/// and shapes Ubuntu lacks; monospaced text falls back to Ubuntu for letters
+/// beyond ASCII and the rest).
+const MONO_UNICODES: &str = "U+0020-007E,U+00A0-00BF,U+00D7,U+00F7,U+2010-2027,U+2030-203A,U+2190-2199,U+2212,U+2248,U+221E,U+2264,U+2265,U+25A0,U+25A1,U+25B2-25C5,U+25CB,U+25CF";
+
+/// The recipe, run by fontTools' Python: `make(source, unicodes, out, rename_suffix, all_names)` per font.
 const SCRIPT: &str = r#"
 import sys
 from fontTools import subset
 from fontTools.ttLib import TTFont
 
-def make(source, unicodes, out, suffix):
+def make(source, unicodes, out, suffix, all_names):
     options = subset.Options()
     options.hinting = False
     options.layout_features = ['*']
-    options.name_IDs = ['*']
+    if all_names:
+        options.name_IDs = ['*']
     options.glyph_names = False
     options.notdef_outline = True
     options.drop_tables += ['DSIG', 'hdmx', 'VDMX', 'LTSH', 'TTFA']
     font = TTFont(source, recalcTimestamp=False)
     subsetter = subset.Subsetter(options)
-    if unicodes == '*':
-        subsetter.populate(unicodes=font.getBestCmap().keys())
-    else:
-        subsetter.populate(unicodes=subset.parse_unicodes(unicodes))
+    subsetter.populate(unicodes=subset.parse_unicodes(unicodes))
     subsetter.subset(font)
     if suffix:
         for record in font['name'].names:
@@ -58,8 +60,8 @@ def make(source, unicodes, out, suffix):
                 record.string = record.toUnicode() + '-derivative-' + suffix
     font.save(out, reorderTables=True)
 
-make(sys.argv[1], '*', sys.argv[3], 'mocap')
-make(sys.argv[2], sys.argv[4], sys.argv[5], '')
+make(sys.argv[1], sys.argv[2], sys.argv[3], 'mocap', True)
+make(sys.argv[4], sys.argv[5], sys.argv[6], '', False)
 "#;
 
 /// The fonts' folder in the repository.
@@ -82,8 +84,9 @@ pub fn gen_fonts() -> Result<(), String> {
         .arg("-c")
         .arg(SCRIPT)
         .arg(&sans_src)
-        .arg(&mono_src)
+        .arg(SANS_UNICODES)
         .arg(out.join("ui-sans.ttf"))
+        .arg(&mono_src)
         .arg(MONO_UNICODES)
         .arg(out.join("ui-mono.ttf")))?;
     write(&out.join("SOURCES"), sources_record()?.as_bytes())?;
@@ -106,7 +109,7 @@ pub fn sources_record() -> Result<String, String> {
          ui-mono.ttf\t{:016x}\n",
         fnv1a(epaint_default_fonts::UBUNTU_LIGHT),
         fnv1a(epaint_default_fonts::HACK_REGULAR),
-        fnv1a(format!("{SCRIPT}{MONO_UNICODES}{FONTTOOLS}").as_bytes()),
+        fnv1a(format!("{SCRIPT}{SANS_UNICODES}{MONO_UNICODES}{FONTTOOLS}").as_bytes()),
         fnv1a(&read("ui-sans.ttf")?),
         fnv1a(&read("ui-mono.ttf")?),
     ))

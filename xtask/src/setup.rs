@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 /// How the wasm build is done on this machine.
+#[derive(Clone, Copy, PartialEq, Eq)]
 pub enum WasmToolchain {
     /// rustup with the wasm32 target installed: plain `cargo build --target`.
     Rustup,
@@ -104,17 +105,28 @@ pub fn chromium() -> Result<String, String> {
     Ok("/usr/bin/chromium".to_owned())
 }
 
-/// Node.js, playwright-core and three (for the benchmark's comparison page) under
+/// Node.js, playwright-core, three (for the benchmark's comparison page) and
+/// esbuild (minifies the page's JavaScript in `cargo xtask dist`) under
 /// `tests/browser/node_modules` (never downloads browsers).
 pub fn playwright() -> Result<(), String> {
     if !have("node") || !have("npm") {
         apt_install(&["nodejs", "npm"])?;
     }
     let dir = root().join("tests/browser");
-    if !dir.join("node_modules/playwright-core").is_dir() || !dir.join("node_modules/three").is_dir() {
+    if ["playwright-core", "three", "esbuild"].iter().any(|p| !dir.join("node_modules").join(p).is_dir()) {
         run(Command::new("npm").args(["install", "--no-audit", "--no-fund"]).current_dir(&dir).env("PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD", "1"))?;
     }
     Ok(())
+}
+
+/// esbuild from `tests/browser`'s npm packages (installed on first use; `None`
+/// where npm cannot install it).
+pub fn esbuild() -> Option<PathBuf> {
+    let bin = root().join("tests/browser/node_modules/.bin/esbuild");
+    if !bin.is_file() {
+        let _ = playwright();
+    }
+    bin.is_file().then_some(bin)
 }
 
 /// npm's binaryen (its JavaScript build of wasm-opt), installed into

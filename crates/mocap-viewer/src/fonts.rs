@@ -1,13 +1,13 @@
 //! The viewer's user-interface fonts: egui's own two, made smaller by `cargo
 //! xtask gen-fonts` (no hinting programs, Hack cut to what numbers and labels
-//! need; see `data/fonts/`), 79 KB gzipped in the page's download instead of 319.
+//! need; see `data/fonts/`), 71 KB gzipped in the page's download instead of 319.
 
 use egui::{FontData, FontDefinitions, FontFamily};
 use std::sync::Arc;
 
-/// Ubuntu Light (every character it has), the proportional font.
+/// Ubuntu Light (every character it has but polytonic Greek), the proportional font.
 const SANS: &[u8] = include_bytes!("../../../data/fonts/ui-sans.ttf");
-/// Hack (ASCII, Latin-1, punctuation, arrows, a few signs), the monospaced font.
+/// Hack (ASCII, Latin-1 signs, punctuation, arrows, a few more signs), the monospaced font.
 const MONO: &[u8] = include_bytes!("../../../data/fonts/ui-mono.ttf");
 
 /// The viewer's fonts: proportional text in Ubuntu Light, falling back to Hack
