@@ -79,37 +79,36 @@ fn compose(parent: &JointLanes, local: &JointLanes) -> JointLanes {
 /// the CPU has (AVX2 when detected at run time; SSE2 otherwise). Both versions run
 /// the same IEEE operations in the same order, so results are identical.
 fn fk_block_dispatch(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
-    if skeleton.euler() == EulerConvention::Extrinsic {
-        return fk_block_any::<true>(skeleton, rows, half, world);
-    }
+    let extrinsic = skeleton.euler() == EulerConvention::Extrinsic;
     #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, checked just above.
-        unsafe { fk_block_avx2(skeleton, rows, half, world) };
+        unsafe {
+            if extrinsic {
+                fk_block_avx2::<true>(skeleton, rows, half, world);
+            } else {
+                fk_block_avx2::<false>(skeleton, rows, half, world);
+            }
+        }
         return;
     }
-    fk_block(skeleton, rows, half, world);
+    if extrinsic {
+        fk_block_with::<true>(skeleton, rows, half, world);
+    } else {
+        fk_block_with::<false>(skeleton, rows, half, world);
+    }
 }
 
-/// [`fk_block`] for either Euler convention (extrinsic skeletons are rare and
-/// not dispatched to AVX2).
-fn fk_block_any<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
+/// [`fk_block_with`] compiled for AVX2 (both Euler conventions: Acclaim
+/// skeletons are extrinsic).
+#[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
+#[target_feature(enable = "avx2")]
+fn fk_block_avx2<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
     fk_block_with::<EXTRINSIC>(skeleton, rows, half, world);
 }
 
-#[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
-#[target_feature(enable = "avx2")]
-fn fk_block_avx2(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
-    fk_block(skeleton, rows, half, world);
-}
-
 /// One block of `LANES` frames: local transforms from the rows, then parent ∘ local.
-#[inline(always)]
-fn fk_block(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
-    fk_block_with::<false>(skeleton, rows, half, world);
-}
-
-/// The block body. Extrinsic rotations in file order are intrinsic ones in reverse
+/// Extrinsic rotations in file order are intrinsic ones in reverse
 /// order (`rx ry rz` extrinsic is `Rz·Ry·Rx`), so `EXTRINSIC` walks the channels
 /// backwards; translation channels do not depend on the order.
 #[inline(always)]
