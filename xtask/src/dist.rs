@@ -15,7 +15,7 @@ pub fn dist(fast: bool) -> Result<PathBuf, String> {
 
 /// [`dist`], and with `opt` wasm-opt even where the system has none recent enough:
 /// then binaryen from npm (its JavaScript build: minutes on two cores, so only on
-/// request: `cargo xtask dist --opt`, and `bench-web`). Prints the wasm's size, raw
+/// request: `cargo xtask dist --opt`). Prints the wasm's size, raw
 /// and gzipped, before and after.
 pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
     let root = root();
