@@ -117,6 +117,11 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
     if let Err(e) = run(node("nogpu.mjs").arg(&url).arg(&out).arg(&chromium)) {
         failures.push(format!("no-gpu message: {e}"));
     }
+    if !fast {
+        if let Err(e) = crate::dist::check_download_size(&dist) {
+            failures.push(e);
+        }
+    }
     if failures.is_empty() {
         println!("xtask test: all tests passed (screenshots in {})", out.display());
         Ok(())

@@ -160,10 +160,48 @@ fn wasm_opt_version(wasm_opt: &Path) -> u32 {
     crate::util::output(Command::new(wasm_opt).arg("--version")).and_then(|v| v.split_whitespace().nth(2).and_then(|n| n.parse::<u32>().ok())).unwrap_or(0)
 }
 
-/// A file's size raw and gzipped (`gzip -9`; 0 when gzip is missing).
+/// Most the page may weigh, gzipped: 2.0 MiB (issue 14's aim for the download).
+pub const DOWNLOAD_AIM: u64 = 2 * 1024 * 1024;
+
+/// The page's download, gzipped (`gzip -9 -n`): every wasm, JavaScript, HTML and CSS
+/// file in `dist` (the API examples' pages too), as `bench-web` counts it.
+pub fn download_size(dist: &Path) -> u64 {
+    let mut total = 0;
+    let mut dirs = vec![dist.to_path_buf()];
+    while let Some(dir) = dirs.pop() {
+        for entry in std::fs::read_dir(&dir).into_iter().flatten().flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                dirs.push(path);
+            } else if path.extension().is_some_and(|e| ["wasm", "js", "html", "css"].iter().any(|x| e == *x)) {
+                total += sizes(&path).1;
+            }
+        }
+    }
+    total
+}
+
+/// Fails when the release page built with the size flags ([`SIZE_FLAGS`]: the
+/// Debian toolchain's build) weighs more than [`DOWNLOAD_AIM`] gzipped, or when
+/// nothing could be measured (no gzip). A rustup build, without the flags, is
+/// only reported.
+pub fn check_download_size(dist: &Path) -> Result<(), String> {
+    let total = download_size(dist);
+    let flagged = matches!(setup::wasm_toolchain(), Ok(WasmToolchain::Debian));
+    println!("xtask: the page's download is {total} bytes gzipped (aim: at most {DOWNLOAD_AIM})");
+    if total == 0 {
+        return Err("download size: nothing measured (is gzip installed?)".into());
+    }
+    if flagged && total > DOWNLOAD_AIM {
+        return Err(format!("download size: {total} bytes gzipped, over the {DOWNLOAD_AIM}-byte aim (see README, Performance)"));
+    }
+    Ok(())
+}
+
+/// A file's size raw and gzipped (`gzip -9 -n`: no name stored; 0 when gzip is missing).
 pub fn sizes(file: &Path) -> (u64, u64) {
     let raw = std::fs::metadata(file).map_or(0, |m| m.len());
-    let gz = crate::util::output(Command::new("sh").arg("-c").arg(format!("gzip -9 -c '{}' | wc -c", file.display()))).and_then(|s| s.trim().parse().ok()).unwrap_or(0);
+    let gz = crate::util::output(Command::new("sh").arg("-c").arg(format!("gzip -9 -n -c '{}' | wc -c", file.display()))).and_then(|s| s.trim().parse().ok()).unwrap_or(0);
     (raw, gz)
 }
 
@@ -180,4 +218,24 @@ fn copy_dir(from: &Path, to: &Path) -> Result<(), String> {
         if path.is_dir() { copy_dir(&path, &dest)? } else { copy(&path, &dest)? }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn download_size_counts_the_page_files_in_every_folder_and_nothing_else() {
+        let dir = std::env::temp_dir().join(format!("xtask-download-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(dir.join("web/examples")).unwrap();
+        let text = "let a = 1;\n".repeat(200);
+        for f in ["index.html", "web/main.js", "web/examples/x.css", "pkg.wasm"] {
+            std::fs::write(dir.join(f), &text).unwrap();
+        }
+        std::fs::write(dir.join("types.d.ts"), "x".repeat(10_000)).unwrap();
+        std::fs::write(dir.join("notes.txt"), "x".repeat(10_000)).unwrap();
+        let one = super::sizes(&dir.join("index.html")).1;
+        assert!(one > 0, "gzip measured something");
+        assert_eq!(super::download_size(&dir), 4 * one);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
