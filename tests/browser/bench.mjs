@@ -1,22 +1,10 @@
-// Web performance figures: node bench.mjs <url> <distDir> <chromium> [largest.bvh]
+// Web performance figures: node bench.mjs <url> <chromium> [largest.bvh]
+// (the transfer size is printed by `cargo xtask bench-web` before this runs).
 import fs from 'node:fs';
 import path from 'node:path';
-import zlib from 'node:zlib';
 import { launch, state, waitState, dropFile } from './common.mjs';
 
-const [url, distDir, chromiumPath, bigFile] = process.argv.slice(2);
-
-function walk(dir) {
-  return fs.readdirSync(dir, { withFileTypes: true }).flatMap((e) => e.isDirectory() ? walk(path.join(dir, e.name)) : [path.join(dir, e.name)]);
-}
-let raw = 0;
-let gz = 0;
-for (const f of walk(distDir).filter((f) => /\.(wasm|js|html|css)$/.test(f))) {
-  const b = fs.readFileSync(f);
-  raw += b.length;
-  gz += zlib.gzipSync(b, { level: 9 }).length;
-}
-console.log(`transfer size: ${(raw / 1048576).toFixed(2)} MiB raw, ${(gz / 1048576).toFixed(3)} MiB (${gz} bytes) gzipped (wasm + js + html + css; aim <= 2.0 MiB)`);
+const [url, chromiumPath, bigFile] = process.argv.slice(2);
 
 for (const mode of ['webgl2', 'webgpu']) {
   const { page, close } = await launch(chromiumPath, mode);

@@ -136,9 +136,10 @@ pub fn bench() -> Result<(), String> {
     let chromium = setup::chromium()?;
     setup::playwright()?;
     let file = corpus_dir().map(|c| c.join(BENCH_FILE)).filter(|f| f.is_file());
+    println!("transfer size: {} bytes gzipped (wasm + js + html + css; aim <= {} = 2.0 MiB)", crate::dist::download_size(&dist), crate::dist::DOWNLOAD_AIM);
     let url = spawn_server(dist.clone())?;
     let mut cmd = node("bench.mjs");
-    cmd.args([url.as_str()]).arg(&dist).arg(&chromium);
+    cmd.args([url.as_str()]).arg(&chromium);
     if let Some(f) = file {
         cmd.arg(f);
     }

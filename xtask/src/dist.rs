@@ -40,7 +40,7 @@ pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
     // 16.4): the row parser's line search, the batched FK's lanes and the float
     // work elsewhere vectorise.
     let mut rustflags = String::from("-C target-feature=+simd128");
-    if toolchain == WasmToolchain::Debian && !fast {
+    if uses_size_flags(toolchain, fast) {
         rustflags.push(' ');
         rustflags.push_str(SIZE_FLAGS);
     }
@@ -86,6 +86,12 @@ pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
 ///   message. The page installs no panic hook, so a message was never shown:
 ///   the browser reports "unreachable" either way.
 const SIZE_FLAGS: &str = "-Zfmt-debug=shallow -Zlocation-detail=none -Zunstable-options -Cpanic=immediate-abort";
+
+/// Whether a build with `toolchain` gets [`SIZE_FLAGS`] (release builds with std
+/// built from source).
+fn uses_size_flags(toolchain: WasmToolchain, fast: bool) -> bool {
+    toolchain == WasmToolchain::Debian && !fast
+}
 
 /// Oldest wasm-opt trusted with current Rust output: 108 (Debian 12) breaks the
 /// externref table when run after wasm-bindgen and grows the gzipped size before it.
@@ -164,7 +170,8 @@ fn wasm_opt_version(wasm_opt: &Path) -> u32 {
 pub const DOWNLOAD_AIM: u64 = 2 * 1024 * 1024;
 
 /// The page's download, gzipped (`gzip -9 -n`): every wasm, JavaScript, HTML and CSS
-/// file in `dist` (the API examples' pages too), as `bench-web` counts it.
+/// file in `dist` (the API examples' pages too). `bench-web` prints it and
+/// `cargo xtask test` checks it against [`DOWNLOAD_AIM`].
 pub fn download_size(dist: &Path) -> u64 {
     let mut total = 0;
     let mut dirs = vec![dist.to_path_buf()];
@@ -187,7 +194,7 @@ pub fn download_size(dist: &Path) -> u64 {
 /// only reported.
 pub fn check_download_size(dist: &Path) -> Result<(), String> {
     let total = download_size(dist);
-    let flagged = matches!(setup::wasm_toolchain(), Ok(WasmToolchain::Debian));
+    let flagged = setup::wasm_toolchain().is_ok_and(|t| uses_size_flags(t, false));
     println!("xtask: the page's download is {total} bytes gzipped (aim: at most {DOWNLOAD_AIM})");
     if total == 0 {
         return Err("download size: nothing measured (is gzip installed?)".into());
