@@ -43,6 +43,18 @@ try {
     capsules = await view(page, shot('capsules'));
     const px = await pixelStats(context, capsules);
     check(px.figure > 1500, `the lit figure covers many pixels (${px.figure})`);
+    // The window reaches the page the right way up (WebGL2 presents it with a
+    // flipped copy, vendor/wgpu-hal): the floor with its grid is in the lower
+    // part of the view, the plain dark background above it.
+    const { data, width } = await decodePng(context, capsules);
+    const height = data.length / 4 / width;
+    const meanRows = (from, to) => {
+      let sum = 0;
+      for (let y = from; y < to; y++) for (let x = 0; x < width; x++) sum += data[(y * width + x) * 4 + 1];
+      return sum / ((to - from) * width);
+    };
+    const [top, bottom] = [meanRows(0, height >> 2), meanRows(height - (height >> 2), height)];
+    check(bottom > top + 8, `floor below, background above (mean green ${bottom.toFixed(1)} below, ${top.toFixed(1)} above)`);
   });
 
   await step('shadows=0 in the fragment removes the floor shadow', async () => {
