@@ -22,6 +22,8 @@ pub(crate) struct FrameUniforms {
     pub floor_center: [f32; 4],
     /// Cell size, cells per major line, half extent, unused.
     pub floor_grid: [f32; 4],
+    /// Floor colours (minor lines, major lines, the floor) as the target stores
+    /// them: linear for an sRGB target, sRGB-encoded for a plain unorm one.
     pub floor_minor: [f32; 4],
     pub floor_major: [f32; 4],
     pub floor_color: [f32; 4],
@@ -53,9 +55,10 @@ impl FrameUniforms {
             let half = g.half_cells.clamp(1, 1000) as f32 * g.cell;
             u.floor_center = g.center.extend(half).to_array();
             u.floor_grid = [g.cell, g.major_every.max(1) as f32, half, 0.0];
-            u.floor_minor = crate::srgb_to_linear(g.color);
-            u.floor_major = crate::srgb_to_linear(g.major_color);
-            u.floor_color = crate::srgb_to_linear(g.floor_color);
+            // As the target stores colours: the floor shader does no encoding.
+            u.floor_minor = crate::color::for_target(g.color, format);
+            u.floor_major = crate::color::for_target(g.major_color, format);
+            u.floor_color = crate::color::for_target(g.floor_color, format);
         }
         u
     }

@@ -361,3 +361,43 @@ fn a_multisampled_renderer_also_draws_into_a_single_sample_target_and_blit_copie
     let rgb = |p: &[u8]| p.chunks(4).flat_map(|p| p[..3].to_vec()).collect::<Vec<u8>>();
     assert_eq!(rgb(&copied), rgb(&smooth), "the copy is the frame, the right way up");
 }
+
+/// Renders `scene` into a new single-sampled `format` target and reads it back.
+fn render_in(device: &wgpu::Device, queue: &wgpu::Queue, format: wgpu::TextureFormat, scene: &Scene, camera: &Camera) -> Vec<u8> {
+    let mut renderer = SceneRenderer::new(device, format, 1);
+    let target = RenderTarget::new(device, format, 1, [SIZE, SIZE]);
+    renderer.render(device, queue, &target, scene, camera);
+    read_pixels(device, queue, &target)
+}
+
+#[test]
+fn the_floor_has_its_colours_on_srgb_and_plain_targets() {
+    // The floor's colours reach the shader as the target stores them (linear
+    // for an sRGB target, encoded for a plain one, the web's): the stored bytes
+    // of its middle, where lines are absent and it is opaque, are its sRGB colour
+    // on both.
+    let Some((device, queue, _, _)) = setup(1) else { return };
+    let mut grid = Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::new(2.0, 0.0, 2.0), 0.0, 10.0);
+    grid.color[3] = 0;
+    grid.major_color[3] = 0;
+    let scene = Scene { background: [10, 20, 30, 255], grid: Some(grid), ..Scene::default() };
+    let camera = Camera::look_at(Vec3::new(0.0, 3.0, 0.5), Vec3::ZERO, 0.8, 1.0);
+    let middle = |pixels: &[u8]| {
+        let at = ((SIZE / 2) * SIZE + SIZE / 2) as usize * 4;
+        pixels[at..at + 4].to_vec()
+    };
+    for format in [wgpu::TextureFormat::Rgba8UnormSrgb, wgpu::TextureFormat::Rgba8Unorm] {
+        let pixel = middle(&render_in(&device, &queue, format, &scene, &camera));
+        let close = pixel.iter().zip(grid.floor_color).all(|(&p, c)| p.abs_diff(c) <= 1);
+        assert!(close, "{format:?}: the floor's middle is {pixel:?}, its colour {:?}", grid.floor_color);
+    }
+    // With lines: a line crossing the middle is lighter than the floor on both.
+    let lined = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::new(2.0, 0.0, 2.0), 0.0, 0.5)), ..scene };
+    let camera = Camera::look_at(Vec3::new(0.0, 3.0, 0.001), Vec3::new(0.0, 0.0, 0.0), 0.8, 1.0);
+    for format in [wgpu::TextureFormat::Rgba8UnormSrgb, wgpu::TextureFormat::Rgba8Unorm] {
+        let pixels = render_in(&device, &queue, format, &lined, &camera);
+        let row = &pixels[((SIZE / 2) * SIZE * 4) as usize..((SIZE / 2 + 1) * SIZE * 4) as usize];
+        let brightest = row.chunks(4).map(|p| p[1]).max().unwrap_or(0);
+        assert!(brightest > grid.floor_color[1] + 20, "{format:?}: no line across the middle row (brightest green {brightest})");
+    }
+}

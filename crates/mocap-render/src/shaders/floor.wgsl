@@ -2,7 +2,7 @@
 // and a fade to the background with distance; then the key light's soft shadow as
 // a second quad covering only the shadow map's footprint, multiplied over it (so
 // the shadow lookups, costly on software rasterisers, run only where needed).
-// `Frame`, `frame`, `to_target` and `key_visibility` come from frame.wgsl and lighting.wgsl.
+// `Frame`, `frame` and `key_visibility` come from frame.wgsl and lighting.wgsl.
 
 struct Out {
     @builtin(position) position: vec4<f32>,
@@ -22,28 +22,34 @@ fn vs_main(@builtin(vertex_index) vertex: u32) -> Out {
     return out;
 }
 
-// Coverage (0..1) of lines every `cell` units, `width` pixels wide, at `coord`.
-fn grid_lines(coord: vec2<f32>, width: f32) -> f32 {
-    let w = fwidth(coord);
-    let d = abs(fract(coord - 0.5) - 0.5) / max(w, vec2<f32>(1e-6));
+// Coverage (0..1) of lines one unit apart, `width` pixels wide, at `coord`,
+// where `w` is `fwidth(coord)`.
+fn grid_lines(coord: vec2<f32>, w: vec2<f32>, width: f32) -> f32 {
+    let d = abs(fract(coord - 0.5) - 0.5) / w;
     let line = 1.0 - min(min(d.x, d.y) / width, 1.0);
     // Lines closer together than about two pixels fade out instead of shimmering.
     let dense = smoothstep(0.3, 0.6, max(w.x, w.y));
     return line * (1.0 - dense);
 }
 
+// The floor's colours arrive as the target stores them (sRGB-encoded for a
+// plain unorm target, see `FrameUniforms`), so the lines are mixed there and
+// nothing is encoded per pixel: on a software rasteriser the encoding's powers
+// were most of this shader's cost, and it covers much of the screen.
 @fragment
 fn fs_main(in: Out) -> @location(0) vec4<f32> {
     let rel = in.world.xz - frame.floor_center.xz;
-    let cell = max(frame.floor_grid.x, 1e-6);
-    let coord = rel / cell;
-    let minor = grid_lines(coord, 1.0);
+    let coord = rel / max(frame.floor_grid.x, 1e-6);
+    // The major lines' coordinates are the minor ones scaled, and so are their
+    // derivatives: one `fwidth` serves both.
+    let w = max(fwidth(coord), vec2<f32>(1e-6));
     let major_every = max(frame.floor_grid.y, 1.0);
-    let major = grid_lines(coord / major_every, 1.5);
+    let minor = grid_lines(coord, w, 1.0);
+    let major = grid_lines(coord / major_every, w / major_every, 1.5);
     var color = frame.floor_color.rgb;
     color = mix(color, frame.floor_minor.rgb, minor * frame.floor_minor.a);
     color = mix(color, frame.floor_major.rgb, major * frame.floor_major.a);
-    return to_target(vec4<f32>(color, floor_alpha(in.world) * frame.floor_color.a));
+    return vec4<f32>(color, floor_alpha(in.world) * frame.floor_color.a);
 }
 
 // Opacity of the floor at `p`: 1 near the centre, fading out towards the edge.

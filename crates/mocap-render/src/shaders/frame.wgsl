@@ -18,7 +18,8 @@ struct Frame {
     floor_center: vec4<f32>,
     // Floor cell size, cells between major lines, half extent, unused.
     floor_grid: vec4<f32>,
-    // Floor colours (linear): minor lines, major lines, the floor itself.
+    // Floor colours as the target stores them (linear for an sRGB target,
+    // sRGB-encoded for a plain unorm one): minor lines, major lines, the floor.
     floor_minor: vec4<f32>,
     floor_major: vec4<f32>,
     floor_color: vec4<f32>,
