@@ -146,11 +146,20 @@ async function loadFiles(viewer, files, add, t0) {
     showStatus(`Loading ${names.join(', ')} (${(size / 1048576).toFixed(1)} MB)…`);
     await afterPaint();
   }
-  const contents = [];
-  for (const file of files) contents.push(new Uint8Array(await file.arrayBuffer()));
-  const tParse = performance.now();
-  const errors = viewer.openFiles(names, contents, add);
-  const parseMs = performance.now() - tParse;
+  // Playback holds while the files are read and opened: on a software GPU the
+  // frames drawn meanwhile would take the processor from the read.
+  viewer.holdFrames(true);
+  let errors;
+  let parseMs;
+  try {
+    const contents = [];
+    for (const file of files) contents.push(new Uint8Array(await file.arrayBuffer()));
+    const tParse = performance.now();
+    errors = viewer.openFiles(names, contents, add);
+    parseMs = performance.now() - tParse;
+  } finally {
+    viewer.holdFrames(false);
+  }
   if (errors.length < files.length) {
     // A link cannot carry a local file; the links of clips still open are kept for the record.
     source = { kind: 'local', urls: add ? source.urls : [], name: names[names.length - 1] };

@@ -4,8 +4,9 @@
 // the fast look while playing (quality=fast|auto|full: one sample per pixel and the
 // window drawn at a lower resolution) and nothing drawn at rest.
 // Usage: node render.mjs URL MODE OUT_DIR CHROMIUM
+import fs from 'node:fs';
 import path from 'node:path';
-import { changeAndRender, decodePng, launch, reporter, state, waitState } from './common.mjs';
+import { changeAndRender, decodePng, dropFile, launch, reporter, state, waitState } from './common.mjs';
 
 const [base, mode, outDir, chromiumPath] = process.argv.slice(2);
 const { check, step, finish } = reporter(`render ${mode}`);
@@ -224,6 +225,35 @@ try {
     const shown = await waitState(page, (s, f) => s.framesRendered > f + 2, hidden.framesRendered);
     check(shown.playing && shown.time !== hidden.time, `shown again: frames resume (${shown.framesRendered}) and playback goes on (t ${hidden.time.toFixed(2)} -> ${shown.time.toFixed(2)})`);
     await page.evaluate(() => { delete document.hidden; delete document.visibilityState; window.mocapViewer.pause(); });
+  });
+
+  await step('while dropped files are read, playback holds and nothing is drawn', async () => {
+    // What the page does around reading a drop (holdFrames), seen from outside.
+    await page.evaluate(() => window.mocapViewer.play());
+    await waitState(page, (s) => s.playing && s.framesRendered > 0);
+    // Held in the same task as the state is read: not even the frame already
+    // asked for is drawn.
+    const before = await page.evaluate(() => {
+      const s = window.mocapViewer.state();
+      window.mocapViewer.holdFrames(true);
+      return s;
+    });
+    await new Promise((r) => setTimeout(r, 1500));
+    const held = await state(page);
+    check(held.framesRendered === before.framesRendered && held.time === before.time && held.playing,
+      `held: no frame drawn in 1.5 s (${before.framesRendered} -> ${held.framesRendered}), the playhead stays (t ${before.time.toFixed(3)} -> ${held.time.toFixed(3)})`);
+    await page.evaluate(() => window.mocapViewer.holdFrames(false));
+    const after = await waitState(page, (s, f) => s.framesRendered > f + 2, held.framesRendered);
+    // (Playback loops: the step is taken around the clip's length.)
+    const length = (after.clips[0].frames - 1) * after.clips[0].frameTime;
+    const advanced = (((after.time - held.time) % length) + length) % length;
+    check(advanced > 0 && advanced < 0.5, `let go: frames resume and playback goes on from where it held (t ${held.time.toFixed(3)} -> ${after.time.toFixed(3)})`);
+    // A real drop goes through the same hold and ends it.
+    await dropFile(page, 'walk.bvh', fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url)));
+    await page.waitForFunction(() => window.mocapLastLoad && window.mocapLastLoad.dropToFrameMs, null, { timeout: 60000 });
+    const dropped = await waitState(page, (s, f) => s.framesRendered > f + 3, (await state(page)).framesRendered);
+    check(dropped.playing && dropped.clips.length === 1, `after a drop, playing on (${dropped.framesRendered} frames)`);
+    await page.evaluate(() => window.mocapViewer.pause());
   });
 
   await step('resizing the window keeps the figure drawn', async () => {

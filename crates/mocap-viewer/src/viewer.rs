@@ -106,6 +106,8 @@ pub struct Viewer {
     pub(crate) scene: Scene,
     pose_scratch: mocap::stage::PoseScratch,
     last_time: Option<f64>,
+    /// Set by [`Viewer::hold`] while the host reads files.
+    held: bool,
     actions: Vec<Action>,
     tree_labels: Vec<String>,
 }
@@ -330,6 +332,23 @@ impl Viewer {
         self.last_time = None;
     }
 
+    /// Holds playback while the host reads files it is about to open (`on`), or
+    /// lets it go on (`!on`). Held, the playhead stays where it is and a playing
+    /// view asks for no more frames, so drawing does not compete with the read
+    /// and the open for the processor (on a software rasteriser a frame's work
+    /// goes on in the browser's GPU process long after it was asked for). Let
+    /// go, the clock restarts: playback goes on from where it held, without a
+    /// jump. The host asks for the next frame itself.
+    pub fn hold(&mut self, on: bool) {
+        self.held = on;
+        self.restart_clock();
+    }
+
+    /// Whether playback is held (see [`Viewer::hold`]).
+    pub fn is_held(&self) -> bool {
+        self.held
+    }
+
     /// Current frame of the timeline (0 without a clip).
     pub fn frame(&self) -> usize {
         self.timing().map_or(0, |t| self.playback.frame(t))
@@ -414,7 +433,7 @@ impl Viewer {
             ui.ctx().request_repaint();
         }
         self.confirm_close(ui.ctx());
-        if self.playback.playing && !self.stage.actors.is_empty() {
+        if self.playback.playing && !self.stage.actors.is_empty() && !self.held {
             ui.ctx().request_repaint();
         }
     }
@@ -469,6 +488,9 @@ impl Viewer {
     }
 
     fn advance_clock(&mut self, ctx: &egui::Context) {
+        if self.held {
+            return;
+        }
         let now = ctx.input(|i| i.time);
         let dt = self.last_time.map_or(0.0, |t| (now - t).clamp(0.0, MAX_STEP));
         self.last_time = Some(now);

@@ -101,3 +101,32 @@ fn a_200000_level_deep_skeleton_opens_draws_and_a_good_file_follows() {
     });
     worker.unwrap().join().expect("no stack overflow");
 }
+
+#[test]
+fn a_held_view_keeps_its_playhead_and_asks_for_no_frames() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    let asks_for_frames = |ctx: &egui::Context, v: &mut Viewer, time: f64| {
+        let input = egui::RawInput { time: Some(time), ..Default::default() };
+        let mut output = ctx.run_ui(input, |ui| v.ui(ui, None));
+        output.textures_delta.clear();
+        output.viewport_output.values().any(|o| o.repaint_delay.is_zero())
+    };
+    assert!(asks_for_frames(&ctx, &mut v, 0.0), "playing asks for the next frame");
+    assert!(asks_for_frames(&ctx, &mut v, 0.1));
+    let f = v.frame();
+    assert_eq!(f, 3, "0.1 s at 30 fps");
+    v.hold(true);
+    assert!(v.is_held());
+    // egui itself paints once more after a frame that asked for one.
+    asks_for_frames(&ctx, &mut v, 0.2);
+    assert!(!asks_for_frames(&ctx, &mut v, 0.3), "held: no frame asked for");
+    assert!(!asks_for_frames(&ctx, &mut v, 0.4));
+    assert_eq!(v.frame(), f, "held: the playhead stays");
+    v.hold(false);
+    assert!(asks_for_frames(&ctx, &mut v, 0.5), "let go: frames again");
+    assert_eq!(v.frame(), f, "no jump over the hold");
+    asks_for_frames(&ctx, &mut v, 0.6);
+    assert_eq!(v.frame(), f + 3, "then real time again");
+}

@@ -57,6 +57,22 @@ impl MocapViewer {
         self.with_viewer(|v| v.open_files(&files, mode)).unwrap_or_else(|| vec!["viewer busy".to_owned()])
     }
 
+    /// Holds playback while the page reads files it is about to open (`true`),
+    /// or lets it go on (`false`, which also asks for a frame): held, the
+    /// playhead stays and a playing view draws no frames, so a software
+    /// rasteriser's drawing does not slow the read and the open down.
+    #[wasm_bindgen(js_name = holdFrames)]
+    pub fn hold_frames(&self, on: bool) {
+        if let Ok(mut v) = self.viewer.try_borrow_mut() {
+            v.hold(on);
+        }
+        // Not even a frame already asked for is drawn while held.
+        eframe::web::hold_paints(on);
+        if !on && let Some(ctx) = self.ctx.borrow().as_ref() {
+            ctx.request_repaint();
+        }
+    }
+
     /// Position `[x, y, z]` of joint `name` of character `character` (0-based) at the
     /// frame shown, in the clip's own units and model space (no layout offset, no
     /// scale to metres), as `mocap pose` prints it; `undefined` when there is none.

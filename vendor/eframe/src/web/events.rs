@@ -22,6 +22,11 @@ use web_sys::{Document, EventTarget, ShadowRoot};
 /// it is due now, a timer if later, nothing if none is asked for: repaint
 /// requests schedule one then).
 pub(crate) fn paint_and_schedule(runner_ref: &WebRunner) -> Result<(), JsValue> {
+    // Vendored change: held paints (`super::hold_paints`) neither paint nor
+    // schedule; the next repaint request after they are let go does.
+    if super::paints_held() {
+        return Ok(());
+    }
     // Only paint and schedule if there has been no panic
     if let Some(mut runner_lock) = runner_ref.try_lock() {
         paint_if_needed(&mut runner_lock);

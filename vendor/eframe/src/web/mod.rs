@@ -131,6 +131,28 @@ pub fn device_pixel_ratio() -> f32 {
 }
 
 // ----------------------------------------------------------------------------
+// Held paints (vendored change, see VENDORED.md).
+
+/// Whether paints are held (see [`hold_paints`]).
+static PAINTS_HELD: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Holds every runner's paints (`true`) or lets them go (`false`). Held, a paint
+/// check that comes due paints nothing and schedules nothing, so not even a
+/// frame already asked for is drawn; let go, a repaint that came due meanwhile
+/// is painted. For a host about to do heavy work (reading and opening a
+/// large file) that frames on a slow GPU would compete with for the processor.
+pub fn hold_paints(held: bool) {
+    PAINTS_HELD.store(held, std::sync::atomic::Ordering::Relaxed);
+    if !held {
+        web_runner::wake_all();
+    }
+}
+
+/// Whether paints are held (see [`hold_paints`]).
+pub(crate) fn paints_held() -> bool {
+    PAINTS_HELD.load(std::sync::atomic::Ordering::Relaxed)
+}
+
 // Render scale (vendored change, see VENDORED.md).
 
 /// The render scale asked for by [`set_render_scale`] (`f32` bits).

@@ -375,6 +375,20 @@ pub(crate) fn wake(id: usize, at: f64) {
     }
 }
 
+/// Vendored change: schedules every runner's next paint check for when its
+/// repaint is due (held paints let go, see [`super::hold_paints`]: a repaint
+/// asked for while they were held may have been skipped, and egui does not ask
+/// again for one it still counts as pending).
+pub(crate) fn wake_all() {
+    let runners: Vec<WebRunner> = WAKERS.with(|w| w.try_borrow().map(|w| w.iter().map(|(_, r)| r.clone()).collect()).unwrap_or_default());
+    for runner in runners {
+        let at = runner.try_lock().map(|r| r.needs_repaint.when_to_repaint());
+        if let Some(Err(err)) = at.map(|at| runner.schedule(at)) {
+            log::error!("Failed to schedule a frame: {}", super::string_from_js_value(&err));
+        }
+    }
+}
+
 struct TargetEvent {
     target: web_sys::EventTarget,
     event_name: String,
