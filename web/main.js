@@ -2,7 +2,7 @@
 // motion one character; an Acclaim skeleton and its motions pair up), the view state in the fragment, Share, `?embed=1`, file drop
 // (several files replace what is open; with Shift held they are added) / Open… / Add…,
 // loading message.
-import init, { start } from '../pkg/mocap_web.js';
+import init, { FileSet, start } from '../pkg/mocap_web.js';
 import { ClipError, DEFAULT_LIMIT, fetchClip, fileNameOf, resolveClipUrl } from './fetch-clip.js';
 import { followViewState, share } from './view-link.js';
 
@@ -131,6 +131,22 @@ function nextRenderedFrame(viewer, since) {
   });
 }
 
+// Reads `file` into `set` chunk by chunk, straight into the module's memory
+// (no whole-file ArrayBuffer and no second copy of it).
+async function readInto(set, file) {
+  set.begin(file.name, file.size);
+  if (typeof file.stream !== 'function') {
+    set.push(new Uint8Array(await file.arrayBuffer()));
+    return;
+  }
+  const reader = file.stream().getReader();
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) return;
+    set.push(value);
+  }
+}
+
 // Opens dropped or picked files, all at once (the core pairs an Acclaim skeleton
 // with its motions and decides each file's format from its content): with `add` they
 // join what is open, else what opens replaces it. What fails is reported (all of it)
@@ -149,15 +165,27 @@ async function loadFiles(viewer, files, add, t0) {
   // Playback holds while the files are read and opened: on a software GPU the
   // frames drawn meanwhile would take the processor from the read.
   viewer.holdFrames(true);
-  let errors;
-  let parseMs;
+  let errors = null;
+  let parseMs = 0;
+  const set = new FileSet();
   try {
-    const contents = [];
-    for (const file of files) contents.push(new Uint8Array(await file.arrayBuffer()));
-    const tParse = performance.now();
-    errors = viewer.openFiles(names, contents, add);
-    parseMs = performance.now() - tParse;
+    for (const file of files) {
+      try {
+        await readInto(set, file);
+      } catch (e) {
+        // The browser could not read it (moved, deleted, no permission): what is open stays.
+        errors = [`${file.name}: could not be read (${e && e.message ? e.message : e})`];
+        viewer.showError(errors[0]);
+        break;
+      }
+    }
+    if (!errors) {
+      const tParse = performance.now();
+      errors = viewer.openFileSet(set, add);
+      parseMs = performance.now() - tParse;
+    }
   } finally {
+    set.free();
     viewer.holdFrames(false);
   }
   if (errors.length < files.length) {

@@ -94,6 +94,7 @@ await step('TypeScript types', async () => {
   const dts = fs.readFileSync(path.join(dist, 'pkg/mocap_web.d.ts'), 'utf8');
   for (const needle of ['export function parseMotion(bytes: Uint8Array | number[], file_name: string, skeleton?: Uint8Array | number[] | null): MotionClip',
     'openFiles(names: string[], contents: Uint8Array[], add: boolean): string[]',
+    'openFileSet(set: FileSet, add: boolean): string[]', 'export class FileSet', 'push(chunk: Uint8Array): void',
     'export function parseModel(bytes: Uint8Array | number[], file_name: string): ModelMesh', 'positions(frame: number, t: number): Float32Array', 'jointPosition(character: number, name: string): Float32Array | undefined',
     'export function startViewer(canvas: HTMLCanvasElement, options?: ViewerOptions): Promise<MocapViewer>',
     'addClip(clip: MotionClip, file_name: string): void', 'loadClip(clip: MotionClip, file_name: string): void',
@@ -148,6 +149,34 @@ try {
     });
     check(added.two.join() === 'walk.bvh,second.bvh' && added.one.join() === 'only.bvh',
       `addClip adds (${added.two.join(', ')}), loadClip replaces (${added.one.join(', ')})`);
+    // A FileSet filled chunk by chunk (as the page reads a drop) opens like openFiles:
+    // an ASF skeleton and its AMC motion, each in uneven pieces, paired up.
+    const set = await page.evaluate(async () => {
+      const { FileSet } = await import('../../pkg/mocap_web.js');
+      const get = async (p) => new Uint8Array(await (await fetch(p)).arrayBuffer());
+      const [asf, amc] = [await get('../../corpus/asf_amc/cmu/01.asf'), await get('../../corpus/asf_amc/cmu/01_06.amc')];
+      const v = window.exampleViewer;
+      const files = new FileSet();
+      for (const [name, bytes] of [['01.asf', asf], ['01_06.amc', amc]]) {
+        files.begin(name, bytes.length);
+        for (let at = 0; at < bytes.length; at += 7777) files.push(bytes.subarray(at, at + 7777));
+      }
+      const size = files.size;
+      const errs = v.openFileSet(files, false);
+      const emptied = files.size;
+      const broken = new FileSet();
+      broken.begin('cut.bvh', 15);
+      broken.push(new TextEncoder().encode('HIERARCHY\nJOINT'));
+      const brokenErrs = v.openFileSet(broken, true);
+      files.free();
+      broken.free();
+      const s = v.state();
+      return { size, total: asf.length + amc.length, errs, emptied, brokenErrs, clips: s.clips.map((c) => `${c.name}:${c.frames}`) };
+    });
+    check(set.size === set.total && set.errs.length === 0 && set.emptied === 0 && set.clips.length === 1 && set.clips[0].startsWith('01_06.amc:'),
+      `a FileSet read in chunks opens the pair (${set.size} of ${set.total} bytes, ${set.clips.join(', ')}, errors ${JSON.stringify(set.errs)})`);
+    check(set.brokenErrs.length === 1 && set.brokenErrs[0].startsWith('cut.bvh') && set.clips.length === 1,
+      `a broken file in a FileSet is reported and changes nothing (${set.brokenErrs[0]})`);
     await page.waitForTimeout(500);
     await page.screenshot({ path: path.join(outDir, 'api-start-viewer.png') });
     check(errors.length === 0, `no console errors (${errors.join(' | ')})`);

@@ -57,6 +57,22 @@ impl MocapViewer {
         self.with_viewer(|v| v.open_files(&files, mode)).unwrap_or_else(|| vec!["viewer busy".to_owned()])
     }
 
+    /// Opens the files of `set` (see `FileSet`) together, like `openFiles`,
+    /// leaving `set` empty. Returns every error message; empty when all opened.
+    #[wasm_bindgen(js_name = openFileSet)]
+    pub fn open_file_set(&self, set: &mut crate::FileSet, add: bool) -> Vec<String> {
+        let files = match set.take() {
+            Ok(files) => files,
+            Err(message) => {
+                self.show_error(&message);
+                return vec![message];
+            }
+        };
+        let files: Vec<(&str, &[u8])> = files.iter().map(|(name, bytes)| (name.as_str(), bytes.as_slice())).collect();
+        let mode = if add { mocap_viewer::OpenMode::Add } else { mocap_viewer::OpenMode::Replace };
+        self.with_viewer(|v| v.open_files(&files, mode)).unwrap_or_else(|| vec!["viewer busy".to_owned()])
+    }
+
     /// Holds playback while the page reads files it is about to open (`true`),
     /// or lets it go on (`false`, which also asks for a frame): held, the
     /// playhead stays and a playing view draws no frames, so a software

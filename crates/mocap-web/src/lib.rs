@@ -10,6 +10,8 @@
 #[cfg(target_arch = "wasm32")]
 mod clip_api;
 #[cfg(target_arch = "wasm32")]
+mod file_set;
+#[cfg(target_arch = "wasm32")]
 mod handle;
 #[cfg(target_arch = "wasm32")]
 mod js_state;
@@ -20,6 +22,8 @@ mod start;
 
 #[cfg(target_arch = "wasm32")]
 pub use clip_api::{MotionClip, parse_motion};
+#[cfg(target_arch = "wasm32")]
+pub use file_set::FileSet;
 #[cfg(target_arch = "wasm32")]
 pub use handle::MocapViewer;
 #[cfg(target_arch = "wasm32")]
