@@ -4,7 +4,8 @@
 //! The skeleton is `../shared/corpus/bvh/animated_drawings/jesse_dance.bvh`.
 //!
 //! Then the same for capsules without shadows, and without shadows or MSAA, to
-//! show where the time goes on a software rasteriser.
+//! show where the time goes on a software rasteriser, and in the fast look (what
+//! a window draws while playing once frames are slow; never a final image).
 //!
 //! Then body mode (generated bodies skinned on the GPU) for 1, 16 and 64 of the
 //! same characters, and the time to build the body of the corpus skeleton with the
@@ -55,6 +56,14 @@ fn main() {
         for count in [1usize, 16, 64] {
             measure(&gpu, &mut offscreen, &clip, DrawMode::Capsules, count, false);
         }
+    }
+    // What a window draws while playing once frames are slow (the viewer's
+    // automatic rule, crates/mocap-viewer/src/quality.rs); never a final image.
+    println!("capsules, the fast look (a playing window's frames once they are slow: no MSAA, 1024² shadow map, one lookup):");
+    let mut fast = Offscreen::with_samples(&gpu, [1280, 720], 1);
+    fast.set_fast_look(true);
+    for count in [1usize, 16, 64] {
+        measure(&gpu, &mut fast, &clip, DrawMode::Capsules, count, true);
     }
     println!("body mode (generated skinned bodies, GPU skinning), 4x MSAA, shadows on:");
     for count in [1usize, 16, 64] {

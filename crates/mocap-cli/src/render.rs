@@ -155,6 +155,14 @@ impl Offscreen {
         self.target.size()
     }
 
+    /// Draws in the renderer's fast look (`SceneRenderer::fast_look`: one
+    /// lookup into a 1024² shadow map, capsules placed on the CPU), what a
+    /// window draws while playing once frames are slow. Not for final images:
+    /// `mocap render` never sets it. Takes effect from the next frame.
+    pub fn set_fast_look(&mut self, fast: bool) {
+        self.renderer.fast_look = fast;
+    }
+
     /// Draw calls of the last frame.
     pub fn draw_calls(&self) -> u32 {
         self.renderer.draw_calls()
