@@ -401,3 +401,24 @@ fn the_floor_has_its_colours_on_srgb_and_plain_targets() {
         assert!(brightest > grid.floor_color[1] + 20, "{format:?}: no line across the middle row (brightest green {brightest})");
     }
 }
+
+#[test]
+fn lit_surfaces_store_the_same_colours_on_srgb_and_plain_targets() {
+    // A plain unorm target (the web's) gets its sRGB encoding in the shader
+    // (`to_target`); an sRGB target encodes in hardware. One sample per pixel,
+    // so both cover the same pixels.
+    let Some((device, queue, _, _)) = setup(1) else { return };
+    let camera = Camera::look_at(Vec3::new(0.0, 1.0, 3.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.0);
+    let mut scene = Scene { background: [0, 0, 0, 255], ..Scene::default() };
+    for (k, color) in [[200, 60, 60, 255], [40, 160, 220, 255], [230, 230, 230, 255]].into_iter().enumerate() {
+        let x = k as f32 * 0.5 - 0.5;
+        scene.capsules.push(Capsule { a: Vec3::new(x, 0.3, 0.0), b: Vec3::new(x, 1.7, 0.0), radius: 0.2, color });
+    }
+    scene.spheres.push(Sphere { center: Vec3::new(0.0, 1.9, 0.5), radius: 0.15, color: [90, 200, 90, 255] });
+    let exact = render_in(&device, &queue, wgpu::TextureFormat::Rgba8UnormSrgb, &scene, &camera);
+    let shader = render_in(&device, &queue, wgpu::TextureFormat::Rgba8Unorm, &scene, &camera);
+    let lit = exact.chunks(4).filter(|p| p[..3].iter().any(|&v| v > 40)).count();
+    assert!(lit > 2000, "the figures are drawn ({lit} pixels)");
+    let worst = exact.iter().zip(&shader).map(|(a, b)| a.abs_diff(*b)).max().unwrap_or(0);
+    assert!(worst <= 2, "stored values differ by up to {worst} between the exact and the shader's encoding");
+}
