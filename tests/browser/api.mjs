@@ -164,6 +164,15 @@ try {
       const size = files.size;
       const errs = v.openFileSet(files, false);
       const emptied = files.size;
+      // A BVH file alone is read as it arrives (its rows parsed between pushes).
+      const walkBytes = await get('../../data/walk.bvh');
+      const walkSet = new FileSet();
+      walkSet.begin('chunked.bvh', walkBytes.length);
+      for (let at = 0; at < walkBytes.length; at += 1000) walkSet.push(walkBytes.subarray(at, at + 1000));
+      const walkErrs = v.openFileSet(walkSet, true);
+      walkSet.free();
+      const walkClip = v.state().clips.find((c) => c.name === 'chunked.bvh');
+      v.remove(v.state().clips.length - 1);
       const broken = new FileSet();
       broken.begin('cut.bvh', 15);
       broken.push(new TextEncoder().encode('HIERARCHY\nJOINT'));
@@ -171,10 +180,11 @@ try {
       files.free();
       broken.free();
       const s = v.state();
-      return { size, total: asf.length + amc.length, errs, emptied, brokenErrs, clips: s.clips.map((c) => `${c.name}:${c.frames}`) };
+      return { size, total: asf.length + amc.length, errs, emptied, brokenErrs, walkErrs, walkFrames: walkClip ? walkClip.frames : null, clips: s.clips.map((c) => `${c.name}:${c.frames}`) };
     });
     check(set.size === set.total && set.errs.length === 0 && set.emptied === 0 && set.clips.length === 1 && set.clips[0].startsWith('01_06.amc:'),
       `a FileSet read in chunks opens the pair (${set.size} of ${set.total} bytes, ${set.clips.join(', ')}, errors ${JSON.stringify(set.errs)})`);
+    check(set.walkErrs.length === 0 && set.walkFrames === 67, `a BVH file pushed in 1000-byte pieces opens (${set.walkFrames} frames, errors ${JSON.stringify(set.walkErrs)})`);
     check(set.brokenErrs.length === 1 && set.brokenErrs[0].startsWith('cut.bvh') && set.clips.length === 1,
       `a broken file in a FileSet is reported and changes nothing (${set.brokenErrs[0]})`);
     await page.waitForTimeout(500);

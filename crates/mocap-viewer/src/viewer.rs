@@ -154,6 +154,26 @@ impl Viewer {
                 Err(e) => errors.push(e.to_string()),
             }
         }
+        self.open_loaded(assets, errors, mode)
+    }
+
+    /// Opens BVH clips read elsewhere (a host reading files as they arrive, see
+    /// `mocap::bvh::Stream`), named, or the errors reading them gave, as
+    /// [`Viewer::open_files`] opens files: the same messages, the same rules.
+    pub fn open_clips(&mut self, clips: Vec<(String, Result<mocap::Clip, mocap::ParseError>)>, mode: OpenMode) -> Vec<String> {
+        let mut assets = Vec::new();
+        let mut errors = Vec::new();
+        for (file, result) in clips {
+            match result {
+                Ok(clip) => assets.push((file, mocap::Asset::from(clip))),
+                Err(error) => errors.push(mocap::LoadError::Parse { file, error }.to_string()),
+            }
+        }
+        self.open_loaded(assets, errors, mode)
+    }
+
+    /// Opens what was read (replacing or adding) and shows the errors.
+    fn open_loaded(&mut self, assets: Vec<(String, mocap::Asset)>, errors: Vec<String>, mode: OpenMode) -> Vec<String> {
         if !assets.is_empty() {
             match mode {
                 OpenMode::Replace => self.open_assets(assets),

@@ -61,16 +61,19 @@ impl MocapViewer {
     /// leaving `set` empty. Returns every error message; empty when all opened.
     #[wasm_bindgen(js_name = openFileSet)]
     pub fn open_file_set(&self, set: &mut crate::FileSet, add: bool) -> Vec<String> {
-        let files = match set.take() {
-            Ok(files) => files,
+        let mode = if add { mocap_viewer::OpenMode::Add } else { mocap_viewer::OpenMode::Replace };
+        let opened = match set.take() {
+            Ok(crate::file_set::Taken::Clips(clips)) => self.with_viewer(|v| v.open_clips(clips, mode)),
+            Ok(crate::file_set::Taken::Files(files)) => {
+                let files: Vec<(&str, &[u8])> = files.iter().map(|(name, bytes)| (name.as_str(), bytes.as_slice())).collect();
+                self.with_viewer(|v| v.open_files(&files, mode))
+            }
             Err(message) => {
                 self.show_error(&message);
                 return vec![message];
             }
         };
-        let files: Vec<(&str, &[u8])> = files.iter().map(|(name, bytes)| (name.as_str(), bytes.as_slice())).collect();
-        let mode = if add { mocap_viewer::OpenMode::Add } else { mocap_viewer::OpenMode::Replace };
-        self.with_viewer(|v| v.open_files(&files, mode)).unwrap_or_else(|| vec!["viewer busy".to_owned()])
+        opened.unwrap_or_else(|| vec!["viewer busy".to_owned()])
     }
 
     /// Holds playback while the page reads files it is about to open (`true`),

@@ -104,3 +104,32 @@ pub fn assert_same(a: &mocap::Clip, b: &mocap::Clip, what: &str) {
     let bits = |c: &mocap::Clip| c.motion().data().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
     assert!(bits(a) == bits(b), "{what}: motion values differ after round trip");
 }
+
+#[test]
+fn corpus_bvh_files_read_as_they_arrive_as_parse_reads_them() {
+    // `bvh::Stream` (the page's drop) against `bvh::parse`, pushed in pieces
+    // of several sizes: the same clip bit for bit and the same warnings, or the
+    // same error.
+    let Some(dir) = corpus_dir() else { return };
+    let entries: Vec<Entry> = manifest(&dir).into_iter().filter(|e| e.format == "bvh").collect();
+    assert!(entries.len() >= 20, "manifest lists {} BVH files", entries.len());
+    for e in &entries {
+        let bytes = std::fs::read(dir.join(&e.path)).unwrap();
+        let whole = mocap::bvh::parse(&bytes);
+        for piece in [1000, 65536] {
+            let mut stream = mocap::bvh::Stream::with_capacity(bytes.len());
+            bytes.chunks(piece).for_each(|c| stream.push(c));
+            let what = format!("{} in pieces of {piece} bytes", e.path);
+            match (&whole, stream.finish()) {
+                (Ok(a), Ok(b)) => {
+                    assert_same(a, &b, &what);
+                    assert_eq!(a.frame_time().to_bits(), b.frame_time().to_bits(), "{what}");
+                    let warnings = |c: &mocap::Clip| c.warnings.iter().map(|w| format!("{:?} {}", w.line, w.message)).collect::<Vec<_>>();
+                    assert_eq!(warnings(a), warnings(&b), "{what}");
+                }
+                (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{what}"),
+                (a, b) => panic!("{what}: parse gave {:?}, the stream {:?}", a.as_ref().err(), b.err()),
+            }
+        }
+    }
+}

@@ -10,7 +10,9 @@
 mod cursor;
 mod header;
 mod rows;
+mod stream;
 mod write;
+pub use stream::Stream;
 
 pub use write::write;
 
@@ -31,12 +33,18 @@ pub fn sniff(bytes: &[u8]) -> bool {
 /// Parses a whole BVH file.
 pub fn parse(bytes: &[u8]) -> Result<Clip, ParseError> {
     let header = header::parse_header(bytes)?;
-    let mut warnings = header.warnings;
     let width = header.skeleton.channel_count();
     let rows = match header.data {
         Some((start, line, column)) => rows::parse_rows(bytes.get(start..).unwrap_or(&[]), line, column, width)?,
         None => rows::Rows { data: Vec::new(), count: 0, notes: rows::RowNotes::default() },
     };
+    assemble(header, rows)
+}
+
+/// The clip from a parsed header and its rows, with the warnings both call for.
+fn assemble(header: header::Header, rows: rows::Rows) -> Result<Clip, ParseError> {
+    let mut warnings = header.warnings;
+    let width = header.skeleton.channel_count();
     let mut frame_count = rows.count;
     if width == 0 && header.has_motion {
         // No channels: rows are empty, so the declared count is all there is.

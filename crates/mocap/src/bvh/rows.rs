@@ -86,6 +86,45 @@ pub(crate) fn parse_rows(data: &[u8], first_line: u32, first_column: u32, width:
     Ok(Rows { data: matrix, count, notes })
 }
 
+/// Rows parsed piece by piece, in file order (for [`super::Stream`]): each piece
+/// ends at a line break, except the last.
+pub(crate) struct RowBuilder {
+    width: usize,
+    origin: Origin,
+    rows: Rows,
+}
+
+impl RowBuilder {
+    /// Rows of `width` values (at least one) starting at `first_line`,
+    /// `first_column` (as [`parse_rows`] takes them).
+    pub(crate) fn new(first_line: u32, first_column: u32, width: usize) -> RowBuilder {
+        let origin = Origin { line: first_line, column_offset: first_column.saturating_sub(1) };
+        RowBuilder { width: width.max(1), origin, rows: Rows { data: Vec::new(), count: 0, notes: RowNotes::default() } }
+    }
+
+    /// Parses the rows of `piece` (the bytes right after the last piece) and
+    /// appends them; `None` on any problem (a malformed row, more values than
+    /// the bytes can hold), which [`parse_rows`] over the whole data then reports.
+    pub(crate) fn push(&mut self, piece: &[u8]) -> Option<()> {
+        let count = count_lines(piece);
+        let values = count.content.checked_mul(self.width).filter(|&n| n <= piece.len())?;
+        let start = self.rows.data.len();
+        self.rows.data.try_reserve(values).ok()?;
+        self.rows.data.resize(start + values, 0.0);
+        let (rows, notes) = parse_chunk(piece, self.origin, self.width, &mut self.rows.data[start..], false).ok()?;
+        self.rows.data.truncate(start + rows * self.width);
+        self.rows.count += rows;
+        self.rows.notes = self.rows.notes.or(notes);
+        self.origin = Origin { line: self.origin.line.saturating_add(count.breaks), column_offset: 0 };
+        Some(())
+    }
+
+    /// The rows so far.
+    pub(crate) fn finish(self) -> Rows {
+        self.rows
+    }
+}
+
 type Job<'a, 'b> = (&'a [u8], Origin, &'b mut [f32]);
 type JobResult = Result<(usize, RowNotes), ParseError>;
 
