@@ -1,11 +1,18 @@
 //! Fuzzes the BVH reader: no input may panic, hang or allocate without bound; what
-//! parses must also survive FK, bounds and a write → parse round trip.
+//! parses must also survive FK, bounds and a write → parse round trip, and reading
+//! it as it arrives (`bvh::Stream`) must give what `parse` gives.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    if let Ok(clip) = mocap::bvh::parse(data) {
+    // Read as it arrives, in pieces sized by the first byte: what parse gives.
+    let whole = mocap::bvh::parse(data);
+    let mut stream = mocap::bvh::Stream::with_capacity(data.len());
+    data.chunks(usize::from(data.first().copied().unwrap_or(1)).max(1)).for_each(|c| stream.push(c));
+    let outcome = |r: &Result<mocap::Clip, mocap::ParseError>| r.as_ref().map(|c| (c.frame_count(), c.motion().data().iter().map(|v| v.to_bits()).collect::<Vec<_>>())).map_err(|e| e.to_string());
+    assert!(outcome(&whole) == outcome(&stream.finish()), "streamed differs from parse");
+    if let Ok(clip) = whole {
         let _ = clip.bounds();
         let _ = clip.units();
         let mut out = Vec::new();

@@ -1,11 +1,22 @@
 //! Inputs found by `cargo fuzz run bvh_parse` (and hand-made hostile inputs) stay
 //! here forever: each must parse or fail cleanly, and what parses must survive FK,
-//! bounds and a write → parse round trip — exactly what the fuzz target checks.
+//! bounds and a write → parse round trip — exactly what the fuzz target checks —
+//! and read as it arrives (`bvh::Stream`) it must give what `parse` gives.
 
 use std::path::Path;
 
 fn check(name: &str, data: &[u8]) {
-    if let Ok(clip) = mocap::bvh::parse(data) {
+    // Read as it arrives (the page's drop), in pieces of a few sizes: the same
+    // frames and the same error.
+    let whole = mocap::bvh::parse(data);
+    for piece in [1, 7, 4096] {
+        let mut stream = mocap::bvh::Stream::with_capacity(data.len());
+        data.chunks(piece).for_each(|c| stream.push(c));
+        let streamed = stream.finish();
+        let outcome = |r: &Result<mocap::Clip, mocap::ParseError>| r.as_ref().map(|c| (c.frame_count(), c.skeleton().len(), c.motion().data().iter().map(|v| v.to_bits()).collect::<Vec<_>>())).map_err(|e| e.to_string());
+        assert!(outcome(&whole) == outcome(&streamed), "{name}: streamed in pieces of {piece} bytes differs from parse");
+    }
+    if let Ok(clip) = whole {
         let _ = clip.bounds();
         let _ = clip.units();
         let mut out = Vec::new();
