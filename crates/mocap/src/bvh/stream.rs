@@ -25,8 +25,12 @@ const SNIFF_BYTES: usize = 64;
 pub struct Stream {
     bytes: Vec<u8>,
     state: State,
-    /// Where the search for `Frame Time` goes on.
+    /// Where the search for `Frame Time` goes on (where it was found, once it is).
     searched: usize,
+    /// Line feeds after `Frame Time`, counted up to `counted` (each byte looked
+    /// at once: a file whose rows end in lone CRs has none).
+    line_feeds: usize,
+    counted: usize,
     header_tries: u32,
 }
 
@@ -62,7 +66,11 @@ impl Stream {
         let start = self.bytes.len();
         self.bytes.resize(start + len, 0);
         fill(&mut self.bytes[start..]);
+        // Where the search for the last line feed starts: the rows' start when
+        // they begin in this push, else the new bytes.
+        let mut search_from = start;
         if matches!(self.state, State::Header) {
+            search_from = 0;
             // Not BVH (as far as the first bytes tell): nothing to look for.
             if self.bytes.len() >= SNIFF_BYTES && !super::sniff(&self.bytes) {
                 self.state = State::Whole;
@@ -72,8 +80,11 @@ impl Stream {
         }
         if let State::Rows { builder, next, .. } = &mut self.state {
             // Whole lines only: up to the last line feed (a CRLF is never cut).
+            // Bytes of earlier pushes hold none after `next`: only new ones are
+            // searched (each byte once, even where lines end in lone CRs).
             let rest = self.bytes.get(*next..).unwrap_or(&[]);
-            if let Some(end) = memchr::memrchr(b'\n', rest) {
+            let new = search_from.saturating_sub(*next);
+            if let Some(end) = rest.get(new..).and_then(|r| memchr::memrchr(b'\n', r)).map(|i| i + new) {
                 let piece = &rest[..=end];
                 if builder.push(piece).is_some() {
                     *next += piece.len();
@@ -114,9 +125,11 @@ impl Stream {
             return;
         };
         self.searched = found;
-        let after = self.bytes.get(found..).unwrap_or(&[]);
+        let from = self.counted.max(found);
+        self.line_feeds += memchr::memchr_iter(b'\n', self.bytes.get(from..).unwrap_or(&[])).count();
+        self.counted = self.bytes.len();
         // The Frame Time line and at least one more.
-        if memchr::memchr_iter(b'\n', after).nth(1).is_none() {
+        if self.line_feeds < 2 {
             return;
         }
         if self.header_tries >= HEADER_TRIES {
