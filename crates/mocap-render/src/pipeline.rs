@@ -16,6 +16,11 @@ pub(crate) struct PipelineSpec<'a> {
     pub depth_bias: wgpu::DepthBiasState,
     pub cull_back: bool,
     pub sample_count: u32,
+    /// Multisampled targets only: the fragment's alpha is its coverage, turned
+    /// into samples (ignored on one sample, where wgpu does not allow it).
+    pub alpha_to_coverage: bool,
+    /// A depth-only pass whose fragment shader discards fragments (so it has one).
+    pub depth_fragment: bool,
 }
 
 /// Per-instance buffer layout with `attributes` and `stride`.
@@ -51,12 +56,16 @@ pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: 
             stencil: Default::default(),
             bias: spec.depth_bias,
         }),
-        multisample: wgpu::MultisampleState { count: spec.sample_count, ..Default::default() },
-        fragment: spec.color.is_some().then(|| wgpu::FragmentState {
+        multisample: wgpu::MultisampleState {
+            count: spec.sample_count,
+            alpha_to_coverage_enabled: spec.alpha_to_coverage && spec.sample_count > 1,
+            ..Default::default()
+        },
+        fragment: (spec.color.is_some() || spec.depth_fragment).then(|| wgpu::FragmentState {
             module: spec.shader,
             entry_point: Some(spec.fragment_entry),
             compilation_options: Default::default(),
-            targets: &targets,
+            targets: if spec.color.is_some() { &targets } else { &[] },
         }),
         multiview_mask: None,
         cache: None,

@@ -1,6 +1,6 @@
 //! Meshes placed on the CPU every frame: vertices and triangles filled by the
-//! caller, uploaded to growing buffers and drawn in one plain indexed draw (see
-//! `SceneRenderer::fast_look`).
+//! caller, uploaded to growing buffers and drawn in one plain indexed draw
+//! (the capsule impostors, see capsule.rs).
 
 use crate::buffer::GrowingBuffer;
 
@@ -32,10 +32,14 @@ impl<V: bytemuck::Pod> PlacedMesh<V> {
         self.index_buffer.upload(device, queue, &self.indices);
     }
 
-    /// Draws the uploaded mesh with `pipeline` (vertex buffer 0); returns the
-    /// draw calls made (0 when empty).
-    pub fn draw<'a>(&'a self, pass: &mut wgpu::RenderPass<'a>, pipeline: &'a wgpu::RenderPipeline) -> u32 {
-        let (Some((vertices, _)), Some((indices, count))) = (self.vertex_buffer.get(), self.index_buffer.get()) else { return 0 };
+    /// Draws the first `count` uploaded indices (at most all of them) with
+    /// `pipeline` (vertex buffer 0); returns the draw calls made (0 when none).
+    pub fn draw<'a>(&'a self, pass: &mut wgpu::RenderPass<'a>, pipeline: &'a wgpu::RenderPipeline, count: u32) -> u32 {
+        let (Some((vertices, _)), Some((indices, uploaded))) = (self.vertex_buffer.get(), self.index_buffer.get()) else { return 0 };
+        let count = count.min(uploaded);
+        if count == 0 {
+            return 0;
+        }
         pass.set_pipeline(pipeline);
         pass.set_vertex_buffer(0, vertices.slice(..));
         pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);

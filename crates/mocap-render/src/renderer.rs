@@ -1,11 +1,11 @@
 //! The scene renderer: owns pipelines and buffers, draws a [`Scene`] into a [`RenderTarget`].
 //!
-//! A frame is two passes and at most eight draw calls, whatever the number of
-//! figures, plus two per vertex-animated mesh: the shadow map (every caster,
-//! instanced over a coarse capsule mesh, and each mesh), then the floor and its
-//! shadows, the capsules (instanced: a fine mesh for those that cover some pixels,
-//! a coarse one for the rest), the meshes, the sphere impostors, the lines and the
-//! overlay lines (drawn over everything, e.g. bone axes inside capsules).
+//! A frame is two passes and at most seven draw calls, whatever the number of
+//! figures, plus two per vertex-animated mesh: the shadow map (every caster as a
+//! capsule impostor, and each mesh), then the floor and its shadows, the capsule
+//! impostors (one quad each, see capsule.rs), the meshes, the sphere impostors,
+//! the lines and the overlay lines (drawn over everything, e.g. bone axes inside
+//! capsules).
 
 use crate::buffer::GrowingBuffer;
 use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
@@ -19,7 +19,6 @@ use crate::spheres::{SPHERE_ATTRIBUTES, SphereInstance};
 use crate::uniforms::FrameUniforms;
 use crate::{Camera, RenderTarget, Scene, SkinnedDraw};
 use glam::Vec3;
-use wgpu::util::DeviceExt;
 
 /// Draws [`Scene`]s with one device and colour format, into targets of its
 /// sample count or of any other (pipelines for another count are made on first use).
@@ -36,80 +35,35 @@ pub struct SceneRenderer {
     pipelines: Pipelines,
     /// Pipelines for targets of other sample counts, made when first drawn into.
     other_pipelines: Vec<(u32, Pipelines)>,
-    fine_mesh: Mesh,
-    coarse_mesh: Mesh,
     lines: GrowingBuffer,
     overlay_lines: GrowingBuffer,
     spheres: GrowingBuffer,
-    fine_capsules: GrowingBuffer,
-    coarse_capsules: GrowingBuffer,
-    casters: GrowingBuffer,
-    /// The fast look's shadow casters placed on the CPU (positions).
-    placed_casters: PlacedMesh<[f32; 4]>,
-    /// The fast look's lit capsules placed on the CPU.
-    placed_capsules: PlacedMesh<capsule::PlacedVertex>,
+    /// Capsule impostors: the scene's capsules (drawn lit), then the other
+    /// shadow casters (spheres, and capsules that only cast).
+    capsules: PlacedMesh<CapsuleVertex>,
+    /// Indices of the lit capsules' triangles (the first of `capsules`).
+    lit_indices: u32,
+    /// Indices of every caster's triangles (none without a shadow this frame).
+    caster_indices: u32,
     meshes: MeshCache,
     skinned: SkinnedCache,
     line_scratch: Vec<LineInstance>,
     sphere_scratch: Vec<SphereInstance>,
-    fine_scratch: Vec<CapsuleInstance>,
-    coarse_scratch: Vec<CapsuleInstance>,
+    capsule_scratch: Vec<CapsuleInstance>,
     caster_scratch: Vec<CapsuleInstance>,
     draw_calls: u32,
     /// Physical pixels per logical pixel; scales line widths.
     pub pixels_per_point: f32,
     /// The fast look, for a view that moves on a slow (software) GPU: shadows
     /// from a 1024² map instead of 2048² (a quarter of the texels to clear and
-    /// fill each frame) with one lookup per pixel instead of four (harder edges),
-    /// and the capsules, lit and casting, placed on the CPU and drawn in one
-    /// plain draw each (a software rasteriser sets up each instance of an
-    /// instanced draw like a draw of its own). Off by default.
+    /// fill each frame) with one lookup per pixel instead of four (harder
+    /// edges). Off by default.
     pub fast_look: bool,
 }
 
-/// A unit-capsule mesh on the GPU, and on the CPU for placing it there.
-struct Mesh {
-    unit: capsule::UnitMesh,
-    vertices: wgpu::Buffer,
-    indices: wgpu::Buffer,
-    index_count: u32,
-}
-
-impl Mesh {
-    fn new(device: &wgpu::Device, detail: capsule::Detail) -> Mesh {
-        let unit = capsule::unit_mesh(detail);
-        let (vertices, indices) = &unit;
-        Mesh {
-            vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("mocap capsule mesh"),
-                contents: bytemuck::cast_slice(vertices),
-                usage: wgpu::BufferUsages::VERTEX,
-            }),
-            indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("mocap capsule indices"),
-                contents: bytemuck::cast_slice(indices),
-                usage: wgpu::BufferUsages::INDEX,
-            }),
-            index_count: indices.len() as u32,
-            unit,
-        }
-    }
-
-    /// Draws `count` instances from `instances` over this mesh.
-    fn draw<'a>(&'a self, pass: &mut wgpu::RenderPass<'a>, instances: &'a wgpu::Buffer, count: u32) {
-        pass.set_vertex_buffer(0, self.vertices.slice(..));
-        pass.set_vertex_buffer(1, instances.slice(..));
-        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint16);
-        pass.draw_indexed(0..self.index_count, 0, 0..count);
-    }
-}
-
 struct Pipelines {
-    /// Capsules placed on the CPU (the fast look).
-    capsules_placed: wgpu::RenderPipeline,
+    /// Capsule impostors into the shadow map.
     shadow: wgpu::RenderPipeline,
-    /// Shadow casters placed on the CPU (the fast look).
-    shadow_placed: wgpu::RenderPipeline,
     floor: wgpu::RenderPipeline,
     floor_shadow: wgpu::RenderPipeline,
     capsules: wgpu::RenderPipeline,
@@ -127,6 +81,9 @@ const MULTIPLY: wgpu::BlendState = wgpu::BlendState {
     color: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::Dst, dst_factor: wgpu::BlendFactor::Zero, operation: wgpu::BlendOperation::Add },
     alpha: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::Zero, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add },
 };
+
+/// Keeps the target's value (the capsules' alpha channel).
+const KEEP: wgpu::BlendComponent = wgpu::BlendComponent { src_factor: wgpu::BlendFactor::Zero, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add };
 
 /// WGSL sources: the shared uniform and lighting code prepended to each shader.
 const LIT_PRELUDE: &str = concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/lighting.wgsl"));
@@ -175,22 +132,17 @@ impl SceneRenderer {
             fast_shadow: None,
             pipelines,
             other_pipelines: Vec::new(),
-            fine_mesh: Mesh::new(device, capsule::FINE),
-            coarse_mesh: Mesh::new(device, capsule::COARSE),
             lines: GrowingBuffer::new("mocap lines"),
             overlay_lines: GrowingBuffer::new("mocap overlay lines"),
             spheres: GrowingBuffer::new("mocap spheres"),
-            fine_capsules: GrowingBuffer::new("mocap capsules"),
-            coarse_capsules: GrowingBuffer::new("mocap small capsules"),
-            casters: GrowingBuffer::new("mocap shadow casters"),
-            placed_casters: PlacedMesh::new("mocap placed shadow casters"),
-            placed_capsules: PlacedMesh::new("mocap placed capsules"),
+            capsules: PlacedMesh::new("mocap capsules"),
+            lit_indices: 0,
+            caster_indices: 0,
             meshes,
             skinned,
             line_scratch: Vec::new(),
             sphere_scratch: Vec::new(),
-            fine_scratch: Vec::new(),
-            coarse_scratch: Vec::new(),
+            capsule_scratch: Vec::new(),
             caster_scratch: Vec::new(),
             draw_calls: 0,
             pixels_per_point: 1.0,
@@ -240,7 +192,7 @@ impl SceneRenderer {
         if self.fast_look && self.fast_shadow.is_none() {
             self.fast_shadow = Some(ShadowMap::new(device, shadow::FAST_SIZE, &self.shadow_layout));
         }
-        let shadows = self.upload(device, queue, target.size(), scene, camera);
+        let shadows = self.upload(device, queue, target, scene, camera);
         self.draw_calls = 0;
         if shadows {
             self.encode_shadow_pass(encoder);
@@ -281,14 +233,7 @@ impl SceneRenderer {
                 self.draw_calls += 1;
             }
         }
-        pass.set_pipeline(&pipelines.capsules);
-        for (mesh, instances) in [(&self.fine_mesh, &self.fine_capsules), (&self.coarse_mesh, &self.coarse_capsules)] {
-            if let Some((buffer, count)) = instances.get() {
-                mesh.draw(&mut pass, buffer, count);
-                self.draw_calls += 1;
-            }
-        }
-        self.draw_calls += self.placed_capsules.draw(&mut pass, &pipelines.capsules_placed);
+        self.draw_calls += self.capsules.draw(&mut pass, &pipelines.capsules, self.lit_indices);
         if self.meshes.has_draws() {
             pass.set_pipeline(&pipelines.morph);
             self.draw_calls += self.meshes.draw(&mut pass, true);
@@ -342,12 +287,7 @@ impl SceneRenderer {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
-        if let Some((buffer, count)) = self.casters.get() {
-            pass.set_pipeline(&self.pipelines.shadow);
-            self.coarse_mesh.draw(&mut pass, buffer, count);
-            self.draw_calls += 1;
-        }
-        self.draw_calls += self.placed_casters.draw(&mut pass, &self.pipelines.shadow_placed);
+        self.draw_calls += self.capsules.draw(&mut pass, &self.pipelines.shadow, self.caster_indices);
         if self.meshes.has_draws() {
             pass.set_pipeline(&self.pipelines.morph_shadow);
             self.draw_calls += self.meshes.draw(&mut pass, false);
@@ -359,7 +299,8 @@ impl SceneRenderer {
     }
 
     /// Uploads instances and uniforms; returns whether the shadow pass is needed.
-    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, size: [u32; 2], scene: &Scene, camera: &Camera) -> bool {
+    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget, scene: &Scene, camera: &Camera) -> bool {
+        let size = target.size();
         let ppp = self.pixels_per_point;
         self.line_scratch.clear();
         self.line_scratch.extend(scene.lines.iter().map(|l| LineInstance::new(l, ppp)));
@@ -369,21 +310,11 @@ impl SceneRenderer {
         self.overlay_lines.upload(device, queue, &self.line_scratch);
         self.sphere_scratch.clear();
         self.sphere_scratch.extend(scene.spheres.iter().map(SphereInstance::new));
-        self.fine_scratch.clear();
-        self.coarse_scratch.clear();
-        let pixels_per_unit = camera.projection.y_axis.y * size[1] as f32 * 0.5;
-        for capsule in &scene.capsules {
-            // Capsules under ~4 pixels across get the coarse mesh: the same look
-            // for a fraction of the triangles when many figures are far away.
-            let depth = -camera.view.transform_point3((capsule.a + capsule.b) * 0.5).z;
-            let small = capsule.radius * pixels_per_unit < 2.0 * depth.max(1e-6);
-            let list = if small { &mut self.coarse_scratch } else { &mut self.fine_scratch };
-            list.push(CapsuleInstance::new(capsule));
-        }
+        self.capsule_scratch.clear();
+        self.capsule_scratch.extend(scene.capsules.iter().map(CapsuleInstance::new));
+        // The casters that are not drawn lit (the lit capsules cast too).
         self.caster_scratch.clear();
         if scene.shadows {
-            self.caster_scratch.extend_from_slice(&self.fine_scratch);
-            self.caster_scratch.extend_from_slice(&self.coarse_scratch);
             self.caster_scratch.extend(scene.spheres.iter().map(CapsuleInstance::sphere));
             self.caster_scratch.extend(scene.shadow_casters.iter().map(CapsuleInstance::new));
         }
@@ -392,31 +323,24 @@ impl SceneRenderer {
         self.skinned.prepare(device, queue, &scene.skinned);
         let skinned_bounds = scene.skinned.iter().filter_map(SkinnedDraw::world_bounds);
         let mesh_bounds = scene.meshes.iter().filter_map(|m| m.world_bounds()).chain(skinned_bounds).filter(|_| scene.shadows);
-        let bounds = mesh_bounds.chain(caster_bounds(&self.caster_scratch)).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
+        let capsule_bounds = caster_bounds(&self.capsule_scratch).filter(|_| scene.shadows);
+        let bounds = mesh_bounds.chain(capsule_bounds).chain(caster_bounds(&self.caster_scratch)).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         let map_size = self.shadow_map().size;
         let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, map_size));
-        let uniforms = FrameUniforms::new(camera, size, self.format, scene.grid.as_ref(), light.as_ref(), self.fast_look);
+        let uniforms = FrameUniforms::new(camera, size, target.sample_count(), self.format, scene.grid.as_ref(), light.as_ref(), self.fast_look);
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.spheres.upload(device, queue, &self.sphere_scratch);
-        let casters: &[CapsuleInstance] = if light.is_some() { &self.caster_scratch } else { &[] };
-        self.placed_casters.clear();
-        self.placed_capsules.clear();
-        let none: &[CapsuleInstance] = &[];
-        if self.fast_look {
-            let (casters_out, lit) = (&mut self.placed_casters, &mut self.placed_capsules);
-            capsule::expand(casters, &self.coarse_mesh.unit, &mut casters_out.vertices, &mut casters_out.indices);
-            capsule::expand_lit(&self.fine_scratch, &self.fine_mesh.unit, &mut lit.vertices, &mut lit.indices);
-            capsule::expand_lit(&self.coarse_scratch, &self.coarse_mesh.unit, &mut lit.vertices, &mut lit.indices);
-            self.fine_capsules.upload(device, queue, none);
-            self.coarse_capsules.upload(device, queue, none);
-            self.casters.upload(device, queue, none);
+        let capsules = &mut self.capsules;
+        capsules.clear();
+        capsule::expand(&self.capsule_scratch, &mut capsules.vertices, &mut capsules.indices);
+        self.lit_indices = capsules.indices.len() as u32;
+        if light.is_some() {
+            capsule::expand(&self.caster_scratch, &mut capsules.vertices, &mut capsules.indices);
+            self.caster_indices = capsules.indices.len() as u32;
         } else {
-            self.fine_capsules.upload(device, queue, &self.fine_scratch);
-            self.coarse_capsules.upload(device, queue, &self.coarse_scratch);
-            self.casters.upload(device, queue, casters);
+            self.caster_indices = 0;
         }
-        self.placed_capsules.upload(device, queue);
-        self.placed_casters.upload(device, queue);
+        capsules.upload(device, queue);
         light.is_some()
     }
 }
@@ -484,14 +408,11 @@ impl Pipelines {
         let morph_buffers = crate::mesh::buffer_layouts();
         let skinned_shader = module("mocap skinned", include_str!("shaders/skinned.wgsl"));
         let skinned_buffers = crate::skinned::buffer_layouts();
-        let mesh = [
-            Some(wgpu::VertexBufferLayout {
-                array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &capsule::VERTEX_ATTRIBUTES,
-            }),
-            instances(&capsule::INSTANCE_ATTRIBUTES, std::mem::size_of::<CapsuleInstance>()),
-        ];
+        let capsule_buffers = [Some(wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &capsule::ATTRIBUTES,
+        })];
         let spheres = [instances(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
         let line_buffers = [instances(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
         let base = PipelineSpec {
@@ -499,7 +420,7 @@ impl Pipelines {
             shader: &capsule_shader,
             vertex_entry: "vs_main",
             fragment_entry: "fs_main",
-            buffers: &mesh,
+            buffers: &capsule_buffers,
             color: Some((format, wgpu::BlendState::REPLACE)),
             depth_format: crate::DEPTH_FORMAT,
             depth_write: true,
@@ -507,6 +428,8 @@ impl Pipelines {
             depth_bias: Default::default(),
             cull_back: true,
             sample_count,
+            alpha_to_coverage: false,
+            depth_fragment: false,
         };
         // Depth-only passes into the shadow map: every caster's `vs_shadow`, no colour.
         let depth_only = PipelineSpec {
@@ -518,14 +441,10 @@ impl Pipelines {
             sample_count: 1,
             ..base
         };
-        // Capsules are closed and wound like the lit pass's: only the faces
-        // towards the light are drawn (half the triangles to rasterise).
-        let shadow = pipeline::build(device, &shadow_pass_layout, &PipelineSpec { label: "mocap shadow casters", cull_back: true, ..depth_only });
-        let placed = [Some(wgpu::VertexBufferLayout { array_stride: 16, step_mode: wgpu::VertexStepMode::Vertex, attributes: &wgpu::vertex_attr_array![0 => Float32x4] })];
-        let shadow_placed = pipeline::build(
+        let shadow = pipeline::build(
             device,
             &shadow_pass_layout,
-            &PipelineSpec { label: "mocap placed shadow casters", vertex_entry: "vs_shadow_placed", buffers: &placed, cull_back: true, ..depth_only },
+            &PipelineSpec { label: "mocap shadow casters", fragment_entry: "fs_shadow", depth_fragment: true, ..depth_only },
         );
         let floor = pipeline::build(
             device,
@@ -555,9 +474,18 @@ impl Pipelines {
                 ..base
             },
         );
-        let capsules = pipeline::build(device, &lit_layout, &base);
-        let placed_lit = [Some(wgpu::VertexBufferLayout { array_stride: std::mem::size_of::<capsule::PlacedVertex>() as u64, step_mode: wgpu::VertexStepMode::Vertex, attributes: &capsule::PLACED_ATTRIBUTES })];
-        let capsules_placed = pipeline::build(device, &lit_layout, &PipelineSpec { label: "mocap placed capsules", vertex_entry: "vs_placed", buffers: &placed_lit, ..base });
+        // Impostors: quads of either winding; alpha is the outline's coverage
+        // (samples on a multisampled target) and the target keeps its alpha.
+        let capsules = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                color: Some((format, wgpu::BlendState { color: wgpu::BlendComponent::REPLACE, alpha: KEEP })),
+                cull_back: false,
+                alpha_to_coverage: true,
+                ..base
+            },
+        );
         let spheres = pipeline::build(
             device,
             &lit_layout,
@@ -609,6 +537,6 @@ impl Pipelines {
             &skinned_shadow_layout,
             &PipelineSpec { label: "mocap skinned shadows", shader: &skinned_shader, buffers: &skinned_buffers, ..depth_only },
         );
-        Pipelines { capsules_placed, shadow, shadow_placed, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
+        Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
     }
 }

@@ -29,13 +29,16 @@ pub(crate) struct FrameUniforms {
     pub floor_color: [f32; 4],
     /// Floor area under the shadow casters: min x, min z, max x, max z.
     pub shadow_rect: [f32; 4],
+    /// The least coverage of a pixel an impostor's outline draws: 0 on a
+    /// multisampled target (coverage becomes samples), 0.5 on one sample.
+    pub samples: [f32; 4],
 }
 
 
 impl FrameUniforms {
-    /// The block for one frame; `fast_look` samples the shadow map once per
-    /// pixel instead of four times.
-    pub fn new(camera: &Camera, size: [u32; 2], format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>, fast_look: bool) -> FrameUniforms {
+    /// The block for one frame into a target of `sample_count` samples;
+    /// `fast_look` samples the shadow map once per pixel instead of four times.
+    pub fn new(camera: &Camera, size: [u32; 2], sample_count: u32, format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>, fast_look: bool) -> FrameUniforms {
         let eye = camera.view.inverse().w_axis.truncate().extend(if fast_look { 1.0 } else { 0.0 });
         let (light_view_proj, texel, strength, shadow_rect) = match light {
             Some(fit) => (fit.view_proj, fit.texel, 1.0, fit.floor_rect),
@@ -49,6 +52,7 @@ impl FrameUniforms {
             light_dir: crate::shadow::key_light_direction().extend(texel).to_array(),
             eye: eye.to_array(),
             shadow_rect,
+            samples: [if sample_count > 1 { 0.0 } else { 0.5 }, 0.0, 0.0, 0.0],
             ..Zeroable::zeroed()
         };
         if let Some(g) = grid {

@@ -1,81 +1,273 @@
-// Lit capsules: one instance per capsule over a shared unit-capsule mesh whose
-// vertices carry a unit direction and which end (0 = a, 1 = b) they belong to.
+// Capsules as impostors (see capsule.rs): each capsule is one quad covering its
+// outline, and the fragment shader casts the pixel's ray at the capsule for the
+// exact surface point, normal and depth. Spheres are capsules of zero length.
 // `Frame`, `frame`, `to_target` and `shade` come from frame.wgsl and lighting.wgsl.
+//
+// "Ray coordinates" below: for a perspective view, the point (x / -z, y / -z)
+// at which a ray from the eye crosses the plane one unit in front of it (view
+// space); for an orthographic view, the ray's view-space (x, y). Both are
+// linear in screen position.
+
+// One corner of a capsule's quad (corner 0: behind `a`, 1: beyond `b`, on
+// one side; 2 and 3 on the other side).
+struct CapsuleIn {
+    @location(0) a: vec3<f32>,
+    @location(1) radius: f32,
+    @location(2) b: vec3<f32>,
+    @location(3) corner: f32,
+    @location(4) color: vec4<f32>,
+};
 
 struct Out {
     @builtin(position) position: vec4<f32>,
+    // The quad's point in the world: in front of the capsule, on the pixel's ray.
+    @location(0) world: vec3<f32>,
+    // The capsule in the world.
+    @location(1) @interpolate(flat) a: vec3<f32>,
+    @location(2) @interpolate(flat) b: vec3<f32>,
+    @location(3) @interpolate(flat) radius: f32,
+    @location(4) @interpolate(flat) color: vec4<f32>,
+};
+
+fn is_perspective() -> bool {
+    return frame.projection[3][3] < 0.5;
+}
+
+// Distance of the near plane (both the perspective and the orthographic
+// projections map view depth `near` to 0).
+fn near_distance() -> f32 {
+    return frame.projection[3][2] / frame.projection[2][2];
+}
+
+// Ray coordinates of a point in normalised device coordinates.
+fn ray_of_ndc(ndc: vec2<f32>) -> vec2<f32> {
+    let p = frame.projection;
+    let scale = vec2<f32>(p[0][0], p[1][1]);
+    if (is_perspective()) {
+        return (ndc + vec2<f32>(p[2][0], p[2][1])) / scale;
+    }
+    return (ndc - vec2<f32>(p[3][0], p[3][1])) / scale;
+}
+
+// A circle in ray coordinates (centre, radius) holding the outline of the
+// sphere of radius `r` at view-space `p`; a negative radius when there is no
+// such bound (the sphere reaches the eye's plane or about 85 degrees off the axis).
+fn sphere_bound(p: vec3<f32>, r: f32) -> vec3<f32> {
+    if (!is_perspective()) {
+        return vec3<f32>(p.xy, r);
+    }
+    let z = -p.z;
+    let l = length(p);
+    if (z - r <= 0.0 || l <= r) {
+        return vec3<f32>(0.0, 0.0, -1.0);
+    }
+    // The outline is the cone of half-angle `alpha` around the ray to `p`,
+    // which leaves the axis at angle `phi`; along the ray plane it reaches
+    // tan(phi + alpha) - tan(phi) from the centre's image, its farthest.
+    let sin_a = r / l;
+    let cos_a = sqrt(max(1.0 - sin_a * sin_a, 0.0));
+    let cos_p = z / l;
+    let sin_p = length(p.xy) / l;
+    let den = cos_p * cos_a - sin_p * sin_a;
+    if (den <= 0.08) {
+        return vec3<f32>(0.0, 0.0, -1.0);
+    }
+    let reach = (sin_p * cos_a + cos_p * sin_a) / den - sin_p / cos_p;
+    return vec3<f32>(p.xy / z, reach);
+}
+
+// Size of one pixel in ray coordinates.
+fn pixel_in_ray_units() -> f32 {
+    return 2.0 / max(frame.projection[1][1] * frame.viewport.y, 1e-20);
+}
+
+@vertex
+fn vs_main(v: CapsuleIn) -> Out {
+    let a = (frame.view * vec4<f32>(v.a, 1.0)).xyz;
+    let b = (frame.view * vec4<f32>(v.b, 1.0)).xyz;
+    let r = abs(v.radius);
+    let corner = u32(v.corner + 0.5);
+    let side = select(-1.0, 1.0, corner >= 2u);
+    let beyond_b = (corner & 1u) == 1u;
+    let ea = sphere_bound(a, r);
+    let eb = sphere_bound(b, r);
+    var ray: vec2<f32>;
+    var depth: f32;
+    let near = near_distance();
+    if (ea.z < 0.0 || eb.z < 0.0) {
+        // Too close to the eye for a bound: the whole view (rare).
+        ray = ray_of_ndc(vec2<f32>(select(-1.0, 1.0, beyond_b), side));
+        depth = near * 1.001;
+    } else {
+        // A rectangle along the axis's image holding both end circles (so
+        // their hull, the capsule's outline), with room for the edge filter
+        // on a multisampled target (coverage falls to 0 half a pixel out).
+        let along = eb.xy - ea.xy;
+        let len = length(along);
+        let w = select(vec2<f32>(1.0, 0.0), along / len, len > 1e-12);
+        let u = vec2<f32>(-w.y, w.x);
+        let margin = (0.75 - frame.samples.x) * pixel_in_ray_units();
+        let half = max(ea.z, eb.z) + margin;
+        // From `a`'s image along the axis's: either circle may reach farther
+        // back or forward (an axis seen nearly end-on).
+        let back = min(-ea.z, len - eb.z) - margin;
+        let forward = max(len + eb.z, ea.z) + margin;
+        ray = ea.xy + w * select(back, forward, beyond_b) + u * half * side;
+        // In front of the capsule, behind the near plane.
+        depth = max(min(-a.z, -b.z) - r, near * 1.001);
+    }
+    var view_point = vec4<f32>(ray * depth, -depth, 1.0);
+    if (!is_perspective()) {
+        view_point = vec4<f32>(ray, -depth, 1.0);
+    }
+    var out: Out;
+    out.position = frame.projection * view_point;
+    // View space back to the world (the view matrix is a rotation + shift).
+    let rot = transpose(mat3x3<f32>(frame.view[0].xyz, frame.view[1].xyz, frame.view[2].xyz));
+    out.world = rot * (view_point.xyz - frame.view[3].xyz);
+    out.a = v.a;
+    out.b = v.b;
+    out.radius = r;
+    out.color = v.color;
+    return out;
+}
+
+// Where a ray (origin `o`, unit direction `d`) enters the capsule `a` + `ab`
+// of radius `r` (a distance along the ray), or 1e30 if it does not: the
+// cylinder, or else the end sphere on the side the ray met the cylinder's line.
+fn capsule_entry(o: vec3<f32>, d: vec3<f32>, a: vec3<f32>, ab: vec3<f32>, r: f32) -> f32 {
+    let oa = o - a;
+    let baba = dot(ab, ab);
+    let bard = dot(ab, d);
+    let baoa = dot(ab, oa);
+    let qa = baba - bard * bard;
+    let qb = baba * dot(d, oa) - baoa * bard;
+    let qc = baba * dot(oa, oa) - baoa * baoa - r * r * baba;
+    let h = qb * qb - qa * qc;
+    // An axis along the ray (or no axis): the end nearer the eye.
+    var y = select(0.0, baba, bard < 0.0);
+    if (h >= 0.0 && qa > 1e-9 * baba) {
+        let t = (-qb - sqrt(h)) / qa;
+        y = baoa + t * bard;
+        if (y > 0.0 && y < baba) {
+            return t;
+        }
+    }
+    let oc = select(oa, oa - ab, y > 0.0);
+    let half_b = dot(oc, d);
+    let k = half_b * half_b - (dot(oc, oc) - r * r);
+    return select(1e30, -half_b - sqrt(max(k, 0.0)), k >= 0.0);
+}
+
+struct Shaded {
     @location(0) color: vec4<f32>,
-    @location(1) world: vec3<f32>,
-    @location(2) normal: vec3<f32>,
+    @builtin(frag_depth) depth: f32,
 };
 
-// World position and normal of a mesh vertex for the capsule `a`–`b`.
-fn place(dir: vec3<f32>, end: f32, a: vec3<f32>, b: vec3<f32>, radius: f32) -> array<vec3<f32>, 2> {
-    let axis = b - a;
-    let len = length(axis);
-    let z = select(vec3<f32>(0.0, 1.0, 0.0), axis / max(len, 1e-20), len > 1e-12);
-    let helper = select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 0.0, 1.0), abs(z.x) > 0.8);
-    let x = normalize(cross(helper, z));
-    let y = cross(z, x);
-    let n = x * dir.x + y * dir.y + z * dir.z;
-    return array<vec3<f32>, 2>(mix(a, b, end) + n * radius, n);
-}
-
-// A mesh vertex (locations 0-1) of one capsule instance (locations 2-5).
-struct CapsuleVertex {
-    @location(0) dir: vec3<f32>,
-    @location(1) end: f32,
-    @location(2) a: vec3<f32>,
-    @location(3) radius: f32,
-    @location(4) b: vec3<f32>,
-    @location(5) color: vec4<f32>,
-};
-
-@vertex
-fn vs_main(v: CapsuleVertex) -> Out {
-    let placed = place(v.dir, v.end, v.a, v.b, v.radius);
-    var out: Out;
-    out.position = frame.projection * frame.view * vec4<f32>(placed[0], 1.0);
-    out.color = v.color;
-    out.world = placed[0];
-    out.normal = placed[1];
+@fragment
+fn fs_main(in: Out) -> Shaded {
+    // The ray from the quad (in front of the capsule) on.
+    let forward = -vec3<f32>(frame.view[0].z, frame.view[1].z, frame.view[2].z);
+    let o = in.world;
+    var d = forward;
+    if (is_perspective()) {
+        d = normalize(o - frame.eye.xyz);
+    }
+    let a = in.a;
+    let ab = in.b - in.a;
+    let r = in.radius;
+    // Where the ray's line passes closest to the axis `a + s * ab`.
+    let ao = a - o;
+    let across = ao - d * dot(ao, d);
+    let slope = ab - d * dot(ab, d);
+    let ss = dot(slope, slope);
+    // (An axis along the ray: its end nearer the eye.)
+    var s = select(0.0, 1.0, dot(ab, d) < 0.0);
+    if (ss > 1e-12 * dot(ab, ab)) {
+        s = clamp(-dot(across, slope) / ss, 0.0, 1.0);
+    }
+    let miss = length(across + slope * s);
+    let t_close = dot(ao + ab * s, d);
+    // One pixel's size there, and how far outside the outline the pixel is.
+    var pixel = pixel_in_ray_units();
+    if (is_perspective()) {
+        pixel *= max(dot(o + d * t_close - frame.eye.xyz, forward), 1e-20);
+    }
+    let coverage = clamp(0.5 - (miss - r) / pixel, 0.0, 1.0);
+    if (coverage <= 0.0 || coverage < frame.samples.x) {
+        discard;
+    }
+    // The surface where the ray enters; on the anti-aliased fringe just
+    // outside, the ray's closest point (lit as the surface below it).
+    var t = t_close;
+    if (miss < r) {
+        t = min(capsule_entry(o, d, a, ab, r), t_close);
+    }
+    let p = o + d * t;
+    let h = clamp(dot(p - a, ab) / max(dot(ab, ab), 1e-30), 0.0, 1.0);
+    let out_of_axis = p - (a + ab * h);
+    let n = select(-d, normalize(out_of_axis), dot(out_of_axis, out_of_axis) > 1e-20);
+    let clip = frame.projection * (frame.view * vec4<f32>(p, 1.0));
+    // Cut by the near plane (or behind the eye): not drawn.
+    if (clip.w <= 0.0 || clip.z < 0.0) {
+        discard;
+    }
+    var out: Shaded;
+    // Alpha is the coverage (turned into samples on a multisampled target);
+    // the pipeline keeps the target's alpha.
+    out.color = to_target(vec4<f32>(shade(in.color.rgb, p, n), coverage));
+    out.depth = min(clip.z / clip.w, 1.0);
     return out;
 }
 
-// Depth-only pass into the shadow map.
-@vertex
-fn vs_shadow(v: CapsuleVertex) -> @builtin(position) vec4<f32> {
-    let placed = place(v.dir, v.end, v.a, v.b, v.radius);
-    return frame.light_view_proj * vec4<f32>(placed[0], 1.0);
-}
+// The shadow map: the same quads seen from the key light (orthographic), in
+// the plane through the capsule's axis, so each capsule stores the depth of its
+// middle: its lit half stays in front of it, and everything behind is shadowed.
 
-// The same capsules placed on the CPU (see capsule::expand_lit): one plain
-// draw instead of one instance each.
-struct PlacedVertex {
-    @location(0) position: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) color: vec4<f32>,
+struct ShadowOut {
+    @builtin(position) position: vec4<f32>,
+    @location(0) xy: vec2<f32>,
+    // The axis's ends (xy) in the light's clip space, and the radius there.
+    @location(1) @interpolate(flat) ends: vec4<f32>,
+    @location(2) @interpolate(flat) radius: f32,
 };
 
 @vertex
-fn vs_placed(v: PlacedVertex) -> Out {
-    var out: Out;
-    out.position = frame.projection * frame.view * vec4<f32>(v.position, 1.0);
-    out.color = v.color;
-    out.world = v.position;
-    out.normal = v.normal;
+fn vs_shadow(v: CapsuleIn) -> ShadowOut {
+    let m = frame.light_view_proj;
+    let a = (m * vec4<f32>(v.a, 1.0)).xyz;
+    let b = (m * vec4<f32>(v.b, 1.0)).xyz;
+    let scale = length(vec3<f32>(m[0][0], m[1][0], m[2][0]));
+    let r = abs(v.radius) * scale;
+    let corner = u32(v.corner + 0.5);
+    let side = select(-1.0, 1.0, corner >= 2u);
+    let beyond_b = (corner & 1u) == 1u;
+    let along = b.xy - a.xy;
+    let len = length(along);
+    let w = select(vec2<f32>(1.0, 0.0), along / len, len > 1e-12);
+    let u = vec2<f32>(-w.y, w.x);
+    let half = r + frame.light_dir.w * scale;
+    let xy = select(a.xy - w * half, b.xy + w * half, beyond_b) + u * half * side;
+    // Depth along the axis (a plane, as the rasteriser interpolates it); an
+    // axis seen end-on takes its middle.
+    var z = 0.5 * (a.z + b.z);
+    if (len > r) {
+        z = mix(a.z, b.z, dot(xy - a.xy, along) / (len * len));
+    }
+    var out: ShadowOut;
+    out.position = vec4<f32>(xy, clamp(z, 0.0, 1.0), 1.0);
+    out.xy = xy;
+    out.ends = vec4<f32>(a.xy, b.xy);
+    out.radius = r;
     return out;
-}
-
-// Depth-only pass into the shadow map, capsules placed on the CPU
-// (see capsule::expand): one plain draw instead of one instance each.
-@vertex
-fn vs_shadow_placed(@location(0) position: vec4<f32>) -> @builtin(position) vec4<f32> {
-    return frame.light_view_proj * position;
 }
 
 @fragment
-fn fs_main(in: Out) -> @location(0) vec4<f32> {
-    let n = normalize(in.normal);
-    return to_target(vec4<f32>(shade(in.color.rgb, in.world, n), in.color.a));
+fn fs_shadow(in: ShadowOut) {
+    let a = in.ends.xy;
+    let ab = in.ends.zw - a;
+    let s = clamp(dot(in.xy - a, ab) / max(dot(ab, ab), 1e-30), 0.0, 1.0);
+    if (distance(in.xy, a + ab * s) > in.radius) {
+        discard;
+    }
 }

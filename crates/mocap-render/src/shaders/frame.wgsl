@@ -25,6 +25,9 @@ struct Frame {
     floor_color: vec4<f32>,
     // The floor area the shadow map covers: min x, min z, max x, max z.
     shadow_rect: vec4<f32>,
+    // x: the least coverage of a pixel an outline draws (0 on a multisampled
+    // target, where coverage becomes samples; 0.5 on one sample); yzw unused.
+    samples: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;

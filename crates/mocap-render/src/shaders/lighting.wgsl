@@ -50,6 +50,7 @@ fn shade(base: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     let h = normalize(l + v);
     let specular = pow(max(dot(n, h), 0.0), 40.0) * 0.25 * visible;
     // Soft rim so silhouettes read against the dark background.
-    let rim = pow(1.0 - max(dot(n, v), 0.0), 3.0) * 0.15;
+    let edge = 1.0 - max(dot(n, v), 0.0);
+    let rim = edge * edge * edge * 0.15;
     return base * (ambient * 0.75 + KEY * diffuse * 0.85) + vec3<f32>(specular + rim * 0.5);
 }
