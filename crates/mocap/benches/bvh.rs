@@ -112,6 +112,10 @@ fn main() {
     let mut buf = Vec::with_capacity(input.len() / 4);
     let floor = best(10, || bare_floor(&input[rows_at..], &mut buf));
     println!("bare split+parse floor  {:>8.1} ms  {:>7.0} MB/s  (1 thread)", floor.as_secs_f64() * 1e3, mb / floor.as_secs_f64());
+    println!(
+        "  parse / (threads × floor) = {:.2} (aim >= 0.9)",
+        (mb / ours.as_secs_f64()) / (threads as f64 * mb / floor.as_secs_f64())
+    );
 
     let anim = best(3, || bvh_anim::from_bytes(&input[..]).expect("bvh_anim parse"));
     println!("bvh_anim::from_bytes    {:>8.1} ms  {:>7.0} MB/s", anim.as_secs_f64() * 1e3, mb / anim.as_secs_f64());
