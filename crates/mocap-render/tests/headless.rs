@@ -507,6 +507,12 @@ fn capsule_impostors_cover_exactly_what_their_rays_meet() {
         assert!(drawn > 0, "{what}: drawn");
         assert!(wrong.is_empty(), "{what}: {} of {drawn} drawn pixels wrong, e.g. {:?}", wrong.len(), &wrong[..wrong.len().min(5)]);
     }
+    // Beside and behind the eye, out of view: nothing drawn.
+    for (a, b) in [(Vec3::new(1.0, 0.0, 3.2), Vec3::new(1.5, 0.0, 2.8)), (Vec3::new(0.0, 0.0, 3.5), Vec3::new(0.0, 0.3, 4.0))] {
+        let scene = Scene { background, capsules: vec![Capsule { a, b, radius: 0.2, color: [255, 255, 255, 255] }], shadows: false, ..Scene::default() };
+        renderer.render(&device, &queue, &target, &scene, &camera);
+        assert!(read_pixels(&device, &queue, &target).chunks(4).all(|p| p == background), "a capsule out of view at {a}-{b} draws nothing");
+    }
 }
 
 #[test]

@@ -76,6 +76,25 @@ fn sphere_bound(p: vec3<f32>, r: f32) -> vec3<f32> {
     return vec3<f32>(p.xy / z, reach);
 }
 
+// Whether the sphere of view-space centre `c` and radius `r` lies wholly
+// outside the view (beyond one of its planes in clip space).
+fn outside_view(c: vec3<f32>, r: f32) -> bool {
+    let p = frame.projection;
+    let x = vec4<f32>(p[0][0], p[1][0], p[2][0], p[3][0]);
+    let y = vec4<f32>(p[0][1], p[1][1], p[2][1], p[3][1]);
+    let z = vec4<f32>(p[0][2], p[1][2], p[2][2], p[3][2]);
+    let w = vec4<f32>(p[0][3], p[1][3], p[2][3], p[3][3]);
+    // w ± x, w ± y >= 0 (the sides), z >= 0 (near), w - z >= 0 (far).
+    let planes = array<vec4<f32>, 6>(w + x, w - x, w + y, w - y, z, w - z);
+    for (var i = 0; i < 6; i++) {
+        let n = planes[i];
+        if (dot(n.xyz, c) + n.w < -r * length(n.xyz)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 // Size of one pixel in ray coordinates.
 fn pixel_in_ray_units() -> f32 {
     return 2.0 / max(frame.projection[1][1] * frame.viewport.y, 1e-20);
@@ -94,8 +113,15 @@ fn vs_main(v: CapsuleIn) -> Out {
     var ray: vec2<f32>;
     var depth: f32;
     let near = near_distance();
+    var out: Out;
     if (ea.z < 0.0 || eb.z < 0.0) {
-        // Too close to the eye for a bound: the whole view (rare).
+        // Too close to the eye for a bound: the whole view (rare), unless the
+        // capsule is out of view (beside or behind the eye): then all four
+        // corners at one point, nothing to draw.
+        if (outside_view(0.5 * (a + b), 0.5 * length(b - a) + r)) {
+            out.position = vec4<f32>(2.0, 2.0, 0.5, 1.0);
+            return out;
+        }
         ray = ray_of_ndc(vec2<f32>(select(-1.0, 1.0, beyond_b), side));
         depth = near * 1.001;
     } else {
@@ -120,7 +146,6 @@ fn vs_main(v: CapsuleIn) -> Out {
     if (!is_perspective()) {
         view_point = vec4<f32>(ray, -depth, 1.0);
     }
-    var out: Out;
     out.position = frame.projection * view_point;
     // View space back to the world (the view matrix is a rotation + shift).
     let rot = transpose(mat3x3<f32>(frame.view[0].xyz, frame.view[1].xyz, frame.view[2].xyz));
