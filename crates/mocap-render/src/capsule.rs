@@ -22,6 +22,7 @@ pub(crate) struct CapsuleInstance {
 }
 
 impl CapsuleInstance {
+    /// The scene's capsule, its colour made linear.
     pub fn new(c: &Capsule) -> CapsuleInstance {
         CapsuleInstance { a: c.a.to_array(), radius: c.radius, b: c.b.to_array(), color: crate::srgb_to_linear(c.color) }
     }
