@@ -10,6 +10,7 @@
 
 use crate::Capsule;
 use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
 
 /// One capsule as the CPU describes it (linear colour).
 #[repr(C)]
@@ -27,10 +28,9 @@ impl CapsuleInstance {
         CapsuleInstance { a: c.a.to_array(), radius: c.radius, b: c.b.to_array(), color: crate::srgb_to_linear(c.color) }
     }
 
-    /// A sphere as a capsule of zero length.
-    pub fn sphere(s: &crate::Sphere) -> CapsuleInstance {
-        let center = s.center.to_array();
-        CapsuleInstance { a: center, radius: s.radius, b: center, color: crate::srgb_to_linear(s.color) }
+    /// A capsule that only casts a shadow (no colour; a sphere is `a` = `b`).
+    pub fn caster(a: Vec3, b: Vec3, radius: f32) -> CapsuleInstance {
+        CapsuleInstance { a: a.to_array(), radius, b: b.to_array(), color: [0.0; 4] }
     }
 }
 
@@ -57,9 +57,10 @@ const QUAD: [u32; 6] = [0, 1, 2, 2, 1, 3];
 
 /// Appends each capsule's four corners to `vertices` and its two triangles to
 /// `indices`. Stops before an index would pass `u32::MAX`.
-pub(crate) fn expand(capsules: &[CapsuleInstance], vertices: &mut Vec<CapsuleVertex>, indices: &mut Vec<u32>) {
-    vertices.reserve(capsules.len() * 4);
-    indices.reserve(capsules.len() * 6);
+pub(crate) fn expand(capsules: impl Iterator<Item = CapsuleInstance>, vertices: &mut Vec<CapsuleVertex>, indices: &mut Vec<u32>) {
+    let (fewest, _) = capsules.size_hint();
+    vertices.reserve(fewest * 4);
+    indices.reserve(fewest * 6);
     for c in capsules {
         let Some(base) = u32::try_from(vertices.len()).ok().filter(|b| b.checked_add(4).is_some()) else { return };
         for corner in 0..4 {
@@ -81,7 +82,7 @@ mod tests {
         ];
         let mut vertices = vec![CapsuleVertex::zeroed()];
         let mut indices = Vec::new();
-        expand(&capsules, &mut vertices, &mut indices);
+        expand(capsules.into_iter(), &mut vertices, &mut indices);
         assert_eq!(vertices.len(), 1 + 8);
         assert_eq!(indices, [1, 2, 3, 3, 2, 4, 5, 6, 7, 7, 6, 8]);
         for (k, v) in vertices[1..].iter().enumerate() {

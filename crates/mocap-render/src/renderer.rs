@@ -49,8 +49,6 @@ pub struct SceneRenderer {
     skinned: SkinnedCache,
     line_scratch: Vec<LineInstance>,
     sphere_scratch: Vec<SphereInstance>,
-    capsule_scratch: Vec<CapsuleInstance>,
-    caster_scratch: Vec<CapsuleInstance>,
     draw_calls: u32,
     /// Physical pixels per logical pixel; scales line widths.
     pub pixels_per_point: f32,
@@ -142,8 +140,6 @@ impl SceneRenderer {
             skinned,
             line_scratch: Vec::new(),
             sphere_scratch: Vec::new(),
-            capsule_scratch: Vec::new(),
-            caster_scratch: Vec::new(),
             draw_calls: 0,
             pixels_per_point: 1.0,
             fast_look: false,
@@ -310,21 +306,18 @@ impl SceneRenderer {
         self.overlay_lines.upload(device, queue, &self.line_scratch);
         self.sphere_scratch.clear();
         self.sphere_scratch.extend(scene.spheres.iter().map(SphereInstance::new));
-        self.capsule_scratch.clear();
-        self.capsule_scratch.extend(scene.capsules.iter().map(CapsuleInstance::new));
-        // The casters that are not drawn lit (the lit capsules cast too).
-        self.caster_scratch.clear();
-        if scene.shadows {
-            self.caster_scratch.extend(scene.spheres.iter().map(CapsuleInstance::sphere));
-            self.caster_scratch.extend(scene.shadow_casters.iter().map(CapsuleInstance::new));
-        }
+        // The casters that are not drawn lit (the lit capsules cast too):
+        // spheres (capsules of zero length) and capsules that only cast.
+        let spheres = scene.spheres.iter().map(|s| (s.center, s.center, s.radius));
+        let only_cast = spheres.chain(scene.shadow_casters.iter().map(|c| (c.a, c.b, c.radius)));
         let floor_y = scene.grid.as_ref().map(|g| g.center.y);
         self.meshes.prepare(device, queue, &scene.meshes);
         self.skinned.prepare(device, queue, &scene.skinned);
         let skinned_bounds = scene.skinned.iter().filter_map(SkinnedDraw::world_bounds);
         let mesh_bounds = scene.meshes.iter().filter_map(|m| m.world_bounds()).chain(skinned_bounds).filter(|_| scene.shadows);
-        let capsule_bounds = caster_bounds(&self.capsule_scratch).filter(|_| scene.shadows);
-        let bounds = mesh_bounds.chain(capsule_bounds).chain(caster_bounds(&self.caster_scratch)).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
+        let casters = scene.capsules.iter().map(|c| (c.a, c.b, c.radius)).chain(only_cast.clone());
+        let capsule_bounds = if scene.shadows { caster_bounds(casters) } else { None };
+        let bounds = mesh_bounds.chain(capsule_bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         let map_size = self.shadow_map().size;
         let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, map_size));
         let uniforms = FrameUniforms::new(camera, size, target.sample_count(), self.format, scene.grid.as_ref(), light.as_ref(), self.fast_look);
@@ -332,10 +325,11 @@ impl SceneRenderer {
         self.spheres.upload(device, queue, &self.sphere_scratch);
         let capsules = &mut self.capsules;
         capsules.clear();
-        capsule::expand(&self.capsule_scratch, &mut capsules.vertices, &mut capsules.indices);
+        capsule::expand(scene.capsules.iter().map(CapsuleInstance::new), &mut capsules.vertices, &mut capsules.indices);
         self.lit_indices = capsules.indices.len() as u32;
         if light.is_some() {
-            capsule::expand(&self.caster_scratch, &mut capsules.vertices, &mut capsules.indices);
+            let shadow_only = only_cast.map(|(a, b, radius)| CapsuleInstance::caster(a, b, radius));
+            capsule::expand(shadow_only, &mut capsules.vertices, &mut capsules.indices);
             self.caster_indices = capsules.indices.len() as u32;
         } else {
             self.caster_indices = 0;
@@ -345,11 +339,11 @@ impl SceneRenderer {
     }
 }
 
-/// The box around every finite caster (ends grown by the radius), if any.
-fn caster_bounds(casters: &[CapsuleInstance]) -> Option<(Vec3, Vec3)> {
+/// The box around every finite caster (ends `a`, `b` grown by the radius), if any.
+fn caster_bounds(casters: impl Iterator<Item = (Vec3, Vec3, f32)>) -> Option<(Vec3, Vec3)> {
     let (mut min, mut max) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    for c in casters {
-        let (a, b, r) = (Vec3::from(c.a), Vec3::from(c.b), Vec3::splat(c.radius.abs()));
+    for (a, b, radius) in casters {
+        let r = Vec3::splat(radius.abs());
         if a.is_finite() && b.is_finite() && r.is_finite() {
             min = min.min(a.min(b) - r);
             max = max.max(a.max(b) + r);

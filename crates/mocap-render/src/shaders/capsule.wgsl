@@ -95,6 +95,23 @@ fn outside_view(c: vec3<f32>, r: f32) -> bool {
     return false;
 }
 
+// Corner `corner` (0: behind `a`, 1: beyond `b`, on one side; 2 and 3 on the
+// other) of a rectangle along the segment `a`–`b` in a plane holding the
+// circles of radius `ra` around `a` and `rb` around `b` (so their hull), grown
+// by `margin`.
+fn quad_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32) -> vec2<f32> {
+    let k = u32(corner + 0.5);
+    let side = select(-1.0, 1.0, k >= 2u);
+    let along = b - a;
+    let len = length(along);
+    let w = select(vec2<f32>(1.0, 0.0), along / len, len > 1e-12);
+    let u = vec2<f32>(-w.y, w.x);
+    // Either circle may reach farther back or forward (an axis seen end-on).
+    let back = min(-ra, len - rb) - margin;
+    let forward = max(len + rb, ra) + margin;
+    return a + w * select(back, forward, (k & 1u) == 1u) + u * (max(ra, rb) + margin) * side;
+}
+
 // Size of one pixel in ray coordinates.
 fn pixel_in_ray_units() -> f32 {
     return 2.0 / max(frame.projection[1][1] * frame.viewport.y, 1e-20);
@@ -105,9 +122,6 @@ fn vs_main(v: CapsuleIn) -> Out {
     let a = (frame.view * vec4<f32>(v.a, 1.0)).xyz;
     let b = (frame.view * vec4<f32>(v.b, 1.0)).xyz;
     let r = abs(v.radius);
-    let corner = u32(v.corner + 0.5);
-    let side = select(-1.0, 1.0, corner >= 2u);
-    let beyond_b = (corner & 1u) == 1u;
     let ea = sphere_bound(a, r);
     let eb = sphere_bound(b, r);
     var ray: vec2<f32>;
@@ -122,23 +136,15 @@ fn vs_main(v: CapsuleIn) -> Out {
             out.position = vec4<f32>(2.0, 2.0, 0.5, 1.0);
             return out;
         }
-        ray = ray_of_ndc(vec2<f32>(select(-1.0, 1.0, beyond_b), side));
+        let k = u32(v.corner + 0.5);
+        ray = ray_of_ndc(vec2<f32>(select(-1.0, 1.0, (k & 1u) == 1u), select(-1.0, 1.0, k >= 2u)));
         depth = near * 1.001;
     } else {
         // A rectangle along the axis's image holding both end circles (so
         // their hull, the capsule's outline), with room for the edge filter
         // on a multisampled target (coverage falls to 0 half a pixel out).
-        let along = eb.xy - ea.xy;
-        let len = length(along);
-        let w = select(vec2<f32>(1.0, 0.0), along / len, len > 1e-12);
-        let u = vec2<f32>(-w.y, w.x);
         let margin = (0.75 - frame.samples.x) * pixel_in_ray_units();
-        let half = max(ea.z, eb.z) + margin;
-        // From `a`'s image along the axis's: either circle may reach farther
-        // back or forward (an axis seen nearly end-on).
-        let back = min(-ea.z, len - eb.z) - margin;
-        let forward = max(len + eb.z, ea.z) + margin;
-        ray = ea.xy + w * select(back, forward, beyond_b) + u * half * side;
+        ray = quad_corner(v.corner, ea.xy, ea.z, eb.xy, eb.z, margin);
         // In front of the capsule, behind the near plane.
         depth = max(min(-a.z, -b.z) - r, near * 1.001);
     }
@@ -264,17 +270,12 @@ fn vs_shadow(v: CapsuleIn) -> ShadowOut {
     let b = (m * vec4<f32>(v.b, 1.0)).xyz;
     let scale = length(vec3<f32>(m[0][0], m[1][0], m[2][0]));
     let r = abs(v.radius) * scale;
-    let corner = u32(v.corner + 0.5);
-    let side = select(-1.0, 1.0, corner >= 2u);
-    let beyond_b = (corner & 1u) == 1u;
-    let along = b.xy - a.xy;
-    let len = length(along);
-    let w = select(vec2<f32>(1.0, 0.0), along / len, len > 1e-12);
-    let u = vec2<f32>(-w.y, w.x);
-    let half = r + frame.light_dir.w * scale;
-    let xy = select(a.xy - w * half, b.xy + w * half, beyond_b) + u * half * side;
+    // One texel of room.
+    let xy = quad_corner(v.corner, a.xy, r, b.xy, r, frame.light_dir.w * scale);
     // Depth along the axis (a plane, as the rasteriser interpolates it); an
     // axis seen end-on takes its middle.
+    let along = b.xy - a.xy;
+    let len = length(along);
     var z = 0.5 * (a.z + b.z);
     if (len > r) {
         z = mix(a.z, b.z, dot(xy - a.xy, along) / (len * len));
