@@ -30,6 +30,7 @@ mod camera;
 mod capsule;
 mod color;
 mod figure;
+mod floor_cache;
 mod grid;
 mod lines;
 mod mesh;
@@ -57,5 +58,7 @@ pub use target::RenderTarget;
 pub use glam;
 pub use wgpu;
 
-/// Depth format used by every pipeline and [`RenderTarget`].
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth24Plus;
+/// Depth format used by every pipeline and [`RenderTarget`]: 32-bit float,
+/// which (unlike `Depth24Plus`) can be copied, so a frame can start from the
+/// floor's depth drawn before (floor_cache.rs).
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;

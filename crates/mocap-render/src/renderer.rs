@@ -5,9 +5,11 @@
 //! capsule impostor, and each mesh), then the floor and its shadows, the capsule
 //! impostors (one quad each, see capsule.rs), the meshes, the sphere impostors,
 //! the lines and the overlay lines (drawn over everything, e.g. bone axes inside
-//! capsules).
+//! capsules). Under a still camera the floor is drawn once, into a third pass,
+//! and later frames start from copies of its colour and depth (floor_cache.rs).
 
 use crate::buffer::GrowingBuffer;
+use crate::floor_cache::{FloorCache, FloorCopy, FloorKey};
 use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
 use crate::lines::{LINE_ATTRIBUTES, LineInstance};
 use crate::mesh::MeshCache;
@@ -47,6 +49,10 @@ pub struct SceneRenderer {
     caster_indices: u32,
     meshes: MeshCache,
     skinned: SkinnedCache,
+    /// The floor of a still camera, drawn once (floor_cache.rs).
+    floor_cache: FloorCache,
+    /// Whether the last frame's floor was copied from the cache.
+    floor_copied: bool,
     line_scratch: Vec<LineInstance>,
     sphere_scratch: Vec<SphereInstance>,
     draw_calls: u32,
@@ -138,6 +144,9 @@ impl SceneRenderer {
             caster_indices: 0,
             meshes,
             skinned,
+            // OpenGL (WebGL2) cannot copy multisampled targets.
+            floor_cache: FloorCache::new(device.adapter_info().backend != wgpu::Backend::Gl),
+            floor_copied: false,
             line_scratch: Vec::new(),
             sphere_scratch: Vec::new(),
             draw_calls: 0,
@@ -159,6 +168,12 @@ impl SceneRenderer {
     /// Draw calls recorded for the last frame (at most 8 plus 2 per mesh drawn).
     pub fn draw_calls(&self) -> u32 {
         self.draw_calls
+    }
+
+    /// Whether the last frame started from the floor drawn for an earlier one
+    /// (see floor_cache.rs) instead of drawing it.
+    pub fn floor_copied(&self) -> bool {
+        self.floor_copied
     }
 
     /// Makes the pipelines for targets of `sample_count` samples if they are not
@@ -188,27 +203,38 @@ impl SceneRenderer {
         if self.fast_look && self.fast_shadow.is_none() {
             self.fast_shadow = Some(ShadowMap::new(device, shadow::FAST_SIZE, &self.shadow_layout));
         }
-        let shadows = self.upload(device, queue, target, scene, camera);
+        let (shadows, uniforms) = self.upload(device, queue, target, scene, camera);
         self.draw_calls = 0;
         if shadows {
             self.encode_shadow_pass(encoder);
         }
-        let (view, resolve_target) = target.color_attachment();
         let [r, g, b, a] = crate::color::for_target(scene.background, self.format);
+        let samples = target.sample_count();
+        let floor = scene.grid.is_some().then(|| FloorKey::new(&uniforms, [r, g, b, a], target.size(), samples, self.format));
+        let copy = self.floor_cache.plan(device, floor);
+        self.floor_copied = copy.is_some();
+        let background = wgpu::Color { r: r as f64, g: g as f64, b: b as f64, a: a as f64 };
+        if let Some(copy) = &copy {
+            if copy.fill {
+                self.encode_floor_fill(encoder, copy, target.sample_count(), background);
+            }
+            let [width, height] = target.size();
+            let extent = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
+            encoder.copy_texture_to_texture(copy.color.as_image_copy(), target.attachment_texture().as_image_copy(), extent);
+            encoder.copy_texture_to_texture(copy.depth.as_image_copy(), target.depth_texture().as_image_copy(), extent);
+        }
+        let (view, resolve_target) = target.color_attachment();
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mocap scene"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                 view,
                 depth_slice: None,
                 resolve_target,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color { r: r as f64, g: g as f64, b: b as f64, a: a as f64 }),
-                    store: wgpu::StoreOp::Store,
-                },
+                ops: wgpu::Operations { load: load_or_clear(copy.is_some(), background), store: wgpu::StoreOp::Store },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: target.depth_view(),
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+                depth_ops: Some(wgpu::Operations { load: load_or_clear(copy.is_some(), 1.0), store: wgpu::StoreOp::Discard }),
                 stencil_ops: None,
             }),
             timestamp_writes: None,
@@ -217,12 +243,13 @@ impl SceneRenderer {
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
         pass.set_bind_group(1, &self.shadow_map().bind_group, &[]);
-        let samples = target.sample_count();
-        let pipelines = self.other_pipelines.iter().find(|(n, _)| *n == samples).map_or(&self.pipelines, |(_, p)| p);
+        let pipelines = pipelines_for(&self.pipelines, &self.other_pipelines, samples);
         if scene.grid.is_some() {
-            pass.set_pipeline(&pipelines.floor);
-            pass.draw(0..6, 0..1);
-            self.draw_calls += 1;
+            if copy.is_none() {
+                pass.set_pipeline(&pipelines.floor);
+                pass.draw(0..6, 0..1);
+                self.draw_calls += 1;
+            }
             if shadows {
                 pass.set_pipeline(&pipelines.floor_shadow);
                 pass.draw(0..6, 0..1);
@@ -269,6 +296,35 @@ impl SceneRenderer {
         }
     }
 
+    /// Draws the floor over `background` into the floor cache's textures (of
+    /// the target's size and `samples`).
+    fn encode_floor_fill(&mut self, encoder: &mut wgpu::CommandEncoder, cache: &FloorCopy, samples: u32, background: wgpu::Color) {
+        let view = cache.color.create_view(&Default::default());
+        let depth = cache.depth.create_view(&Default::default());
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("mocap floor cache"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(background), store: wgpu::StoreOp::Store },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &depth,
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &self.frame_group, &[]);
+        pass.set_bind_group(1, &self.shadow_map().bind_group, &[]);
+        pass.set_pipeline(&pipelines_for(&self.pipelines, &self.other_pipelines, samples).floor);
+        pass.draw(0..6, 0..1);
+        self.draw_calls += 1;
+    }
+
     fn encode_shadow_pass(&mut self, encoder: &mut wgpu::CommandEncoder) {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mocap shadow map"),
@@ -294,8 +350,9 @@ impl SceneRenderer {
         }
     }
 
-    /// Uploads instances and uniforms; returns whether the shadow pass is needed.
-    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget, scene: &Scene, camera: &Camera) -> bool {
+    /// Uploads instances and uniforms; returns whether the shadow pass is
+    /// needed, and the uniforms.
+    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget, scene: &Scene, camera: &Camera) -> (bool, FrameUniforms) {
         let size = target.size();
         let ppp = self.pixels_per_point;
         self.line_scratch.clear();
@@ -335,8 +392,19 @@ impl SceneRenderer {
             self.caster_indices = 0;
         }
         capsules.upload(device, queue);
-        light.is_some()
+        (light.is_some(), uniforms)
     }
+}
+
+/// Keeps what an attachment holds (`load`), or else clears it to `clear`.
+fn load_or_clear<T>(load: bool, clear: T) -> wgpu::LoadOp<T> {
+    if load { wgpu::LoadOp::Load } else { wgpu::LoadOp::Clear(clear) }
+}
+
+/// The pipelines for targets of `samples` samples: `main`, or one of `others`
+/// (made by `prepare_pipelines`).
+fn pipelines_for<'a>(main: &'a Pipelines, others: &'a [(u32, Pipelines)], samples: u32) -> &'a Pipelines {
+    others.iter().find(|(n, _)| *n == samples).map_or(main, |(_, p)| p)
 }
 
 /// The box around every finite caster (ends `a`, `b` grown by the radius), if any.

@@ -7,7 +7,9 @@ pub struct RenderTarget {
     pub color: wgpu::Texture,
     /// View of [`RenderTarget::color`].
     pub color_view: wgpu::TextureView,
-    msaa_view: Option<wgpu::TextureView>,
+    /// The multisampled attachment, when there is one.
+    msaa: Option<(wgpu::Texture, wgpu::TextureView)>,
+    depth: wgpu::Texture,
     depth_view: wgpu::TextureView,
     size: [u32; 2],
     format: wgpu::TextureFormat,
@@ -36,17 +38,21 @@ impl RenderTarget {
             "mocap color",
             format,
             1,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST,
         );
-        let msaa_view = (sample_count > 1).then(|| {
-            texture("mocap msaa", format, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT).create_view(&Default::default())
+        // Copy destinations too: a frame may start from the floor drawn before (floor_cache.rs).
+        let msaa = (sample_count > 1).then(|| {
+            let msaa = texture("mocap msaa", format, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_DST);
+            let view = msaa.create_view(&Default::default());
+            (msaa, view)
         });
-        let depth = texture("mocap depth", crate::DEPTH_FORMAT, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT);
+        let depth = texture("mocap depth", crate::DEPTH_FORMAT, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_DST);
         RenderTarget {
             color_view: color.create_view(&Default::default()),
             color,
-            msaa_view,
+            msaa,
             depth_view: depth.create_view(&Default::default()),
+            depth,
             size,
             format,
             sample_count,
@@ -75,10 +81,20 @@ impl RenderTarget {
 
     /// The attachment to render into and the texture to resolve to, if any.
     pub(crate) fn color_attachment(&self) -> (&wgpu::TextureView, Option<&wgpu::TextureView>) {
-        match &self.msaa_view {
-            Some(msaa) => (msaa, Some(&self.color_view)),
+        match &self.msaa {
+            Some((_, msaa)) => (msaa, Some(&self.color_view)),
             None => (&self.color_view, None),
         }
+    }
+
+    /// The texture drawn into: the multisampled one, or else the colour texture.
+    pub(crate) fn attachment_texture(&self) -> &wgpu::Texture {
+        self.msaa.as_ref().map_or(&self.color, |(texture, _)| texture)
+    }
+
+    /// The depth texture.
+    pub(crate) fn depth_texture(&self) -> &wgpu::Texture {
+        &self.depth
     }
 
     /// The depth attachment.

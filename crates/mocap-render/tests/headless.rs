@@ -588,3 +588,52 @@ fn capsule_outlines_are_smoothed_on_a_multisampled_target() {
     }
     assert!(fringe > 10 && fringe_blended * 2 > fringe, "the outline is smoothed: {fringe_blended} of {fringe} pixels just outside it are blends");
 }
+
+#[test]
+fn a_still_camera_starts_each_frame_from_the_floor_drawn_before_with_the_same_pixels() {
+    for samples in [1, 4] {
+        let Some((device, queue, mut renderer, target)) = setup(samples) else { return };
+        // Each frame as a new renderer draws it (its first frame draws its floor).
+        let fresh = |scene: &Scene, camera: &Camera| {
+            let mut first = SceneRenderer::new(&device, FORMAT, samples);
+            first.render(&device, &queue, &target, scene, camera);
+            assert!(!first.floor_copied(), "a first frame draws its floor");
+            read_pixels(&device, &queue, &target)
+        };
+        let differing = |a: &[u8], b: &[u8]| a.chunks(4).zip(b.chunks(4)).filter(|(p, q)| p != q).count();
+        let grid = Grid::floor(Vec3::new(-1.5, 0.0, -1.5), Vec3::new(1.5, 0.0, 1.5), 0.25, 0.5);
+        let mut scene = Scene { background: [20, 30, 40, 255], grid: Some(grid), ..Scene::default() };
+        // A pole moving through the floor: the floor's depth hides its lower end.
+        let pole = |k: f32| Capsule { a: Vec3::new(-0.4 + 0.2 * k, -0.6, 0.0), b: Vec3::new(0.3, 1.4, 0.1 * k), radius: 0.2, color: [200, 60, 60, 255] };
+        let still = Camera::look_at(Vec3::new(1.0, 2.0, 4.0), Vec3::new(0.0, 0.4, 0.0), 0.8, 1.0);
+        for frame in 0..4 {
+            scene.capsules = vec![pole(frame as f32)];
+            scene.shadows = frame != 2;
+            renderer.render(&device, &queue, &target, &scene, &still);
+            assert_eq!(renderer.floor_copied(), frame > 0, "{samples} samples, frame {frame}: the floor is copied from the second frame of a still camera on");
+            let pixels = read_pixels(&device, &queue, &target);
+            let expected = fresh(&scene, &still);
+            assert_eq!(differing(&pixels, &expected), 0, "{samples} samples, frame {frame}: the pixels of drawing the floor");
+            let red = pixels.chunks(4).filter(|p| p[0] > 100 && p[0] as u32 > 2 * p[1] as u32).count();
+            let floor = pixels.chunks(4).filter(|p| p[..3] != scene.background[..3]).count();
+            assert!(red > 50 && floor > red + 1000, "{samples} samples, frame {frame}: the pole ({red}) on the floor ({floor})");
+        }
+        // The camera moves: that frame draws its floor, the next reuses the new one.
+        let moved = Camera::look_at(Vec3::new(-1.5, 2.5, 3.5), Vec3::new(0.0, 0.4, 0.0), 0.8, 1.0);
+        for frame in 0..2 {
+            renderer.render(&device, &queue, &target, &scene, &moved);
+            assert_eq!(renderer.floor_copied(), frame == 1, "{samples} samples: after a move, frame {frame}");
+            assert_eq!(differing(&read_pixels(&device, &queue, &target), &fresh(&scene, &moved)), 0, "{samples} samples: moved, frame {frame}");
+        }
+        // A frame without a floor, then the floor again: drawn, then copied.
+        let bare = Scene { grid: None, ..scene.clone() };
+        renderer.render(&device, &queue, &target, &bare, &moved);
+        assert!(!renderer.floor_copied());
+        assert_eq!(differing(&read_pixels(&device, &queue, &target), &fresh(&bare, &moved)), 0, "{samples} samples: no floor");
+        for frame in 0..2 {
+            renderer.render(&device, &queue, &target, &scene, &moved);
+            assert_eq!(renderer.floor_copied(), frame == 1, "{samples} samples: the floor back, frame {frame}");
+            assert_eq!(differing(&read_pixels(&device, &queue, &target), &fresh(&scene, &moved)), 0, "{samples} samples: the floor back, frame {frame}");
+        }
+    }
+}

@@ -1,0 +1,113 @@
+//! The floor drawn once and copied into each frame while nothing it depends on
+//! changes.
+//!
+//! On a software rasteriser the floor's shader (grid lines, their fade, the
+//! fade to the background) is one of a frame's largest costs: it covers much
+//! of the view, and at 4× MSAA every pixel's samples are blended and stored.
+//! A clip playing under a still camera redraws the same floor pixels every
+//! frame. So once a frame's floor inputs equal the previous frame's, the floor
+//! is drawn into a colour and a depth texture of the target's format, size and
+//! sample count, and each frame after that starts from copies of them (plain
+//! memory copies) instead of clears and the floor's shader. The pixels are
+//! those of drawing the floor (tested in `tests/headless.rs`). A moving camera
+//! never fills the textures: a frame whose floor differs from the last one's
+//! draws the floor directly.
+
+use crate::uniforms::FrameUniforms;
+
+/// The largest colour texture cached (bytes; the depth is as large): a
+/// 2560×1440 target at 4× MSAA.
+const MAX_BYTES: u64 = 64 << 20;
+
+/// Everything the floor's pixels depend on.
+#[derive(Clone, Copy, PartialEq)]
+pub(crate) struct FloorKey {
+    /// The floor's uniforms (view, projection, viewport, floor placement and colours).
+    uniforms: [[f32; 4]; 14],
+    /// The clear colour under the floor, as the target stores it.
+    background: [f32; 4],
+    size: [u32; 2],
+    samples: u32,
+    format: wgpu::TextureFormat,
+}
+
+impl FloorKey {
+    /// The key of a frame drawn with `uniforms` over `background` into a
+    /// target of `size`, `samples` and `format`.
+    pub fn new(uniforms: &FrameUniforms, background: [f32; 4], size: [u32; 2], samples: u32, format: wgpu::TextureFormat) -> FloorKey {
+        let u = uniforms;
+        let [v0, v1, v2, v3] = u.view;
+        let [p0, p1, p2, p3] = u.projection;
+        let mut viewport = u.viewport;
+        // The shadow strength (w) does not change the floor's own pixels.
+        viewport[3] = 0.0;
+        let uniforms = [v0, v1, v2, v3, p0, p1, p2, p3, viewport, u.floor_center, u.floor_grid, u.floor_minor, u.floor_major, u.floor_color];
+        FloorKey { uniforms, background, size, samples, format }
+    }
+
+    fn bytes(&self) -> u64 {
+        let texel = u64::from(self.format.block_copy_size(None).unwrap_or(16));
+        u64::from(self.size[0]) * u64::from(self.size[1]) * u64::from(self.samples) * texel
+    }
+}
+
+/// A frame's floor copied from `color` and `depth`, drawn into them first
+/// when `fill` is set (without one, the frame draws its floor).
+pub(crate) struct FloorCopy {
+    pub color: wgpu::Texture,
+    pub depth: wgpu::Texture,
+    pub fill: bool,
+}
+
+/// The texture holding the floor and what it holds.
+pub(crate) struct FloorCache {
+    /// Whether copies are used at all (not on OpenGL, whose multisampled
+    /// targets cannot be copied).
+    enabled: bool,
+    /// The colour and depth textures and the floor they were made for (its
+    /// size, samples and format are what matter).
+    textures: Option<(wgpu::Texture, wgpu::Texture, FloorKey)>,
+    /// What the texture holds, once filled.
+    holds: Option<FloorKey>,
+    /// The floor of the previous frame (none: it had no floor).
+    previous: Option<FloorKey>,
+}
+
+impl FloorCache {
+    /// An empty cache; `enabled` false makes every frame draw its floor.
+    pub fn new(enabled: bool) -> FloorCache {
+        FloorCache { enabled, textures: None, holds: None, previous: None }
+    }
+
+    /// Plans a frame whose floor is `key` (none: no floor). A floor equal to
+    /// the previous frame's is copied from the cache, filled first when it
+    /// holds another floor; any other frame draws its floor (`None`).
+    pub fn plan(&mut self, device: &wgpu::Device, key: Option<FloorKey>) -> Option<FloorCopy> {
+        let previous = std::mem::replace(&mut self.previous, key);
+        let Some(key) = key.filter(|k| self.enabled && previous == Some(*k) && k.bytes() <= MAX_BYTES) else {
+            return None;
+        };
+        let same_texture = |t: &FloorKey| t.size == key.size && t.samples == key.samples && t.format == key.format;
+        if !self.textures.as_ref().is_some_and(|(_, _, made_for)| same_texture(made_for)) {
+            let texture = |label, format| {
+                device.create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size: wgpu::Extent3d { width: key.size[0], height: key.size[1], depth_or_array_layers: 1 },
+                    mip_level_count: 1,
+                    sample_count: key.samples,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+                    view_formats: &[],
+                })
+            };
+            let color = texture("mocap floor cache", key.format);
+            let depth = texture("mocap floor cache depth", crate::DEPTH_FORMAT);
+            self.textures = Some((color, depth, key));
+            self.holds = None;
+        }
+        let fill = self.holds != Some(key);
+        self.holds = Some(key);
+        self.textures.as_ref().map(|(color, depth, _)| FloorCopy { color: color.clone(), depth: depth.clone(), fill })
+    }
+}
