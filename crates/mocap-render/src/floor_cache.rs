@@ -19,6 +19,13 @@ use crate::uniforms::FrameUniforms;
 /// 2560×1440 target at 4× MSAA.
 const MAX_BYTES: u64 = 64 << 20;
 
+/// Whether frames on `device` may start from copies of the floor: not on
+/// OpenGL (WebGL2), which cannot copy multisampled or depth targets (nor make
+/// them copy destinations).
+pub(crate) fn copies_supported(device: &wgpu::Device) -> bool {
+    device.adapter_info().backend != wgpu::Backend::Gl
+}
+
 /// Everything the floor's pixels depend on.
 #[derive(Clone, Copy, PartialEq)]
 pub(crate) struct FloorKey {

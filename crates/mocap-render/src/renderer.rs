@@ -144,8 +144,7 @@ impl SceneRenderer {
             caster_indices: 0,
             meshes,
             skinned,
-            // OpenGL (WebGL2) cannot copy multisampled targets.
-            floor_cache: FloorCache::new(device.adapter_info().backend != wgpu::Backend::Gl),
+            floor_cache: FloorCache::new(crate::floor_cache::copies_supported(device)),
             floor_copied: false,
             line_scratch: Vec::new(),
             sphere_scratch: Vec::new(),

@@ -34,19 +34,21 @@ impl RenderTarget {
                 view_formats: &[],
             })
         };
+        // Copy destinations too where frames may start from the floor drawn
+        // before (floor_cache.rs).
+        let copy_dst = if crate::floor_cache::copies_supported(device) { wgpu::TextureUsages::COPY_DST } else { wgpu::TextureUsages::empty() };
         let color = texture(
             "mocap color",
             format,
             1,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC | copy_dst,
         );
-        // Copy destinations too: a frame may start from the floor drawn before (floor_cache.rs).
         let msaa = (sample_count > 1).then(|| {
-            let msaa = texture("mocap msaa", format, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_DST);
+            let msaa = texture("mocap msaa", format, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT | copy_dst);
             let view = msaa.create_view(&Default::default());
             (msaa, view)
         });
-        let depth = texture("mocap depth", crate::DEPTH_FORMAT, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_DST);
+        let depth = texture("mocap depth", crate::DEPTH_FORMAT, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT | copy_dst);
         RenderTarget {
             color_view: color.create_view(&Default::default()),
             color,
