@@ -17,6 +17,7 @@ async function pixelStats(context, png, reference) {
   const { data: d } = await decodePng(context, png);
   const r = reference ? (await decodePng(context, reference)).data : null;
   let figure = 0;
+  let floor = 0;
   let darker = 0;
   let blue = 0;
   for (let i = 0; i < d.length; i += 4) {
@@ -24,9 +25,11 @@ async function pixelStats(context, png, reference) {
     if (d[i] > 150 && d[i + 1] > 150 && d[i + 2] > 150 && Math.abs(d[i] - d[i + 2]) < 40) figure += 1;
     // The blue joint balls of stick mode.
     if (d[i + 2] > 150 && d[i + 2] > d[i] + 60) blue += 1;
+    // The floor's grey-blue, lighter than the background (38, 40, 46).
+    if (d[i + 2] >= 50 && d[i + 2] < 140 && d[i + 2] >= d[i] && Math.abs(d[i] - d[i + 1]) < 16) floor += 1;
     if (r && d[i] + d[i + 1] + d[i + 2] + 24 < r[i] + r[i + 1] + r[i + 2]) darker += 1;
   }
-  return { figure, darker, blue };
+  return { figure, floor, darker, blue };
 }
 
 /** The 3D view between the side panels, as PNG bytes. */
@@ -148,9 +151,14 @@ try {
     }, null, { timeout: 30000 }).catch(() => {});
     let size = await canvasSize();
     check(size.width < 0.8 * size.full && size.width > 0.4 * size.full, `the window is drawn at a lower resolution while reduced (${size.width} of ${size.full} pixels wide)`);
+    // Under a still camera the fast look's frames start from the floor drawn
+    // before (copied; on WebGL2 its colour, with its depth drawn).
+    s = await waitState(page, (s) => s.floorCopied);
+    check(s.reduced && s.floorCopied, `playing under a still camera copies the floor (${s.backend})`);
     const png = await view(page, shot('reduced'));
     const px = await pixelStats(context, png);
     check(px.figure > 1000, `the figure is drawn in the fast look (${px.figure} pixels)`);
+    check(px.floor > 20000, `the floor is drawn in the fast look (${px.floor} pixels)`);
     s = await changeAndRender(page, (v) => v.pause());
     check(!s.reduced, 'the paused frame is drawn at full quality');
     // The change of scale asks for one more frame, at full resolution.

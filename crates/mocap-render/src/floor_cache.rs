@@ -8,10 +8,13 @@
 //! frame. So once a frame's floor inputs equal the previous frame's, the floor
 //! is drawn into a colour and a depth texture of the target's format, size and
 //! sample count, and each frame after that starts from copies of them (plain
-//! memory copies) instead of clears and the floor's shader. The pixels are
-//! those of drawing the floor (tested in `tests/headless.rs`). A moving camera
-//! never fills the textures: a frame whose floor differs from the last one's
-//! draws the floor directly.
+//! memory copies) instead of clears and the floor's shader. OpenGL (WebGL2)
+//! copies only single-sampled colour textures: there a single-sampled frame
+//! copies the floor's colour and draws its depth (a depth-only quad), and a
+//! multisampled one draws its floor. The pixels are those of drawing the floor
+//! (tested in `tests/headless.rs`, both ways). A moving camera never fills the
+//! textures: a frame whose floor differs from the last one's draws the floor
+//! directly.
 
 use crate::uniforms::FrameUniforms;
 
@@ -19,11 +22,26 @@ use crate::uniforms::FrameUniforms;
 /// 2560×1440 target at 4× MSAA.
 const MAX_BYTES: u64 = 64 << 20;
 
-/// Whether frames on `device` may start from copies of the floor: not on
-/// OpenGL (WebGL2), which cannot copy multisampled or depth targets (nor make
-/// them copy destinations).
-pub(crate) fn copies_supported(device: &wgpu::Device) -> bool {
-    device.adapter_info().backend != wgpu::Backend::Gl
+/// What a device can copy of the floor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Copies {
+    /// Colour and depth, of any sample count.
+    All,
+    /// Single-sampled colour textures of a non-sRGB format only (OpenGL: no
+    /// multisampled textures, and depth cannot be copied).
+    SingleSampledColor,
+}
+
+impl Copies {
+    /// What `device` can copy.
+    pub fn of(device: &wgpu::Device) -> Copies {
+        if device.adapter_info().backend == wgpu::Backend::Gl { Copies::SingleSampledColor } else { Copies::All }
+    }
+
+    /// Whether multisampled colour and depth targets can be copy destinations.
+    pub fn all(self) -> bool {
+        self == Copies::All
+    }
 }
 
 /// Everything the floor's pixels depend on.
@@ -58,19 +76,21 @@ impl FloorKey {
     }
 }
 
-/// A frame's floor copied from `color` and `depth`, drawn into them first
-/// when `fill` is set (without one, the frame draws its floor).
+/// A frame's floor copied from `color`, and from `depth` when set (else its
+/// depth is drawn), drawn into them first when `fill` is set (without a
+/// `FloorCopy`, the frame draws its floor).
 pub(crate) struct FloorCopy {
     pub color: wgpu::Texture,
+    /// The floor's depth (the fill pass's depth buffer either way).
     pub depth: wgpu::Texture,
+    pub copy_depth: bool,
     pub fill: bool,
 }
 
 /// The texture holding the floor and what it holds.
 pub(crate) struct FloorCache {
-    /// Whether copies are used at all (not on OpenGL, whose multisampled
-    /// targets cannot be copied).
-    enabled: bool,
+    /// What the device copies.
+    copies: Copies,
     /// The colour and depth textures and the floor they were made for (its
     /// size, samples and format are what matter).
     textures: Option<(wgpu::Texture, wgpu::Texture, FloorKey)>,
@@ -81,9 +101,14 @@ pub(crate) struct FloorCache {
 }
 
 impl FloorCache {
-    /// An empty cache; `enabled` false makes every frame draw its floor.
-    pub fn new(enabled: bool) -> FloorCache {
-        FloorCache { enabled, textures: None, holds: None, previous: None }
+    /// An empty cache for a device that copies `copies`.
+    pub fn new(copies: Copies) -> FloorCache {
+        FloorCache { copies, textures: None, holds: None, previous: None }
+    }
+
+    /// Copies only what OpenGL copies, whatever the device (for tests).
+    pub fn limit_to_single_sampled_color(&mut self) {
+        self.copies = Copies::SingleSampledColor;
     }
 
     /// Plans a frame whose floor is `key` (none: no floor). A floor equal to
@@ -91,7 +116,8 @@ impl FloorCache {
     /// holds another floor; any other frame draws its floor (`None`).
     pub fn plan(&mut self, device: &wgpu::Device, key: Option<FloorKey>) -> Option<FloorCopy> {
         let previous = std::mem::replace(&mut self.previous, key);
-        let Some(key) = key.filter(|k| self.enabled && previous == Some(*k) && k.bytes() <= MAX_BYTES) else {
+        let copyable = |k: &FloorKey| self.copies.all() || (k.samples == 1 && !k.format.is_srgb());
+        let Some(key) = key.filter(|k| copyable(k) && previous == Some(*k) && k.bytes() <= MAX_BYTES) else {
             return None;
         };
         let same_texture = |t: &FloorKey| t.size == key.size && t.samples == key.samples && t.format == key.format;
@@ -115,6 +141,7 @@ impl FloorCache {
         }
         let fill = self.holds != Some(key);
         self.holds = Some(key);
-        self.textures.as_ref().map(|(color, depth, _)| FloorCopy { color: color.clone(), depth: depth.clone(), fill })
+        let copy_depth = self.copies.all();
+        self.textures.as_ref().map(|(color, depth, _)| FloorCopy { color: color.clone(), depth: depth.clone(), copy_depth, fill })
     }
 }

@@ -21,6 +21,8 @@ pub(crate) struct PipelineSpec<'a> {
     pub alpha_to_coverage: bool,
     /// A depth-only pass whose fragment shader discards fragments (so it has one).
     pub depth_fragment: bool,
+    /// The colour channels written (none: depth only, in a pass with colour).
+    pub color_writes: wgpu::ColorWrites,
 }
 
 /// Per-instance buffer layout with `attributes` and `stride`.
@@ -33,7 +35,7 @@ pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: 
     let targets = [spec.color.map(|(format, blend)| wgpu::ColorTargetState {
         format,
         blend: Some(blend),
-        write_mask: wgpu::ColorWrites::ALL,
+        write_mask: spec.color_writes,
     })];
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(spec.label),

@@ -9,7 +9,7 @@
 //! and later frames start from copies of its colour and depth (floor_cache.rs).
 
 use crate::buffer::GrowingBuffer;
-use crate::floor_cache::{FloorCache, FloorCopy, FloorKey};
+use crate::floor_cache::{Copies, FloorCache, FloorCopy, FloorKey};
 use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
 use crate::lines::{LINE_ATTRIBUTES, LineInstance};
 use crate::mesh::MeshCache;
@@ -69,6 +69,8 @@ struct Pipelines {
     /// Capsule impostors into the shadow map.
     shadow: wgpu::RenderPipeline,
     floor: wgpu::RenderPipeline,
+    /// The floor's depth only (under a floor whose colour was copied).
+    floor_depth: wgpu::RenderPipeline,
     floor_shadow: wgpu::RenderPipeline,
     capsules: wgpu::RenderPipeline,
     spheres: wgpu::RenderPipeline,
@@ -144,7 +146,7 @@ impl SceneRenderer {
             caster_indices: 0,
             meshes,
             skinned,
-            floor_cache: FloorCache::new(crate::floor_cache::copies_supported(device)),
+            floor_cache: FloorCache::new(Copies::of(device)),
             floor_copied: false,
             line_scratch: Vec::new(),
             sphere_scratch: Vec::new(),
@@ -167,6 +169,13 @@ impl SceneRenderer {
     /// Draw calls recorded for the last frame (at most 8 plus 2 per mesh drawn).
     pub fn draw_calls(&self) -> u32 {
         self.draw_calls
+    }
+
+    /// Copies only the floor's colour and draws its depth, as on OpenGL, whatever
+    /// the device (so tests exercise that path on any adapter).
+    #[doc(hidden)]
+    pub fn copy_only_the_floors_color(&mut self) {
+        self.floor_cache.limit_to_single_sampled_color();
     }
 
     /// Whether the last frame started from the floor drawn for an earlier one
@@ -220,8 +229,11 @@ impl SceneRenderer {
             let [width, height] = target.size();
             let extent = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
             encoder.copy_texture_to_texture(copy.color.as_image_copy(), target.attachment_texture().as_image_copy(), extent);
-            encoder.copy_texture_to_texture(copy.depth.as_image_copy(), target.depth_texture().as_image_copy(), extent);
+            if copy.copy_depth {
+                encoder.copy_texture_to_texture(copy.depth.as_image_copy(), target.depth_texture().as_image_copy(), extent);
+            }
         }
+        let depth_copied = copy.as_ref().is_some_and(|c| c.copy_depth);
         let (view, resolve_target) = target.color_attachment();
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mocap scene"),
@@ -233,7 +245,7 @@ impl SceneRenderer {
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: target.depth_view(),
-                depth_ops: Some(wgpu::Operations { load: load_or_clear(copy.is_some(), 1.0), store: wgpu::StoreOp::Discard }),
+                depth_ops: Some(wgpu::Operations { load: load_or_clear(depth_copied, 1.0), store: wgpu::StoreOp::Discard }),
                 stencil_ops: None,
             }),
             timestamp_writes: None,
@@ -244,8 +256,13 @@ impl SceneRenderer {
         pass.set_bind_group(1, &self.shadow_map().bind_group, &[]);
         let pipelines = pipelines_for(&self.pipelines, &self.other_pipelines, samples);
         if scene.grid.is_some() {
-            if copy.is_none() {
-                pass.set_pipeline(&pipelines.floor);
+            let floor = match &copy {
+                None => Some(&pipelines.floor),
+                Some(_) if !depth_copied => Some(&pipelines.floor_depth),
+                Some(_) => None,
+            };
+            if let Some(floor) = floor {
+                pass.set_pipeline(floor);
                 pass.draw(0..6, 0..1);
                 self.draw_calls += 1;
             }
@@ -491,6 +508,7 @@ impl Pipelines {
             sample_count,
             alpha_to_coverage: false,
             depth_fragment: false,
+            color_writes: wgpu::ColorWrites::ALL,
         };
         // Depth-only passes into the shadow map: every caster's `vs_shadow`, no colour.
         let depth_only = PipelineSpec {
@@ -515,6 +533,19 @@ impl Pipelines {
                 shader: &floor_shader,
                 buffers: &[],
                 color: Some((format, wgpu::BlendState::ALPHA_BLENDING)),
+                cull_back: false,
+                ..base
+            },
+        );
+        let floor_depth = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap floor depth",
+                shader: &floor_shader,
+                fragment_entry: "fs_depth",
+                buffers: &[],
+                color_writes: wgpu::ColorWrites::empty(),
                 cull_back: false,
                 ..base
             },
@@ -598,6 +629,6 @@ impl Pipelines {
             &skinned_shadow_layout,
             &PipelineSpec { label: "mocap skinned shadows", shader: &skinned_shader, buffers: &skinned_buffers, ..depth_only },
         );
-        Pipelines { shadow, floor, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
+        Pipelines { shadow, floor, floor_depth, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
     }
 }

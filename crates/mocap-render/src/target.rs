@@ -34,14 +34,15 @@ impl RenderTarget {
                 view_formats: &[],
             })
         };
-        // Copy destinations too where frames may start from the floor drawn
-        // before (floor_cache.rs).
-        let copy_dst = if crate::floor_cache::copies_supported(device) { wgpu::TextureUsages::COPY_DST } else { wgpu::TextureUsages::empty() };
+        // Copy destinations too, where the device can copy them: a frame may
+        // start from the floor drawn before (floor_cache.rs).
+        let copies_all = crate::floor_cache::Copies::of(device).all();
+        let copy_dst = if copies_all { wgpu::TextureUsages::COPY_DST } else { wgpu::TextureUsages::empty() };
         let color = texture(
             "mocap color",
             format,
             1,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC | copy_dst,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST,
         );
         let msaa = (sample_count > 1).then(|| {
             let msaa = texture("mocap msaa", format, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT | copy_dst);

@@ -113,6 +113,9 @@ pub struct Snapshot {
     pub quality: &'static str,
     /// Whether the last frame was drawn in the fast look (see [`crate::quality`]).
     pub reduced: bool,
+    /// Whether the last frame started from the floor drawn for an earlier one
+    /// (a still camera) instead of drawing it.
+    pub floor_copied: bool,
     /// Last load error, shown in the page.
     pub error: Option<String>,
     /// Joint labels the hierarchy panel drew in its last frame.
@@ -150,6 +153,7 @@ impl Snapshot {
             pose_mode: v.settings.pose_mode,
             quality: v.settings.quality.name(),
             reduced: v.viewport.reduced,
+            floor_copied: v.viewport.floor_copied,
             error: v.error.clone(),
             tree_labels,
             frames_rendered,

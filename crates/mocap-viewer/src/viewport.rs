@@ -64,6 +64,9 @@ pub struct Viewport {
     adaptive: Adaptive,
     /// Whether the last frame was drawn in the fast look.
     pub reduced: bool,
+    /// Whether the last frame started from the floor drawn for an earlier one
+    /// (a still camera; see `mocap_render::SceneRenderer::floor_copied`).
+    pub floor_copied: bool,
 }
 
 impl Viewport {
@@ -124,6 +127,7 @@ impl Viewport {
         gpu.renderer.fast_look = self.reduced;
         let cam = camera.to_camera(size[0] as f32 / size[1] as f32);
         gpu.renderer.render(&rs.device, &rs.queue, target, scene, &cam);
+        self.floor_copied = gpu.renderer.floor_copied();
         if self.frames_rendered == 1 {
             // The fast look's pipelines, after the first frame is out: compiled
             // then, not in the middle of playback when frames are already slow.

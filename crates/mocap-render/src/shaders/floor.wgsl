@@ -52,6 +52,13 @@ fn fs_main(in: Out) -> @location(0) vec4<f32> {
     return vec4<f32>(color, floor_alpha(in.world) * frame.floor_color.a);
 }
 
+// The floor's depth only, under a floor whose colour was copied from the cache
+// (floor_cache.rs): the pipeline writes no colour.
+@fragment
+fn fs_depth() -> @location(0) vec4<f32> {
+    return vec4<f32>(0.0);
+}
+
 // Opacity of the floor at `p`: 1 near the centre, fading out towards the edge.
 fn floor_alpha(p: vec3<f32>) -> f32 {
     let r = length(p.xz - frame.floor_center.xz) / max(frame.floor_center.w, 1e-6);
