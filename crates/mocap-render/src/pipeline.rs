@@ -21,6 +21,8 @@ pub(crate) struct PipelineSpec<'a> {
     pub alpha_to_coverage: bool,
     /// A depth-only pass whose fragment shader discards fragments (so it has one).
     pub depth_fragment: bool,
+    /// The shaders' `FAST_LOOK` constant (lighting.wgsl).
+    pub fast_look: bool,
     /// The colour channels written (none: depth only, in a pass with colour).
     pub color_writes: wgpu::ColorWrites,
 }
@@ -32,6 +34,8 @@ pub(crate) fn instances<'a>(attributes: &'a [wgpu::VertexAttribute], stride: usi
 
 /// Builds a triangle-list pipeline from `spec`.
 pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: &PipelineSpec) -> wgpu::RenderPipeline {
+    let constants = [("FAST_LOOK", if spec.fast_look { 1.0 } else { 0.0 })];
+    let options = || wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
     let targets = [spec.color.map(|(format, blend)| wgpu::ColorTargetState {
         format,
         blend: Some(blend),
@@ -43,7 +47,7 @@ pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: 
         vertex: wgpu::VertexState {
             module: spec.shader,
             entry_point: Some(spec.vertex_entry),
-            compilation_options: Default::default(),
+            compilation_options: options(),
             buffers: spec.buffers,
         },
         primitive: wgpu::PrimitiveState {
@@ -66,7 +70,7 @@ pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: 
         fragment: (spec.color.is_some() || spec.depth_fragment).then(|| wgpu::FragmentState {
             module: spec.shader,
             entry_point: Some(spec.fragment_entry),
-            compilation_options: Default::default(),
+            compilation_options: options(),
             targets: if spec.color.is_some() { &targets } else { &[] },
         }),
         multiview_mask: None,

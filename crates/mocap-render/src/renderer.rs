@@ -34,9 +34,11 @@ pub struct SceneRenderer {
     shadow: ShadowMap,
     /// The fast look's smaller map, made when first used.
     fast_shadow: Option<ShadowMap>,
+    /// Pipelines for targets of `sample_count` samples, at full quality.
     pipelines: Pipelines,
-    /// Pipelines for targets of other sample counts, made when first drawn into.
-    other_pipelines: Vec<(u32, Pipelines)>,
+    /// Pipelines for targets of other sample counts, and for the fast look,
+    /// made when first drawn with.
+    other_pipelines: Vec<(PipelineKey, Pipelines)>,
     lines: GrowingBuffer,
     overlay_lines: GrowingBuffer,
     spheres: GrowingBuffer,
@@ -63,6 +65,14 @@ pub struct SceneRenderer {
     /// fill each frame) with one lookup per pixel instead of four (harder
     /// edges). Off by default.
     pub fast_look: bool,
+}
+
+/// What a set of pipelines is made for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct PipelineKey {
+    samples: u32,
+    /// The shaders' `FAST_LOOK` constant (one shadow lookup per pixel).
+    fast_look: bool,
 }
 
 struct Pipelines {
@@ -126,7 +136,7 @@ impl SceneRenderer {
         let meshes = MeshCache::new(device);
         let skinned = SkinnedCache::new(device);
         let layouts = Layouts { frame: &frame_layout, shadow: &shadow_layout, skin: &meshes.skin_layout, joints: &skinned.layout };
-        let pipelines = Pipelines::new(device, &layouts, format, sample_count);
+        let pipelines = Pipelines::new(device, &layouts, format, PipelineKey { samples: sample_count, fast_look: false });
         SceneRenderer {
             format,
             sample_count,
@@ -184,16 +194,23 @@ impl SceneRenderer {
         self.floor_copied
     }
 
-    /// Makes the pipelines for targets of `sample_count` samples if they are not
-    /// made yet ([`SceneRenderer::encode`] does on first use; doing it ahead
-    /// moves the shader compilation, slow on some platforms, to a chosen moment).
-    pub fn prepare_pipelines(&mut self, device: &wgpu::Device, sample_count: u32) {
-        if sample_count == self.sample_count || self.other_pipelines.iter().any(|(n, _)| *n == sample_count) {
+    /// Makes the pipelines for targets of `sample_count` samples, in the fast
+    /// look or not ([`SceneRenderer::fast_look`]), if they are not made yet
+    /// ([`SceneRenderer::encode`] does on first use; doing it ahead moves the
+    /// shader compilation, slow on some platforms, to a chosen moment).
+    pub fn prepare_pipelines(&mut self, device: &wgpu::Device, sample_count: u32, fast_look: bool) {
+        let key = PipelineKey { samples: sample_count, fast_look };
+        if key == self.main_key() || self.other_pipelines.iter().any(|(k, _)| *k == key) {
             return;
         }
         let layouts = Layouts { frame: &self.frame_layout, shadow: &self.shadow_layout, skin: &self.meshes.skin_layout, joints: &self.skinned.layout };
-        let pipelines = Pipelines::new(device, &layouts, self.format, sample_count);
-        self.other_pipelines.push((sample_count, pipelines));
+        let pipelines = Pipelines::new(device, &layouts, self.format, key);
+        self.other_pipelines.push((key, pipelines));
+    }
+
+    /// What [`SceneRenderer::pipelines`] are made for.
+    fn main_key(&self) -> PipelineKey {
+        PipelineKey { samples: self.sample_count, fast_look: false }
     }
 
     /// Records the draw of `scene` into `encoder`, targeting `target` (of any
@@ -207,7 +224,7 @@ impl SceneRenderer {
         scene: &Scene,
         camera: &Camera,
     ) {
-        self.prepare_pipelines(device, target.sample_count());
+        self.prepare_pipelines(device, target.sample_count(), self.fast_look);
         if self.fast_look && self.fast_shadow.is_none() {
             self.fast_shadow = Some(ShadowMap::new(device, shadow::FAST_SIZE, &self.shadow_layout));
         }
@@ -254,7 +271,8 @@ impl SceneRenderer {
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
         pass.set_bind_group(1, &self.shadow_map().bind_group, &[]);
-        let pipelines = pipelines_for(&self.pipelines, &self.other_pipelines, samples);
+        let key = PipelineKey { samples, fast_look: self.fast_look };
+        let pipelines = pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, key);
         if scene.grid.is_some() {
             let floor = match &copy {
                 None => Some(&pipelines.floor),
@@ -336,7 +354,8 @@ impl SceneRenderer {
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
         pass.set_bind_group(1, &self.shadow_map().bind_group, &[]);
-        pass.set_pipeline(&pipelines_for(&self.pipelines, &self.other_pipelines, samples).floor);
+        let key = PipelineKey { samples, fast_look: self.fast_look };
+        pass.set_pipeline(&pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, key).floor);
         pass.draw(0..6, 0..1);
         self.draw_calls += 1;
     }
@@ -393,7 +412,7 @@ impl SceneRenderer {
         let bounds = mesh_bounds.chain(capsule_bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         let map_size = self.shadow_map().size;
         let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, map_size));
-        let uniforms = FrameUniforms::new(camera, size, target.sample_count(), self.format, scene.grid.as_ref(), light.as_ref(), self.fast_look);
+        let uniforms = FrameUniforms::new(camera, size, target.sample_count(), self.format, scene.grid.as_ref(), light.as_ref());
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.spheres.upload(device, queue, &self.sphere_scratch);
         let capsules = &mut self.capsules;
@@ -417,10 +436,13 @@ fn load_or_clear<T>(load: bool, clear: T) -> wgpu::LoadOp<T> {
     if load { wgpu::LoadOp::Load } else { wgpu::LoadOp::Clear(clear) }
 }
 
-/// The pipelines for targets of `samples` samples: `main`, or one of `others`
-/// (made by `prepare_pipelines`).
-fn pipelines_for<'a>(main: &'a Pipelines, others: &'a [(u32, Pipelines)], samples: u32) -> &'a Pipelines {
-    others.iter().find(|(n, _)| *n == samples).map_or(main, |(_, p)| p)
+/// The pipelines made for `key`: `main` (made for `main_key`) or one of
+/// `others` (made by `prepare_pipelines`).
+fn pipelines_for<'a>(main: &'a Pipelines, main_key: PipelineKey, others: &'a [(PipelineKey, Pipelines)], key: PipelineKey) -> &'a Pipelines {
+    if key == main_key {
+        return main;
+    }
+    others.iter().find(|(k, _)| *k == key).map_or(main, |(_, p)| p)
 }
 
 /// The box around every finite caster (ends `a`, `b` grown by the radius), if any.
@@ -445,7 +467,8 @@ struct Layouts<'a> {
 }
 
 impl Pipelines {
-    fn new(device: &wgpu::Device, layouts: &Layouts, format: wgpu::TextureFormat, sample_count: u32) -> Pipelines {
+    fn new(device: &wgpu::Device, layouts: &Layouts, format: wgpu::TextureFormat, key: PipelineKey) -> Pipelines {
+        let sample_count = key.samples;
         let (frame_layout, shadow_layout, skin_layout) = (layouts.frame, layouts.shadow, layouts.skin);
         let skinned_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("mocap skinned"),
@@ -509,6 +532,7 @@ impl Pipelines {
             alpha_to_coverage: false,
             depth_fragment: false,
             color_writes: wgpu::ColorWrites::ALL,
+            fast_look: key.fast_look,
         };
         // Depth-only passes into the shadow map: every caster's `vs_shadow`, no colour.
         let depth_only = PipelineSpec {

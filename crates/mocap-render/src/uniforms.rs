@@ -16,7 +16,7 @@ pub(crate) struct FrameUniforms {
     pub light_view_proj: [[f32; 4]; 4],
     /// Towards the key light; shadow texel size in world units.
     pub light_dir: [f32; 4],
-    /// Camera position; 1 for one shadow lookup per pixel, 0 for four.
+    /// Camera position; w unused.
     pub eye: [f32; 4],
     /// Floor centre and fade radius.
     pub floor_center: [f32; 4],
@@ -36,10 +36,9 @@ pub(crate) struct FrameUniforms {
 
 
 impl FrameUniforms {
-    /// The block for one frame into a target of `sample_count` samples;
-    /// `fast_look` samples the shadow map once per pixel instead of four times.
-    pub fn new(camera: &Camera, size: [u32; 2], sample_count: u32, format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>, fast_look: bool) -> FrameUniforms {
-        let eye = camera.view.inverse().w_axis.truncate().extend(if fast_look { 1.0 } else { 0.0 });
+    /// The block for one frame into a target of `sample_count` samples.
+    pub fn new(camera: &Camera, size: [u32; 2], sample_count: u32, format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>) -> FrameUniforms {
+        let eye = camera.view.inverse().w_axis.truncate().extend(0.0);
         let (light_view_proj, texel, strength, shadow_rect) = match light {
             Some(fit) => (fit.view_proj, fit.texel, 1.0, fit.floor_rect),
             None => (Mat4::IDENTITY, 0.0, 0.0, [0.0; 4]),

@@ -11,8 +11,7 @@ struct Frame {
     light_view_proj: mat4x4<f32>,
     // Unit vector towards the key light; w: shadow map texel size in world units.
     light_dir: vec4<f32>,
-    // Camera position in world space; w: 1 for one shadow lookup per pixel
-    // (the fast look), 0 for four.
+    // Camera position in world space; w unused.
     eye: vec4<f32>,
     // Floor centre (xyz) and the radius at which it has faded out (w).
     floor_center: vec4<f32>,

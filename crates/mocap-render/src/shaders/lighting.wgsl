@@ -2,6 +2,11 @@
 // with a soft shadow from the shadow map, and sky/ground ambient.
 // `Frame`, `frame` and `to_target` come from frame.wgsl.
 
+// The fast look (see `SceneRenderer::fast_look`): one shadow lookup per pixel
+// instead of four. A pipeline constant, not a uniform, so that each pipeline
+// holds only its own path: software rasterisers run both sides of a branch.
+override FAST_LOOK: bool = false;
+
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison;
 
@@ -26,7 +31,7 @@ fn key_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
     }
     let z = ndc.z - 0.003;
     // The fast look: one hardware-filtered (2x2 bilinear) comparison.
-    if (frame.eye.w > 0.5) {
+    if (FAST_LOOK) {
         return mix(1.0, textureSampleCompareLevel(shadow_map, shadow_sampler, uv, z), frame.viewport.w);
     }
     // Four hardware-filtered comparisons 1.5 texels apart: a soft edge about
