@@ -34,7 +34,10 @@ pub(crate) fn instances<'a>(attributes: &'a [wgpu::VertexAttribute], stride: usi
 
 /// Builds a triangle-list pipeline from `spec`.
 pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: &PipelineSpec) -> wgpu::RenderPipeline {
-    let constants = [("FAST_LOOK", if spec.fast_look { 1.0 } else { 0.0 })];
+    // frame.wgsl and lighting.wgsl: the shaders encode sRGB for plain unorm targets.
+    let encode_srgb = spec.color.is_some_and(|(format, _)| !format.is_srgb());
+    let flag = |on: bool| if on { 1.0 } else { 0.0 };
+    let constants = [("FAST_LOOK", flag(spec.fast_look)), ("ENCODE_SRGB", flag(encode_srgb))];
     let options = || wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
     let targets = [spec.color.map(|(format, blend)| wgpu::ColorTargetState {
         format,

@@ -5,7 +5,8 @@ struct Frame {
     view: mat4x4<f32>,
     projection: mat4x4<f32>,
     // Viewport width and height in pixels; 1 when the target needs sRGB encoding
-    // in the shader (a plain unorm target); shadow strength (0 = no shadows).
+    // in the shader (a plain unorm target; the shaders use ENCODE_SRGB); shadow
+    // strength (0 = no shadows).
     viewport: vec4<f32>,
     // World to the shadow map's clip space (orthographic, along the key light).
     light_view_proj: mat4x4<f32>,
@@ -31,10 +32,15 @@ struct Frame {
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 
+// Whether the target is a plain unorm one, whose colours the shaders encode
+// (see `to_target`). A pipeline constant, not a uniform, so that pipelines for
+// sRGB targets hold no encoding: software rasterisers run both sides of a branch.
+override ENCODE_SRGB: bool = false;
+
 // Linear colour to what the target stores: sRGB targets encode in hardware,
 // plain unorm targets (egui's, which composites in gamma space) here.
 fn to_target(c: vec4<f32>) -> vec4<f32> {
-    if (frame.viewport.z < 0.5) {
+    if (!ENCODE_SRGB) {
         return c;
     }
     let lo = c.rgb * 12.92;
