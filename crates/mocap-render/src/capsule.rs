@@ -8,9 +8,33 @@
 //! instance of an instanced draw like a draw of its own), and a capsule mesh
 //! took 24 to 144 triangles, each shaded in whole blocks of pixels.
 
-use crate::Capsule;
+use crate::{Camera, Capsule};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
+
+/// In the fast look, capsules whose bounding sphere spans fewer pixels than
+/// this are left out, with their shadows: at one sample such a capsule covers
+/// at most a few pixel centres, yet costs as much set-up and shading as a
+/// large one (a crowd's fingers, for example).
+pub(crate) const FAST_LOOK_MIN_SPAN_PX: f32 = 2.0;
+
+/// How many pixels `c`'s bounding sphere spans at most, seen by `camera` on a
+/// target `height_px` pixels tall (at its nearest depth); infinite when it
+/// reaches the eye's plane or is not finite.
+pub(crate) fn span_px(c: &Capsule, camera: &Camera, height_px: f32) -> f32 {
+    let radius = c.a.distance(c.b) * 0.5 + c.radius.abs();
+    // Pixels per world unit one unit in front of a perspective eye (or anywhere
+    // in an orthographic view).
+    let scale = camera.projection.y_axis.y.abs() * 0.5 * height_px;
+    let perspective = camera.projection.w_axis.w < 0.5;
+    let span = if perspective {
+        let depth = -camera.view.transform_point3((c.a + c.b) * 0.5).z - radius;
+        if depth <= 0.0 { f32::INFINITY } else { 2.0 * radius * scale / depth }
+    } else {
+        2.0 * radius * scale
+    };
+    if span.is_finite() { span } else { f32::INFINITY }
+}
 
 /// One capsule as the CPU describes it (linear colour).
 #[repr(C)]
@@ -73,6 +97,24 @@ pub(crate) fn expand(capsules: impl Iterator<Item = CapsuleInstance>, vertices: 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_capsule_spans_its_bounding_spheres_size_in_pixels() {
+        let camera = Camera::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, 0.8, 1.0);
+        let capsule = |a: Vec3, b: Vec3, radius: f32| Capsule { a, b, radius, color: [255; 4] };
+        // A ball of radius 0.1 ten units away on a 1000-pixel-tall target:
+        // 0.2 / (9.9 · tan 0.4) · 500 pixels.
+        let ball = span_px(&capsule(Vec3::ZERO, Vec3::ZERO, 0.1), &camera, 1000.0);
+        let expected = 0.2 / (9.9 * 0.4f32.tan()) * 500.0;
+        assert!((ball - expected).abs() < 1e-3 * expected, "{ball} vs {expected}");
+        // Its length counts, and farther is smaller.
+        let long = span_px(&capsule(Vec3::new(-1.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), 0.1), &camera, 1000.0);
+        assert!(long > 10.0 * ball);
+        assert!(span_px(&capsule(Vec3::new(0.0, 0.0, -20.0), Vec3::new(0.0, 0.0, -20.0), 0.1), &camera, 1000.0) < ball / 2.0);
+        // At or behind the eye, or not finite: no bound.
+        assert_eq!(span_px(&capsule(Vec3::new(0.0, 0.0, 10.0), Vec3::new(0.0, 0.0, 10.0), 0.1), &camera, 1000.0), f32::INFINITY);
+        assert_eq!(span_px(&capsule(Vec3::splat(f32::NAN), Vec3::ZERO, 0.1), &camera, 1000.0), f32::INFINITY);
+    }
 
     #[test]
     fn each_capsule_is_four_corners_and_two_triangles_of_its_own() {

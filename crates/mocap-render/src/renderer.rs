@@ -63,7 +63,8 @@ pub struct SceneRenderer {
     /// The fast look, for a view that moves on a slow (software) GPU: shadows
     /// from a 1024² map instead of 2048² (a quarter of the texels to clear and
     /// fill each frame) with one lookup per pixel instead of four (harder
-    /// edges). Off by default.
+    /// edges), and capsules spanning under two pixels left out (with their
+    /// shadows). Off by default.
     pub fast_look: bool,
 }
 
@@ -417,7 +418,10 @@ impl SceneRenderer {
         self.spheres.upload(device, queue, &self.sphere_scratch);
         let capsules = &mut self.capsules;
         capsules.clear();
-        capsule::expand(scene.capsules.iter().map(CapsuleInstance::new), &mut capsules.vertices, &mut capsules.indices);
+        // The fast look leaves out capsules spanning under a couple of pixels.
+        let min_span = if self.fast_look { capsule::FAST_LOOK_MIN_SPAN_PX } else { 0.0 };
+        let shown = scene.capsules.iter().filter(|c| min_span <= 0.0 || capsule::span_px(c, camera, size[1] as f32) >= min_span);
+        capsule::expand(shown.map(CapsuleInstance::new), &mut capsules.vertices, &mut capsules.indices);
         self.lit_indices = capsules.indices.len() as u32;
         if light.is_some() {
             let shadow_only = only_cast.map(|(a, b, radius)| CapsuleInstance::caster(a, b, radius));

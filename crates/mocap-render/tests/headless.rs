@@ -644,3 +644,32 @@ fn a_still_camera_starts_each_frame_from_the_floor_drawn_before_with_the_same_pi
         }
     }
 }
+
+#[test]
+fn the_fast_look_leaves_out_capsules_under_two_pixels() {
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    let camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 0.8, 1.0);
+    // Pixels per world unit one unit from the eye, and half a pixel there.
+    let scale = camera.projection.y_axis.y * 0.5 * SIZE as f32;
+    let half_pixel = 0.5 / scale * 3.0;
+    // A ball about 1.6 pixels across, centred on a pixel's centre; a limb.
+    let centre = Vec3::new(half_pixel, half_pixel, 0.0);
+    let ball = Capsule { a: centre, b: centre, radius: 0.016, color: [0, 255, 0, 255] };
+    let limb = Capsule { a: Vec3::new(-0.8, -0.5, 0.0), b: Vec3::new(-0.2, -0.6, 0.0), radius: 0.05, color: [255, 0, 0, 255] };
+    let scene = Scene { background: [0, 0, 0, 255], capsules: vec![ball, limb], shadows: false, ..Scene::default() };
+    let count = |pixels: &[u8], f: &dyn Fn(&[u8]) -> bool| pixels.chunks(4).filter(|p| f(p)).count();
+    let green = |p: &[u8]| p[1] > 60 && p[0] < 30;
+    let red = |p: &[u8]| p[0] > 60 && p[1] < 30;
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let full = read_pixels(&device, &queue, &target);
+    assert!(count(&full, &green) >= 1 && count(&full, &red) > 20, "full quality draws both ({} green, {} red)", count(&full, &green), count(&full, &red));
+    renderer.fast_look = true;
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let fast = read_pixels(&device, &queue, &target);
+    assert_eq!(count(&fast, &green), 0, "the fast look leaves the 1.6-pixel ball out");
+    assert_eq!(count(&fast, &red), count(&full, &red), "and keeps the limb");
+    // Nearer, the same ball spans more than two pixels and is drawn.
+    let near = Camera::look_at(Vec3::new(0.0, 0.0, 1.0), Vec3::ZERO, 0.8, 1.0);
+    renderer.render(&device, &queue, &target, &scene, &near);
+    assert!(count(&read_pixels(&device, &queue, &target), &green) > 2, "a nearer ball is drawn in the fast look");
+}

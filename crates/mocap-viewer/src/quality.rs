@@ -1,6 +1,7 @@
 //! How the 3D view trades looks for speed: full quality (multisampled edges, the
 //! display's resolution), a fast look (one sample per pixel, the renderer's
-//! `SceneRenderer::fast_look` (a smaller shadow map read once per pixel) and,
+//! `SceneRenderer::fast_look` (a smaller shadow map read once per pixel,
+//! capsules spanning under two pixels left out) and,
 //! where the host supports it, the window drawn at [`FAST_RENDER_SCALE`] of the
 //! display's resolution and scaled up), or the automatic rule between them.
 //!
