@@ -209,6 +209,11 @@ impl SceneRenderer {
         self.other_pipelines.push((key, pipelines));
     }
 
+    /// The pipelines a frame into a target of `samples` samples draws with.
+    fn key_for(&self, samples: u32) -> PipelineKey {
+        PipelineKey { samples, fast_look: self.fast_look }
+    }
+
     /// What [`SceneRenderer::pipelines`] are made for.
     fn main_key(&self) -> PipelineKey {
         PipelineKey { samples: self.sample_count, fast_look: false }
@@ -225,7 +230,8 @@ impl SceneRenderer {
         scene: &Scene,
         camera: &Camera,
     ) {
-        self.prepare_pipelines(device, target.sample_count(), self.fast_look);
+        let key = self.key_for(target.sample_count());
+        self.prepare_pipelines(device, key.samples, key.fast_look);
         if self.fast_look && self.fast_shadow.is_none() {
             self.fast_shadow = Some(ShadowMap::new(device, shadow::FAST_SIZE, &self.shadow_layout));
         }
@@ -253,27 +259,9 @@ impl SceneRenderer {
         }
         let depth_copied = copy.as_ref().is_some_and(|c| c.copy_depth);
         let (view, resolve_target) = target.color_attachment();
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("mocap scene"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target,
-                ops: wgpu::Operations { load: load_or_clear(copy.is_some(), background), store: wgpu::StoreOp::Store },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: target.depth_view(),
-                depth_ops: Some(wgpu::Operations { load: load_or_clear(depth_copied, 1.0), store: wgpu::StoreOp::Discard }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_bind_group(0, &self.frame_group, &[]);
-        pass.set_bind_group(1, &self.shadow_map().bind_group, &[]);
-        let key = PipelineKey { samples, fast_look: self.fast_look };
-        let pipelines = pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, key);
+        let color = (view, resolve_target, load_or_clear(copy.is_some(), background));
+        let mut pass = self.begin_lit_pass(encoder, "mocap scene", color, target.depth_view(), load_or_clear(depth_copied, 1.0), wgpu::StoreOp::Discard);
+        let pipelines = pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, self.key_for(samples));
         if scene.grid.is_some() {
             let floor = match &copy {
                 None => Some(&pipelines.floor),
@@ -331,32 +319,49 @@ impl SceneRenderer {
         }
     }
 
-    /// Draws the floor over `background` into the floor cache's textures (of
-    /// the target's size and `samples`).
-    fn encode_floor_fill(&mut self, encoder: &mut wgpu::CommandEncoder, cache: &FloorCopy, samples: u32, background: wgpu::Color) {
-        let view = cache.color.create_view(&Default::default());
-        let depth = cache.depth.create_view(&Default::default());
+    /// Begins a pass into `color` (view, resolve target, load) and `depth`,
+    /// with the frame's uniforms and shadow map bound (the lit pipelines' groups).
+    fn begin_lit_pass<'a>(
+        &self,
+        encoder: &'a mut wgpu::CommandEncoder,
+        label: &str,
+        color: (&wgpu::TextureView, Option<&wgpu::TextureView>, wgpu::LoadOp<wgpu::Color>),
+        depth: &wgpu::TextureView,
+        depth_load: wgpu::LoadOp<f32>,
+        depth_store: wgpu::StoreOp,
+    ) -> wgpu::RenderPass<'a> {
+        let (view, resolve_target, load) = color;
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("mocap floor cache"),
+            label: Some(label),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &view,
+                view,
                 depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(background), store: wgpu::StoreOp::Store },
+                resolve_target,
+                ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &depth,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                view: depth,
+                depth_ops: Some(wgpu::Operations { load: depth_load, store: depth_store }),
                 stencil_ops: None,
             }),
             timestamp_writes: None,
             occlusion_query_set: None,
             multiview_mask: None,
-        });
+        })
+        .forget_lifetime();
         pass.set_bind_group(0, &self.frame_group, &[]);
         pass.set_bind_group(1, &self.shadow_map().bind_group, &[]);
-        let key = PipelineKey { samples, fast_look: self.fast_look };
-        pass.set_pipeline(&pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, key).floor);
+        pass
+    }
+
+    /// Draws the floor over `background` into the floor cache's textures (of
+    /// the target's size and `samples`).
+    fn encode_floor_fill(&mut self, encoder: &mut wgpu::CommandEncoder, cache: &FloorCopy, samples: u32, background: wgpu::Color) {
+        let view = cache.color.create_view(&Default::default());
+        let depth = cache.depth.create_view(&Default::default());
+        let color = (&view, None, wgpu::LoadOp::Clear(background));
+        let mut pass = self.begin_lit_pass(encoder, "mocap floor cache", color, &depth, wgpu::LoadOp::Clear(1.0), wgpu::StoreOp::Store);
+        pass.set_pipeline(&pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, self.key_for(samples)).floor);
         pass.draw(0..6, 0..1);
         self.draw_calls += 1;
     }

@@ -11,7 +11,7 @@ use glam::Mat4;
 pub(crate) struct FrameUniforms {
     pub view: [[f32; 4]; 4],
     pub projection: [[f32; 4]; 4],
-    /// Width, height in pixels; 1 to sRGB-encode in the shader; shadow strength.
+    /// Width, height in pixels; unused (the shaders' ENCODE_SRGB constant); shadow strength.
     pub viewport: [f32; 4],
     pub light_view_proj: [[f32; 4]; 4],
     /// Towards the key light; shadow texel size in world units.
@@ -46,7 +46,7 @@ impl FrameUniforms {
         let mut u = FrameUniforms {
             view: camera.view.to_cols_array_2d(),
             projection: camera.projection.to_cols_array_2d(),
-            viewport: [size[0].max(1) as f32, size[1].max(1) as f32, if format.is_srgb() { 0.0 } else { 1.0 }, strength],
+            viewport: [size[0].max(1) as f32, size[1].max(1) as f32, 0.0, strength],
             light_view_proj: light_view_proj.to_cols_array_2d(),
             light_dir: crate::shadow::key_light_direction().extend(texel).to_array(),
             eye: eye.to_array(),

@@ -4,9 +4,8 @@
 struct Frame {
     view: mat4x4<f32>,
     projection: mat4x4<f32>,
-    // Viewport width and height in pixels; 1 when the target needs sRGB encoding
-    // in the shader (a plain unorm target; the shaders use ENCODE_SRGB); shadow
-    // strength (0 = no shadows).
+    // Viewport width and height in pixels; unused (sRGB encoding is the
+    // ENCODE_SRGB constant); shadow strength (0 = no shadows).
     viewport: vec4<f32>,
     // World to the shadow map's clip space (orthographic, along the key light).
     light_view_proj: mat4x4<f32>,
