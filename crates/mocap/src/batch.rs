@@ -58,19 +58,37 @@ fn rotate_lanes(w: &mut Lanes, a: &mut Lanes, b: &mut Lanes, d: &mut Lanes, s: &
 fn compose(parent: &JointLanes, local: &JointLanes) -> JointLanes {
     let [px, py, pz, pw] = parent.q;
     let [bx, by, bz, bw] = local.q;
-    let [vx, vy, vz] = local.t;
-    let mut out = JointLanes { q: [[0.0; LANES]; 4], t: [[0.0; LANES]; 3] };
+    let mut q = [[0.0; LANES]; 4];
     for l in 0..LANES {
-        out.q[0][l] = pw[l] * bx[l] + px[l] * bw[l] + py[l] * bz[l] - pz[l] * by[l];
-        out.q[1][l] = pw[l] * by[l] - px[l] * bz[l] + py[l] * bw[l] + pz[l] * bx[l];
-        out.q[2][l] = pw[l] * bz[l] + px[l] * by[l] - py[l] * bx[l] + pz[l] * bw[l];
-        out.q[3][l] = pw[l] * bw[l] - px[l] * bx[l] - py[l] * by[l] - pz[l] * bz[l];
+        q[0][l] = pw[l] * bx[l] + px[l] * bw[l] + py[l] * bz[l] - pz[l] * by[l];
+        q[1][l] = pw[l] * by[l] - px[l] * bz[l] + py[l] * bw[l] + pz[l] * bx[l];
+        q[2][l] = pw[l] * bz[l] + px[l] * by[l] - py[l] * bx[l] + pz[l] * bw[l];
+        q[3][l] = pw[l] * bw[l] - px[l] * bx[l] - py[l] * by[l] - pz[l] * bz[l];
+    }
+    JointLanes { q, t: moved_by(parent, &local.t) }
+}
+
+/// `parent ∘ (identity, t)`: [`compose`] for a local transform without
+/// rotation (the parent's rotation as it is).
+#[inline(always)]
+fn offset_from(parent: &JointLanes, t: &[Lanes; 3]) -> JointLanes {
+    JointLanes { q: parent.q, t: moved_by(parent, t) }
+}
+
+/// The point `v` (in the parent's frame) in the world, lane by lane:
+/// `parent.t + parent.q · v`.
+#[inline(always)]
+fn moved_by(parent: &JointLanes, v: &[Lanes; 3]) -> [Lanes; 3] {
+    let [px, py, pz, pw] = parent.q;
+    let [vx, vy, vz] = v;
+    let mut out = [[0.0; LANES]; 3];
+    for l in 0..LANES {
         let tx = 2.0 * (py[l] * vz[l] - pz[l] * vy[l]);
         let ty = 2.0 * (pz[l] * vx[l] - px[l] * vz[l]);
         let tz = 2.0 * (px[l] * vy[l] - py[l] * vx[l]);
-        out.t[0][l] = parent.t[0][l] + vx[l] + pw[l] * tx + (py[l] * tz - pz[l] * ty);
-        out.t[1][l] = parent.t[1][l] + vy[l] + pw[l] * ty + (pz[l] * tx - px[l] * tz);
-        out.t[2][l] = parent.t[2][l] + vz[l] + pw[l] * tz + (px[l] * ty - py[l] * tx);
+        out[0][l] = parent.t[0][l] + vx[l] + pw[l] * tx + (py[l] * tz - pz[l] * ty);
+        out[1][l] = parent.t[1][l] + vy[l] + pw[l] * ty + (pz[l] * tx - px[l] * tz);
+        out[2][l] = parent.t[2][l] + vz[l] + pw[l] * tz + (px[l] * ty - py[l] * tx);
     }
     out
 }
@@ -111,6 +129,12 @@ fn fk_block_avx2<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LAN
 /// Extrinsic rotations in file order are intrinsic ones in reverse
 /// order (`rx ry rz` extrinsic is `Rz·Ry·Rx`), so `EXTRINSIC` walks the channels
 /// backwards; translation channels do not depend on the order.
+///
+/// Three shortcuts give the same values as the plain steps (exactly, for finite
+/// input): a rotation channel at zero in every lane is skipped (the identity);
+/// the first rotation of a joint at rest is the axis rotation itself, not a
+/// product with the identity; a joint left without rotation (an End Site, or
+/// every rotation at zero, and no rest rotation) takes its parent's as it is.
 #[inline(always)]
 fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
     for (j, joint) in skeleton.joints().iter().enumerate() {
@@ -119,6 +143,7 @@ fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LAN
             q: [[rx; LANES], [ry; LANES], [rz; LANES], [rw; LANES]],
             t: [[joint.offset.x; LANES], [joint.offset.y; LANES], [joint.offset.z; LANES]],
         };
+        let mut at_rest = joint.rest_rotation == glam::Quat::IDENTITY;
         let count = joint.channels.len();
         for step in 0..count {
             let k = if EXTRINSIC { count - 1 - step } else { step };
@@ -126,12 +151,22 @@ fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LAN
             let column = joint.first_channel() + k;
             let values: Lanes = std::array::from_fn(|l| rows[l].get(column).copied().unwrap_or(0.0));
             if channel.is_rotation() {
-                rotate_about_axis(&mut local.q, channel.axis(), &values, half);
+                if values.iter().all(|&v| v == 0.0) {
+                    continue;
+                }
+                if at_rest {
+                    set_axis_rotation(&mut local.q, channel.axis(), &values, half);
+                    at_rest = false;
+                } else {
+                    rotate_about_axis(&mut local.q, channel.axis(), &values, half);
+                }
             } else if let Some(slot) = local.t.get_mut(channel.axis()) {
                 *slot = values;
             }
         }
-        let result = match joint.parent.filter(|&p| p < j).and_then(|p| world.get(p)) {
+        let parent = joint.parent.filter(|&p| p < j).and_then(|p| world.get(p));
+        let result = match parent {
+            Some(parent) if at_rest => offset_from(parent, &local.t),
             Some(parent) => compose(parent, &local),
             None => local,
         };
@@ -139,6 +174,22 @@ fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LAN
             *slot = result;
         }
     }
+}
+
+/// `q ← axis-rotation(angle)` lane by lane (what [`rotate_about_axis`] gives
+/// from the identity).
+#[inline(always)]
+fn set_axis_rotation(q: &mut [Lanes; 4], axis: usize, angles: &Lanes, half: f32) {
+    let mut s = [0.0; LANES];
+    let mut c = [0.0; LANES];
+    for l in 0..LANES {
+        (s[l], c[l]) = sin_cos(angles[l] * half);
+    }
+    *q = [[0.0; LANES]; 4];
+    if let Some(slot) = q.get_mut(axis) {
+        *slot = s;
+    }
+    q[3] = c;
 }
 
 /// Calls `visit(frame, positions)` for every frame in order, with the world
@@ -260,6 +311,25 @@ mod tests {
         for f in 0..11 {
             let a = f as f32 * 37.0 - 180.0;
             text.push_str(&format!("{f} 1 -2 {a} {} {} {} 0.5 {} {}\n", a * 0.5, -a, a * 2.0, a + 10.0, 3.0 * a));
+        }
+        agrees_with_scalar(&crate::bvh::parse(text.as_bytes()).unwrap());
+    }
+
+    #[test]
+    fn channels_at_zero_in_some_lanes_and_end_sites_agree_with_scalar_fk() {
+        // Blocks where a rotation is zero in every frame, in all but one frame,
+        // and a joint whose first rotation is zero (so its second meets the rest
+        // pose), with End Sites under rotated and unrotated joints.
+        let src = "HIERARCHY\nROOT R\n{\nOFFSET 0 1 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\nJOINT C\n{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 1 0.5 0\n}\n}\nJOINT D\n{\nOFFSET 0.5 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 2\n}\n}\n}\nMOTION\nFrames: 24\nFrame Time: 0.1\n";
+        let mut text = src.to_string();
+        for f in 0..24u32 {
+            let a = f as f32 * 13.0 - 90.0;
+            // Root Z: zero in frames 0-7, only frame 11 in 8-15, all of 16-23.
+            let root_z = if f == 11 || f >= 16 { a } else { 0.0 };
+            // C: Z always zero, X from frame 8 on; D never rotates but in frame 20.
+            let c_x = if f >= 8 { a * 0.5 } else { 0.0 };
+            let d_y = if f == 20 { 30.0 } else { 0.0 };
+            text.push_str(&format!("{f} 0 0 {root_z} 0 {} 0 {c_x} {} 0 0 {d_y}\n", a * 0.25, a * 2.0));
         }
         agrees_with_scalar(&crate::bvh::parse(text.as_bytes()).unwrap());
     }
