@@ -198,20 +198,22 @@ pub fn for_each_frame_positions(skeleton: &Skeleton, motion: &Motion, visit: imp
     for_each_frame_positions_in(skeleton, motion, 0..motion.frame_count(), visit);
 }
 
-/// Fewest joint transforms per thread worth a thread of its own.
+/// Fewest joint transforms worth a run (and a thread) of their own.
 const PER_THREAD_MIN: usize = 1 << 16;
 
 /// [`for_each_frame_positions`] on several threads: the frames are cut into
-/// contiguous runs, one per thread (as many as the machine has, at most eight;
-/// one on the web or for small clips); each run starts from `init()` and visits
+/// contiguous runs, a few per thread (threads as many as the machine has, at
+/// most eight; one run on the web or for small clips), which the threads take
+/// in turn, so faster cores take more; each run starts from `init()` and visits
 /// its frames in order with `visit(&mut accumulator, frame, positions)`. Returns
 /// the accumulators in frame order, for the caller to combine.
 pub fn fold_frame_positions<A: Send>(skeleton: &Skeleton, motion: &Motion, init: impl Fn() -> A + Sync, visit: impl Fn(&mut A, usize, &[Vec3]) + Sync) -> Vec<A> {
     let frames = motion.frame_count();
     let work = frames.saturating_mul(skeleton.len().max(1)) / PER_THREAD_MIN;
-    let threads = crate::parallel::max_threads().min(work).max(1);
+    let threads = crate::parallel::max_threads();
+    let runs = if threads <= 1 { 1 } else { (threads * 4).min(work).max(1) };
     // Runs of whole blocks of LANES frames.
-    let per = (frames.div_ceil(threads).div_ceil(LANES) * LANES).max(LANES);
+    let per = (frames.div_ceil(runs).div_ceil(LANES) * LANES).max(LANES);
     let ranges: Vec<std::ops::Range<usize>> = (0..frames).step_by(per).map(|s| s..(s + per).min(frames)).collect();
     let run = |range: std::ops::Range<usize>| {
         let mut acc = init();

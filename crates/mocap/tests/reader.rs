@@ -256,4 +256,8 @@ fn big_input_parsed_in_parallel_matches_sequential_and_reports_lines() {
     let bad = rows.replacen("50000 ", "50000 oops ", 1);
     let e = err(&one_joint(ch, &bad, 60_000));
     assert_eq!(e.line, 14 + 50_000, "{e}");
+    // With errors in several pieces, the first in the file is the one reported.
+    let two = bad.replacen("20000 ", "20000 1 ", 1);
+    let e = err(&one_joint(ch, &two, 60_000));
+    assert_eq!((e.line, e.message.contains("more than 6 values")), (14 + 20_000, true), "{e}");
 }

@@ -1,8 +1,8 @@
 //! The hot path: motion rows to one contiguous f32 matrix.
 //!
 //! Rows are lines; each must hold exactly one value per channel. Big inputs are cut
-//! into chunks at line breaks and parsed on several threads straight into their part
-//! of one buffer, sized by counting non-blank lines first. Nothing is allocated from
+//! into chunks at line breaks (a few per thread) and parsed on several threads
+//! straight into their part of one buffer, sized by counting non-blank lines first. Nothing is allocated from
 //! a count written in the file: the buffer is at most the number of lines present
 //! times the row width, and that product is checked against the byte length.
 
@@ -49,7 +49,7 @@ const PARALLEL_MIN_BYTES: usize = 1 << 20;
 /// Parses `data` (everything after the MOTION header) into rows of `width` values.
 pub(crate) fn parse_rows(data: &[u8], first_line: u32, first_column: u32, width: usize) -> Result<Rows, ParseError> {
     let origin = Origin { line: first_line, column_offset: first_column.saturating_sub(1) };
-    let chunks = split_at_lines(data, thread_count(data.len()));
+    let chunks = split_at_lines(data, piece_count(data.len()));
     let counts: Vec<LineCount> = crate::parallel::map(chunks.clone(), |c| count_lines(c)).into_iter().collect::<Option<_>>().ok_or_else(thread_failed)?;
     let total_rows: usize = counts.iter().map(|c| c.content).sum();
     // A valid row of `width` values takes at least 2·width bytes (value + separator).
@@ -136,11 +136,18 @@ fn thread_failed() -> ParseError {
     ParseError::new(0, 0, "internal error: a parser thread failed")
 }
 
-fn thread_count(len: usize) -> usize {
-    if len < PARALLEL_MIN_BYTES {
+/// Smallest piece worth cutting off for a thread to take.
+const PIECE_MIN_BYTES: usize = 1 << 18;
+
+/// Pieces to cut `len` bytes into: one below [`PARALLEL_MIN_BYTES`] or on one
+/// thread; else four per thread (at least [`PIECE_MIN_BYTES`] each), so threads
+/// on faster cores take more of them.
+fn piece_count(len: usize) -> usize {
+    let threads = crate::parallel::max_threads();
+    if len < PARALLEL_MIN_BYTES || threads <= 1 {
         return 1;
     }
-    crate::parallel::max_threads()
+    (threads * 4).min(len / PIECE_MIN_BYTES).max(threads)
 }
 
 /// Cuts `data` into about `parts` pieces, each ending just after a line break.
