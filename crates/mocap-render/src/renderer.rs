@@ -74,6 +74,8 @@ struct PipelineKey {
     samples: u32,
     /// The shaders' `FAST_LOOK` constant (one shadow lookup per pixel).
     fast_look: bool,
+    /// The shaders' `SHADOWS` constant (off: no pixel looks at the shadow map).
+    shadows: bool,
 }
 
 struct Pipelines {
@@ -137,7 +139,7 @@ impl SceneRenderer {
         let meshes = MeshCache::new(device);
         let skinned = SkinnedCache::new(device);
         let layouts = Layouts { frame: &frame_layout, shadow: &shadow_layout, skin: &meshes.skin_layout, joints: &skinned.layout };
-        let pipelines = Pipelines::new(device, &layouts, format, PipelineKey { samples: sample_count, fast_look: false });
+        let pipelines = Pipelines::new(device, &layouts, format, PipelineKey { samples: sample_count, fast_look: false, shadows: true });
         SceneRenderer {
             format,
             sample_count,
@@ -196,11 +198,12 @@ impl SceneRenderer {
     }
 
     /// Makes the pipelines for targets of `sample_count` samples, in the fast
-    /// look or not ([`SceneRenderer::fast_look`]), if they are not made yet
+    /// look or not ([`SceneRenderer::fast_look`]), for frames with shadows or
+    /// without ([`Scene::shadows`]), if they are not made yet
     /// ([`SceneRenderer::encode`] does on first use; doing it ahead moves the
     /// shader compilation, slow on some platforms, to a chosen moment).
-    pub fn prepare_pipelines(&mut self, device: &wgpu::Device, sample_count: u32, fast_look: bool) {
-        let key = PipelineKey { samples: sample_count, fast_look };
+    pub fn prepare_pipelines(&mut self, device: &wgpu::Device, sample_count: u32, fast_look: bool, shadows: bool) {
+        let key = PipelineKey { samples: sample_count, fast_look, shadows };
         if key == self.main_key() || self.other_pipelines.iter().any(|(k, _)| *k == key) {
             return;
         }
@@ -209,14 +212,15 @@ impl SceneRenderer {
         self.other_pipelines.push((key, pipelines));
     }
 
-    /// The pipelines a frame into a target of `samples` samples draws with.
-    fn key_for(&self, samples: u32) -> PipelineKey {
-        PipelineKey { samples, fast_look: self.fast_look }
+    /// The pipelines a frame into a target of `samples` samples draws with,
+    /// with shadows or not.
+    fn key_for(&self, samples: u32, shadows: bool) -> PipelineKey {
+        PipelineKey { samples, fast_look: self.fast_look, shadows }
     }
 
     /// What [`SceneRenderer::pipelines`] are made for.
     fn main_key(&self) -> PipelineKey {
-        PipelineKey { samples: self.sample_count, fast_look: false }
+        PipelineKey { samples: self.sample_count, fast_look: false, shadows: true }
     }
 
     /// Records the draw of `scene` into `encoder`, targeting `target` (of any
@@ -230,12 +234,12 @@ impl SceneRenderer {
         scene: &Scene,
         camera: &Camera,
     ) {
-        let key = self.key_for(target.sample_count());
-        self.prepare_pipelines(device, key.samples, key.fast_look);
         if self.fast_look && self.fast_shadow.is_none() {
             self.fast_shadow = Some(ShadowMap::new(device, shadow::FAST_SIZE, &self.shadow_layout));
         }
         let (shadows, uniforms) = self.upload(device, queue, target, scene, camera);
+        let key = self.key_for(target.sample_count(), shadows);
+        self.prepare_pipelines(device, key.samples, key.fast_look, key.shadows);
         self.draw_calls = 0;
         if shadows {
             self.encode_shadow_pass(encoder);
@@ -248,7 +252,7 @@ impl SceneRenderer {
         let background = wgpu::Color { r: r as f64, g: g as f64, b: b as f64, a: a as f64 };
         if let Some(copy) = &copy {
             if copy.fill {
-                self.encode_floor_fill(encoder, copy, target.sample_count(), background);
+                self.encode_floor_fill(encoder, copy, key, background);
             }
             let [width, height] = target.size();
             let extent = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
@@ -261,7 +265,7 @@ impl SceneRenderer {
         let (view, resolve_target) = target.color_attachment();
         let color = (view, resolve_target, load_or_clear(copy.is_some(), background));
         let mut pass = self.begin_lit_pass(encoder, "mocap scene", color, target.depth_view(), load_or_clear(depth_copied, 1.0), wgpu::StoreOp::Discard);
-        let pipelines = pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, self.key_for(samples));
+        let pipelines = pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, key);
         if scene.grid.is_some() {
             let floor = match &copy {
                 None => Some(&pipelines.floor),
@@ -355,13 +359,13 @@ impl SceneRenderer {
     }
 
     /// Draws the floor over `background` into the floor cache's textures (of
-    /// the target's size and `samples`).
-    fn encode_floor_fill(&mut self, encoder: &mut wgpu::CommandEncoder, cache: &FloorCopy, samples: u32, background: wgpu::Color) {
+    /// the target's size and sample count), with the pipelines for `key`.
+    fn encode_floor_fill(&mut self, encoder: &mut wgpu::CommandEncoder, cache: &FloorCopy, key: PipelineKey, background: wgpu::Color) {
         let view = cache.color.create_view(&Default::default());
         let depth = cache.depth.create_view(&Default::default());
         let color = (&view, None, wgpu::LoadOp::Clear(background));
         let mut pass = self.begin_lit_pass(encoder, "mocap floor cache", color, &depth, wgpu::LoadOp::Clear(1.0), wgpu::StoreOp::Store);
-        pass.set_pipeline(&pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, self.key_for(samples)).floor);
+        pass.set_pipeline(&pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, key).floor);
         pass.draw(0..6, 0..1);
         self.draw_calls += 1;
     }
@@ -542,6 +546,7 @@ impl Pipelines {
             depth_fragment: false,
             color_writes: wgpu::ColorWrites::ALL,
             fast_look: key.fast_look,
+            shadows: key.shadows,
         };
         // Depth-only passes into the shadow map: every caster's `vs_shadow`, no colour.
         let depth_only = PipelineSpec {

@@ -109,6 +109,11 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
     let unshadowed = read_pixels(&device, &queue, &target);
     let darker = bare.chunks(4).zip(unshadowed.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
     assert_eq!(darker, 0, "no shadow when shadows are off");
+    // Shadows on again (their own pipelines, made before): the first picture.
+    scene.shadows = true;
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    assert!(read_pixels(&device, &queue, &target) == lit, "shadows on again draw the same picture as before");
+    scene.shadows = false;
 
     // A line inside the pole's top is hidden; as an overlay line it shows.
     let green = |pixels: &[u8]| pixels.chunks(4).filter(|p| p[1] > 150 && p[0] < 100).count();

@@ -131,7 +131,7 @@ impl Viewport {
         if self.frames_rendered == 1 {
             // The fast look's pipelines, after the first frame is out: compiled
             // then, not in the middle of playback when frames are already slow.
-            gpu.renderer.prepare_pipelines(&rs.device, 1, true);
+            gpu.renderer.prepare_pipelines(&rs.device, 1, true, scene.shadows);
         }
         self.frames_rendered += 1;
         ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ShowFrame { fast }));

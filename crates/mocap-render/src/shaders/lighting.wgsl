@@ -7,6 +7,10 @@
 // holds only its own path: software rasterisers run both sides of a branch.
 override FAST_LOOK: bool = false;
 
+// Whether the frame has shadows; without them no pixel looks at the shadow
+// map (a pipeline constant for the same reason as FAST_LOOK).
+override SHADOWS: bool = true;
+
 @group(1) @binding(0) var shadow_map: texture_depth_2d;
 @group(1) @binding(1) var shadow_sampler: sampler_comparison;
 
@@ -17,7 +21,7 @@ const KEY: vec3<f32> = vec3<f32>(1.0, 0.96, 0.90);
 // 1 where the key light reaches `p` (normal `n`), 0 in full shadow; soft at the
 // edges (percentage-closer filtering).
 fn key_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
-    if (frame.viewport.w <= 0.0) {
+    if (!SHADOWS || frame.viewport.w <= 0.0) {
         return 1.0;
     }
     let texel = frame.light_dir.w;
