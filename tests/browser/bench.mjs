@@ -82,6 +82,13 @@ function repeatRows(text, frames) {
     }, walkText);
     await waitState(page, (s) => s.clips.length === 16);
     const v16 = await msPerFrame(page, 'viewer');
+    // Body mode (the issue's default look is "capsules or body"): 16, then 1.
+    await page.evaluate(() => window.mocapViewer.applyViewState('mode=body'));
+    const b16 = await msPerFrame(page, 'viewer');
+    await page.evaluate(() => { for (let i = 15; i >= 1; i--) window.mocapViewer.remove(i); });
+    await waitState(page, (s) => s.clips.length === 1);
+    const b1 = await msPerFrame(page, 'viewer');
+    await page.evaluate(() => window.mocapViewer.applyViewState('mode=capsules'));
     await page.evaluate(() => window.mocapViewer.pause());
     // Paused with no input: frames drawn in two seconds (the aim is none).
     const idle = await page.evaluate(async () => {
@@ -138,6 +145,8 @@ function repeatRows(text, frames) {
     rows.push(['frames per second, 1 character', 1000 / v1, 1000 / t1, 'higher is better; aim >= 0.5']);
     rows.push(['the same, quality=full (MSAA while playing)', 1000 / v1full, 1000 / t1, 'higher is better']);
     rows.push(['frames per second, 16 characters', 1000 / v16, 1000 / t16, 'higher is better; aim >= 0.5']);
+    rows.push(['the same in body mode, 1 character', 1000 / b1, 1000 / t1, 'higher is better; aim >= 0.5']);
+    rows.push(['the same in body mode, 16 characters', 1000 / b16, 1000 / t16, 'higher is better; aim >= 0.5']);
     // Drop to first drawn frame: the 3.6 MB corpus take, and a 27 MB one made here
     // by repeating the motion rows of the CMU take 01_01 to 36,000 frames (the
     // input of `cargo bench -p mocap`).
