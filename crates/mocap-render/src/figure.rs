@@ -181,6 +181,11 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
                 }
             }
             DrawMode::Body => {
+                // The body's shadow in the fast look: its bones' capsules.
+                if let Some(q) = parent {
+                    let radius = bone_radius(q.distance(p), size);
+                    scene.body_casters.push(Capsule { a: q, b: p, radius, color });
+                }
                 if is_highlight {
                     scene.capsules.push(Capsule { a: p, b: p, radius: size * 0.045, color });
                 }
@@ -238,6 +243,17 @@ mod tests {
         assert_eq!(scene.shadow_casters.len(), 2);
         assert_eq!(scene.spheres.len(), 2, "End Sites get no joint marker");
         assert_eq!(scene.spheres[1].color, [9; 4]);
+    }
+
+    #[test]
+    fn body_mode_gives_its_bones_as_fast_look_shadow_casters() {
+        let (joints, positions) = chain();
+        let mut scene = Scene::default();
+        push_figure(&mut scene, &joints, &positions, &style(DrawMode::Body));
+        assert!(scene.capsules.is_empty() && scene.shadow_casters.is_empty(), "the body draws and casts itself");
+        assert_eq!(scene.body_casters.len(), 2, "one per bone");
+        assert_eq!((scene.body_casters[0].a, scene.body_casters[0].b), (Vec3::ZERO, Vec3::Y));
+        assert_eq!(scene.body_casters[0].radius, bone_radius(1.0, 1.8), "the capsule mode's radius, as the body's tubes");
     }
 
     #[test]

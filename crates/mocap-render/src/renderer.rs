@@ -51,6 +51,9 @@ pub struct SceneRenderer {
     caster_indices: u32,
     meshes: MeshCache,
     skinned: SkinnedCache,
+    /// Whether this frame's bodies cast their shadows as their bones' capsules
+    /// (the fast look, with [`Scene::body_casters`]) rather than as meshes.
+    bodies_cast_as_capsules: bool,
     /// The floor of a still camera, drawn once (floor_cache.rs).
     floor_cache: FloorCache,
     /// Whether the last frame's floor was copied from the cache.
@@ -63,8 +66,9 @@ pub struct SceneRenderer {
     /// The fast look, for a view that moves on a slow (software) GPU: shadows
     /// from a 1024² map instead of 2048² (a quarter of the texels to clear and
     /// fill each frame) with one lookup per pixel instead of four (harder
-    /// edges), and capsules spanning under two pixels left out (with their
-    /// shadows). Off by default.
+    /// edges), capsules spanning under two pixels left out (with their
+    /// shadows), and bodies casting their shadows as their bones' capsules
+    /// ([`Scene::body_casters`]). Off by default.
     pub fast_look: bool,
 }
 
@@ -159,6 +163,7 @@ impl SceneRenderer {
             caster_indices: 0,
             meshes,
             skinned,
+            bodies_cast_as_capsules: false,
             floor_cache: FloorCache::new(Copies::of(device)),
             floor_copied: false,
             line_scratch: Vec::new(),
@@ -389,7 +394,7 @@ impl SceneRenderer {
             pass.set_pipeline(&self.pipelines.morph_shadow);
             self.draw_calls += self.meshes.draw(&mut pass, false);
         }
-        if self.skinned.has_draws() {
+        if self.skinned.has_draws() && !self.bodies_cast_as_capsules {
             pass.set_pipeline(&self.pipelines.skinned_shadow);
             self.draw_calls += self.skinned.draw(&mut pass);
         }
@@ -411,7 +416,10 @@ impl SceneRenderer {
         // The casters that are not drawn lit (the lit capsules cast too):
         // spheres (capsules of zero length) and capsules that only cast.
         let spheres = scene.spheres.iter().map(|s| (s.center, s.center, s.radius));
-        let only_cast = spheres.chain(scene.shadow_casters.iter().map(|c| (c.a, c.b, c.radius)));
+        // In the fast look the bodies' bones cast the bodies' shadows.
+        self.bodies_cast_as_capsules = self.fast_look && !scene.body_casters.is_empty();
+        let body_casters = scene.body_casters.iter().filter(|_| self.bodies_cast_as_capsules);
+        let only_cast = spheres.chain(scene.shadow_casters.iter().chain(body_casters).map(|c| (c.a, c.b, c.radius)));
         let floor_y = scene.grid.as_ref().map(|g| g.center.y);
         self.meshes.prepare(device, queue, &scene.meshes);
         self.skinned.prepare(device, queue, &scene.skinned);

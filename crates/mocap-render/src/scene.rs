@@ -64,6 +64,11 @@ pub struct Scene {
     pub meshes: Vec<MeshDraw>,
     /// Skinned meshes (bodies), lit and shadow-casting, skinned on the GPU.
     pub skinned: Vec<SkinnedDraw>,
+    /// Capsules around the bodies' bones that cast the bodies' shadows in the
+    /// fast look instead of the skinned meshes (on a software GPU a body's
+    /// vertices cost far more than its bones' impostors); unused otherwise.
+    /// Without them the skinned meshes cast in the fast look too.
+    pub body_casters: Vec<Capsule>,
     /// Whether the floor receives the key light's soft shadow.
     pub shadows: bool,
 }
@@ -80,6 +85,7 @@ impl Default for Scene {
             shadow_casters: Vec::new(),
             meshes: Vec::new(),
             skinned: Vec::new(),
+            body_casters: Vec::new(),
             shadows: true,
         }
     }
@@ -96,5 +102,6 @@ impl Scene {
         self.shadow_casters.clear();
         self.meshes.clear();
         self.skinned.clear();
+        self.body_casters.clear();
     }
 }

@@ -678,3 +678,53 @@ fn the_fast_look_leaves_out_capsules_under_two_pixels() {
     renderer.render(&device, &queue, &target, &scene, &near);
     assert!(count(&read_pixels(&device, &queue, &target), &green) > 2, "a nearer ball is drawn in the fast look");
 }
+
+#[test]
+fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
+    use mocap_render::glam::Mat4;
+    use mocap_render::{SkinnedDraw, SkinnedMeshData};
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    // A square pillar 0.3 wide from the floor to y = 2.5, bound to one joint.
+    let (mut positions, mut normals) = (Vec::new(), Vec::new());
+    for (n, u) in [(Vec3::X, Vec3::Z), (Vec3::Z, -Vec3::X), (-Vec3::X, -Vec3::Z), (-Vec3::Z, Vec3::X)] {
+        for (s, y) in [(-1.0, 0.0), (1.0, 0.0), (1.0, 2.5), (-1.0, 2.5)] {
+            positions.push(n * 0.15 + u * 0.15 * s + Vec3::Y * y);
+            normals.push(n);
+        }
+    }
+    let indices: Vec<u32> = (0..4u32).flat_map(|f| [0, 1, 2, 0, 2, 3].map(|i| f * 4 + i)).collect();
+    let n = positions.len();
+    let mesh = std::sync::Arc::new(SkinnedMeshData::new(&positions, &normals, &vec![[0; 4]; n], &vec![[1.0, 0.0, 0.0, 0.0]; n], indices, 1).unwrap());
+    let body = SkinnedDraw { mesh, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false, margin: 0.3 };
+    let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
+    let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let bare = read_pixels(&device, &queue, &target);
+    let luma = |p: &[u8]| p[0] as u32 + p[1] as u32 + p[2] as u32;
+    // The floor pixels (grey, not the red pillar) darker than the bare floor.
+    let shadowed = |pixels: &[u8]| -> Vec<usize> {
+        bare.chunks(4).zip(pixels.chunks(4)).enumerate().filter(|(_, (b, l))| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).map(|(i, _)| i).collect()
+    };
+    let shared = |a: &[usize], b: &[usize]| a.iter().filter(|i| b.contains(i)).count();
+    let mut frame = |renderer: &mut SceneRenderer, scene: &Scene| {
+        renderer.render(&device, &queue, &target, scene, &camera);
+        read_pixels(&device, &queue, &target)
+    };
+    scene.skinned.push(body);
+    let full = frame(&mut renderer, &scene);
+    let mesh_shadow = shadowed(&full);
+    assert!(mesh_shadow.len() > 20, "the body's mesh casts a shadow: {} pixels", mesh_shadow.len());
+    // A stand-in capsule set well to the side, so its shadow tells which cast:
+    // unused at full quality.
+    scene.body_casters.push(Capsule { a: Vec3::new(1.2, 0.0, 1.2), b: Vec3::new(1.2, 2.5, 1.2), radius: 0.15, color: [200, 60, 60, 255] });
+    assert!(frame(&mut renderer, &scene) == full, "body casters are unused at full quality");
+    // The fast look: the capsule casts instead of the mesh.
+    renderer.fast_look = true;
+    let capsule_shadow = shadowed(&frame(&mut renderer, &scene));
+    assert!(capsule_shadow.len() > 20, "fast look: the stand-in capsule casts: {} pixels", capsule_shadow.len());
+    assert!(shared(&capsule_shadow, &mesh_shadow) * 4 < mesh_shadow.len(), "fast look: the mesh casts no shadow of its own");
+    // Without body casters the mesh casts in the fast look too.
+    scene.body_casters.clear();
+    let fast_mesh_shadow = shadowed(&frame(&mut renderer, &scene));
+    assert!(shared(&fast_mesh_shadow, &mesh_shadow) * 2 > mesh_shadow.len(), "fast look without body casters: the mesh's shadow");
+}
