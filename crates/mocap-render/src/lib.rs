@@ -53,7 +53,7 @@ pub use mesh::{MeshDraw, MorphMeshData, MorphVertex, NEUTRAL_TINT, SkinImage};
 pub use renderer::SceneRenderer;
 pub use scene::{Capsule, Line, Scene, Sphere};
 pub use shadow::key_light_direction;
-pub use skinned::{SkinnedDraw, SkinnedMeshData, SkinnedVertex};
+pub use skinned::{COARSE_BODY_SPAN_PX, SkinnedDraw, SkinnedMeshData, SkinnedVertex};
 pub use target::RenderTarget;
 pub use glam;
 pub use wgpu;

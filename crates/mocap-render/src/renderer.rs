@@ -67,8 +67,10 @@ pub struct SceneRenderer {
     /// from a 1024² map instead of 2048² (a quarter of the texels to clear and
     /// fill each frame) with one lookup per pixel instead of four (harder
     /// edges), capsules spanning under two pixels left out (with their
-    /// shadows), and bodies casting their shadows as their bones' capsules
-    /// ([`Scene::body_casters`]). Off by default.
+    /// shadows), bodies casting their shadows as their bones' capsules
+    /// ([`Scene::body_casters`]), and bodies spanning under
+    /// [`crate::COARSE_BODY_SPAN_PX`] drawn with their coarse meshes
+    /// ([`SkinnedDraw::coarse`]). Off by default.
     pub fast_look: bool,
 }
 
@@ -422,7 +424,9 @@ impl SceneRenderer {
         let only_cast = spheres.chain(scene.shadow_casters.iter().chain(body_casters).map(|c| (c.a, c.b, c.radius)));
         let floor_y = scene.grid.as_ref().map(|g| g.center.y);
         self.meshes.prepare(device, queue, &scene.meshes);
-        self.skinned.prepare(device, queue, &scene.skinned);
+        // The fast look draws bodies small on screen with their coarse meshes.
+        let fast_look = self.fast_look;
+        self.skinned.prepare(device, queue, &scene.skinned, |d| fast_look && body_span_px(d, camera, size[1] as f32) < crate::skinned::COARSE_BODY_SPAN_PX);
         let skinned_bounds = scene.skinned.iter().filter_map(SkinnedDraw::world_bounds);
         let mesh_bounds = scene.meshes.iter().filter_map(|m| m.world_bounds()).chain(skinned_bounds).filter(|_| scene.shadows);
         let casters = scene.capsules.iter().map(|c| (c.a, c.b, c.radius)).chain(only_cast.clone());
@@ -464,6 +468,12 @@ fn pipelines_for<'a>(main: &'a Pipelines, main_key: PipelineKey, others: &'a [(P
         return main;
     }
     others.iter().find(|(k, _)| *k == key).map_or(main, |(_, p)| p)
+}
+
+/// How many pixels a body spans on screen at most (its bounding box's sphere,
+/// [`capsule::span_px`]); infinite without a bound.
+fn body_span_px(draw: &SkinnedDraw, camera: &Camera, height_px: f32) -> f32 {
+    draw.world_bounds().map_or(f32::INFINITY, |(lo, hi)| capsule::span_px(&crate::Capsule { a: lo, b: hi, radius: 0.0, color: [0; 4] }, camera, height_px))
 }
 
 /// The box around every finite caster (ends `a`, `b` grown by the radius), if any.

@@ -91,6 +91,10 @@ impl SkinnedMeshData {
 pub struct SkinnedDraw {
     /// The mesh (uploaded on first sight, kept while an `Arc` to it lives).
     pub mesh: Arc<SkinnedMeshData>,
+    /// A coarser mesh of the same body, bound to the same joints, that the
+    /// fast look draws instead when the body spans under
+    /// [`COARSE_BODY_SPAN_PX`] on screen (see [`crate::SceneRenderer::fast_look`]).
+    pub coarse: Option<Arc<SkinnedMeshData>>,
     /// One matrix per joint, bind pose to world (`world · bind⁻¹`); missing ones
     /// count as identity.
     pub matrices: Vec<Mat4>,
@@ -119,6 +123,10 @@ impl SkinnedDraw {
         (lo.x <= hi.x).then(|| (lo - Vec3::splat(margin), hi + Vec3::splat(margin)))
     }
 }
+
+/// Bodies spanning fewer pixels than this on screen (their bounding sphere)
+/// are drawn with their coarse mesh in the fast look.
+pub const COARSE_BODY_SPAN_PX: f32 = 200.0;
 
 /// Per-draw data (slot 1).
 #[repr(C)]
@@ -185,16 +193,20 @@ impl SkinnedCache {
     }
 
     /// Uploads new meshes, forgets dropped ones, and writes this frame's matrices
-    /// and instances.
-    pub fn prepare(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, draws: &[SkinnedDraw]) {
+    /// and instances. A draw for which `coarse` says so is drawn with its
+    /// coarse mesh, where it has one.
+    pub fn prepare(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, draws: &[SkinnedDraw], coarse: impl Fn(&SkinnedDraw) -> bool) {
         self.meshes.retain(|_, m| m.owner.strong_count() > 0);
         self.scratch.clear();
         self.texels.clear();
         self.draws.clear();
         for draw in draws {
-            let key = Arc::as_ptr(&draw.mesh) as usize;
+            let data = match &draw.coarse {
+                Some(mesh) if coarse(draw) => mesh,
+                _ => &draw.mesh,
+            };
+            let key = Arc::as_ptr(data) as usize;
             if !self.meshes.contains_key(&key) {
-                let data = &draw.mesh;
                 let bytes: &[u8] = bytemuck::cast_slice(&data.vertices);
                 if bytes.len() as u64 > device.limits().max_buffer_size || data.indices.is_empty() {
                     continue;
@@ -209,7 +221,7 @@ impl SkinnedCache {
                 self.meshes.insert(key, mesh);
             }
             let base = (self.texels.len() / TEXELS_PER_MATRIX as usize) as u32;
-            for j in 0..draw.mesh.joint_count as usize {
+            for j in 0..data.joint_count as usize {
                 let m = draw.matrices.get(j).copied().filter(|m| m.is_finite()).unwrap_or(Mat4::IDENTITY);
                 self.texels.extend([m.row(0), m.row(1), m.row(2)].map(|r| r.to_array()));
             }

@@ -281,7 +281,7 @@ fn gpu_skinning_matches_the_cpu_blend() {
     let camera = Camera::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.0);
     let tint = [200, 180, 160, 255];
     let mut scene = Scene { shadows: false, ..Scene::default() };
-    scene.skinned = vec![SkinnedDraw { mesh: mesh.clone(), matrices: matrices.clone(), tint, weights_view: false, margin: 0.3 }];
+    scene.skinned = vec![SkinnedDraw { mesh: mesh.clone(), coarse: None, matrices: matrices.clone(), tint, weights_view: false, margin: 0.3 }];
     renderer.render(&device, &queue, &target, &scene, &camera);
     let gpu = read_pixels(&device, &queue, &target);
     // The CPU blend: Σ wᵢ·Mᵢ applied to each vertex.
@@ -312,7 +312,7 @@ fn gpu_skinning_matches_the_cpu_blend() {
     assert!(columns_of(10..40) + 10.0 < columns_of(80..110), "bent toward -X at the top");
     // The weights view colours by joint, not by the tint.
     scene.meshes.clear();
-    scene.skinned = vec![SkinnedDraw { mesh, matrices, tint, weights_view: true, margin: 0.3 }];
+    scene.skinned = vec![SkinnedDraw { mesh, coarse: None, matrices, tint, weights_view: true, margin: 0.3 }];
     renderer.render(&device, &queue, &target, &scene, &camera);
     let weights_view = read_pixels(&device, &queue, &target);
     let changed = gpu.chunks(4).zip(weights_view.chunks(4)).filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 30)).count();
@@ -684,18 +684,8 @@ fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
     use mocap_render::glam::Mat4;
     use mocap_render::{SkinnedDraw, SkinnedMeshData};
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
-    // A square pillar 0.3 wide from the floor to y = 2.5, bound to one joint.
-    let (mut positions, mut normals) = (Vec::new(), Vec::new());
-    for (n, u) in [(Vec3::X, Vec3::Z), (Vec3::Z, -Vec3::X), (-Vec3::X, -Vec3::Z), (-Vec3::Z, Vec3::X)] {
-        for (s, y) in [(-1.0, 0.0), (1.0, 0.0), (1.0, 2.5), (-1.0, 2.5)] {
-            positions.push(n * 0.15 + u * 0.15 * s + Vec3::Y * y);
-            normals.push(n);
-        }
-    }
-    let indices: Vec<u32> = (0..4u32).flat_map(|f| [0, 1, 2, 0, 2, 3].map(|i| f * 4 + i)).collect();
-    let n = positions.len();
-    let mesh = std::sync::Arc::new(SkinnedMeshData::new(&positions, &normals, &vec![[0; 4]; n], &vec![[1.0, 0.0, 0.0, 0.0]; n], indices, 1).unwrap());
-    let body = SkinnedDraw { mesh, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false, margin: 0.3 };
+    let mesh = pillar(0.0);
+    let body = SkinnedDraw { mesh, coarse: None, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false, margin: 0.3 };
     let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
     let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
     renderer.render(&device, &queue, &target, &scene, &camera);
@@ -727,4 +717,47 @@ fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
     scene.body_casters.clear();
     let fast_mesh_shadow = shadowed(&frame(&mut renderer, &scene));
     assert!(shared(&fast_mesh_shadow, &mesh_shadow) * 2 > mesh_shadow.len(), "fast look without body casters: the mesh's shadow");
+}
+
+/// A square pillar 0.3 wide from the floor to y = 2.5 at (`x`, 0), bound to one joint.
+fn pillar(x: f32) -> std::sync::Arc<mocap_render::SkinnedMeshData> {
+    let (mut positions, mut normals) = (Vec::new(), Vec::new());
+    for (n, u) in [(Vec3::X, Vec3::Z), (Vec3::Z, -Vec3::X), (-Vec3::X, -Vec3::Z), (-Vec3::Z, Vec3::X)] {
+        for (s, y) in [(-1.0, 0.0), (1.0, 0.0), (1.0, 2.5), (-1.0, 2.5)] {
+            positions.push(Vec3::X * x + n * 0.15 + u * 0.15 * s + Vec3::Y * y);
+            normals.push(n);
+        }
+    }
+    let indices: Vec<u32> = (0..4u32).flat_map(|f| [0, 1, 2, 0, 2, 3].map(|i| f * 4 + i)).collect();
+    let n = positions.len();
+    std::sync::Arc::new(mocap_render::SkinnedMeshData::new(&positions, &normals, &vec![[0; 4]; n], &vec![[1.0, 0.0, 0.0, 0.0]; n], indices, 1).unwrap())
+}
+
+#[test]
+fn the_fast_look_draws_a_small_body_with_its_coarse_mesh_and_a_near_one_with_its_own() {
+    use mocap_render::glam::Mat4;
+    use mocap_render::SkinnedDraw;
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    // The "coarse" mesh is set apart (at x = 1) so the picture tells which is drawn.
+    let body = SkinnedDraw { mesh: pillar(0.0), coarse: Some(pillar(1.0)), matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false, margin: 0.3 };
+    let scene = Scene { skinned: vec![body], shadows: false, ..Scene::default() };
+    let mut red_columns = |renderer: &mut SceneRenderer, camera: &Camera| {
+        renderer.render(&device, &queue, &target, &scene, camera);
+        let pixels = read_pixels(&device, &queue, &target);
+        let columns: Vec<usize> = pixels.chunks(4).enumerate().filter(|(_, p)| p[0] > 60 && p[0] as u32 > 2 * p[1] as u32).map(|(i, _)| i % SIZE as usize).collect();
+        (columns.len(), columns.iter().sum::<usize>() as f32 / columns.len().max(1) as f32)
+    };
+    // Far (the body spans about 40 pixels): the fast look draws the coarse mesh, to the right.
+    let far = Camera::look_at(Vec3::new(0.0, 1.25, 6.0), Vec3::new(0.5, 1.25, 0.0), 0.8, 1.0);
+    let (full_count, full_x) = red_columns(&mut renderer, &far);
+    renderer.fast_look = true;
+    let (fast_count, fast_x) = red_columns(&mut renderer, &far);
+    assert!(full_count > 50 && fast_count > 50, "drawn: {full_count}, {fast_count} pixels");
+    assert!(fast_x > full_x + 10.0, "fast look, far: the coarse mesh (x = 1) is drawn, not the mesh: columns {fast_x} vs {full_x}");
+    // Near (far more than COARSE_BODY_SPAN_PX): the body's own mesh, in both looks.
+    let near = Camera::look_at(Vec3::new(0.0, 1.25, 0.8), Vec3::new(0.0, 1.25, 0.0), 0.8, 1.0);
+    let (near_fast, _) = red_columns(&mut renderer, &near);
+    renderer.fast_look = false;
+    let (near_full, _) = red_columns(&mut renderer, &near);
+    assert!(near_fast * 10 > near_full * 9 && near_full > 1000, "near: the mesh fills the view in both looks ({near_fast} vs {near_full} pixels)");
 }

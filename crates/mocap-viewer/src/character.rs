@@ -175,6 +175,9 @@ pub fn drag_joint(c: &mut Character, joint: usize, world: mocap::glam::Vec3, tim
 pub struct Body {
     /// The bind-pose mesh with its weights.
     pub mesh: Arc<SkinnedMeshData>,
+    /// The same body cut coarser ([`mocap::body::Detail::COARSE`]), for the
+    /// fast look when it is small on screen ([`mocap_render::SkinnedDraw::coarse`]).
+    pub coarse: Option<Arc<SkinnedMeshData>>,
     /// One inverse bind matrix per joint (file units).
     pub inverse_bind: Vec<Mat4>,
 }
@@ -195,8 +198,12 @@ pub fn ensure_body(c: &mut Character) {
     let extent = c.extent;
     let body = c.clip().and_then(|clip| {
         let skin = body_skin(clip, extent)?;
-        let mesh = SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), clip.skeleton().len()).ok()?;
-        Some(Body { mesh: Arc::new(mesh), inverse_bind: skin.inverse_bind().to_vec() })
+        let joints = clip.skeleton().len();
+        let mesh_of = |skin: &mocap::skin::Skin| SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), joints).ok();
+        let mesh = mesh_of(&skin)?;
+        let coarse = mocap::body::build_with(clip.skeleton(), &clip.bind_pose(), |length| mocap_render::body_radius(length, extent), mocap::body::Detail::COARSE).ok();
+        let coarse = coarse.as_ref().and_then(mesh_of).map(Arc::new);
+        Some(Body { mesh: Arc::new(mesh), coarse, inverse_bind: skin.inverse_bind().to_vec() })
     });
     c.extra.body = Some(body);
 }

@@ -81,7 +81,7 @@ impl Tentacle {
     pub fn body(&self, clip: &mocap::Clip) -> Option<Body> {
         let skin = mocap::demo::tentacle_skin(clip, self.soft).ok()?;
         let mesh = SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), clip.skeleton().len()).ok()?;
-        Some(Body { mesh: Arc::new(mesh), inverse_bind: skin.inverse_bind().to_vec() })
+        Some(Body { mesh: Arc::new(mesh), coarse: None, inverse_bind: skin.inverse_bind().to_vec() })
     }
 
     /// Sets the character's pose for this frame: slider rotations, then (when

@@ -53,9 +53,41 @@ pub enum BodyError {
 /// Vertices of one tube.
 pub const TUBE_VERTICES: u32 = 2 + SEGMENTS * (2 * CAP_RINGS + SPANS - 1);
 
+/// How finely the tubes are cut.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Detail {
+    /// Vertices around a tube (at least 3).
+    pub segments: u32,
+    /// Rings in each round end, the equator included (at least 1).
+    pub cap_rings: u32,
+    /// Spans along the straight part (at least 1).
+    pub spans: u32,
+}
+
+impl Detail {
+    /// The body as drawn: [`SEGMENTS`], [`CAP_RINGS`], [`SPANS`]
+    /// ([`TUBE_VERTICES`] a tube, 120 triangles).
+    pub const FULL: Detail = Detail { segments: SEGMENTS, cap_rings: CAP_RINGS, spans: SPANS };
+    /// About a third of the triangles (20 vertices and 36 triangles a tube:
+    /// hexagonal, with pointed ends): for a body too small on screen for the
+    /// difference to show, on a slow GPU.
+    pub const COARSE: Detail = Detail { segments: 6, cap_rings: 1, spans: 2 };
+
+    /// Vertices of one tube.
+    pub fn tube_vertices(self) -> u32 {
+        2 + self.segments * (2 * self.cap_rings + self.spans - 1)
+    }
+
+    /// The same, each count raised to its least.
+    fn at_least(self) -> Detail {
+        Detail { segments: self.segments.max(3), cap_rings: self.cap_rings.max(1), spans: self.spans.max(1) }
+    }
+}
+
 /// The mesh being built.
 #[derive(Default)]
 struct Builder {
+    detail: Option<Detail>,
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
     indices: Vec<u32>,
@@ -83,6 +115,7 @@ fn smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
 impl Builder {
     /// A capsule from `a` to `b` of `radius`, weighted along its axis.
     fn tube(&mut self, a: Vec3, b: Vec3, radius: f32, who: Owners) {
+        let Detail { segments, cap_rings, spans } = self.detail.unwrap_or(Detail::FULL).at_least();
         let length = a.distance(b);
         let z = if length > 0.0 { (b - a) / length } else { Vec3::Y };
         let x = z.any_orthonormal_vector();
@@ -91,21 +124,21 @@ impl Builder {
         let base = self.positions.len() as u32;
         // Rings from the near pole to the far one: (axial position, ring radius, normal's axial part).
         let mut rings: Vec<(f32, f32, f32)> = Vec::new();
-        for k in 1..=CAP_RINGS {
-            let phi = -FRAC_PI_2 + k as f32 * FRAC_PI_2 / CAP_RINGS as f32;
+        for k in 1..=cap_rings {
+            let phi = -FRAC_PI_2 + k as f32 * FRAC_PI_2 / cap_rings as f32;
             rings.push((radius * phi.sin(), radius * phi.cos(), phi.sin()));
         }
-        for k in 1..SPANS {
-            rings.push((length * k as f32 / SPANS as f32, radius, 0.0));
+        for k in 1..spans {
+            rings.push((length * k as f32 / spans as f32, radius, 0.0));
         }
-        for k in 0..CAP_RINGS {
-            let phi = k as f32 * FRAC_PI_2 / CAP_RINGS as f32;
+        for k in 0..cap_rings {
+            let phi = k as f32 * FRAC_PI_2 / cap_rings as f32;
             rings.push((length + radius * phi.sin(), radius * phi.cos(), phi.sin()));
         }
         self.vertex(a - z * radius, -z, -radius, length, zone, who);
         for &(along, ring, nz) in &rings {
-            for s in 0..SEGMENTS {
-                let angle = s as f32 * TAU / SEGMENTS as f32;
+            for s in 0..segments {
+                let angle = s as f32 * TAU / segments as f32;
                 let radial = x * angle.cos() + y * angle.sin();
                 let normal = (radial * (1.0 - nz * nz).max(0.0).sqrt() + z * nz).normalize_or_zero();
                 self.vertex(a + z * along + radial * ring, normal, along, length, zone, who);
@@ -113,21 +146,21 @@ impl Builder {
         }
         self.vertex(b + z * radius, z, length + radius, length, zone, who);
         // Triangles, counter-clockwise seen from outside.
-        let ring_start = |r: u32| base + 1 + r * SEGMENTS;
-        let next = |s: u32| (s + 1) % SEGMENTS;
-        let top = base + 1 + rings.len() as u32 * SEGMENTS;
-        for s in 0..SEGMENTS {
+        let ring_start = |r: u32| base + 1 + r * segments;
+        let next = |s: u32| (s + 1) % segments;
+        let top = base + 1 + rings.len() as u32 * segments;
+        for s in 0..segments {
             self.indices.extend([base, ring_start(0) + next(s), ring_start(0) + s]);
         }
         for r in 0..rings.len() as u32 - 1 {
             let (lo, hi) = (ring_start(r), ring_start(r + 1));
-            for s in 0..SEGMENTS {
+            for s in 0..segments {
                 self.indices.extend([lo + s, lo + next(s), hi + next(s)]);
                 self.indices.extend([lo + s, hi + next(s), hi + s]);
             }
         }
         let last = ring_start(rings.len() as u32 - 1);
-        for s in 0..SEGMENTS {
+        for s in 0..segments {
             self.indices.extend([top, last + s, last + next(s)]);
         }
     }
@@ -146,6 +179,11 @@ impl Builder {
 /// Builds the body of `skeleton` around its bind pose (`bind`: one model
 /// transform per joint, file units); `radius(length)` gives a bone's tube radius.
 pub fn build(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(f32) -> f32) -> Result<Skin, BodyError> {
+    build_with(skeleton, bind, radius, Detail::FULL)
+}
+
+/// [`build`] with tubes cut as `detail` says.
+pub fn build_with(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(f32) -> f32, detail: Detail) -> Result<Skin, BodyError> {
     let joints = skeleton.joints();
     if bind.len() != joints.len() || bind.iter().any(|t| !t.translation.is_finite()) {
         return Err(BodyError::BindPose { given: bind.len(), joints: joints.len() });
@@ -160,7 +198,7 @@ pub fn build(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(f32) -> f3
     if bones.len() > MAX_BODY_BONES {
         return Err(BodyError::TooManyBones(bones.len()));
     }
-    let mut b = Builder::default();
+    let mut b = Builder { detail: Some(detail), ..Builder::default() };
     let index = |j: usize| u32::try_from(j).unwrap_or(u32::MAX);
     for &(p, j) in &bones {
         let length = at(p).distance(at(j));
@@ -193,6 +231,23 @@ mod tests {
             }
         }
         edges
+    }
+
+    #[test]
+    fn a_coarse_tube_is_closed_with_its_ends_weighted_the_same() {
+        let mut b = Builder { detail: Some(Detail::COARSE), ..Builder::default() };
+        b.tube(Vec3::ZERO, Vec3::Y * 2.0, 0.2, Owners { owner: 1, far: Some(2), near: Some(0) });
+        assert_eq!(b.positions.len() as u32, Detail::COARSE.tube_vertices());
+        assert_eq!((b.positions.len(), b.indices.len() / 3), (20, 36));
+        assert!(edge_uses(&b.indices).values().all(|&n| n == 2), "closed");
+        let last = b.weights.len() - 1;
+        assert_eq!((b.joints[last], b.weights[last]), ([1, 2, 0, 1], [0.5, 0.5, 0.0, 0.0]));
+        assert_eq!((b.joints[0], b.weights[0]), ([1, 2, 0, 1], [0.5, 0.0, 0.5, 0.0]));
+        assert!(b.weights.iter().all(|w| (w.iter().sum::<f32>() - 1.0).abs() < 1e-6));
+        // Counts below their least are raised (no empty or degenerate tube).
+        let mut z = Builder { detail: Some(Detail { segments: 0, cap_rings: 0, spans: 0 }), ..Builder::default() };
+        z.tube(Vec3::ZERO, Vec3::Y, 0.1, Owners { owner: 0, far: None, near: None });
+        assert!(edge_uses(&z.indices).values().all(|&n| n == 2) && !z.indices.is_empty());
     }
 
     #[test]
