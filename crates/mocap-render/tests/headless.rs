@@ -682,7 +682,7 @@ fn the_fast_look_leaves_out_capsules_under_two_pixels() {
 #[test]
 fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
     use mocap_render::glam::Mat4;
-    use mocap_render::{SkinnedDraw, SkinnedMeshData};
+    use mocap_render::SkinnedDraw;
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     let mesh = pillar(0.0);
     let body = SkinnedDraw { mesh, coarse: None, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false, margin: 0.3 };
@@ -696,7 +696,7 @@ fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
         bare.chunks(4).zip(pixels.chunks(4)).enumerate().filter(|(_, (b, l))| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).map(|(i, _)| i).collect()
     };
     let shared = |a: &[usize], b: &[usize]| a.iter().filter(|i| b.contains(i)).count();
-    let mut frame = |renderer: &mut SceneRenderer, scene: &Scene| {
+    let frame = |renderer: &mut SceneRenderer, scene: &Scene| {
         renderer.render(&device, &queue, &target, scene, &camera);
         read_pixels(&device, &queue, &target)
     };
@@ -741,7 +741,7 @@ fn the_fast_look_draws_a_small_body_with_its_coarse_mesh_and_a_near_one_with_its
     // The "coarse" mesh is set apart (at x = 1) so the picture tells which is drawn.
     let body = SkinnedDraw { mesh: pillar(0.0), coarse: Some(pillar(1.0)), matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false, margin: 0.3 };
     let scene = Scene { skinned: vec![body], shadows: false, ..Scene::default() };
-    let mut red_columns = |renderer: &mut SceneRenderer, camera: &Camera| {
+    let red_columns = |renderer: &mut SceneRenderer, camera: &Camera| {
         renderer.render(&device, &queue, &target, &scene, camera);
         let pixels = read_pixels(&device, &queue, &target);
         let columns: Vec<usize> = pixels.chunks(4).enumerate().filter(|(_, p)| p[0] > 60 && p[0] as u32 > 2 * p[1] as u32).map(|(i, _)| i % SIZE as usize).collect();
