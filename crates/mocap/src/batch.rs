@@ -26,11 +26,7 @@ struct JointLanes {
 /// `q · axis-rotation(angle)` lane by lane; `half` is half a radian per unit.
 #[inline(always)]
 fn rotate_about_axis(q: &mut [Lanes; 4], axis: usize, angles: &Lanes, half: f32) {
-    let mut s = [0.0; LANES];
-    let mut c = [0.0; LANES];
-    for l in 0..LANES {
-        (s[l], c[l]) = sin_cos(angles[l] * half);
-    }
+    let (s, c) = half_sin_cos(angles, half);
     // One fixed loop per axis (constant field indices vectorise; dynamic ones don't).
     let [x, y, z, w] = q;
     match axis {
@@ -38,6 +34,18 @@ fn rotate_about_axis(q: &mut [Lanes; 4], axis: usize, angles: &Lanes, half: f32)
         1 => rotate_lanes(w, y, z, x, &s, &c),
         _ => rotate_lanes(w, z, x, y, &s, &c),
     }
+}
+
+/// Sine and cosine of `angle · half` lane by lane (the half-angle terms of an
+/// axis rotation's quaternion).
+#[inline(always)]
+fn half_sin_cos(angles: &Lanes, half: f32) -> (Lanes, Lanes) {
+    let mut s = [0.0; LANES];
+    let mut c = [0.0; LANES];
+    for l in 0..LANES {
+        (s[l], c[l]) = sin_cos(angles[l] * half);
+    }
+    (s, c)
 }
 
 /// Rotation about axis `a` where `(a, b, d)` is a cyclic permutation of `(x, y, z)`:
@@ -180,11 +188,7 @@ fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LAN
 /// from the identity).
 #[inline(always)]
 fn set_axis_rotation(q: &mut [Lanes; 4], axis: usize, angles: &Lanes, half: f32) {
-    let mut s = [0.0; LANES];
-    let mut c = [0.0; LANES];
-    for l in 0..LANES {
-        (s[l], c[l]) = sin_cos(angles[l] * half);
-    }
+    let (s, c) = half_sin_cos(angles, half);
     *q = [[0.0; LANES]; 4];
     if let Some(slot) = q.get_mut(axis) {
         *slot = s;
