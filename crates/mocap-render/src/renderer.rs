@@ -678,7 +678,12 @@ impl Pipelines {
         let skinned = pipeline::build(
             device,
             &skinned_layout,
-            &PipelineSpec { label: "mocap skinned", shader: &skinned_shader, buffers: &skinned_buffers, cull_back: false, ..base },
+            // Bodies are closed and wound counter-clockwise seen from outside
+            // (`SkinnedMeshData`): their back faces lie behind their front
+            // faces, so they are not drawn (about a third of a body frame's
+            // time on lavapipe). The shadow pass draws both: culling either
+            // side there moves shadow edges.
+            &PipelineSpec { label: "mocap skinned", shader: &skinned_shader, buffers: &skinned_buffers, cull_back: true, ..base },
         );
         let skinned_shadow = pipeline::build(
             device,

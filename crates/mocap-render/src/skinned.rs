@@ -33,7 +33,10 @@ pub struct SkinnedVertex {
     pub weights: [f32; 4],
 }
 
-/// A mesh bound to joints, as the renderer draws it.
+/// A mesh bound to joints, as the renderer draws it: closed surfaces whose
+/// triangles wind counter-clockwise seen from outside (as `mocap::body` and
+/// `mocap::demo::tentacle_skin` make them). Only their front faces are drawn,
+/// so a view from inside a surface sees through it.
 #[derive(Debug, PartialEq)]
 pub struct SkinnedMeshData {
     vertices: Vec<SkinnedVertex>,

@@ -728,7 +728,8 @@ fn pillar(x: f32) -> std::sync::Arc<mocap_render::SkinnedMeshData> {
             normals.push(n);
         }
     }
-    let indices: Vec<u32> = (0..4u32).flat_map(|f| [0, 1, 2, 0, 2, 3].map(|i| f * 4 + i)).collect();
+    // Counter-clockwise seen from outside, as bodies are (only front faces are drawn).
+    let indices: Vec<u32> = (0..4u32).flat_map(|f| [0, 2, 1, 0, 3, 2].map(|i| f * 4 + i)).collect();
     let n = positions.len();
     std::sync::Arc::new(mocap_render::SkinnedMeshData::new(&positions, &normals, &vec![[0; 4]; n], &vec![[1.0, 0.0, 0.0, 0.0]; n], indices, 1).unwrap())
 }
@@ -760,4 +761,28 @@ fn the_fast_look_draws_a_small_body_with_its_coarse_mesh_and_a_near_one_with_its
     renderer.fast_look = false;
     let (near_full, _) = red_columns(&mut renderer, &near);
     assert!(near_fast * 10 > near_full * 9 && near_full > 1000, "near: the mesh fills the view in both looks ({near_fast} vs {near_full} pixels)");
+}
+
+#[test]
+fn bodies_are_drawn_from_outside_and_seen_through_from_inside() {
+    // Bodies wind counter-clockwise seen from outside and only their front
+    // faces are drawn: from outside the pillar shows; from inside its walls
+    // (whose back faces the eye sees) are not drawn, in either look.
+    use mocap_render::glam::Mat4;
+    use mocap_render::SkinnedDraw;
+    let Some((device, queue, mut renderer, target)) = setup(4) else { return };
+    let body = SkinnedDraw { mesh: pillar(0.0), coarse: None, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false, margin: 0.3 };
+    let scene = Scene { skinned: vec![body], shadows: false, ..Scene::default() };
+    let background = Scene::default().background;
+    for fast in [false, true] {
+        renderer.fast_look = fast;
+        let mut drawn = |camera: &Camera| {
+            renderer.render(&device, &queue, &target, &scene, camera);
+            read_pixels(&device, &queue, &target).chunks(4).filter(|p| *p != background).count()
+        };
+        let outside = drawn(&Camera::look_at(Vec3::new(0.3, 1.25, 3.0), Vec3::new(0.0, 1.25, 0.0), 0.8, 1.0));
+        assert!(outside > 1500, "fast look {fast}: from outside the pillar covers {outside} pixels");
+        let inside = drawn(&Camera::look_at(Vec3::new(0.0, 1.25, 0.0), Vec3::new(0.05, 1.25, -1.0), 0.8, 1.0));
+        assert_eq!(inside, 0, "fast look {fast}: from inside, {inside} pixels of the walls are drawn");
+    }
 }

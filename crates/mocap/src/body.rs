@@ -218,7 +218,7 @@ pub fn build_with(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(f32) 
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use std::collections::HashMap;
 
@@ -233,6 +233,18 @@ mod tests {
         edges
     }
 
+    /// Every triangle of a tube around the +Y axis from `bottom` to `top`
+    /// winds counter-clockwise seen from outside (the renderer draws front
+    /// faces only).
+    pub(crate) fn assert_wound_outward(positions: &[Vec3], indices: &[u32], bottom: f32, top: f32) {
+        for t in indices.chunks(3) {
+            let [p0, p1, p2] = [0, 1, 2].map(|k| positions[t[k] as usize]);
+            let centre = (p0 + p1 + p2) / 3.0;
+            let outward = centre - Vec3::new(0.0, centre.y.clamp(bottom, top), 0.0);
+            assert!((p1 - p0).cross(p2 - p0).dot(outward) > 0.0, "{p0} {p1} {p2} winds inward");
+        }
+    }
+
     #[test]
     fn a_coarse_tube_is_closed_with_its_ends_weighted_the_same() {
         let mut b = Builder { detail: Some(Detail::COARSE), ..Builder::default() };
@@ -240,6 +252,7 @@ mod tests {
         assert_eq!(b.positions.len() as u32, Detail::COARSE.tube_vertices());
         assert_eq!((b.positions.len(), b.indices.len() / 3), (20, 36));
         assert!(edge_uses(&b.indices).values().all(|&n| n == 2), "closed");
+        assert_wound_outward(&b.positions, &b.indices, 0.0, 2.0);
         let last = b.weights.len() - 1;
         assert_eq!((b.joints[last], b.weights[last]), ([1, 2, 0, 1], [0.5, 0.5, 0.0, 0.0]));
         assert_eq!((b.joints[0], b.weights[0]), ([1, 2, 0, 1], [0.5, 0.0, 0.5, 0.0]));
@@ -267,11 +280,6 @@ mod tests {
             let axis = Vec3::new(0.0, p.y.clamp(0.0, 2.0), 0.0);
             assert!((*p - axis).normalize().dot(*n) > 0.99, "{p} {n}");
         }
-        // Triangles wind counter-clockwise seen from outside.
-        for t in b.indices.chunks(3) {
-            let [p0, p1, p2] = [0, 1, 2].map(|k| b.positions[t[k] as usize]);
-            let outward = (p0 + p1 + p2) / 3.0 - Vec3::new(0.0, ((p0 + p1 + p2) / 3.0).y.clamp(0.0, 2.0), 0.0);
-            assert!((p1 - p0).cross(p2 - p0).dot(outward) > 0.0);
-        }
+        assert_wound_outward(&b.positions, &b.indices, 0.0, 2.0);
     }
 }

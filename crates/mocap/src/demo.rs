@@ -131,6 +131,10 @@ mod tests {
                 }
             }
             assert!(edges.values().all(|&n| n == 2), "closed");
+            // Its flat ends lie at 0 and the tip's height: seen from outside
+            // beyond them too.
+            let top = 3.0 * BONE_LENGTH;
+            crate::body::tests::assert_wound_outward(skin.positions(), skin.indices(), 1e-3 * top, top * (1.0 - 1e-3));
             let blended = skin.weights().iter().filter(|w| w[1] > 0.0).count();
             assert_eq!(blended > 0, soft, "soft skins blend across joints, rigid ones do not");
         }
