@@ -79,8 +79,9 @@ impl MotionClip {
         self.scratch.iter().flat_map(|p| p.to_array()).collect()
     }
 
-    /// The generated body's triangles (three vertex indices each), as body mode
-    /// draws it; empty when the skeleton gets no body (too many bones).
+    /// The generated body's triangles (three vertex indices each, counter-clockwise
+    /// seen from outside), as body mode draws it; empty when the skeleton gets
+    /// no body (too many bones).
     #[wasm_bindgen(js_name = bodyIndices)]
     pub fn body_indices(&mut self) -> Vec<u32> {
         self.body().map_or(Vec::new(), |b| b.indices().to_vec())
