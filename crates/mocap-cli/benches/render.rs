@@ -3,9 +3,9 @@
 //! whatever Vulkan adapter is present (lavapipe on a machine without a GPU).
 //! The skeleton is `../shared/corpus/bvh/animated_drawings/jesse_dance.bvh`.
 //!
-//! Then the same for capsules without shadows, and without shadows or MSAA, to
-//! show where the time goes on a software rasteriser, and in the fast look (what
-//! a window draws while playing once frames are slow; never a final image).
+//! Then the same for capsules without shadows, to show where the time goes on a
+//! software rasteriser, and in the fast look (what a window draws while playing
+//! once frames are slow; never a final image).
 //!
 //! Then body mode (generated bodies skinned on the GPU) for 1, 16 and 64 of the
 //! same characters, and the time to build the body of the corpus skeleton with the
@@ -17,7 +17,9 @@
 //! the drawing mesh, decode the skin).
 //!
 //! "frame" is a whole frame as a window would show it: pose every character,
-//! build the primitives, draw (shadow map + scene, 4× MSAA) and wait for the GPU.
+//! build the primitives, draw (shadow map + scene; 4× MSAA where the scene needs
+//! it, one sample with blended outlines for capsules, as
+//! `SceneRenderer::samples_for` says) and wait for the GPU.
 //! "+ readback" adds copying the pixels back to memory, as `mocap render` does.
 
 use mocap_cli::render::{Gpu, Offscreen, Orbit, StageView};
@@ -43,19 +45,16 @@ fn main() {
         }
     };
     let joints = clip.clip().map_or(0, |c| c.skeleton().joint_count());
-    println!("adapter: {}   skeleton: {joints} joints (+ End Sites), 1280x720, 4x MSAA, shadows on", gpu.adapter_name());
+    println!("adapter: {}   skeleton: {joints} joints (+ End Sites), 1280x720, shadows on, samples as the renderer chooses", gpu.adapter_name());
     let mut offscreen = Offscreen::new(&gpu, [1280, 720]);
     for mode in [DrawMode::Capsules, DrawMode::Sticks] {
         for count in [1usize, 16, 64] {
             measure(&gpu, &mut offscreen, &clip, mode, count, true);
         }
     }
-    for (samples, label) in [(4, "4x MSAA, no shadows"), (1, "no MSAA, no shadows")] {
-        println!("capsules, {label}:");
-        let mut offscreen = Offscreen::with_samples(&gpu, [1280, 720], samples);
-        for count in [1usize, 16, 64] {
-            measure(&gpu, &mut offscreen, &clip, DrawMode::Capsules, count, false);
-        }
+    println!("capsules, no shadows:");
+    for count in [1usize, 16, 64] {
+        measure(&gpu, &mut offscreen, &clip, DrawMode::Capsules, count, false);
     }
     // What a window draws while playing once frames are slow (the viewer's
     // automatic rule, crates/mocap-viewer/src/quality.rs); never a final image.
@@ -65,7 +64,7 @@ fn main() {
     for count in [1usize, 16, 64] {
         measure(&gpu, &mut fast, &clip, DrawMode::Capsules, count, true);
     }
-    println!("body mode (generated skinned bodies, GPU skinning), 4x MSAA, shadows on:");
+    println!("body mode (generated skinned bodies, GPU skinning), shadows on:");
     for count in [1usize, 16, 64] {
         measure(&gpu, &mut offscreen, &clip, DrawMode::Body, count, true);
     }
@@ -141,8 +140,9 @@ fn measure(gpu: &Gpu, offscreen: &mut Offscreen, clip: &mocap::Asset, mode: Draw
     }
     let readback_ms = start.elapsed().as_secs_f64() * 1e3 / FRAMES as f64;
     println!(
-        "{:<8} {count:>3} characters: frame {frame_ms:>7.2} ms, + readback {readback_ms:>7.2} ms  ({} capsules, {} lines, {} spheres, {} meshes, {} bodies; draw calls per frame: {})",
+        "{:<8} {count:>3} characters: frame {frame_ms:>7.2} ms, + readback {readback_ms:>7.2} ms  ({} sample(s); {} capsules, {} lines, {} spheres, {} meshes, {} bodies; draw calls per frame: {})",
         if clip.model().is_some() { "md2" } else { mode.name() },
+        offscreen.samples(),
         scene.capsules.len(),
         scene.lines.len(),
         scene.spheres.len(),

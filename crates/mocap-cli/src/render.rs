@@ -12,7 +12,8 @@ use std::sync::Arc;
 
 /// Colour format of the offscreen target (sRGB, read back as RGBA8).
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
-/// Multisampling for anti-aliasing.
+/// Multisampling for anti-aliasing, for scenes that need it
+/// (`SceneRenderer::samples_for`: capsule-only scenes are smooth on one sample).
 const SAMPLES: u32 = 4;
 /// Vertical field of view, radians.
 const FOV_Y: f32 = 0.8;
@@ -124,7 +125,13 @@ fn keep_freed_memory() {
 /// Draws scenes into an offscreen target and reads the pixels back.
 pub struct Offscreen {
     renderer: SceneRenderer,
+    /// A target of the renderer's sample count.
     target: RenderTarget,
+    /// One sample beside a multisampled `target`, made when first drawn into
+    /// (`SceneRenderer::samples_for`).
+    single: Option<RenderTarget>,
+    /// Samples per pixel of the last frame.
+    last_samples: u32,
     readback: wgpu::Buffer,
     padded_row: u32,
 }
@@ -147,7 +154,7 @@ impl Offscreen {
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
-        Offscreen { renderer, target, readback, padded_row }
+        Offscreen { renderer, target, single: None, last_samples: samples, readback, padded_row }
     }
 
     /// Size in pixels.
@@ -168,10 +175,29 @@ impl Offscreen {
         self.renderer.draw_calls()
     }
 
+    /// Samples per pixel of the last frame's target.
+    pub fn samples(&self) -> u32 {
+        self.last_samples
+    }
+
+    /// Makes the target a frame of `scene` is drawn into: of the sample count
+    /// the renderer asks for it ([`SceneRenderer::samples_for`]); returns
+    /// whether it is the single-sampled one beside a multisampled `target`.
+    fn choose_target(&mut self, gpu: &Gpu, scene: &Scene) -> bool {
+        let samples = self.renderer.samples_for(scene);
+        self.last_samples = samples;
+        let single = samples != self.target.sample_count();
+        if single && self.single.is_none() {
+            self.single = Some(RenderTarget::new(&gpu.device, FORMAT, 1, self.target.size()));
+        }
+        single
+    }
+
     /// Renders and waits for the GPU to finish, without reading pixels back (what a
     /// frame costs in a window).
     pub fn render(&mut self, gpu: &Gpu, scene: &Scene, camera: &Camera) -> Result<(), String> {
-        self.renderer.render(&gpu.device, &gpu.queue, &self.target, scene, camera);
+        let single = self.choose_target(gpu, scene);
+        self.renderer.render(&gpu.device, &gpu.queue, pick(&self.target, &self.single, single), scene, camera);
         gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU wait failed: {e}"))?;
         Ok(())
     }
@@ -179,10 +205,12 @@ impl Offscreen {
     /// Renders and returns tightly packed RGBA8 (sRGB) rows.
     pub fn draw(&mut self, gpu: &Gpu, scene: &Scene, camera: &Camera) -> Result<Vec<u8>, String> {
         let [w, h] = self.target.size();
+        let single = self.choose_target(gpu, scene);
+        let target = pick(&self.target, &self.single, single);
         let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("mocap render") });
-        self.renderer.encode(&gpu.device, &gpu.queue, &mut encoder, &self.target, scene, camera);
+        self.renderer.encode(&gpu.device, &gpu.queue, &mut encoder, target, scene, camera);
         encoder.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo { texture: &self.target.color, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+            wgpu::TexelCopyTextureInfo { texture: &target.color, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
             wgpu::TexelCopyBufferInfo {
                 buffer: &self.readback,
                 layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(self.padded_row), rows_per_image: Some(h) },
@@ -207,6 +235,11 @@ impl Offscreen {
         self.readback.unmap();
         Ok(pixels)
     }
+}
+
+/// `single` if `use_single` (and made), else `target`.
+fn pick<'a>(target: &'a RenderTarget, single: &'a Option<RenderTarget>, use_single: bool) -> &'a RenderTarget {
+    single.as_ref().filter(|_| use_single).unwrap_or(target)
 }
 
 /// What `mocap render` draws for one actor: a skeleton's figure or a model's mesh.

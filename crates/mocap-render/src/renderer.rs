@@ -18,12 +18,21 @@ use crate::pipeline::{self, PipelineSpec, instances};
 use crate::placed::PlacedMesh;
 use crate::shadow::{self, ShadowMap};
 use crate::spheres::{SPHERE_ATTRIBUTES, SphereInstance};
-use crate::uniforms::FrameUniforms;
+use crate::uniforms::{FrameUniforms, OutlineRule};
 use crate::{Camera, RenderTarget, Scene, SkinnedDraw};
 use glam::Vec3;
 
 /// Draws [`Scene`]s with one device and colour format, into targets of its
 /// sample count or of any other (pipelines for another count are made on first use).
+///
+/// Outlines of capsules are anti-aliased in every look but the fast one: on a
+/// multisampled target their coverage (computed from each pixel's ray) is
+/// turned into samples; on a single-sampled target it is the alpha the pixel
+/// is blended with, and the capsules are drawn farthest first, so that an
+/// outline's fringe is blended over what lies behind it. So a scene
+/// whose every primitive is smooth on one sample
+/// ([`Scene::smooth_on_one_sample`]: capsules and the floor) is drawn at full
+/// quality into a single-sampled target, without the cost of multisampling.
 pub struct SceneRenderer {
     format: wgpu::TextureFormat,
     sample_count: u32,
@@ -59,6 +68,9 @@ pub struct SceneRenderer {
     /// Whether the last frame's floor was copied from the cache.
     floor_copied: bool,
     line_scratch: Vec<LineInstance>,
+    /// The lit capsules' view depths (their middles') and indices, in the
+    /// order they are drawn: farthest first where outlines are blended.
+    capsule_order: Vec<(f32, usize)>,
     sphere_scratch: Vec<SphereInstance>,
     draw_calls: u32,
     /// Physical pixels per logical pixel; scales line widths.
@@ -82,6 +94,14 @@ struct PipelineKey {
     fast_look: bool,
     /// The shaders' `SHADOWS` constant (off: no pixel looks at the shadow map).
     shadows: bool,
+}
+
+impl PipelineKey {
+    /// Whether capsule outlines are blended by their coverage (drawn farthest
+    /// first): full quality on one sample.
+    fn blends_outlines(self) -> bool {
+        self.samples == 1 && !self.fast_look
+    }
 }
 
 struct Pipelines {
@@ -169,6 +189,7 @@ impl SceneRenderer {
             floor_cache: FloorCache::new(Copies::of(device)),
             floor_copied: false,
             line_scratch: Vec::new(),
+            capsule_order: Vec::new(),
             sphere_scratch: Vec::new(),
             draw_calls: 0,
             pixels_per_point: 1.0,
@@ -184,6 +205,15 @@ impl SceneRenderer {
     /// Sample count the pipelines were built for.
     pub fn sample_count(&self) -> u32 {
         self.sample_count
+    }
+
+    /// The samples per pixel a frame of `scene` is drawn with at this look:
+    /// one in the fast look and for a scene smooth on one sample
+    /// ([`Scene::smooth_on_one_sample`], whose capsule outlines are then
+    /// blended), else the renderer's own count. The viewer and
+    /// `mocap render` draw each frame into a target of this count.
+    pub fn samples_for(&self, scene: &Scene) -> u32 {
+        if self.fast_look || scene.smooth_on_one_sample() { 1 } else { self.sample_count }
     }
 
     /// Draw calls recorded for the last frame (at most 8 plus 2 per mesh drawn).
@@ -305,14 +335,8 @@ impl SceneRenderer {
             pass.draw(0..6, 0..count);
             self.draw_calls += 1;
         }
-        for (pipeline, lines) in [(&pipelines.lines, &self.lines), (&pipelines.overlay_lines, &self.overlay_lines)] {
-            if let Some((buffer, count)) = lines.get() {
-                pass.set_pipeline(pipeline);
-                pass.set_vertex_buffer(0, buffer.slice(..));
-                pass.draw(0..6, 0..count);
-                self.draw_calls += 1;
-            }
-        }
+        self.draw_calls += draw_lines(&mut pass, &pipelines.lines, &self.lines);
+        self.draw_calls += draw_lines(&mut pass, &pipelines.overlay_lines, &self.overlay_lines);
     }
 
     /// Draws `scene` into `target` and submits the work to `queue`.
@@ -434,15 +458,25 @@ impl SceneRenderer {
         let bounds = mesh_bounds.chain(capsule_bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         let map_size = self.shadow_map().size;
         let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, map_size));
-        let uniforms = FrameUniforms::new(camera, size, target.sample_count(), self.format, scene.grid.as_ref(), light.as_ref());
+        let outline = if target.sample_count() == 1 && self.fast_look { OutlineRule::PixelCentres } else { OutlineRule::Filtered };
+        let uniforms = FrameUniforms::new(camera, size, outline, self.format, scene.grid.as_ref(), light.as_ref());
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.spheres.upload(device, queue, &self.sphere_scratch);
+        let blends_outlines = self.key_for(target.sample_count(), scene.shadows).blends_outlines();
         let capsules = &mut self.capsules;
         capsules.clear();
         // The fast look leaves out capsules spanning under a couple of pixels.
         let min_span = if self.fast_look { capsule::FAST_LOOK_MIN_SPAN_PX } else { 0.0 };
-        let shown = scene.capsules.iter().filter(|c| min_span <= 0.0 || capsule::span_px(c, camera, size[1] as f32) >= min_span);
-        capsule::expand(shown.map(CapsuleInstance::new), &mut capsules.vertices, &mut capsules.indices);
+        let shown = scene.capsules.iter().enumerate().filter(|(_, c)| min_span <= 0.0 || capsule::span_px(c, camera, size[1] as f32) >= min_span);
+        // Blended outlines need what lies behind them drawn first.
+        let order = &mut self.capsule_order;
+        order.clear();
+        order.extend(shown.map(|(i, c)| (camera.view.transform_point3((c.a + c.b) * 0.5).z, i)));
+        if blends_outlines {
+            order.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
+        }
+        let in_order = order.iter().filter_map(|&(_, i)| scene.capsules.get(i));
+        capsule::expand(in_order.map(CapsuleInstance::new), &mut capsules.vertices, &mut capsules.indices);
         self.lit_indices = capsules.indices.len() as u32;
         if light.is_some() {
             let shadow_only = only_cast.map(|(a, b, radius)| CapsuleInstance::caster(a, b, radius));
@@ -454,6 +488,15 @@ impl SceneRenderer {
         capsules.upload(device, queue);
         (light.is_some(), uniforms)
     }
+}
+
+/// Draws the uploaded `lines` with `pipeline`; returns the draw calls made.
+fn draw_lines<'a>(pass: &mut wgpu::RenderPass<'a>, pipeline: &'a wgpu::RenderPipeline, lines: &'a GrowingBuffer) -> u32 {
+    let Some((buffer, count)) = lines.get() else { return 0 };
+    pass.set_pipeline(pipeline);
+    pass.set_vertex_buffer(0, buffer.slice(..));
+    pass.draw(0..6, 0..count);
+    1
 }
 
 /// Keeps what an attachment holds (`load`), or else clears it to `clear`.
@@ -623,12 +666,14 @@ impl Pipelines {
             },
         );
         // Impostors: quads of either winding; alpha is the outline's coverage
-        // (samples on a multisampled target) and the target keeps its alpha.
+        // (samples on a multisampled target, blended on one sample at full
+        // quality) and the target keeps its alpha.
+        let coverage = if key.blends_outlines() { wgpu::BlendState::ALPHA_BLENDING.color } else { wgpu::BlendComponent::REPLACE };
         let capsules = pipeline::build(
             device,
             &lit_layout,
             &PipelineSpec {
-                color: Some((format, wgpu::BlendState { color: wgpu::BlendComponent::REPLACE, alpha: KEEP })),
+                color: Some((format, wgpu::BlendState { color: coverage, alpha: KEEP })),
                 cull_back: false,
                 alpha_to_coverage: true,
                 ..base

@@ -29,15 +29,27 @@ pub(crate) struct FrameUniforms {
     pub floor_color: [f32; 4],
     /// Floor area under the shadow casters: min x, min z, max x, max z.
     pub shadow_rect: [f32; 4],
-    /// The least coverage of a pixel an impostor's outline draws: 0 on a
-    /// multisampled target (coverage becomes samples), 0.5 on one sample.
+    /// The least coverage of a pixel an impostor's outline draws (see
+    /// [`OutlineRule`]).
     pub samples: [f32; 4],
 }
 
+/// How impostors' outlines meet the pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum OutlineRule {
+    /// Anti-aliased: coverage becomes samples on a multisampled target, or
+    /// the fringe is blended on one sample (every pixel with some coverage is
+    /// drawn by one of the draws).
+    Filtered,
+    /// One sample, the fast look: a pixel is drawn when its centre's ray meets
+    /// the impostor (coverage at least a half).
+    PixelCentres,
+}
 
 impl FrameUniforms {
-    /// The block for one frame into a target of `sample_count` samples.
-    pub fn new(camera: &Camera, size: [u32; 2], sample_count: u32, format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>) -> FrameUniforms {
+    /// The block for one frame into a target of `size` pixels and `format`,
+    /// with impostor outlines drawn by `outline`.
+    pub fn new(camera: &Camera, size: [u32; 2], outline: OutlineRule, format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>) -> FrameUniforms {
         let eye = camera.view.inverse().w_axis.truncate().extend(0.0);
         let (light_view_proj, texel, strength, shadow_rect) = match light {
             Some(fit) => (fit.view_proj, fit.texel, 1.0, fit.floor_rect),
@@ -51,7 +63,7 @@ impl FrameUniforms {
             light_dir: crate::shadow::key_light_direction().extend(texel).to_array(),
             eye: eye.to_array(),
             shadow_rect,
-            samples: [if sample_count > 1 { 0.0 } else { 0.5 }, 0.0, 0.0, 0.0],
+            samples: [if outline == OutlineRule::Filtered { 0.0 } else { 0.5 }, 0.0, 0.0, 0.0],
             ..Zeroable::zeroed()
         };
         if let Some(g) = grid {

@@ -366,9 +366,11 @@ fn a_multisampled_renderer_also_draws_into_a_single_sample_target_and_blit_copie
     assert_eq!(rgb(&copied), rgb(&smooth), "the copy is the frame, the right way up");
 }
 
-/// Renders `scene` into a new single-sampled `format` target and reads it back.
-fn render_in(device: &wgpu::Device, queue: &wgpu::Queue, format: wgpu::TextureFormat, scene: &Scene, camera: &Camera) -> Vec<u8> {
+/// Renders `scene` into a new single-sampled `format` target and reads it back,
+/// in the fast look or not.
+fn render_in(device: &wgpu::Device, queue: &wgpu::Queue, format: wgpu::TextureFormat, scene: &Scene, camera: &Camera, fast_look: bool) -> Vec<u8> {
     let mut renderer = SceneRenderer::new(device, format, 1);
+    renderer.fast_look = fast_look;
     let target = RenderTarget::new(device, format, 1, [SIZE, SIZE]);
     renderer.render(device, queue, &target, scene, camera);
     read_pixels(device, queue, &target)
@@ -391,7 +393,7 @@ fn the_floor_has_its_colours_on_srgb_and_plain_targets() {
         pixels[at..at + 4].to_vec()
     };
     for format in [wgpu::TextureFormat::Rgba8UnormSrgb, wgpu::TextureFormat::Rgba8Unorm] {
-        let pixel = middle(&render_in(&device, &queue, format, &scene, &camera));
+        let pixel = middle(&render_in(&device, &queue, format, &scene, &camera, false));
         let close = pixel.iter().zip(grid.floor_color).all(|(&p, c)| p.abs_diff(c) <= 1);
         assert!(close, "{format:?}: the floor's middle is {pixel:?}, its colour {:?}", grid.floor_color);
     }
@@ -399,7 +401,7 @@ fn the_floor_has_its_colours_on_srgb_and_plain_targets() {
     let lined = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::new(2.0, 0.0, 2.0), 0.0, 0.5)), ..scene };
     let camera = Camera::look_at(Vec3::new(0.0, 3.0, 0.001), Vec3::new(0.0, 0.0, 0.0), 0.8, 1.0);
     for format in [wgpu::TextureFormat::Rgba8UnormSrgb, wgpu::TextureFormat::Rgba8Unorm] {
-        let pixels = render_in(&device, &queue, format, &lined, &camera);
+        let pixels = render_in(&device, &queue, format, &lined, &camera, false);
         let row = &pixels[((SIZE / 2) * SIZE * 4) as usize..((SIZE / 2 + 1) * SIZE * 4) as usize];
         let brightest = row.chunks(4).map(|p| p[1]).max().unwrap_or(0);
         assert!(brightest > grid.floor_color[1] + 20, "{format:?}: no line across the middle row (brightest green {brightest})");
@@ -409,8 +411,9 @@ fn the_floor_has_its_colours_on_srgb_and_plain_targets() {
 #[test]
 fn lit_surfaces_store_the_same_colours_on_srgb_and_plain_targets() {
     // A plain unorm target (the web's) gets its sRGB encoding in the shader
-    // (`to_target`); an sRGB target encodes in hardware. One sample per pixel,
-    // so both cover the same pixels.
+    // (`to_target`); an sRGB target encodes in hardware. One sample per pixel
+    // in the fast look (outlines not blended, which sRGB targets do in linear
+    // space and plain ones in encoded), so both cover the same pixels.
     let Some((device, queue, _, _)) = setup(1) else { return };
     let camera = Camera::look_at(Vec3::new(0.0, 1.0, 3.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.0);
     let mut scene = Scene { background: [0, 0, 0, 255], ..Scene::default() };
@@ -419,8 +422,8 @@ fn lit_surfaces_store_the_same_colours_on_srgb_and_plain_targets() {
         scene.capsules.push(Capsule { a: Vec3::new(x, 0.3, 0.0), b: Vec3::new(x, 1.7, 0.0), radius: 0.2, color });
     }
     scene.spheres.push(Sphere { center: Vec3::new(0.0, 1.9, 0.5), radius: 0.15, color: [90, 200, 90, 255] });
-    let exact = render_in(&device, &queue, wgpu::TextureFormat::Rgba8UnormSrgb, &scene, &camera);
-    let shader = render_in(&device, &queue, wgpu::TextureFormat::Rgba8Unorm, &scene, &camera);
+    let exact = render_in(&device, &queue, wgpu::TextureFormat::Rgba8UnormSrgb, &scene, &camera, true);
+    let shader = render_in(&device, &queue, wgpu::TextureFormat::Rgba8Unorm, &scene, &camera, true);
     let lit = exact.chunks(4).filter(|p| p[..3].iter().any(|&v| v > 40)).count();
     assert!(lit > 2000, "the figures are drawn ({lit} pixels)");
     let worst = exact.iter().zip(&shader).map(|(a, b)| a.abs_diff(*b)).max().unwrap_or(0);
@@ -476,8 +479,10 @@ fn ray_against_capsule(camera: &Camera, x: u32, y: u32, a: Vec3, b: Vec3, r: f32
 
 #[test]
 fn capsule_impostors_cover_exactly_what_their_rays_meet() {
-    // One sample: a pixel is drawn when its centre's ray meets the capsule.
+    // One sample in the fast look: a pixel is drawn when its centre's ray
+    // meets the capsule (full quality blends a fringe, tested below).
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    renderer.fast_look = true;
     let background = [0, 0, 0, 255];
     let eye = Vec3::new(0.0, 0.0, 3.0);
     let camera = Camera::look_at(eye, Vec3::ZERO, 0.8, 1.0);
@@ -542,10 +547,12 @@ fn capsule_impostors_hide_each_other_by_their_true_depth() {
     let (mut checked, mut wrong) = (0, Vec::new());
     for (i, p) in pixels.chunks(4).enumerate() {
         let (x, y) = ((i % SIZE as usize) as u32, (i / SIZE as usize) as u32);
-        let (_, red_hit) = ray_against_capsule(&camera, x, y, red.0, red.1, red.2);
-        let (_, blue_hit) = ray_against_capsule(&camera, x, y, blue.0, blue.1, blue.2);
+        let (red_out, red_hit) = ray_against_capsule(&camera, x, y, red.0, red.1, red.2);
+        let (blue_out, blue_hit) = ray_against_capsule(&camera, x, y, blue.0, blue.1, blue.2);
         if let (Some(r), Some(b)) = (red_hit, blue_hit) {
-            if (r - b).abs() > 0.02 {
+            // Away from the nearer one's outline, whose fringe is a blend.
+            let inside_nearer = if r < b { red_out } else { blue_out } < -0.6;
+            if (r - b).abs() > 0.02 && inside_nearer {
                 checked += 1;
                 let shows_red = p[0] > p[2];
                 if shows_red != (r < b) {
@@ -592,6 +599,63 @@ fn capsule_outlines_are_smoothed_on_a_multisampled_target() {
         assert_eq!(p[3], 255, "the target keeps its alpha");
     }
     assert!(fringe > 10 && fringe_blended * 2 > fringe, "the outline is smoothed: {fringe_blended} of {fringe} pixels just outside it are blends");
+}
+
+/// Largest difference of any colour channel between two RGBA pixels.
+fn channel_diff(p: &[u8], q: &[u8]) -> u8 {
+    p.iter().zip(q).take(3).map(|(a, b)| a.abs_diff(*b)).max().unwrap_or(0)
+}
+
+/// Full quality on one sample: capsule outlines are filtered by drawing the
+/// partly covered pixels last, blended over what lies behind, so the picture
+/// is the multisampled one (a red capsule's outline over a blue one behind it
+/// blends red into blue, not into the background); the fast look keeps hard
+/// outlines. And the rule callers draw with: such a scene takes one sample.
+#[test]
+fn capsule_outlines_are_blended_on_one_sample_as_on_a_multisampled_target() {
+    let Some((device, queue, mut renderer, multisampled)) = setup(4) else { return };
+    let single = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
+    let camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 0.8, 1.0);
+    // The red one in front and listed first, so its fringe is drawn before
+    // the blue one's inside unless fringes come last.
+    let scene = Scene {
+        background: [0, 0, 0, 255],
+        capsules: vec![
+            Capsule { a: Vec3::new(-1.0, -0.6, 0.5), b: Vec3::new(0.9, 0.5, 0.5), radius: 0.25, color: [255, 0, 0, 255] },
+            Capsule { a: Vec3::new(0.3, -1.2, -0.5), b: Vec3::new(-0.4, 1.1, -0.5), radius: 0.35, color: [0, 0, 255, 255] },
+        ],
+        grid: None,
+        shadows: false,
+        ..Scene::default()
+    };
+    assert!(scene.smooth_on_one_sample());
+    assert_eq!(renderer.samples_for(&scene), 1, "capsules alone are drawn on one sample");
+    renderer.render(&device, &queue, &multisampled, &scene, &camera);
+    let reference = read_pixels(&device, &queue, &multisampled);
+    renderer.render(&device, &queue, &single, &scene, &camera);
+    let blended = read_pixels(&device, &queue, &single);
+    assert_eq!(renderer.draw_calls(), 1, "one draw of the capsules");
+    renderer.fast_look = true;
+    assert_eq!(renderer.samples_for(&scene), 1);
+    renderer.render(&device, &queue, &single, &scene, &camera);
+    let hard = read_pixels(&device, &queue, &single);
+    renderer.fast_look = false;
+    // Multisampling turns coverage into whole samples, rounding up (a quarter
+    // of the contrast at most); a hard outline misses by up to all of it.
+    let count = |pixels: &[u8], limit: u8| pixels.chunks(4).zip(reference.chunks(4)).filter(|(p, q)| channel_diff(p, q) > limit).count();
+    let (blended_off, hard_off) = (count(&blended, 80), count(&hard, 80));
+    // A pixel red in one picture and blue in the other.
+    let hue = |p: &[u8]| (p[0] as i32 - p[2] as i32).signum() * ((p[0] as i32 - p[2] as i32).abs() > 40) as i32;
+    let swapped = |pixels: &[u8]| pixels.chunks(4).zip(reference.chunks(4)).filter(|(p, q)| hue(p) * hue(q) < 0).count();
+    eprintln!("pixels more than 80 levels from the multisampled picture: blended {blended_off}, fast look {hard_off}; of the other hue {} / {}", swapped(&blended), swapped(&hard));
+    assert!(hard_off > 40, "the fast look's outlines are hard: {hard_off} pixels differ from the multisampled picture");
+    assert!(blended_off * 20 < hard_off, "blended outlines match the multisampled picture: {blended_off} pixels differ (fast look {hard_off})");
+    assert_eq!(swapped(&blended), 0, "no pixel takes the other capsule's hue");
+    assert!(blended.chunks(4).all(|p| p[3] == 255), "the target keeps its alpha");
+    // Anything drawn with hard edges on one sample makes the scene multisampled.
+    let sticks = Scene { spheres: vec![Sphere { center: Vec3::ZERO, radius: 0.1, color: [255; 4] }], ..scene.clone() };
+    assert!(!sticks.smooth_on_one_sample());
+    assert_eq!(renderer.samples_for(&sticks), 4);
 }
 
 #[test]
@@ -672,7 +736,11 @@ fn the_fast_look_leaves_out_capsules_under_two_pixels() {
     renderer.render(&device, &queue, &target, &scene, &camera);
     let fast = read_pixels(&device, &queue, &target);
     assert_eq!(count(&fast, &green), 0, "the fast look leaves the 1.6-pixel ball out");
-    assert_eq!(count(&fast, &red), count(&full, &red), "and keeps the limb");
+    // and keeps the limb: its pixels are red at full quality too, which
+    // adds at most its blended fringe.
+    let both_red = fast.chunks(4).zip(full.chunks(4)).filter(|(f, g)| red(f) && red(g)).count();
+    assert!(count(&fast, &red) > 20 && both_red == count(&fast, &red), "and keeps the limb ({} red pixels, {both_red} red at full quality)", count(&fast, &red));
+    assert!(count(&full, &red) < count(&fast, &red) * 2, "the fringe is about a pixel wide");
     // Nearer, the same ball spans more than two pixels and is drawn.
     let near = Camera::look_at(Vec3::new(0.0, 0.0, 1.0), Vec3::ZERO, 0.8, 1.0);
     renderer.render(&device, &queue, &target, &scene, &near);

@@ -13,33 +13,36 @@ const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// window through [`ShowFrame`], a copy inside egui's own pass.
 struct Gpu {
     renderer: SceneRenderer,
-    /// Full quality (multisampled when the adapter can).
+    /// Multisampled when the adapter can: full quality for scenes that need
+    /// it (meshes, lines, spheres).
     target: RenderTarget,
-    /// The fast look (one sample), made when first needed.
-    fast: Option<RenderTarget>,
+    /// One sample, made when first needed beside a multisampled `target`:
+    /// the fast look, and full quality for scenes smooth on one sample
+    /// (`SceneRenderer::samples_for`).
+    single: Option<RenderTarget>,
 }
 
 /// What [`ShowFrame`] draws with: kept in egui-wgpu's callback resources.
 struct FrameCopy {
     blit: Blit,
-    /// The full-quality target's frame.
+    /// The (multisampled) `target`'s frame.
     full: BlitSource,
-    /// The fast target's frame.
-    fast: Option<BlitSource>,
+    /// The single-sampled target's frame.
+    single: Option<BlitSource>,
 }
 
 /// The paint callback that copies the 3D view's finished frame onto its rect of
 /// the window (instead of an egui image: egui's image shader and blending cost
 /// several times more per pixel on software rasterisers).
 struct ShowFrame {
-    /// Copy the fast target's frame.
-    fast: bool,
+    /// Copy the single-sampled target's frame.
+    single: bool,
 }
 
 impl egui_wgpu::CallbackTrait for ShowFrame {
     fn paint(&self, _info: egui::PaintCallbackInfo, pass: &mut wgpu::RenderPass<'static>, resources: &egui_wgpu::CallbackResources) {
         if let Some(copy) = resources.get::<FrameCopy>() {
-            let source = if self.fast { copy.fast.as_ref() } else { Some(&copy.full) };
+            let source = if self.single { copy.single.as_ref() } else { Some(&copy.full) };
             if let Some(source) = source {
                 copy.blit.draw(pass, source);
             }
@@ -106,25 +109,24 @@ impl Viewport {
         let moving = playing || response.dragged() || joint_drag.is_some();
         let dt = ui.input(|i| i.unstable_dt);
         let gpu = self.gpu.get_or_insert_with(|| create_gpu(rs, size));
-        let fast = self.adaptive.decide(quality, moving, dt);
-        self.reduced = fast;
-        // The fast look has its own target only when full quality is multisampled.
-        let fast = fast && gpu.renderer.sample_count() > 1;
+        self.reduced = self.adaptive.decide(quality, moving, dt);
+        gpu.renderer.fast_look = self.reduced;
+        // One sample has its own target only when `target` is multisampled.
+        let single = gpu.renderer.sample_count() > 1 && gpu.renderer.samples_for(scene) == 1;
         if !gpu.target.matches(FORMAT, gpu.renderer.sample_count(), size) {
             gpu.target = RenderTarget::new(&rs.device, FORMAT, gpu.renderer.sample_count(), size);
             bind_frame(rs, &gpu.target, false);
         }
-        if fast && !gpu.fast.as_ref().is_some_and(|t| t.matches(FORMAT, 1, size)) {
+        if single && !gpu.single.as_ref().is_some_and(|t| t.matches(FORMAT, 1, size)) {
             let target = RenderTarget::new(&rs.device, FORMAT, 1, size);
             bind_frame(rs, &target, true);
-            gpu.fast = Some(target);
+            gpu.single = Some(target);
         }
-        let target = match &gpu.fast {
-            Some(t) if fast => t,
+        let target = match &gpu.single {
+            Some(t) if single => t,
             _ => &gpu.target,
         };
         gpu.renderer.pixels_per_point = ppp;
-        gpu.renderer.fast_look = self.reduced;
         let cam = camera.to_camera(size[0] as f32 / size[1] as f32);
         gpu.renderer.render(&rs.device, &rs.queue, target, scene, &cam);
         self.floor_copied = gpu.renderer.floor_copied();
@@ -134,7 +136,7 @@ impl Viewport {
             gpu.renderer.prepare_pipelines(&rs.device, 1, true, scene.shadows);
         }
         self.frames_rendered += 1;
-        ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ShowFrame { fast }));
+        ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ShowFrame { single }));
         (response, joint_drag)
     }
 
@@ -164,28 +166,28 @@ fn create_gpu(rs: &egui_wgpu::RenderState, size: [u32; 2]) -> Gpu {
     let renderer = SceneRenderer::new(&rs.device, FORMAT, samples);
     let target = RenderTarget::new(&rs.device, FORMAT, samples, size);
     bind_frame(rs, &target, false);
-    Gpu { renderer, target, fast: None }
+    Gpu { renderer, target, single: None }
 }
 
-/// Points [`ShowFrame`] at `target`, the full-quality or the `fast` one (the
-/// first time, makes the copy pipeline for the window's format).
-fn bind_frame(rs: &egui_wgpu::RenderState, target: &RenderTarget, fast: bool) {
+/// Points [`ShowFrame`] at `target`, the multisampled or the `single`-sampled
+/// one (the first time, makes the copy pipeline for the window's format).
+fn bind_frame(rs: &egui_wgpu::RenderState, target: &RenderTarget, single: bool) {
     let mut renderer = rs.renderer.write();
     let resources = &mut renderer.callback_resources;
     match resources.get_mut::<FrameCopy>() {
         Some(copy) => {
             let source = copy.blit.source(&rs.device, target);
-            if fast {
-                copy.fast = Some(source);
+            if single {
+                copy.single = Some(source);
             } else {
                 copy.full = source;
             }
         }
-        // The first target bound is the full-quality one (see `create_gpu`).
+        // The first target bound is the multisampled one (see `create_gpu`).
         None => {
             let blit = Blit::new(&rs.device, rs.target_format);
             let full = blit.source(&rs.device, target);
-            resources.insert(FrameCopy { blit, full, fast: None });
+            resources.insert(FrameCopy { blit, full, single: None });
         }
     }
 }

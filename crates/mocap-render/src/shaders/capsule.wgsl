@@ -244,8 +244,9 @@ fn fs_main(in: Out) -> Shaded {
         discard;
     }
     var out: Shaded;
-    // Alpha is the coverage (turned into samples on a multisampled target);
-    // the pipeline keeps the target's alpha.
+    // Alpha is the coverage (turned into samples on a multisampled target,
+    // blended over what is behind at full quality on one sample); the
+    // pipeline keeps the target's alpha.
     out.color = to_target(vec4<f32>(shade(in.color.rgb, p, n), coverage));
     out.depth = min(clip.z / clip.w, 1.0);
     return out;

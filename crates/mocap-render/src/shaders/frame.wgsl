@@ -24,8 +24,10 @@ struct Frame {
     floor_color: vec4<f32>,
     // The floor area the shadow map covers: min x, min z, max x, max z.
     shadow_rect: vec4<f32>,
-    // x: the least coverage of a pixel an outline draws (0 on a multisampled
-    // target, where coverage becomes samples; 0.5 on one sample); yzw unused.
+    // x: the least coverage of a pixel an outline draws: 0 where outlines are
+    // filtered (coverage becomes samples on a multisampled target, and is
+    // blended at full quality on one sample), 0.5 in the fast look (a pixel is
+    // drawn when its centre is covered); yzw unused.
     samples: vec4<f32>,
 };
 
