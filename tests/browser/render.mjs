@@ -44,6 +44,8 @@ try {
     const s = await changeAndRender(page, (v) => v.seek(30));
     check(s.drawMode === 'capsules' && s.shadows === true, `drawMode ${s.drawMode}, shadows ${s.shadows}`);
     check(s.view.includes('mode=capsules') && s.view.includes('shadows=1'), `fragment has the mode (${s.view})`);
+    // Capsules alone are smooth without multisampling (outlines blended).
+    check(!s.reduced && s.samples === 1, `a paused frame of capsules: full quality on one sample (reduced ${s.reduced}, ${s.samples} samples)`);
     capsules = await view(page, shot('capsules'));
     const px = await pixelStats(context, capsules);
     check(px.figure > 1500, `the lit figure covers many pixels (${px.figure})`);
@@ -72,7 +74,9 @@ try {
   await step('the m key switches to sticks', async () => {
     await page.mouse.click(640, 400);
     await page.keyboard.press('m');
-    const s = await waitState(page, (s) => s.drawMode === 'sticks');
+    await waitState(page, (s) => s.drawMode === 'sticks');
+    const s = await changeAndRender(page, (v) => v.seek(31));
+    check(s.samples === 4 && !s.reduced, `lines and joint balls are multisampled (${s.samples} samples)`);
     const sticks = await view(page, shot('sticks'));
     const [a, b] = [await pixelStats(context, capsules), await pixelStats(context, sticks)];
     check(b.figure < a.figure, `sticks cover fewer pixels than capsules (${b.figure} < ${a.figure})`);

@@ -113,6 +113,10 @@ pub struct Snapshot {
     pub quality: &'static str,
     /// Whether the last frame was drawn in the fast look (see [`crate::quality`]).
     pub reduced: bool,
+    /// Samples per pixel of the last frame: 1 in the fast look and for scenes
+    /// of capsules (outlines blended), 4 for lines, spheres and meshes where
+    /// the adapter can; 0 before the first frame.
+    pub samples: u32,
     /// Whether the last frame started from the floor drawn for an earlier one
     /// (a still camera) instead of drawing it.
     pub floor_copied: bool,
@@ -153,6 +157,7 @@ impl Snapshot {
             pose_mode: v.settings.pose_mode,
             quality: v.settings.quality.name(),
             reduced: v.viewport.reduced,
+            samples: v.viewport.samples,
             floor_copied: v.viewport.floor_copied,
             error: v.error.clone(),
             tree_labels,

@@ -67,6 +67,10 @@ pub struct Viewport {
     adaptive: Adaptive,
     /// Whether the last frame was drawn in the fast look.
     pub reduced: bool,
+    /// Samples per pixel of the last frame (1: the fast look, or a scene
+    /// smooth on one sample; see `SceneRenderer::samples_for`); 0 before the
+    /// first.
+    pub samples: u32,
     /// Whether the last frame started from the floor drawn for an earlier one
     /// (a still camera; see `mocap_render::SceneRenderer::floor_copied`).
     pub floor_copied: bool,
@@ -126,6 +130,7 @@ impl Viewport {
             Some(t) if single => t,
             _ => &gpu.target,
         };
+        self.samples = target.sample_count();
         gpu.renderer.pixels_per_point = ppp;
         let cam = camera.to_camera(size[0] as f32 / size[1] as f32);
         gpu.renderer.render(&rs.device, &rs.queue, target, scene, &cam);

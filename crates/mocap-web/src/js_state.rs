@@ -62,6 +62,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "poseMode", s.pose_mode);
     set(&o, "quality", s.quality);
     set(&o, "reduced", s.reduced);
+    set(&o, "samples", f64::from(s.samples));
     set(&o, "floorCopied", s.floor_copied);
     set(&o, "error", opt(&s.error));
     set(&o, "treeLabels", strings(&s.tree_labels));
