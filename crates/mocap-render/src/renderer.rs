@@ -22,8 +22,10 @@ use crate::uniforms::{FrameUniforms, OutlineRule};
 use crate::{Camera, RenderTarget, Scene, SkinnedDraw};
 use glam::Vec3;
 
-/// Draws [`Scene`]s with one device and colour format, into targets of its
-/// sample count or of any other (pipelines for another count are made on first use).
+/// Draws [`Scene`]s with one device and colour format, into targets of any
+/// sample count. Pipelines are made per sample count and look when first drawn
+/// with (or ahead, [`SceneRenderer::prepare_pipelines`]), so a renderer that
+/// only ever draws capsules on one sample never compiles its multisampled set.
 ///
 /// Outlines of capsules are anti-aliased in every look but the fast one: on a
 /// multisampled target their coverage (computed from each pixel's ray) is
@@ -43,11 +45,9 @@ pub struct SceneRenderer {
     shadow: ShadowMap,
     /// The fast look's smaller map, made when first used.
     fast_shadow: Option<ShadowMap>,
-    /// Pipelines for targets of `sample_count` samples, at full quality.
-    pipelines: Pipelines,
-    /// Pipelines for targets of other sample counts, and for the fast look,
-    /// made when first drawn with.
-    other_pipelines: Vec<(PipelineKey, Pipelines)>,
+    /// The pipelines made so far, for each sample count, look and shadow
+    /// setting drawn with.
+    pipelines: Vec<(PipelineKey, Pipelines)>,
     lines: GrowingBuffer,
     overlay_lines: GrowingBuffer,
     spheres: GrowingBuffer,
@@ -134,7 +134,9 @@ const KEEP: wgpu::BlendComponent = wgpu::BlendComponent { src_factor: wgpu::Blen
 const LIT_PRELUDE: &str = concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/lighting.wgsl"));
 
 impl SceneRenderer {
-    /// Creates pipelines for targets of `format` with `sample_count` samples.
+    /// A renderer for targets of `format`; `sample_count` is what scenes that
+    /// need multisampling are drawn with ([`SceneRenderer::samples_for`]).
+    /// Pipelines are made when first drawn with.
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat, sample_count: u32) -> SceneRenderer {
         let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("mocap frame uniforms"),
@@ -164,8 +166,6 @@ impl SceneRenderer {
         let shadow = ShadowMap::new(device, shadow::SIZE, &shadow_layout);
         let meshes = MeshCache::new(device);
         let skinned = SkinnedCache::new(device);
-        let layouts = Layouts { frame: &frame_layout, shadow: &shadow_layout, skin: &meshes.skin_layout, joints: &skinned.layout };
-        let pipelines = Pipelines::new(device, &layouts, format, PipelineKey { samples: sample_count, fast_look: false, shadows: true });
         SceneRenderer {
             format,
             sample_count,
@@ -175,8 +175,7 @@ impl SceneRenderer {
             shadow_layout,
             shadow,
             fast_shadow: None,
-            pipelines,
-            other_pipelines: Vec::new(),
+            pipelines: Vec::new(),
             lines: GrowingBuffer::new("mocap lines"),
             overlay_lines: GrowingBuffer::new("mocap overlay lines"),
             spheres: GrowingBuffer::new("mocap spheres"),
@@ -197,12 +196,13 @@ impl SceneRenderer {
         }
     }
 
-    /// Colour format the pipelines were built for.
+    /// Colour format of the targets drawn into.
     pub fn format(&self) -> wgpu::TextureFormat {
         self.format
     }
 
-    /// Sample count the pipelines were built for.
+    /// The samples per pixel of scenes that need multisampling (see
+    /// [`SceneRenderer::samples_for`]).
     pub fn sample_count(&self) -> u32 {
         self.sample_count
     }
@@ -219,6 +219,13 @@ impl SceneRenderer {
     /// Draw calls recorded for the last frame (at most 8 plus 2 per mesh drawn).
     pub fn draw_calls(&self) -> u32 {
         self.draw_calls
+    }
+
+    /// How many sets of pipelines (one per sample count, look and shadow
+    /// setting drawn with) are made so far.
+    #[doc(hidden)]
+    pub fn pipeline_sets(&self) -> usize {
+        self.pipelines.len()
     }
 
     /// Copies only the floor's colour and draws its depth, as on OpenGL, whatever
@@ -241,23 +248,18 @@ impl SceneRenderer {
     /// shader compilation, slow on some platforms, to a chosen moment).
     pub fn prepare_pipelines(&mut self, device: &wgpu::Device, sample_count: u32, fast_look: bool, shadows: bool) {
         let key = PipelineKey { samples: sample_count, fast_look, shadows };
-        if key == self.main_key() || self.other_pipelines.iter().any(|(k, _)| *k == key) {
+        if pipelines_for(&self.pipelines, key).is_some() {
             return;
         }
         let layouts = Layouts { frame: &self.frame_layout, shadow: &self.shadow_layout, skin: &self.meshes.skin_layout, joints: &self.skinned.layout };
         let pipelines = Pipelines::new(device, &layouts, self.format, key);
-        self.other_pipelines.push((key, pipelines));
+        self.pipelines.push((key, pipelines));
     }
 
     /// The pipelines a frame into a target of `samples` samples draws with,
     /// with shadows or not.
     fn key_for(&self, samples: u32, shadows: bool) -> PipelineKey {
         PipelineKey { samples, fast_look: self.fast_look, shadows }
-    }
-
-    /// What [`SceneRenderer::pipelines`] are made for.
-    fn main_key(&self) -> PipelineKey {
-        PipelineKey { samples: self.sample_count, fast_look: false, shadows: true }
     }
 
     /// Records the draw of `scene` into `encoder`, targeting `target` (of any
@@ -279,7 +281,7 @@ impl SceneRenderer {
         self.prepare_pipelines(device, key.samples, key.fast_look, key.shadows);
         self.draw_calls = 0;
         if shadows {
-            self.encode_shadow_pass(encoder);
+            self.encode_shadow_pass(encoder, key);
         }
         let [r, g, b, a] = crate::color::for_target(scene.background, self.format);
         let samples = target.sample_count();
@@ -302,7 +304,8 @@ impl SceneRenderer {
         let (view, resolve_target) = target.color_attachment();
         let color = (view, resolve_target, load_or_clear(copy.is_some(), background));
         let mut pass = self.begin_lit_pass(encoder, "mocap scene", color, target.depth_view(), load_or_clear(depth_copied, 1.0), wgpu::StoreOp::Discard);
-        let pipelines = pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, key);
+        // Made by `prepare_pipelines` above.
+        let Some(pipelines) = pipelines_for(&self.pipelines, key) else { return };
         if scene.grid.is_some() {
             let floor = match &copy {
                 None => Some(&pipelines.floor),
@@ -396,12 +399,16 @@ impl SceneRenderer {
         let depth = cache.depth.create_view(&Default::default());
         let color = (&view, None, wgpu::LoadOp::Clear(background));
         let mut pass = self.begin_lit_pass(encoder, "mocap floor cache", color, &depth, wgpu::LoadOp::Clear(1.0), wgpu::StoreOp::Store);
-        pass.set_pipeline(&pipelines_for(&self.pipelines, self.main_key(), &self.other_pipelines, key).floor);
-        pass.draw(0..6, 0..1);
-        self.draw_calls += 1;
+        if let Some(pipelines) = pipelines_for(&self.pipelines, key) {
+            pass.set_pipeline(&pipelines.floor);
+            pass.draw(0..6, 0..1);
+            self.draw_calls += 1;
+        }
     }
 
-    fn encode_shadow_pass(&mut self, encoder: &mut wgpu::CommandEncoder) {
+    /// Draws every caster into the shadow map, with the pipelines for `key`.
+    fn encode_shadow_pass(&mut self, encoder: &mut wgpu::CommandEncoder, key: PipelineKey) {
+        let Some(pipelines) = pipelines_for(&self.pipelines, key) else { return };
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("mocap shadow map"),
             color_attachments: &[],
@@ -415,13 +422,13 @@ impl SceneRenderer {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
-        self.draw_calls += self.capsules.draw(&mut pass, &self.pipelines.shadow, self.caster_indices);
+        self.draw_calls += self.capsules.draw(&mut pass, &pipelines.shadow, self.caster_indices);
         if self.meshes.has_draws() {
-            pass.set_pipeline(&self.pipelines.morph_shadow);
+            pass.set_pipeline(&pipelines.morph_shadow);
             self.draw_calls += self.meshes.draw(&mut pass, false);
         }
         if self.skinned.has_draws() && !self.bodies_cast_as_capsules {
-            pass.set_pipeline(&self.pipelines.skinned_shadow);
+            pass.set_pipeline(&pipelines.skinned_shadow);
             self.draw_calls += self.skinned.draw(&mut pass);
         }
     }
@@ -504,13 +511,9 @@ fn load_or_clear<T>(load: bool, clear: T) -> wgpu::LoadOp<T> {
     if load { wgpu::LoadOp::Load } else { wgpu::LoadOp::Clear(clear) }
 }
 
-/// The pipelines made for `key`: `main` (made for `main_key`) or one of
-/// `others` (made by `prepare_pipelines`).
-fn pipelines_for<'a>(main: &'a Pipelines, main_key: PipelineKey, others: &'a [(PipelineKey, Pipelines)], key: PipelineKey) -> &'a Pipelines {
-    if key == main_key {
-        return main;
-    }
-    others.iter().find(|(k, _)| *k == key).map_or(main, |(_, p)| p)
+/// The pipelines made for `key` among `made`, if they are.
+fn pipelines_for(made: &[(PipelineKey, Pipelines)], key: PipelineKey) -> Option<&Pipelines> {
+    made.iter().find(|(k, _)| *k == key).map(|(_, p)| p)
 }
 
 /// How many pixels a body spans on screen at most (its bounding box's sphere,

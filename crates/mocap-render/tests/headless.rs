@@ -659,6 +659,24 @@ fn capsule_outlines_are_blended_on_one_sample_as_on_a_multisampled_target() {
 }
 
 #[test]
+fn pipelines_are_made_for_the_sample_counts_and_looks_drawn_with() {
+    // A multisampling renderer that draws only capsules (one sample) never
+    // compiles its multisampled set: a page's first frame compiles one set.
+    let Some((device, queue, mut renderer, multisampled)) = setup(4) else { return };
+    assert_eq!(renderer.pipeline_sets(), 0);
+    let single = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
+    let camera = Camera::look_at(Vec3::new(0.0, 1.0, 3.0), Vec3::ZERO, 0.8, 1.0);
+    let capsules = Scene { capsules: vec![Capsule { a: Vec3::ZERO, b: Vec3::Y, radius: 0.2, color: [200; 4] }], ..Scene::default() };
+    renderer.render(&device, &queue, &single, &capsules, &camera);
+    renderer.render(&device, &queue, &single, &capsules, &camera);
+    assert_eq!(renderer.pipeline_sets(), 1, "one set for capsules on one sample");
+    let sticks = Scene { spheres: vec![Sphere { center: Vec3::new(0.6, 0.5, 0.0), radius: 0.1, color: [30, 30, 255, 255] }], ..capsules.clone() };
+    renderer.render(&device, &queue, &multisampled, &sticks, &camera);
+    assert_eq!(renderer.pipeline_sets(), 2, "and one for multisampled frames");
+    assert!(read_pixels(&device, &queue, &multisampled).chunks(4).any(|p| p[2] > 150 && p[0] < 100), "the blue ball is drawn");
+}
+
+#[test]
 fn a_still_camera_starts_each_frame_from_the_floor_drawn_before_with_the_same_pixels() {
     // Copying colour and depth; and as on OpenGL, the colour of single-sampled
     // frames only (the depth drawn), multisampled frames drawing their floor.
