@@ -71,7 +71,7 @@ function repeatRows(text, frames) {
     await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
     await page.evaluate(() => window.mocapViewer.play());
     const v1 = await msPerFrame(page, 'viewer');
-    // The same with quality=full: multisampled while playing too.
+    // The same with quality=full: full quality while playing too.
     await page.evaluate(() => window.mocapViewer.applyViewState('quality=full'));
     const v1full = await msPerFrame(page, 'viewer');
     await page.evaluate(() => window.mocapViewer.applyViewState('quality=auto'));
