@@ -102,6 +102,12 @@ impl PipelineKey {
     fn blends_outlines(self) -> bool {
         self.samples == 1 && !self.fast_look
     }
+
+    /// How impostor outlines meet the pixels: a pixel-centre test in the fast
+    /// look on one sample, else filtered (samples, or blending).
+    fn outline(self) -> OutlineRule {
+        if self.samples == 1 && self.fast_look { OutlineRule::PixelCentres } else { OutlineRule::Filtered }
+    }
 }
 
 struct Pipelines {
@@ -465,11 +471,11 @@ impl SceneRenderer {
         let bounds = mesh_bounds.chain(capsule_bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         let map_size = self.shadow_map().size;
         let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, map_size));
-        let outline = if target.sample_count() == 1 && self.fast_look { OutlineRule::PixelCentres } else { OutlineRule::Filtered };
-        let uniforms = FrameUniforms::new(camera, size, outline, self.format, scene.grid.as_ref(), light.as_ref());
+        // The frame's pipelines, which set how outlines are drawn.
+        let look = self.key_for(target.sample_count(), light.is_some());
+        let uniforms = FrameUniforms::new(camera, size, look.outline(), self.format, scene.grid.as_ref(), light.as_ref());
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         self.spheres.upload(device, queue, &self.sphere_scratch);
-        let blends_outlines = self.key_for(target.sample_count(), scene.shadows).blends_outlines();
         let capsules = &mut self.capsules;
         capsules.clear();
         // The fast look leaves out capsules spanning under a couple of pixels.
@@ -479,7 +485,7 @@ impl SceneRenderer {
         let order = &mut self.capsule_order;
         order.clear();
         order.extend(shown.map(|(i, c)| (camera.view.transform_point3((c.a + c.b) * 0.5).z, i)));
-        if blends_outlines {
+        if look.blends_outlines() {
             order.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
         }
         let in_order = order.iter().filter_map(|&(_, i)| scene.capsules.get(i));

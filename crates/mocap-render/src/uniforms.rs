@@ -37,9 +37,9 @@ pub(crate) struct FrameUniforms {
 /// How impostors' outlines meet the pixels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum OutlineRule {
-    /// Anti-aliased: coverage becomes samples on a multisampled target, or
-    /// the fringe is blended on one sample (every pixel with some coverage is
-    /// drawn by one of the draws).
+    /// Anti-aliased: every pixel with some coverage is drawn, its coverage
+    /// becoming samples on a multisampled target or its blend alpha on one
+    /// sample.
     Filtered,
     /// One sample, the fast look: a pixel is drawn when its centre's ray meets
     /// the impostor (coverage at least a half).
