@@ -1,5 +1,5 @@
-// Capsules as impostors (see capsule.rs): each capsule is one quad covering its
-// outline, and the fragment shader casts the pixel's ray at the capsule for the
+// Capsules as impostors (see capsule.rs): each capsule is one triangle covering
+// its outline, and the fragment shader casts the pixel's ray at the capsule for the
 // exact surface point, normal and depth. Spheres are capsules of zero length.
 // `Frame`, `frame`, `to_target` and `shade` come from frame.wgsl and lighting.wgsl.
 //
@@ -8,8 +8,7 @@
 // space); for an orthographic view, the ray's view-space (x, y). Both are
 // linear in screen position.
 
-// One corner of a capsule's quad (corner 0: behind `a`, 1: beyond `b`, on
-// one side; 2 and 3 on the other side).
+// One corner of a capsule's triangle (see `triangle_corner`).
 struct CapsuleIn {
     @location(0) a: vec3<f32>,
     @location(1) radius: f32,
@@ -20,7 +19,7 @@ struct CapsuleIn {
 
 struct Out {
     @builtin(position) position: vec4<f32>,
-    // The quad's point in the world: in front of the capsule, on the pixel's ray.
+    // The triangle's point in the world: in front of the capsule, on the pixel's ray.
     @location(0) world: vec3<f32>,
     // The capsule in the world.
     @location(1) @interpolate(flat) a: vec3<f32>,
@@ -95,21 +94,30 @@ fn outside_view(c: vec3<f32>, r: f32) -> bool {
     return false;
 }
 
-// Corner `corner` (0: behind `a`, 1: beyond `b`, on one side; 2 and 3 on the
-// other) of a rectangle along the segment `a`–`b` in a plane holding the
-// circles of radius `ra` around `a` and `rb` around `b` (so their hull), grown
-// by `margin`.
-fn quad_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32) -> vec2<f32> {
+// Corner `corner` (0: the apex beyond `b`; 1 and 2: behind `a`, one on each
+// side) of a triangle holding the circles of radius `ra` around `a` and `rb`
+// around `b` (so their hull, a capsule's outline), grown by `margin`. With h
+// the larger radius plus `margin`, its sides are tangent to the circle of
+// radius h around `b` and pass outside the one around `a`, and its base is
+// tangent to that one. One triangle, not a rectangle's two: a software
+// rasteriser shades whole blocks of pixels per triangle, and the two
+// triangles of a small capsule's rectangle shared most of theirs.
+fn triangle_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32) -> vec2<f32> {
     let k = u32(corner + 0.5);
-    let side = select(-1.0, 1.0, k >= 2u);
     let along = b - a;
     let len = length(along);
     let w = select(vec2<f32>(1.0, 0.0), along / len, len > 1e-12);
     let u = vec2<f32>(-w.y, w.x);
-    // Either circle may reach farther back or forward (an axis seen end-on).
-    let back = min(-ra, len - rb) - margin;
-    let forward = max(len + rb, ra) + margin;
-    return a + w * select(back, forward, (k & 1u) == 1u) + u * (max(ra, rb) + margin) * side;
+    let h = max(ra, rb) + margin;
+    // The apex this far beyond `b`: about the least area (2h for a ball,
+    // the equilateral triangle around it; farther for a longer capsule).
+    let d = 2.0 * h + 0.75 * len;
+    if (k == 0u) {
+        return b + w * d;
+    }
+    // The sides leave the axis at the angle whose sine is h / d.
+    let half_width = (len + d + h) * h / sqrt(max(d * d - h * h, 1e-30));
+    return a - w * h + u * half_width * select(-1.0, 1.0, k == 2u);
 }
 
 // Size of one pixel in ray coordinates.
@@ -130,21 +138,21 @@ fn vs_main(v: CapsuleIn) -> Out {
     var out: Out;
     if (ea.z < 0.0 || eb.z < 0.0) {
         // Too close to the eye for a bound: the whole view (rare), unless the
-        // capsule is out of view (beside or behind the eye): then all four
+        // capsule is out of view (beside or behind the eye): then all three
         // corners at one point, nothing to draw.
         if (outside_view(0.5 * (a + b), 0.5 * length(b - a) + r)) {
             out.position = vec4<f32>(2.0, 2.0, 0.5, 1.0);
             return out;
         }
         let k = u32(v.corner + 0.5);
-        ray = ray_of_ndc(vec2<f32>(select(-1.0, 1.0, (k & 1u) == 1u), select(-1.0, 1.0, k >= 2u)));
+        ray = ray_of_ndc(vec2<f32>(select(-1.0, 3.0, k == 1u), select(-1.0, 3.0, k == 2u)));
         depth = near * 1.001;
     } else {
-        // A rectangle along the axis's image holding both end circles (so
+        // A triangle around the axis's image holding both end circles (so
         // their hull, the capsule's outline), with room for the edge filter
-        // on a multisampled target (coverage falls to 0 half a pixel out).
+        // (coverage falls to 0 half a pixel out).
         let margin = (0.75 - frame.samples.x) * pixel_in_ray_units();
-        ray = quad_corner(v.corner, ea.xy, ea.z, eb.xy, eb.z, margin);
+        ray = triangle_corner(v.corner, ea.xy, ea.z, eb.xy, eb.z, margin);
         // In front of the capsule, behind the near plane.
         depth = max(min(-a.z, -b.z) - r, near * 1.001);
     }
@@ -197,7 +205,7 @@ struct Shaded {
 
 @fragment
 fn fs_main(in: Out) -> Shaded {
-    // The ray from the quad (in front of the capsule) on.
+    // The ray from the triangle (in front of the capsule) on.
     let forward = -vec3<f32>(frame.view[0].z, frame.view[1].z, frame.view[2].z);
     let o = in.world;
     var d = forward;
@@ -252,9 +260,10 @@ fn fs_main(in: Out) -> Shaded {
     return out;
 }
 
-// The shadow map: the same quads seen from the key light (orthographic), in
-// the plane through the capsule's axis, so each capsule stores the depth of its
-// middle: its lit half stays in front of it, and everything behind is shadowed.
+// The shadow map: the same triangles seen from the key light (orthographic),
+// in the plane through the capsule's axis, so each capsule stores the depth of
+// its middle: its lit half stays in front of it, and everything behind is
+// shadowed.
 
 struct ShadowOut {
     @builtin(position) position: vec4<f32>,
@@ -264,6 +273,22 @@ struct ShadowOut {
     @location(2) @interpolate(flat) radius: f32,
 };
 
+// Depth at `xy` (the light's clip space) of the plane through the axis `a`-`b`
+// of radius `r` there, as the rasteriser interpolates it; an axis seen end-on
+// takes its middle.
+fn axis_plane_depth(xy: vec2<f32>, a: vec3<f32>, b: vec3<f32>, r: f32) -> f32 {
+    let along = b.xy - a.xy;
+    let len = length(along);
+    if (len > r) {
+        return mix(a.z, b.z, dot(xy - a.xy, along) / (len * len));
+    }
+    return 0.5 * (a.z + b.z);
+}
+
+fn in_depth_range(z: f32) -> bool {
+    return z >= 0.0 && z <= 1.0;
+}
+
 @vertex
 fn vs_shadow(v: CapsuleIn) -> ShadowOut {
     let m = frame.light_view_proj;
@@ -272,17 +297,20 @@ fn vs_shadow(v: CapsuleIn) -> ShadowOut {
     let scale = length(vec3<f32>(m[0][0], m[1][0], m[2][0]));
     let r = abs(v.radius) * scale;
     // One texel of room.
-    let xy = quad_corner(v.corner, a.xy, r, b.xy, r, frame.light_dir.w * scale);
-    // Depth along the axis (a plane, as the rasteriser interpolates it); an
-    // axis seen end-on takes its middle.
-    let along = b.xy - a.xy;
-    let len = length(along);
-    var z = 0.5 * (a.z + b.z);
-    if (len > r) {
-        z = mix(a.z, b.z, dot(xy - a.xy, along) / (len * len));
+    let room = frame.light_dir.w * scale;
+    // The apex lies well past one end, where the plane's depth may leave the
+    // map's range (a capsule pointing at the light): then it goes past the
+    // other end if the depth stays in range there (the same for the three
+    // corners: they compute it from the same capsule). Depths out of range
+    // are clamped, which bends the plane.
+    let past_b = axis_plane_depth(triangle_corner(0.0, a.xy, r, b.xy, r, room), a, b, r);
+    let past_a = axis_plane_depth(triangle_corner(0.0, b.xy, r, a.xy, r, room), a, b, r);
+    var xy = triangle_corner(v.corner, a.xy, r, b.xy, r, room);
+    if (!in_depth_range(past_b) && in_depth_range(past_a)) {
+        xy = triangle_corner(v.corner, b.xy, r, a.xy, r, room);
     }
     var out: ShadowOut;
-    out.position = vec4<f32>(xy, clamp(z, 0.0, 1.0), 1.0);
+    out.position = vec4<f32>(xy, clamp(axis_plane_depth(xy, a, b, r), 0.0, 1.0), 1.0);
     out.xy = xy;
     out.ends = vec4<f32>(a.xy, b.xy);
     out.radius = r;
