@@ -58,7 +58,7 @@ fn main() {
     }
     // What a window draws while playing once frames are slow (the viewer's
     // automatic rule, crates/mocap-viewer/src/quality.rs); never a final image.
-    println!("capsules, the fast look (a playing window's frames once they are slow: no MSAA, 1024² shadow map, one lookup, capsules under 2 pixels left out):");
+    println!("capsules, the fast look (a playing window's frames once they are slow: no MSAA, shadow-map texels twice as large, one lookup, capsules under 2 pixels left out):");
     let mut fast = Offscreen::with_samples(&gpu, [1280, 720], 1);
     fast.set_fast_look(true);
     for count in [1usize, 16, 64] {

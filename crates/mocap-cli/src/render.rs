@@ -163,7 +163,7 @@ impl Offscreen {
     }
 
     /// Draws in the renderer's fast look (`SceneRenderer::fast_look`: one
-    /// lookup into a 1024² shadow map), what a
+    /// lookup into a shadow map of texels twice as large), what a
     /// window draws while playing once frames are slow. Not for final images:
     /// `mocap render` never sets it. Takes effect from the next frame.
     pub fn set_fast_look(&mut self, fast: bool) {

@@ -42,8 +42,9 @@ pub struct SceneRenderer {
     frame_layout: wgpu::BindGroupLayout,
     frame_group: wgpu::BindGroup,
     shadow_layout: wgpu::BindGroupLayout,
+    /// The shadow map, sized to the casters each frame (shadow.rs).
     shadow: ShadowMap,
-    /// The fast look's smaller map, made when first used.
+    /// The fast look's map (texels twice as large), made when first used.
     fast_shadow: Option<ShadowMap>,
     /// The pipelines made so far, for each sample count, look and shadow
     /// setting drawn with.
@@ -76,7 +77,7 @@ pub struct SceneRenderer {
     /// Physical pixels per logical pixel; scales line widths.
     pub pixels_per_point: f32,
     /// The fast look, for a view that moves on a slow (software) GPU: shadows
-    /// from a 1024² map instead of 2048² (a quarter of the texels to clear and
+    /// from a map of texels twice as large (a quarter of the texels to clear and
     /// fill each frame) with one lookup per pixel instead of four (harder
     /// edges), capsules spanning under two pixels left out (with their
     /// shadows), bodies casting their shadows as their bones' capsules
@@ -169,7 +170,7 @@ impl SceneRenderer {
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: uniforms.as_entire_binding() }],
         });
         let shadow_layout = shadow::layout(device);
-        let shadow = ShadowMap::new(device, shadow::SIZE, &shadow_layout);
+        let shadow = ShadowMap::small(device, &shadow_layout);
         let meshes = MeshCache::new(device);
         let skinned = SkinnedCache::new(device);
         SceneRenderer {
@@ -280,7 +281,7 @@ impl SceneRenderer {
         camera: &Camera,
     ) {
         if self.fast_look && self.fast_shadow.is_none() {
-            self.fast_shadow = Some(ShadowMap::new(device, shadow::FAST_SIZE, &self.shadow_layout));
+            self.fast_shadow = Some(ShadowMap::small(device, &self.shadow_layout));
         }
         let (shadows, uniforms) = self.upload(device, queue, target, scene, camera);
         let key = self.key_for(target.sample_count(), shadows);
@@ -469,8 +470,17 @@ impl SceneRenderer {
         let casters = scene.capsules.iter().map(|c| (c.a, c.b, c.radius)).chain(only_cast.clone());
         let capsule_bounds = if scene.shadows { caster_bounds(casters) } else { None };
         let bounds = mesh_bounds.chain(capsule_bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
-        let map_size = self.shadow_map().size;
-        let light = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, map_size));
+        // The look's map, fitted to the casters (see shadow.rs).
+        let full = if self.fast_look { shadow::FAST_SIZE } else { shadow::SIZE }.min(device.limits().max_texture_dimension_2d);
+        let view = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, full));
+        let map = match (&mut self.fast_shadow, self.fast_look) {
+            (Some(map), true) => map,
+            _ => &mut self.shadow,
+        };
+        if let Some(view) = &view {
+            map.fit(device, view.texels, &self.shadow_layout);
+        }
+        let light = view.map(|v| v.on_map(map.size));
         // The frame's pipelines, which set how outlines are drawn.
         let look = self.key_for(target.sample_count(), light.is_some());
         let uniforms = FrameUniforms::new(camera, size, look.outline(), self.format, scene.grid.as_ref(), light.as_ref());

@@ -1,14 +1,27 @@
 //! The key light's shadow map: a depth texture rendered from the light with an
 //! orthographic projection fitted to the shadow casters, sampled with a comparison
 //! sampler (soft edges from a small filter in the shader).
+//!
+//! The texel size is that of a square map of [`SIZE`] texels holding the
+//! casters and the floor their shadows fall on. The texture itself holds only
+//! the casters (seen from the light, the floor in shadow lies behind them; a
+//! lookup outside the map is lit), on the same lattice of texels, so it is the
+//! same picture from fewer texels to clear and fill every frame: about half at
+//! 64 characters (a software rasteriser's cost).
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec2, Vec3};
 
-/// Shadow map resolution (square).
+/// Texels across the square the texel size is fitted to; the largest map.
 pub(crate) const SIZE: u32 = 2048;
-/// The fast look's shadow map resolution: a quarter of the texels to clear and
-/// draw every frame (a software rasteriser's cost), softer shadow edges.
+/// The fast look's [`SIZE`]: a quarter of the texels to clear and draw every
+/// frame (a software rasteriser's cost), softer shadow edges.
 pub(crate) const FAST_SIZE: u32 = 1024;
+/// Map sizes are whole steps of this many texels (so a moving crowd seldom
+/// needs a new texture).
+const STEP: u32 = 256;
+/// Texels of empty map kept around the casters (the lookups' filter reads up
+/// to two texels out).
+const BORDER: f32 = 4.0;
 /// Depth format of the shadow map.
 pub(crate) const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
@@ -29,17 +42,18 @@ pub(crate) fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 pub(crate) struct ShadowMap {
     pub view: wgpu::TextureView,
     pub bind_group: wgpu::BindGroup,
-    /// Texels per side.
-    pub size: u32,
+    /// Texels across and down.
+    pub size: [u32; 2],
 }
 
 impl ShadowMap {
-    /// A map of `size`² texels (at most the device's texture limit).
-    pub fn new(device: &wgpu::Device, size: u32, layout: &wgpu::BindGroupLayout) -> ShadowMap {
-        let size = size.min(device.limits().max_texture_dimension_2d);
+    /// A map of `size` texels (at most the device's texture limit).
+    pub fn new(device: &wgpu::Device, size: [u32; 2], layout: &wgpu::BindGroupLayout) -> ShadowMap {
+        let limit = device.limits().max_texture_dimension_2d;
+        let size = size.map(|s| s.clamp(1, limit));
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("mocap shadow map"),
-            size: wgpu::Extent3d { width: size, height: size, depth_or_array_layers: 1 },
+            size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -66,6 +80,58 @@ impl ShadowMap {
             ],
         });
         ShadowMap { view, bind_group, size }
+    }
+
+    /// A map of one [`STEP`] square, to be fitted to casters ([`ShadowMap::fit`]).
+    pub fn small(device: &wgpu::Device, layout: &wgpu::BindGroupLayout) -> ShadowMap {
+        ShadowMap::new(device, [STEP; 2], layout)
+    }
+
+    /// Makes this a map for casters that need `needed` texels (see
+    /// [`new_size`]): kept, or made anew.
+    pub fn fit(&mut self, device: &wgpu::Device, needed: [u32; 2], layout: &wgpu::BindGroupLayout) {
+        if let Some(size) = new_size(Some(self.size), needed) {
+            *self = ShadowMap::new(device, size, layout);
+        }
+    }
+}
+
+/// The size of a new map for casters that need `needed` texels, or `None` to
+/// keep the map of size `current`: kept while it holds them and is less than
+/// two [`STEP`]s larger on each side, else made in whole steps.
+fn new_size(current: Option<[u32; 2]>, needed: [u32; 2]) -> Option<[u32; 2]> {
+    let keep = current.is_some_and(|size| (0..2).all(|i| needed[i] <= size[i] && size[i] < needed[i] + 2 * STEP));
+    (!keep).then(|| needed.map(|n| n.div_ceil(STEP).max(1) * STEP))
+}
+
+/// How the key light sees the casters this frame, before the map's size is
+/// chosen ([`LightView::on_map`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LightView {
+    /// World to the light's view space.
+    view: Mat4,
+    /// The casters' middle in the light's view (x, y), on a texel corner.
+    center: Vec2,
+    /// Near and far distances of the casters and the floor in shadow.
+    near: f32,
+    far: f32,
+    /// Size of one shadow-map texel in world units.
+    pub texel: f32,
+    /// Texels across and down the casters need (with a border), at most the
+    /// map size fitted to; even.
+    pub texels: [u32; 2],
+    /// Where on the floor the shadows fall: min x, min z, max x, max z.
+    pub floor_rect: [f32; 4],
+}
+
+impl LightView {
+    /// The projection onto a map of `size` texels (even, each at least
+    /// [`LightView::texels`]) centred on the casters.
+    pub fn on_map(&self, size: [u32; 2]) -> LightFit {
+        let half = Vec2::new(size[0] as f32, size[1] as f32) * 0.5 * self.texel;
+        let (lo, hi) = (self.center - half, self.center + half);
+        let projection = glam::camera::rh::proj::directx::orthographic(lo.x, hi.x, lo.y, hi.y, self.near, self.far);
+        LightFit { view_proj: projection * self.view, texel: self.texel, floor_rect: self.floor_rect }
     }
 }
 
@@ -104,14 +170,15 @@ fn floor_shadow_rect(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
     [lo.x - margin, lo.y - margin, hi.x + margin, hi.y + margin]
 }
 
-/// Fits the shadow map to casters inside `min..max` (world space) and a floor at
-/// height `floor_y` (the box's bottom without one): an orthographic view along the
-/// light holding the box and the floor under the far end of its shadows (so the
-/// floor lies inside the depth range), and the floor rectangle the shadows fall
-/// in. The fitted square is quantised (size in steps of 25%, centre on whole
-/// texels of a map `size` texels across) so that shadows do not shimmer as the
-/// figures move. `None` for an empty or non-finite box.
-pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32) -> Option<LightFit> {
+/// Fits the light's view to casters inside `min..max` (world space) and a floor
+/// at height `floor_y` (the box's bottom without one): an orthographic view
+/// along the light whose depth range holds the box and the floor under the far
+/// end of its shadows, and the floor rectangle the shadows fall in. The texel
+/// size is that of a square of `size` texels holding the box and that floor,
+/// quantised (in steps of 25%), and the view is centred on the casters on
+/// whole texels, so that shadows do not shimmer as the figures move. `None`
+/// for an empty or non-finite box.
+pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32) -> Option<LightView> {
     let floor_y = floor_y.filter(|y| y.is_finite()).unwrap_or(min.y);
     let lo = Vec3::new(min.x, min.y.min(floor_y), min.z);
     if !(lo.is_finite() && max.is_finite() && (max - lo).min_element() >= 0.0) {
@@ -126,23 +193,26 @@ pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32) -
     let floor_rect = floor_shadow_rect(min, max, floor_y);
     let [x0, z0, x1, z1] = floor_rect;
     let floor = [Vec3::new(x0, floor_y, z0), Vec3::new(x1, floor_y, z0), Vec3::new(x0, floor_y, z1), Vec3::new(x1, floor_y, z1)];
-    let (mut a, mut b) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    for p in corners(lo, max).into_iter().chain(floor) {
-        let c = view.transform_point3(p);
-        a = a.min(c);
-        b = b.max(c);
-    }
+    let bounds = |points: &mut dyn Iterator<Item = Vec3>| {
+        points.map(|p| view.transform_point3(p)).fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(a, b), c| (a.min(c), b.max(c)))
+    };
+    let (a, b) = bounds(&mut corners(lo, max).into_iter().chain(floor));
     // Square extent, grown to the next step of 1.25^k, with a margin for the filter.
     let half = ((b.x - a.x).max(b.y - a.y) * 0.5 * 1.05).max(1e-3);
     let half = 1.25f32.powf(half.log(1.25).ceil());
-    let texel = 2.0 * half / size.max(1) as f32;
+    let size = size.max(2) & !1;
+    let texel = 2.0 * half / size as f32;
+    // The casters alone: the floor in their shadow lies behind them.
+    let (ca, cb) = bounds(&mut corners(min, max).into_iter());
     let snap = |v: f32| (v / texel).round() * texel;
-    let (cx, cy) = (snap((a.x + b.x) * 0.5), snap((a.y + b.y) * 0.5));
+    let center = Vec2::new(snap((ca.x + cb.x) * 0.5), snap((ca.y + cb.y) * 0.5));
+    // Texels from the centre to the far side of the casters, and a border.
+    let reach = |lo: f32, hi: f32, c: f32| ((hi - c).max(c - lo) / texel + BORDER).ceil();
+    let texels = [reach(ca.x, cb.x, center.x), reach(ca.y, cb.y, center.y)].map(|r| if r.is_finite() { (2.0 * r).min(size as f32) as u32 } else { size });
     // View space looks down -Z: depths are -z.
     let depth = b.z - a.z;
     let (near, far) = (-b.z - depth * 0.05 - 1e-3, -a.z + depth * 0.05 + 1e-3);
-    let projection = glam::camera::rh::proj::directx::orthographic(cx - half, cx + half, cy - half, cy + half, near, far);
-    Some(LightFit { view_proj: projection * view, texel, floor_rect })
+    Some(LightView { view, center, near, far, texel, texels, floor_rect })
 }
 
 #[cfg(test)]
@@ -150,26 +220,68 @@ mod tests {
     use super::*;
 
     #[test]
-    fn fitted_box_and_floor_land_inside_the_map() {
-        let fit = fit_light(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), Some(-0.1), SIZE).unwrap();
-        let (m, texel) = (fit.view_proj, fit.texel);
+    fn fitted_casters_land_inside_the_map_and_the_floor_in_its_depth_range() {
+        let (min, max) = (Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5));
+        let view = fit_light(min, max, Some(-0.1), SIZE).unwrap();
+        let texel = view.texel;
         assert!(texel > 0.0 && texel < 0.01);
-        // The fast map covers the same square with texels twice as large.
-        let fast = fit_light(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), Some(-0.1), FAST_SIZE).unwrap();
-        assert!((fast.texel - texel * (SIZE / FAST_SIZE) as f32).abs() < texel * 1e-3, "{} vs {texel}", fast.texel);
-        for p in [Vec3::new(-1.0, -0.1, -0.5), Vec3::new(1.0, 1.8, 0.5), Vec3::new(0.0, 0.9, 0.0)] {
+        assert!(view.texels.iter().all(|&t| t % 2 == 0 && t <= SIZE), "{:?}", view.texels);
+        let m = view.on_map(view.texels).view_proj;
+        // The casters, with a border of empty texels around them.
+        for p in corners(min, max) {
             let c = m.project_point3(p);
-            assert!(c.x.abs() <= 1.0 && c.y.abs() <= 1.0 && (0.0..=1.0).contains(&c.z), "{p} -> {c}");
+            let inside = |v: f32, texels: u32| v.abs() <= 1.0 - 2.0 * BORDER / texels as f32 + 1e-4;
+            assert!(inside(c.x, view.texels[0]) && inside(c.y, view.texels[1]) && (0.0..=1.0).contains(&c.z), "{p} -> {c}");
         }
-        // So does the floor under the far end of the shadow of the box's top.
-        let rect = fit.floor_rect;
-        assert_eq!(rect, floor_shadow_rect(Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5), -0.1));
-        for corner in [Vec3::new(rect[0], -0.1, rect[1]), Vec3::new(rect[2], -0.1, rect[3])] {
-            let c = m.project_point3(corner);
-            assert!(c.x.abs() <= 1.0 && c.y.abs() <= 1.0 && (0.0..=1.0).contains(&c.z), "{corner} -> {c}");
+        // The fast map has texels twice as large.
+        let fast = fit_light(min, max, Some(-0.1), FAST_SIZE).unwrap();
+        assert!((fast.texel - texel * (SIZE / FAST_SIZE) as f32).abs() < texel * 1e-3, "{} vs {texel}", fast.texel);
+        // The floor under the far end of the shadow of the box's top lies in
+        // the depth range, behind that top, on the same texel.
+        let rect = view.floor_rect;
+        assert_eq!(rect, floor_shadow_rect(min, max, -0.1));
+        let l = key_light_direction();
+        for top in corners(min, max).into_iter().filter(|p| p.y == max.y) {
+            let shadow = top - l * ((top.y + 0.1) / l.y);
+            let (t, f) = (m.project_point3(top), m.project_point3(shadow));
+            assert!((t.truncate() - f.truncate()).length() < 1e-4, "{t} vs {f}");
+            assert!(t.z < f.z && (0.0..=1.0).contains(&f.z), "{t} vs {f}");
+            assert!(shadow.x >= rect[0] && shadow.x <= rect[2] && shadow.z >= rect[1] && shadow.z <= rect[3]);
         }
         // Higher points are closer to the light.
         assert!(m.project_point3(Vec3::new(0.0, 1.8, 0.0)).z < m.project_point3(Vec3::new(0.0, 0.0, 0.0)).z);
+    }
+
+    #[test]
+    fn a_map_trimmed_to_the_casters_keeps_the_texels_of_the_whole_square() {
+        // A crowd: wide and flat, its shadows reaching well past it.
+        let (min, max) = (Vec3::new(-10.6, 0.0, -8.3), Vec3::new(10.9, 1.6, 8.0));
+        let view = fit_light(min, max, Some(0.0), SIZE).unwrap();
+        let texels = view.texels[0] as u64 * view.texels[1] as u64;
+        assert!(texels * 10 < (SIZE as u64).pow(2) * 7, "{:?} of {SIZE}²", view.texels);
+        let (trimmed, whole) = (view.on_map(view.texels).view_proj, view.on_map([SIZE, SIZE]).view_proj);
+        for p in [Vec3::new(0.3, 1.0, 0.2), Vec3::new(-10.0, 0.1, 7.5), Vec3::new(10.5, 1.5, -8.0)] {
+            // Texel coordinates on each map differ by whole texels.
+            let at = |m: Mat4, size: u32| (m.project_point3(p).truncate() * 0.5 + 0.5) * size as f32;
+            let shift = at(trimmed, view.texels[0]).x - at(whole, SIZE).x;
+            assert!((shift - shift.round()).abs() < 1e-2, "{p}: {shift}");
+            let shift = at(trimmed, view.texels[1]).y - at(whole, SIZE).y;
+            assert!((shift - shift.round()).abs() < 1e-2, "{p}: {shift}");
+            assert_eq!(trimmed.project_point3(p).z, whole.project_point3(p).z);
+        }
+    }
+
+    #[test]
+    fn maps_are_made_in_steps_and_kept_while_they_fit() {
+        assert_eq!(new_size(None, [1000, 300]), Some([1024, 512]));
+        assert_eq!(new_size(None, [0, 0]), Some([STEP, STEP]));
+        // Kept while it holds the casters and is not two steps too large.
+        assert_eq!(new_size(Some([1024, 512]), [1000, 300]), None);
+        assert_eq!(new_size(Some([1024, 512]), [800, 300]), None);
+        assert_eq!(new_size(Some([1024, 512]), [1010, 512]), None);
+        // Grown, or shrunk.
+        assert_eq!(new_size(Some([1024, 512]), [1030, 300]), Some([1280, 512]));
+        assert_eq!(new_size(Some([1024, 512]), [512, 300]), Some([512, 512]));
     }
 
     #[test]

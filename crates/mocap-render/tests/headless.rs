@@ -164,6 +164,51 @@ fn a_shadow_falls_where_the_key_light_projects_its_caster() {
     }
 }
 
+#[test]
+fn a_shadow_keeps_its_shape_on_a_map_longer_one_way() {
+    // The shadow map holds only the casters, so a row of them makes it long
+    // and narrow: a ball's shadow must stay as wide and as long (on screen,
+    // from above) as with the ball alone.
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    let camera = Camera::look_at(Vec3::new(0.0, 8.0, 0.01), Vec3::ZERO, 0.8, 1.0);
+    let ball = Vec3::new(0.0, 1.0, 0.0);
+    let light = mocap_render::key_light_direction();
+    let on_floor = ball - light * (ball.y / light.y);
+    let c = (camera.projection * camera.view).project_point3(on_floor);
+    let centre = [(c.x * 0.5 + 0.5) * SIZE as f32, (0.5 - c.y * 0.5) * SIZE as f32];
+    // Width and height (pixels) of the shadowed floor around the ball's shadow.
+    let mut extent = |scene: &Scene| {
+        renderer.render(&device, &queue, &target, scene, &camera);
+        let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
+        for (i, p) in read_pixels(&device, &queue, &target).chunks(4).enumerate() {
+            let at = [(i % SIZE as usize) as f32, (i / SIZE as usize) as f32];
+            let near = (at[0] - centre[0]).hypot(at[1] - centre[1]) < 20.0;
+            let luma = p[0] as u32 + p[1] as u32 + p[2] as u32;
+            if near && luma < 125 && (p[0] as i32 - p[2] as i32).abs() < 30 {
+                for k in 0..2 {
+                    lo[k] = lo[k].min(at[k]);
+                    hi[k] = hi[k].max(at[k]);
+                }
+            }
+        }
+        [hi[0] - lo[0] + 1.0, hi[1] - lo[1] + 1.0]
+    };
+    let floor = Grid::floor(Vec3::new(-4.0, 0.0, -4.0), Vec3::splat(4.0), 1.0, 10.0);
+    let mut scene = Scene { grid: Some(floor), ..Scene::default() };
+    scene.capsules.push(Capsule { a: ball, b: ball, radius: 0.3, color: [255, 0, 0, 255] });
+    let alone = extent(&scene);
+    assert!(alone[0] >= 8.0 && alone[1] >= 8.0, "the ball casts a shadow: {alone:?}");
+    // Pebbles in a row far to one side.
+    for k in 0..8 {
+        let pebble = Vec3::new(1.0 + 0.4 * k as f32, 0.05, -3.0);
+        scene.capsules.push(Capsule { a: pebble, b: pebble, radius: 0.05, color: [255, 0, 0, 255] });
+    }
+    let with_row = extent(&scene);
+    for k in 0..2 {
+        assert!((with_row[k] - alone[k]).abs() <= 1.0, "the shadow keeps its size: {with_row:?} with the row, {alone:?} alone");
+    }
+}
+
 /// A square facing the camera (two triangles) at `x` for each frame, with a
 /// texture whose left half is red and right half blue.
 fn quad_mesh(xs: &[f32], skin: bool) -> std::sync::Arc<mocap_render::MorphMeshData> {

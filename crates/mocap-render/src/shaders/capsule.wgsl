@@ -267,15 +267,17 @@ fn fs_main(in: Out) -> Shaded {
 
 struct ShadowOut {
     @builtin(position) position: vec4<f32>,
+    // Where in the light's view (x, y in world units: the map may be longer
+    // one way than the other, its clip space is not).
     @location(0) xy: vec2<f32>,
-    // The axis's ends (xy) in the light's clip space, and the radius there.
+    // The axis's ends (x, y) in the light's view, and the radius.
     @location(1) @interpolate(flat) ends: vec4<f32>,
     @location(2) @interpolate(flat) radius: f32,
 };
 
-// Depth at `xy` (the light's clip space) of the plane through the axis `a`-`b`
-// of radius `r` there, as the rasteriser interpolates it; an axis seen end-on
-// takes its middle.
+// Depth at `xy` (the light's view) of the plane through the axis `a`-`b` of
+// radius `r` (x, y in the light's view, z its depth), as the rasteriser
+// interpolates it; an axis seen end-on takes its middle.
 fn axis_plane_depth(xy: vec2<f32>, a: vec3<f32>, b: vec3<f32>, r: f32) -> f32 {
     let along = b.xy - a.xy;
     let len = length(along);
@@ -292,12 +294,15 @@ fn in_depth_range(z: f32) -> bool {
 @vertex
 fn vs_shadow(v: CapsuleIn) -> ShadowOut {
     let m = frame.light_view_proj;
-    let a = (m * vec4<f32>(v.a, 1.0)).xyz;
-    let b = (m * vec4<f32>(v.b, 1.0)).xyz;
-    let scale = length(vec3<f32>(m[0][0], m[1][0], m[2][0]));
-    let r = abs(v.radius) * scale;
+    // The light's clip space per world unit, across and down.
+    let per_unit = vec2<f32>(length(vec3<f32>(m[0][0], m[1][0], m[2][0])), length(vec3<f32>(m[0][1], m[1][1], m[2][1])));
+    let clip_a = (m * vec4<f32>(v.a, 1.0)).xyz;
+    let clip_b = (m * vec4<f32>(v.b, 1.0)).xyz;
+    let a = vec3<f32>(clip_a.xy / per_unit, clip_a.z);
+    let b = vec3<f32>(clip_b.xy / per_unit, clip_b.z);
+    let r = abs(v.radius);
     // One texel of room.
-    let room = frame.light_dir.w * scale;
+    let room = frame.light_dir.w;
     // The apex lies well past one end, where the plane's depth may leave the
     // map's range (a capsule pointing at the light): then it goes past the
     // other end if the depth stays in range there (the same for the three
@@ -310,7 +315,7 @@ fn vs_shadow(v: CapsuleIn) -> ShadowOut {
         xy = triangle_corner(v.corner, b.xy, r, a.xy, r, room);
     }
     var out: ShadowOut;
-    out.position = vec4<f32>(xy, clamp(axis_plane_depth(xy, a, b, r), 0.0, 1.0), 1.0);
+    out.position = vec4<f32>(xy * per_unit, clamp(axis_plane_depth(xy, a, b, r), 0.0, 1.0), 1.0);
     out.xy = xy;
     out.ends = vec4<f32>(a.xy, b.xy);
     out.radius = r;
