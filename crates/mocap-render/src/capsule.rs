@@ -1,5 +1,5 @@
 //! Capsules on the GPU as impostors: each capsule (and each sphere, as a
-//! capsule of zero length) is one triangle that covers its outline, and the
+//! capsule of zero length) is one or two triangles that cover its outline, and the
 //! capsule shader finds the surface by casting the pixel's ray at the capsule:
 //! exact depth and normal, round at any size, and the outline anti-aliased from
 //! the ray's distance to the capsule. The triangles are placed on the CPU into
@@ -7,9 +7,11 @@
 //! is mostly per triangle and per instance (it sets up each instance of an
 //! instanced draw like a draw of its own), and it shades whole blocks of pixels
 //! per triangle. A capsule mesh took 24 to 144 triangles; a rectangle around
-//! the outline took two, which shared most of their blocks on a small capsule
-//! (one triangle instead: a crowd of 64 frames about 15% faster on lavapipe).
-//! The shader places the corners (`triangle_corner` in capsule.wgsl).
+//! the outline takes two, which share most of their blocks on a small capsule,
+//! so a capsule under 16 pixels wide is one triangle around it instead, the
+//! rectangle's second triangle then having no area (a crowd of 64 frames about
+//! 10% faster on lavapipe). The shader places the corners (`capsule_corner` in
+//! capsule.wgsl), in each pass by the capsule's size there.
 
 use crate::{Camera, Capsule};
 use bytemuck::{Pod, Zeroable};
@@ -61,9 +63,8 @@ impl CapsuleInstance {
     }
 }
 
-/// One corner of a capsule's triangle: the capsule and which corner (0: the
-/// apex beyond `b`; 1 and 2: behind `a`, one on each side). The shader places
-/// the corner (`capsule.wgsl`).
+/// One corner of a capsule's quad: the capsule and which corner (0-3). The
+/// shader places the corner (`capsule_corner` in capsule.wgsl).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub(crate) struct CapsuleVertex {
@@ -78,23 +79,26 @@ pub(crate) struct CapsuleVertex {
 /// Vertex attributes of [`CapsuleVertex`] (locations 0-4).
 pub(crate) const ATTRIBUTES: [wgpu::VertexAttribute; 5] = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32, 2 => Float32x3, 3 => Float32, 4 => Float32x4];
 
-/// Corners of a capsule's triangle (either winding: the pipelines do not cull
-/// them).
-const CORNERS: u32 = 3;
+/// Corners of a capsule's quad.
+const CORNERS: u32 = 4;
 
-/// Appends each capsule's triangle (its [`CORNERS`] corners) to `vertices`,
-/// and their indices to `indices`. Stops before an index would pass
+/// The two triangles of a quad over its corners (either winding: the
+/// pipelines do not cull them).
+const QUAD: [u32; 6] = [0, 1, 2, 2, 1, 3];
+
+/// Appends each capsule's quad (its [`CORNERS`] corners) to `vertices`, and
+/// its two triangles to `indices`. Stops before an index would pass
 /// `u32::MAX`.
 pub(crate) fn expand(capsules: impl Iterator<Item = CapsuleInstance>, vertices: &mut Vec<CapsuleVertex>, indices: &mut Vec<u32>) {
     let (fewest, _) = capsules.size_hint();
     vertices.reserve(fewest * CORNERS as usize);
-    indices.reserve(fewest * CORNERS as usize);
+    indices.reserve(fewest * QUAD.len());
     for c in capsules {
         let Some(base) = u32::try_from(vertices.len()).ok().filter(|b| b.checked_add(CORNERS).is_some()) else { return };
         for corner in 0..CORNERS {
             vertices.push(CapsuleVertex { a: c.a, radius: c.radius.abs(), b: c.b, corner: corner as f32, color: c.color });
-            indices.push(base + corner);
         }
+        indices.extend(QUAD.map(|q| base + q));
     }
 }
 
@@ -121,19 +125,19 @@ mod tests {
     }
 
     #[test]
-    fn each_capsule_is_one_triangle_of_its_own() {
+    fn each_capsule_is_four_corners_and_two_triangles_of_its_own() {
         let capsules = [
             CapsuleInstance { a: [0.0, 0.0, 0.0], radius: 0.5, b: [1.0, 0.0, 0.0], color: [1.0; 4] },
             CapsuleInstance { a: [5.0, 5.0, 5.0], radius: -1.0, b: [5.0, 5.0, 5.0], color: [0.5; 4] },
         ];
-        let mut vertices = vec![CapsuleVertex::zeroed(); 3];
+        let mut vertices = vec![CapsuleVertex::zeroed()];
         let mut indices = Vec::new();
         expand(capsules.into_iter(), &mut vertices, &mut indices);
-        assert_eq!(vertices.len(), 3 + 6);
-        assert_eq!(indices, [3, 4, 5, 6, 7, 8]);
-        for (k, v) in vertices[3..].iter().enumerate() {
-            let c = &capsules[k / 3];
-            assert_eq!((v.a, v.b, v.color, v.corner), (c.a, c.b, c.color, (k % 3) as f32));
+        assert_eq!(vertices.len(), 1 + 8);
+        assert_eq!(indices, [1, 2, 3, 3, 2, 4, 5, 6, 7, 7, 6, 8]);
+        for (k, v) in vertices[1..].iter().enumerate() {
+            let c = &capsules[k / 4];
+            assert_eq!((v.a, v.b, v.color, v.corner), (c.a, c.b, c.color, (k % 4) as f32));
             assert_eq!(v.radius, c.radius.abs(), "a negative radius is drawn as its size");
         }
     }

@@ -8,7 +8,7 @@
 // space); for an orthographic view, the ray's view-space (x, y). Both are
 // linear in screen position.
 
-// One corner of a capsule's triangle (see `triangle_corner`).
+// One corner of a capsule's quad (see `capsule_corner`).
 struct CapsuleIn {
     @location(0) a: vec3<f32>,
     @location(1) radius: f32,
@@ -94,14 +94,52 @@ fn outside_view(c: vec3<f32>, r: f32) -> bool {
     return false;
 }
 
+// Corner `corner` (0: behind `a`, 1: beyond `b`, on one side; 2 and 3 on the
+// other) of a rectangle along the segment `a`–`b` in a plane holding the
+// circles of radius `ra` around `a` and `rb` around `b` (so their hull), grown
+// by `margin`.
+fn quad_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32) -> vec2<f32> {
+    let k = u32(corner + 0.5);
+    let side = select(-1.0, 1.0, k >= 2u);
+    let along = b - a;
+    let len = length(along);
+    let w = select(vec2<f32>(1.0, 0.0), along / len, len > 1e-12);
+    let u = vec2<f32>(-w.y, w.x);
+    // Either circle may reach farther back or forward (an axis seen end-on).
+    let back = min(-ra, len - rb) - margin;
+    let forward = max(len + rb, ra) + margin;
+    return a + w * select(back, forward, (k & 1u) == 1u) + u * (max(ra, rb) + margin) * side;
+}
+
+// Capsules narrower than this many pixels (texels in the shadow map) are
+// drawn as one triangle, wider ones as a rectangle's two.
+const ONE_TRIANGLE_BELOW: f32 = 16.0;
+
+// Whether the capsule of radii `ra`, `rb` grown by `margin` is drawn as one
+// triangle where one pixel (texel) is `unit` long.
+fn is_one_triangle(ra: f32, rb: f32, margin: f32, unit: f32) -> bool {
+    return 2.0 * (max(ra, rb) + margin) < ONE_TRIANGLE_BELOW * unit;
+}
+
+// Corner `corner` (0-3) of the shape a capsule is drawn as: one triangle
+// (`triangle_corner`, corner 3 on corner 2, so the quad's second triangle has
+// no area and is dropped before shading) when it is small, else the rectangle
+// (`quad_corner`). A software rasteriser shades whole blocks of pixels per
+// triangle: a small capsule's two triangles shared most of theirs, while a
+// large one's triangle would cover far more pixels than its rectangle.
+fn capsule_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32, unit: f32) -> vec2<f32> {
+    if (is_one_triangle(ra, rb, margin, unit)) {
+        return triangle_corner(min(corner, 2.0), a, ra, b, rb, margin);
+    }
+    return quad_corner(corner, a, ra, b, rb, margin);
+}
+
 // Corner `corner` (0: the apex beyond `b`; 1 and 2: behind `a`, one on each
 // side) of a triangle holding the circles of radius `ra` around `a` and `rb`
 // around `b` (so their hull, a capsule's outline), grown by `margin`. With h
 // the larger radius plus `margin`, its sides are tangent to the circle of
 // radius h around `b` and pass outside the one around `a`, and its base is
-// tangent to that one. One triangle, not a rectangle's two: a software
-// rasteriser shades whole blocks of pixels per triangle, and the two
-// triangles of a small capsule's rectangle shared most of theirs.
+// tangent to that one.
 fn triangle_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32) -> vec2<f32> {
     let k = u32(corner + 0.5);
     let along = b - a;
@@ -145,14 +183,14 @@ fn vs_main(v: CapsuleIn) -> Out {
             return out;
         }
         let k = u32(v.corner + 0.5);
-        ray = ray_of_ndc(vec2<f32>(select(-1.0, 3.0, k == 1u), select(-1.0, 3.0, k == 2u)));
+        ray = ray_of_ndc(vec2<f32>(select(-1.0, 1.0, (k & 1u) == 1u), select(-1.0, 1.0, k >= 2u)));
         depth = near * 1.001;
     } else {
         // A triangle around the axis's image holding both end circles (so
         // their hull, the capsule's outline), with room for the edge filter
         // (coverage falls to 0 half a pixel out).
         let margin = (0.75 - frame.samples.x) * pixel_in_ray_units();
-        ray = triangle_corner(v.corner, ea.xy, ea.z, eb.xy, eb.z, margin);
+        ray = capsule_corner(v.corner, ea.xy, ea.z, eb.xy, eb.z, margin, pixel_in_ray_units());
         // In front of the capsule, behind the near plane.
         depth = max(min(-a.z, -b.z) - r, near * 1.001);
     }
@@ -310,9 +348,10 @@ fn vs_shadow(v: CapsuleIn) -> ShadowOut {
     // are clamped, which bends the plane.
     let past_b = axis_plane_depth(triangle_corner(0.0, a.xy, r, b.xy, r, room), a, b, r);
     let past_a = axis_plane_depth(triangle_corner(0.0, b.xy, r, a.xy, r, room), a, b, r);
-    var xy = triangle_corner(v.corner, a.xy, r, b.xy, r, room);
-    if (!in_depth_range(past_b) && in_depth_range(past_a)) {
-        xy = triangle_corner(v.corner, b.xy, r, a.xy, r, room);
+    let flip = is_one_triangle(r, r, room, room) && !in_depth_range(past_b) && in_depth_range(past_a);
+    var xy = capsule_corner(v.corner, a.xy, r, b.xy, r, room, room);
+    if (flip) {
+        xy = capsule_corner(v.corner, b.xy, r, a.xy, r, room, room);
     }
     var out: ShadowOut;
     out.position = vec4<f32>(xy * per_unit, clamp(axis_plane_depth(xy, a, b, r), 0.0, 1.0), 1.0);
