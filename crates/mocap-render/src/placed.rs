@@ -1,9 +1,9 @@
 //! Meshes placed on the CPU every frame: vertices and triangles filled by the
 //! caller, uploaded to growing buffers and drawn in one plain indexed draw
-//! (the capsule impostors, see capsule.rs). Indexed even where the triangles
-//! share no vertices: lavapipe draws tens of thousands of unindexed vertices
-//! through buffers it allocates and faults in every draw (about 1,400 page
-//! faults a frame at 64 characters, and slower), indexed ones without.
+//! (the capsule impostors, see capsule.rs). Indexed also for the vertices it
+//! saves: lavapipe draws tens of thousands of unindexed vertices through
+//! buffers it allocates and faults in every draw (about 1,400 page faults a
+//! frame at 64 characters, and slower), indexed ones without.
 
 use crate::buffer::GrowingBuffer;
 
