@@ -3,7 +3,7 @@
 //! A frame is two passes and at most seven draw calls, whatever the number of
 //! figures, plus two per vertex-animated mesh: the shadow map (every caster as a
 //! capsule impostor, and each mesh), then the floor and its shadows, the capsule
-//! impostors (one triangle each, see capsule.rs), the meshes, the sphere impostors,
+//! impostors (one or two triangles each, see capsule.rs), the meshes, the sphere impostors,
 //! the lines and the overlay lines (drawn over everything, e.g. bone axes inside
 //! capsules). Under a still camera the floor is drawn once, into a third pass,
 //! and later frames start from copies of its colour and depth (floor_cache.rs).

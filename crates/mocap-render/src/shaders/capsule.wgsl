@@ -1,6 +1,7 @@
-// Capsules as impostors (see capsule.rs): each capsule is one triangle covering
-// its outline, and the fragment shader casts the pixel's ray at the capsule for the
-// exact surface point, normal and depth. Spheres are capsules of zero length.
+// Capsules as impostors (see capsule.rs): each capsule is one triangle (a
+// small one) or two (a rectangle) covering its outline, and the fragment shader
+// casts the pixel's ray at the capsule for the exact surface point, normal and
+// depth. Spheres are capsules of zero length.
 // `Frame`, `frame`, `to_target` and `shade` come from frame.wgsl and lighting.wgsl.
 //
 // "Ray coordinates" below: for a perspective view, the point (x / -z, y / -z)
