@@ -20,7 +20,7 @@ struct CapsuleIn {
 
 struct Out {
     @builtin(position) position: vec4<f32>,
-    // The triangle's point in the world: in front of the capsule, on the pixel's ray.
+    // The shape's point in the world: in front of the capsule, on the pixel's ray.
     @location(0) world: vec3<f32>,
     // The capsule in the world.
     @location(1) @interpolate(flat) a: vec3<f32>,
@@ -177,7 +177,7 @@ fn vs_main(v: CapsuleIn) -> Out {
     var out: Out;
     if (ea.z < 0.0 || eb.z < 0.0) {
         // Too close to the eye for a bound: the whole view (rare), unless the
-        // capsule is out of view (beside or behind the eye): then all three
+        // capsule is out of view (beside or behind the eye): then all four
         // corners at one point, nothing to draw.
         if (outside_view(0.5 * (a + b), 0.5 * length(b - a) + r)) {
             out.position = vec4<f32>(2.0, 2.0, 0.5, 1.0);
@@ -187,7 +187,7 @@ fn vs_main(v: CapsuleIn) -> Out {
         ray = ray_of_ndc(vec2<f32>(select(-1.0, 1.0, (k & 1u) == 1u), select(-1.0, 1.0, k >= 2u)));
         depth = near * 1.001;
     } else {
-        // A triangle around the axis's image holding both end circles (so
+        // A triangle or rectangle (`capsule_corner`) around the axis's image holding both end circles (so
         // their hull, the capsule's outline), with room for the edge filter
         // (coverage falls to 0 half a pixel out).
         let margin = (0.75 - frame.samples.x) * pixel_in_ray_units();
@@ -244,7 +244,7 @@ struct Shaded {
 
 @fragment
 fn fs_main(in: Out) -> Shaded {
-    // The ray from the triangle (in front of the capsule) on.
+    // The ray from the shape (in front of the capsule) on.
     let forward = -vec3<f32>(frame.view[0].z, frame.view[1].z, frame.view[2].z);
     let o = in.world;
     var d = forward;
@@ -299,7 +299,7 @@ fn fs_main(in: Out) -> Shaded {
     return out;
 }
 
-// The shadow map: the same triangles seen from the key light (orthographic),
+// The shadow map: the same shapes seen from the key light (orthographic),
 // in the plane through the capsule's axis, so each capsule stores the depth of
 // its middle: its lit half stays in front of it, and everything behind is
 // shadowed.
