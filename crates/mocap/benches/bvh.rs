@@ -97,6 +97,11 @@ fn best<T>(runs: usize, mut f: impl FnMut() -> T) -> Duration {
         .unwrap_or_default()
 }
 
+/// A value alone on its cache lines (two 64-byte lines: neighbouring lines are
+/// fetched in pairs on x86).
+#[repr(align(128))]
+struct Padded<T>(T);
+
 /// The floor: split on whitespace and parse floats into a preallocated buffer.
 fn bare_floor(rows: &[u8], out: &mut Vec<f32>) -> usize {
     out.clear();
@@ -126,13 +131,16 @@ fn main() {
     // once. Where this is below threads × floor (shared or uneven cores, a busy
     // host), the aim cannot be met by any parser.
     let parts = split_rows(&input[rows_at..], threads * 4);
-    let bufs: Vec<std::sync::Mutex<Vec<f32>>> = parts.iter().map(|p| std::sync::Mutex::new(Vec::with_capacity(p.len() / 4))).collect();
+    // Each piece's buffer on its own cache lines: a `Vec`'s length is written
+    // at every push, and two threads writing one line slow each other down
+    // (that made this line read below one thread's floor).
+    let bufs: Vec<Padded<std::sync::Mutex<Vec<f32>>>> = parts.iter().map(|p| Padded(std::sync::Mutex::new(Vec::with_capacity(p.len() / 4)))).collect();
     let floor_at_once = || {
         let next = std::sync::atomic::AtomicUsize::new(0);
         let work = || {
             let mut values = 0;
             while let Some(i) = Some(next.fetch_add(1, Ordering::Relaxed)).filter(|&i| i < parts.len()) {
-                values += bare_floor(parts[i], &mut bufs[i].lock().expect("piece buffer"));
+                values += bare_floor(parts[i], &mut bufs[i].0.lock().expect("piece buffer"));
             }
             values
         };
