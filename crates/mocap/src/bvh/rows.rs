@@ -226,27 +226,30 @@ const CLASS: [u8; 256] = {
     t
 };
 
+/// `10^-e` for `e` up to 7, as the nearest f64s.
+///
+/// For `m < 2^24` and `e <= 7`, `(m as f64 * TENTHS[e]) as f32` is the correctly
+/// rounded f32 of `m / 10^e`, as `m as f32 / 10^e as f32` is: the product is
+/// within 2^-52 of the quotient (relative), and a quotient that is not an f32
+/// lies at least `1 / (10^e · 2^25)` > 2^-49 (relative) from every point halfway
+/// between two f32s, so both round the same way. (Checked for every `m` and `e`
+/// once; a test checks a sample.) A multiplication instead of a division, which
+/// takes several times as long.
+const TENTHS: [f64; 8] = [1e0, 1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7];
 /// Powers of ten exactly representable in f32.
 const POW10: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
 
 /// Fast path for the numbers mocap files are made of: `[+-]digits[.digits]` with a
 /// digit string below 2^24 and no exponent. Then the value is `m / 10^e` with `m < 2^24` and
-/// `10^e` both exact in f32, so one IEEE division gives the correctly rounded result.
+/// `10^e` both exact in f32, so one IEEE division gives the correctly rounded result
+/// (one multiplication in f64 for up to 7 decimals: see [`TENTHS`]).
 /// Anything else (`None`) goes to the general parser.
 #[inline]
 fn parse_short_decimal(s: &[u8]) -> Option<(f32, usize)> {
-    let mut i = 0;
-    let negative = match s.first() {
-        Some(b'-') => {
-            i = 1;
-            true
-        }
-        Some(b'+') => {
-            i = 1;
-            false
-        }
-        _ => false,
-    };
+    // The sign without a branch: signs vary from number to number.
+    let first = s.first().copied();
+    let negative = first == Some(b'-');
+    let mut i = usize::from(negative || first == Some(b'+'));
     // Integer digits, then fraction digits, each in a tight loop.
     let mut mantissa: u64 = 0;
     let int_start = i;
@@ -271,8 +274,11 @@ fn parse_short_decimal(s: &[u8]) -> Option<(f32, usize)> {
     if total == 0 || total > 19 || mantissa >= 1 << 24 || !ends_cleanly {
         return None;
     }
-    let magnitude = mantissa as f32 / *POW10.get(fraction_digits)?;
-    Some((if negative { -magnitude } else { magnitude }, i))
+    let magnitude = match TENTHS.get(fraction_digits) {
+        Some(tenths) => (mantissa as f64 * tenths) as f32,
+        None => mantissa as f32 / *POW10.get(fraction_digits)?,
+    };
+    Some((f32::from_bits(magnitude.to_bits() | (u32::from(negative) << 31)), i))
 }
 
 /// How a number that the standard parsers refuse was read.
@@ -308,6 +314,34 @@ fn parse_quirky_number(token: &[u8]) -> Option<(f32, Quirk)> {
     None
 }
 
+/// A number at the start of `rest` that is not a short decimal (see
+/// [`parse_short_decimal`]): long, with an exponent, `inf` or `nan`, or one of
+/// the quirky forms. Returns the value and the bytes it takes; notes the first
+/// non-finite value or decimal comma on `line`; an error at `line`, `column`
+/// when `rest` does not start with a number ending at a separator.
+#[cold]
+fn read_other_number(rest: &[u8], line: u32, column: u32, notes: &mut RowNotes) -> Result<(f32, usize), ParseError> {
+    let (value, used) = match fast_float2::parse_partial::<f32, _>(rest) {
+        Ok((v, used)) if used > 0 && rest.get(used).is_none_or(|&c| CLASS[c as usize] != OTHER) => (v, used),
+        _ => {
+            let end = rest.iter().position(|&c| CLASS[c as usize] != OTHER).unwrap_or(rest.len());
+            let token = rest.get(..end).unwrap_or(rest);
+            match parse_quirky_number(token) {
+                Some((v, Quirk::DecimalComma)) => {
+                    notes.decimal_comma = notes.decimal_comma.or(Some(line));
+                    (v, end)
+                }
+                Some((v, Quirk::MsvcSpecial)) => (v, end),
+                None => return Err(ParseError::new(line, column, format!("expected a number in motion row, found `{}`", show_bytes(token)))),
+            }
+        }
+    };
+    if !value.is_finite() && notes.non_finite.is_none() {
+        notes.non_finite = Some(line);
+    }
+    Ok((value, used))
+}
+
 /// Parses the rows of one chunk into `out` (row after row). With `ring`, every row
 /// is written to the start of `out` instead: used to find an error without storing.
 /// Returns the number of rows and the line of the first non-finite value.
@@ -341,37 +375,26 @@ fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring
                 line_start = i as isize;
             }
             _ => {
-                let col = column(i, line_start);
                 if k == width {
-                    return Err(ParseError::new(line, col, format!("motion row has more than {width} values (one per channel)")));
+                    return Err(ParseError::new(line, column(i, line_start), format!("motion row has more than {width} values (one per channel)")));
                 }
                 let rest = chunk.get(i..).unwrap_or(&[]);
-                let (value, used) = match parse_short_decimal(rest).map_or_else(|| fast_float2::parse_partial::<f32, _>(rest), Ok) {
-                    Ok((v, used)) if used > 0 && rest.get(used).is_none_or(|&c| CLASS[c as usize] != OTHER) => (v, used),
-                    _ => {
-                        let end = rest.iter().position(|&c| CLASS[c as usize] != OTHER).unwrap_or(rest.len());
-                        let token = &rest[..end];
-                        match parse_quirky_number(token) {
-                            Some((v, Quirk::DecimalComma)) => {
-                                notes.decimal_comma = notes.decimal_comma.or(Some(line));
-                                (v, end)
-                            }
-                            Some((v, Quirk::MsvcSpecial)) => (v, end),
-                            None => {
-                                return Err(ParseError::new(line, col, format!("expected a number in motion row, found `{}`", show_bytes(token))));
-                            }
-                        }
-                    }
+                // Short decimals are finite and end at a separator; anything else
+                // goes through the general reader.
+                let (value, used) = match parse_short_decimal(rest) {
+                    Some(parsed) => parsed,
+                    None => read_other_number(rest, line, column(i, line_start), &mut notes)?,
                 };
-                if !value.is_finite() && notes.non_finite.is_none() {
-                    notes.non_finite = Some(line);
-                }
                 match out.get_mut(base + k) {
                     Some(slot) => *slot = value,
-                    None => return Err(ParseError::new(line, col, "internal error: row buffer too small")),
+                    None => return Err(ParseError::new(line, column(i, line_start), "internal error: row buffer too small")),
                 }
                 k += 1;
                 i += used;
+                // The usual single space to the next number, without a turn of the loop.
+                if chunk.get(i) == Some(&b' ') {
+                    i += 1;
+                }
             }
         }
     }
@@ -414,6 +437,16 @@ mod tests {
             if let Some((v, used)) = parse_short_decimal(text.as_bytes()) {
                 let expected: f32 = text.parse().unwrap();
                 proptest::prop_assert_eq!((v.to_bits(), used), (expected.to_bits(), text.len()), "{}", text);
+            }
+        }
+    }
+
+    #[test]
+    fn tenths_round_like_a_division() {
+        for (e, tenths) in super::TENTHS.iter().enumerate() {
+            for m in (0..1u64 << 24).step_by(61).chain(0..30_000) {
+                let by_division = m as f32 / super::POW10[e];
+                assert_eq!(((m as f64 * tenths) as f32).to_bits(), by_division.to_bits(), "{m}e-{e}");
             }
         }
     }
