@@ -29,6 +29,7 @@ pub mod bvh;
 pub mod channel;
 pub mod clip;
 pub mod contact;
+mod decimal;
 pub mod demo;
 pub mod edit;
 pub mod error;

@@ -57,57 +57,15 @@ fn is_frame_number(token: &[u8]) -> bool {
     !digits.is_empty() && digits.iter().all(u8::is_ascii_digit)
 }
 
-/// Powers of ten exactly representable in `f32`.
-const POW10: [f32; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
-
 /// Parses the number at the start of `s`: the value and the bytes used (0 when there
-/// is no number). Fast path for `[+-]digits[.digits]` whose digits fit in 24 bits:
-/// an exact integer divided by an exact power of ten is correctly rounded. Everything
-/// else (exponents, long mantissas, `inf`) goes to `fast_float2`.
+/// is no number). Short decimals on the shared fast path ([`crate::decimal::parse_short`]);
+/// everything else (exponents, long mantissas, `inf`) through `fast_float2`.
 #[inline]
 fn parse_value(s: &[u8]) -> (f32, usize) {
-    let (neg, mut i) = match s.first() {
-        Some(b'-') => (true, 1),
-        Some(b'+') => (false, 1),
-        _ => (false, 0),
-    };
-    let mut m: u64 = 0;
-    let mut digits = 0u32;
-    while let Some(&b) = s.get(i) {
-        let d = b.wrapping_sub(b'0');
-        if d > 9 {
-            break;
-        }
-        m = m.wrapping_mul(10).wrapping_add(u64::from(d));
-        digits += 1;
-        i += 1;
+    if let Some(parsed) = crate::decimal::parse_short(s) {
+        return parsed;
     }
-    let mut frac = 0usize;
-    if s.get(i) == Some(&b'.') {
-        i += 1;
-        while let Some(&b) = s.get(i) {
-            let d = b.wrapping_sub(b'0');
-            if d > 9 {
-                break;
-            }
-            m = m.wrapping_mul(10).wrapping_add(u64::from(d));
-            digits += 1;
-            frac += 1;
-            i += 1;
-        }
-    }
-    let ends = s.get(i).is_none_or(|&b| is_blank(b) || is_eol(b));
-    if ends && digits > 0 && digits <= 18 && m <= 1 << 24 {
-        if let Some(&p) = POW10.get(frac) {
-            #[allow(clippy::cast_precision_loss)] // m ≤ 2^24: exact
-            let v = m as f32 / p;
-            return (if neg { -v } else { v }, i);
-        }
-    }
-    match fast_float2::parse_partial::<f32, _>(s) {
-        Ok((v, used)) => (v, used),
-        Err(_) => (0.0, 0),
-    }
+    fast_float2::parse_partial::<f32, _>(s).unwrap_or((0.0, 0))
 }
 
 const NONE: usize = usize::MAX;
