@@ -70,18 +70,50 @@ fn parse_value(s: &[u8]) -> (f32, usize) {
 
 const NONE: usize = usize::MAX;
 
-/// The scanner's state.
-struct Scanner<'a, 'l> {
-    src: &'a [u8],
-    pos: usize,
-    line: u32,
-    line_start: usize,
+/// `a == b` for short slices (bone names) without a call to `memcmp`.
+#[inline]
+fn same_bytes(a: &[u8], b: &[u8]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).fold(0u8, |diff, (x, y)| diff | (x ^ y)) == 0
+}
+
+/// The row layout of the skeleton, as the scanners look it up.
+struct Columns<'l> {
     layout: &'l [(&'l str, usize)],
+    /// First column of each bone.
     offsets: Vec<usize>,
+    /// Values per frame.
     width: usize,
     names: HashMap<&'l [u8], usize>,
     /// Non-zero-dof bones, in layout order.
     nonzero: Vec<usize>,
+}
+
+impl<'l> Columns<'l> {
+    fn new(layout: &'l [(&'l str, usize)]) -> Columns<'l> {
+        let mut offsets = Vec::with_capacity(layout.len());
+        let mut width = 0usize;
+        let mut names = HashMap::with_capacity(layout.len());
+        let mut nonzero = Vec::new();
+        for (i, &(name, count)) in layout.iter().enumerate() {
+            offsets.push(width);
+            width = width.saturating_add(count);
+            names.entry(name.as_bytes()).or_insert(i);
+            if count > 0 {
+                nonzero.push(i);
+            }
+        }
+        Columns { layout, offsets, width, names, nonzero }
+    }
+}
+
+/// The scanner's state: one for the file, or one for each piece of a large file
+/// (see [`cut_at_frames`]).
+struct Scanner<'a, 'c> {
+    src: &'a [u8],
+    pos: usize,
+    line: u32,
+    line_start: usize,
+    columns: &'c Columns<'c>,
     /// The bone that followed each bone the last time it appeared (prediction).
     next_after: Vec<usize>,
     /// First bone of the previous frame, and of the current one.
@@ -93,18 +125,30 @@ struct Scanner<'a, 'l> {
     seen_line: Vec<u32>,
     /// Non-zero-dof bones seen in the current frame.
     seen_count: usize,
-    data: Vec<f32>,
-    frame_count: usize,
     row: usize,
     frame_line: u32,
     frame_number: i64,
-    last_number: Option<i64>,
+    part: Part,
+}
+
+/// What a scanner found in its bytes: the frames and what the warnings are made
+/// of. Lines count from the first line of those bytes.
+#[derive(Default)]
+struct Part {
+    /// Headers, first frame number, header warnings, and the values.
     amc: Amc,
+    frame_count: usize,
+    /// Line breaks scanned.
+    breaks: u32,
+    /// The line and number of the first frame, and the last frame's number.
+    first_frame_line: u32,
+    last_number: Option<i64>,
+    /// For each bone, the first frame (1-based) that gives it; 0: none does.
+    first_given: Vec<usize>,
     /// First missing bone: (frame line, bone, frame number); frames affected; bones affected.
     missing: Option<(u32, usize, i64)>,
     missing_frames: usize,
     missing_bones: Vec<bool>,
-    missing_bone_count: usize,
     /// First non-consecutive frame number: (line, expected, found), and how many.
     gap: Option<(u32, i64, i64)>,
     gap_count: usize,
@@ -116,58 +160,171 @@ struct Scanner<'a, 'l> {
 /// [`super::Asf::amc_layout`]). Bones may come in any order within a frame; a bone
 /// missing from a frame keeps its value from the previous frame (zeros in the first),
 /// with one warning for the whole file.
+///
+/// A large file is cut at frame lines into pieces read on several threads; the
+/// pieces are then joined as if read in one go (values carried into a piece's
+/// first frames, frame numbers checked across the cut, lines counted from the
+/// file's start).
 pub fn parse_amc(bytes: &[u8], layout: &[(&str, usize)]) -> Result<Amc, ParseError> {
+    parse_in_pieces(bytes, layout, piece_count(bytes.len()))
+}
+
+/// [`parse_amc`] with the bytes cut into (at most) `pieces` pieces.
+fn parse_in_pieces(bytes: &[u8], layout: &[(&str, usize)], pieces: usize) -> Result<Amc, ParseError> {
     if let Some(kind) = binary_kind(bytes) {
         return Err(ParseError::new(1, 1, format!("not an Acclaim motion file: {kind}")));
     }
-    let mut offsets = Vec::with_capacity(layout.len());
-    let mut width = 0usize;
-    let mut names = HashMap::with_capacity(layout.len());
-    let mut nonzero = Vec::new();
-    for (i, &(name, count)) in layout.iter().enumerate() {
-        offsets.push(width);
-        width = width.saturating_add(count);
-        names.entry(name.as_bytes()).or_insert(i);
-        if count > 0 {
-            nonzero.push(i);
+    let columns = Columns::new(layout);
+    let pieces = cut_at_frames(bytes, pieces);
+    let parts = crate::parallel::map(pieces, |(piece, start)| {
+        let mut scanner = Scanner::new(piece, start, &columns);
+        scanner.run().map(|()| scanner.finish())
+    });
+    let mut joined: Vec<Part> = Vec::with_capacity(parts.len());
+    for (i, part) in parts.into_iter().enumerate() {
+        match part.ok_or_else(|| ParseError::new(0, 0, "internal error: an AMC reader thread failed"))? {
+            Ok(part) => joined.push(part),
+            // The first piece counts lines from the file's start.
+            Err(e) if i == 0 => return Err(e),
+            // A later piece's error may name lines of that piece (`first at line
+            // …`): read the file again in one go, which words it from the start.
+            Err(_) => return parse_in_pieces(bytes, layout, 1),
         }
     }
-    let start = bom_len(bytes);
-    let mut s = Scanner {
-        src: bytes,
-        pos: start,
-        line: 1,
-        line_start: start,
-        layout,
-        offsets,
-        width,
-        names,
-        nonzero,
-        next_after: vec![NONE; layout.len()],
-        first_bone: NONE,
-        current_first: NONE,
-        last_bone: NONE,
-        seen: vec![0; layout.len()],
-        seen_line: vec![0; layout.len()],
-        seen_count: 0,
-        // An estimate from the bytes present, never from the file's numbers.
-        data: Vec::with_capacity(bytes.len() / 10),
-        frame_count: 0,
-        row: 0,
-        frame_line: 0,
-        frame_number: 0,
-        last_number: None,
-        amc: Amc { width, ..Amc::default() },
-        missing: None,
-        missing_frames: 0,
-        missing_bones: vec![false; layout.len()],
-        missing_bone_count: 0,
-        gap: None,
-        gap_count: 0,
-        non_finite: None,
+    Ok(join(joined, &columns).into_amc(&columns))
+}
+
+/// Inputs smaller than this are read on one thread.
+const PARALLEL_MIN_BYTES: usize = 1 << 20;
+/// Smallest piece worth cutting off for a thread.
+const PIECE_MIN_BYTES: usize = 1 << 18;
+
+/// Pieces to cut `len` bytes into: one below [`PARALLEL_MIN_BYTES`] or on one
+/// thread; else two per thread (at least [`PIECE_MIN_BYTES`] each).
+fn piece_count(len: usize) -> usize {
+    let threads = crate::parallel::max_threads();
+    if len < PARALLEL_MIN_BYTES || threads <= 1 {
+        return 1;
+    }
+    (threads * 2).min(len / PIECE_MIN_BYTES).max(threads)
+}
+
+/// Cuts `bytes` into about `parts` pieces, each after the first starting at a
+/// frame line (a line holding only a frame number); with where the first piece's
+/// text starts (after a byte-order mark).
+fn cut_at_frames(bytes: &[u8], parts: usize) -> Vec<(&[u8], usize)> {
+    let mut cuts = vec![0];
+    for k in 1..parts {
+        let target = (bytes.len() * k / parts).max(cuts.last().copied().unwrap_or(0) + 1);
+        match next_frame_line(bytes, target) {
+            Some(cut) if cut < bytes.len() => cuts.push(cut),
+            _ => break,
+        }
+    }
+    cuts.push(bytes.len());
+    cuts.windows(2)
+        .enumerate()
+        .filter_map(|(i, w)| {
+            let piece = bytes.get(w[0]..w[1])?;
+            Some((piece, if i == 0 { bom_len(bytes) } else { 0 }))
+        })
+        .collect()
+}
+
+/// The start of the first frame line that starts after `from` (past the line
+/// break after `from`), or `None`.
+fn next_frame_line(bytes: &[u8], from: usize) -> Option<usize> {
+    let mut at = from;
+    loop {
+        let rest = bytes.get(at..)?;
+        let brk = at + memchr::memchr2(b'\n', b'\r', rest)?;
+        let start = brk + line_break_len(bytes, brk);
+        if is_frame_line(bytes, start) {
+            return Some(start);
+        }
+        at = start;
+    }
+}
+
+/// Whether the line starting at `start` is a frame line, as [`Scanner::run`]
+/// reads one: blanks, a frame number, blanks, then the line's end or a comment.
+fn is_frame_line(bytes: &[u8], start: usize) -> bool {
+    let skip = |mut at: usize| {
+        while bytes.get(at).is_some_and(|&b| is_blank(b)) {
+            at += 1;
+        }
+        at
     };
-    s.run()?;
-    Ok(s.finish())
+    let p = skip(start);
+    let mut e = p;
+    while bytes.get(e).is_some_and(|&b| !is_blank(b) && !is_eol(b)) {
+        e += 1;
+    }
+    let token = bytes.get(p..e).unwrap_or(&[]);
+    let after = skip(e);
+    bytes.get(p).is_some_and(|&b| !is_eol(b) && b != b'#' && b != b':')
+        && bytes.get(after).is_none_or(|&b| is_eol(b) || b == b'#')
+        && is_frame_number(token)
+}
+
+/// The parts, in file order, as one: values carried into each part's first
+/// frames from the part before, frame numbers checked across each cut, lines
+/// counted from the file's start.
+fn join(parts: Vec<Part>, columns: &Columns<'_>) -> Part {
+    let mut parts = parts.into_iter();
+    let mut all = parts.next().unwrap_or_default();
+    let mut line = all.breaks;
+    for mut part in parts {
+        let shift = |l: u32| l.saturating_add(line);
+        if part.frame_count > 0 {
+            carry_into(&mut part, &all, columns);
+            if all.frame_count == 0 {
+                all.amc.first_frame_number = part.amc.first_frame_number;
+                all.first_frame_line = shift(part.first_frame_line);
+            }
+            if let (Some(last), Some(first)) = (all.last_number, part.amc.first_frame_number) {
+                if last.checked_add(1) != Some(first) {
+                    all.gap_count += 1;
+                    all.gap = all.gap.or(Some((shift(part.first_frame_line), last.saturating_add(1), first)));
+                }
+            }
+            all.last_number = part.last_number;
+        }
+        all.amc.warnings.extend(part.amc.warnings.into_iter().map(|w| Warning { line: w.line.map(shift), ..w }));
+        all.amc.data.extend_from_slice(&part.amc.data);
+        all.frame_count += part.frame_count;
+        all.missing = all.missing.or(part.missing.map(|(l, b, n)| (shift(l), b, n)));
+        all.missing_frames += part.missing_frames;
+        for (flag, more) in all.missing_bones.iter_mut().zip(&part.missing_bones) {
+            *flag |= *more;
+        }
+        all.gap_count += part.gap_count;
+        all.gap = all.gap.or(part.gap.map(|(l, e, f)| (shift(l), e, f)));
+        all.non_finite = all.non_finite.or(part.non_finite.map(shift));
+        line = line.saturating_add(part.breaks);
+        all.breaks = line;
+    }
+    all
+}
+
+/// Gives the bones that `part`'s first frames lack (read as zeros) the values of
+/// `before`'s last frame, as reading in one go would have.
+fn carry_into(part: &mut Part, before: &Part, columns: &Columns<'_>) {
+    let width = columns.width;
+    let Some(last) = before.frame_count.checked_sub(1).and_then(|f| before.amc.data.get(f * width..(f + 1) * width)) else {
+        return;
+    };
+    for &bone in &columns.nonzero {
+        let given = part.first_given.get(bone).copied().unwrap_or(0);
+        let frames = if given == 0 { part.frame_count } else { given - 1 };
+        let (Some(&offset), Some(&(_, count))) = (columns.offsets.get(bone), columns.layout.get(bone)) else { continue };
+        let Some(values) = last.get(offset..offset + count) else { continue };
+        for row in part.amc.data.chunks_mut(width).take(frames) {
+            if let Some(slot) = row.get_mut(offset..offset + count) {
+                slot.copy_from_slice(values);
+            }
+        }
+    }
 }
 
 fn plural(n: usize, one: &str, many: &str) -> String {
@@ -178,7 +335,36 @@ fn plural(n: usize, one: &str, many: &str) -> String {
     }
 }
 
-impl<'a, 'l> Scanner<'a, 'l> {
+impl<'a, 'c> Scanner<'a, 'c> {
+    /// A scanner over `src` from byte `start` (after a byte-order mark).
+    fn new(src: &'a [u8], start: usize, columns: &'c Columns<'c>) -> Scanner<'a, 'c> {
+        let bones = columns.layout.len();
+        Scanner {
+            src,
+            pos: start,
+            line: 1,
+            line_start: start,
+            columns,
+            next_after: vec![NONE; bones],
+            first_bone: NONE,
+            current_first: NONE,
+            last_bone: NONE,
+            seen: vec![0; bones],
+            seen_line: vec![0; bones],
+            seen_count: 0,
+            row: 0,
+            frame_line: 0,
+            frame_number: 0,
+            part: Part {
+                // An estimate from the bytes present, never from the file's numbers.
+                amc: Amc { width: columns.width, data: Vec::with_capacity(src.len() / 10), ..Amc::default() },
+                first_given: vec![0; bones],
+                missing_bones: vec![false; bones],
+                ..Part::default()
+            },
+        }
+    }
+
     fn column(&self, at: usize) -> u32 {
         u32::try_from(at.saturating_sub(self.line_start) + 1).unwrap_or(u32::MAX)
     }
@@ -189,6 +375,10 @@ impl<'a, 'l> Scanner<'a, 'l> {
 
     /// The end of the line holding `at` (the position of its line break, or the end).
     fn eol_from(&self, at: usize) -> usize {
+        // Most callers are at the line's end already.
+        if self.src.get(at).is_none_or(|&b| is_eol(b)) {
+            return at;
+        }
         line_end(self.src, at)
     }
 
@@ -250,43 +440,44 @@ impl<'a, 'l> Scanner<'a, 'l> {
         let e = self.token_end(p);
         let word = self.src.get(p..e).unwrap_or(&[]);
         let known = [&b":FULLY-SPECIFIED"[..], b":DEGREES", b":RADIANS"].iter().any(|k| word.eq_ignore_ascii_case(k));
-        if self.frame_count > 0 {
-            self.amc.warnings.push(Warning { line: Some(self.line), message: format!("header line `{}` after the first frame ignored", show_bytes(word)) });
+        if self.part.frame_count > 0 {
+            self.part.amc.warnings.push(Warning { line: Some(self.line), message: format!("header line `{}` after the first frame ignored", show_bytes(word)) });
         } else if word.eq_ignore_ascii_case(b":FULLY-SPECIFIED") {
-            self.amc.fully_specified = true;
+            self.part.amc.fully_specified = true;
         } else if word.eq_ignore_ascii_case(b":DEGREES") {
-            self.amc.angle = AngleUnit::Degrees;
+            self.part.amc.angle = AngleUnit::Degrees;
         } else if word.eq_ignore_ascii_case(b":RADIANS") {
-            self.amc.angle = AngleUnit::Radians;
+            self.part.amc.angle = AngleUnit::Radians;
         } else if !known {
-            self.amc.warnings.push(Warning { line: Some(self.line), message: format!("unknown header line `{}` ignored", show_bytes(word)) });
+            self.part.amc.warnings.push(Warning { line: Some(self.line), message: format!("unknown header line `{}` ignored", show_bytes(word)) });
         }
     }
 
     fn new_frame(&mut self, token: &[u8], p: usize) -> Result<(), ParseError> {
         let number = parse_i64(token).ok_or_else(|| self.error(p, format!("frame number `{}` is out of range", show_bytes(token))))?;
-        if self.frame_count > 0 {
+        if self.part.frame_count > 0 {
             self.finish_frame();
         }
-        self.frame_count += 1;
-        if self.frame_count == 1 {
-            self.data.resize(self.width, 0.0);
+        self.part.frame_count += 1;
+        if self.part.frame_count == 1 {
+            self.part.amc.data.resize(self.columns.width, 0.0);
             self.row = 0;
-            self.amc.first_frame_number = Some(number);
+            self.part.amc.first_frame_number = Some(number);
+            self.part.first_frame_line = self.line;
         } else {
             let previous = self.row;
-            self.row = self.data.len();
-            self.data.extend_from_within(previous..self.row);
+            self.row = self.part.amc.data.len();
+            self.part.amc.data.extend_from_within(previous..self.row);
         }
-        if let Some(last) = self.last_number {
+        if let Some(last) = self.part.last_number {
             if last.checked_add(1) != Some(number) {
-                self.gap_count += 1;
-                if self.gap.is_none() {
-                    self.gap = Some((self.line, last.saturating_add(1), number));
+                self.part.gap_count += 1;
+                if self.part.gap.is_none() {
+                    self.part.gap = Some((self.line, last.saturating_add(1), number));
                 }
             }
         }
-        self.last_number = Some(number);
+        self.part.last_number = Some(number);
         self.frame_line = self.line;
         self.frame_number = number;
         self.seen_count = 0;
@@ -300,52 +491,52 @@ impl<'a, 'l> Scanner<'a, 'l> {
 
     /// Notes the bones the frame that just ended did not give.
     fn finish_frame(&mut self) {
-        if self.seen_count >= self.nonzero.len() {
+        if self.seen_count >= self.columns.nonzero.len() {
             return;
         }
-        self.missing_frames += 1;
-        for &b in &self.nonzero {
-            if self.seen.get(b) != Some(&self.frame_count) {
-                if let Some(flag) = self.missing_bones.get_mut(b) {
-                    if !*flag {
-                        *flag = true;
-                        self.missing_bone_count += 1;
-                    }
+        self.part.missing_frames += 1;
+        for &b in &self.columns.nonzero {
+            if self.seen.get(b) != Some(&self.part.frame_count) {
+                if let Some(flag) = self.part.missing_bones.get_mut(b) {
+                    *flag = true;
                 }
-                if self.missing.is_none() {
-                    self.missing = Some((self.frame_line, b, self.frame_number));
+                if self.part.missing.is_none() {
+                    self.part.missing = Some((self.frame_line, b, self.frame_number));
                 }
             }
         }
     }
 
-    fn bone_name(&self, bone: usize) -> &'l str {
-        self.layout.get(bone).map_or("", |&(name, _)| name)
+    fn bone_name(&self, bone: usize) -> &'c str {
+        self.columns.layout.get(bone).map_or("", |&(name, _)| name)
     }
 
     /// A `bonename v1 v2 …` line; the name spans `p..e`. Leaves `pos` at the line end.
     fn bone_line(&mut self, p: usize, e: usize) -> Result<(), ParseError> {
         let name = self.src.get(p..e).unwrap_or(&[]);
-        if self.frame_count == 0 {
+        if self.part.frame_count == 0 {
             return Err(self.error(p, format!("values for `{}` before the first frame number: expected a line holding only the frame number (e.g. `1`)", show_bytes(name))));
         }
         let predicted = if self.last_bone == NONE { self.first_bone } else { self.next_after.get(self.last_bone).copied().unwrap_or(NONE) };
-        let bone = if self.layout.get(predicted).is_some_and(|&(n, _)| n.as_bytes() == name) {
+        let bone = if self.columns.layout.get(predicted).is_some_and(|&(n, _)| same_bytes(n.as_bytes(), name)) {
             predicted
         } else {
-            match self.names.get(name) {
+            match self.columns.names.get(name) {
                 Some(&b) => b,
                 None => return Err(self.error(p, format!("bone `{}` is not in the skeleton", show_bytes(name)))),
             }
         };
-        let count = self.layout.get(bone).map_or(0, |&(_, c)| c);
-        if self.seen.get(bone) == Some(&self.frame_count) {
+        let count = self.columns.layout.get(bone).map_or(0, |&(_, c)| c);
+        if self.seen.get(bone) == Some(&self.part.frame_count) {
             let first = self.seen_line.get(bone).copied().unwrap_or(0);
             return Err(self.error(p, format!("bone `{}` appears twice in frame {} (first at line {first})", self.bone_name(bone), self.frame_number)));
         }
         if let (Some(s), Some(l)) = (self.seen.get_mut(bone), self.seen_line.get_mut(bone)) {
-            *s = self.frame_count;
+            *s = self.part.frame_count;
             *l = self.line;
+        }
+        if let Some(first) = self.part.first_given.get_mut(bone).filter(|f| **f == 0) {
+            *first = self.part.frame_count;
         }
         if count > 0 {
             self.seen_count += 1;
@@ -357,7 +548,7 @@ impl<'a, 'l> Scanner<'a, 'l> {
         }
         self.last_bone = bone;
 
-        let base = self.row + self.offsets.get(bone).copied().unwrap_or(0);
+        let base = self.row + self.columns.offsets.get(bone).copied().unwrap_or(0);
         let mut q = e;
         for k in 0..count {
             q = self.skip_blanks(q);
@@ -365,16 +556,13 @@ impl<'a, 'l> Scanner<'a, 'l> {
                 return Err(self.count_error(q, bone, count, k));
             }
             let rest = self.src.get(q..).unwrap_or(&[]);
-            let (v, used) = parse_value(rest);
+            // Short decimals are finite and end at a separator; the rest is checked.
+            let (v, used) = match crate::decimal::parse_short(rest) {
+                Some(parsed) => parsed,
+                None => self.other_value(q, bone, k)?,
+            };
             let end = q + used;
-            if used == 0 || self.src.get(end).is_some_and(|&b| !is_blank(b) && !is_eol(b)) {
-                let bad = self.src.get(q..self.token_end(q)).unwrap_or(&[]);
-                return Err(self.error(q, format!("expected value {} of bone `{}` (a number), found `{}`", k + 1, self.bone_name(bone), show_bytes(bad))));
-            }
-            if !v.is_finite() && self.non_finite.is_none() {
-                self.non_finite = Some(self.line);
-            }
-            if let Some(slot) = self.data.get_mut(base + k) {
+            if let Some(slot) = self.part.amc.data.get_mut(base + k) {
                 *slot = v;
             }
             q = end;
@@ -394,6 +582,22 @@ impl<'a, 'l> Scanner<'a, 'l> {
         Ok(())
     }
 
+    /// Value `k` of `bone` at `q` when it is not a short decimal: the value and
+    /// its length, the line noted when it is not finite, or an error when no
+    /// number ending at a separator is there.
+    #[cold]
+    fn other_value(&mut self, q: usize, bone: usize, k: usize) -> Result<(f32, usize), ParseError> {
+        let (v, used) = parse_value(self.src.get(q..).unwrap_or(&[]));
+        if used == 0 || self.src.get(q + used).is_some_and(|&b| !is_blank(b) && !is_eol(b)) {
+            let bad = self.src.get(q..self.token_end(q)).unwrap_or(&[]);
+            return Err(self.error(q, format!("expected value {} of bone `{}` (a number), found `{}`", k + 1, self.bone_name(bone), show_bytes(bad))));
+        }
+        if !v.is_finite() && self.part.non_finite.is_none() {
+            self.part.non_finite = Some(self.line);
+        }
+        Ok((v, used))
+    }
+
     fn count_error(&self, at: usize, bone: usize, count: usize, given: usize) -> ParseError {
         self.error(
             at,
@@ -406,21 +610,33 @@ impl<'a, 'l> Scanner<'a, 'l> {
         )
     }
 
-    fn finish(mut self) -> Amc {
-        if self.frame_count > 0 {
+    /// What the scanner found, once it has run.
+    fn finish(mut self) -> Part {
+        if self.part.frame_count > 0 {
             self.finish_frame();
-        } else {
+        }
+        self.part.breaks = self.line.saturating_sub(1);
+        self.part
+    }
+}
+
+impl Part {
+    /// The motion, with the warnings made from what was found.
+    fn into_amc(mut self, columns: &Columns<'_>) -> Amc {
+        let bone_name = |bone: usize| columns.layout.get(bone).map_or("", |&(name, _)| name);
+        if self.frame_count == 0 {
             self.amc.warnings.push(Warning { line: None, message: "the motion has no frames".into() });
         }
         if let Some((line, bone, number)) = self.missing {
-            let more = if self.missing_frames > 1 || self.missing_bone_count > 1 {
-                format!("; {} lack some bone ({} in all)", plural(self.missing_frames, "frame", "frames"), plural(self.missing_bone_count, "bone", "bones"))
+            let bones = self.missing_bones.iter().filter(|&&m| m).count();
+            let more = if self.missing_frames > 1 || bones > 1 {
+                format!("; {} lack some bone ({} in all)", plural(self.missing_frames, "frame", "frames"), plural(bones, "bone", "bones"))
             } else {
                 String::new()
             };
             self.amc.warnings.push(Warning {
                 line: Some(line),
-                message: format!("bone `{}` is missing from frame {number}: it keeps its previous value (zeros in the first frame){more}", self.bone_name(bone)),
+                message: format!("bone `{}` is missing from frame {number}: it keeps its previous value (zeros in the first frame){more}", bone_name(bone)),
             });
         }
         if let Some((line, expected, found)) = self.gap {
@@ -433,7 +649,6 @@ impl<'a, 'l> Scanner<'a, 'l> {
             self.amc.warnings.push(Warning { line: Some(line), message: "the motion holds NaN or infinite values".into() });
         }
         self.amc.frame_count = self.frame_count;
-        self.amc.data = self.data;
         self.amc
     }
 }
@@ -639,6 +854,71 @@ hip\t-7\t-8.5\t-9
             let x = f as f32;
             let want = [x, 1.5, -2.25, 3.64024e-15, (f % 7) as f32 + 0.5, 6.0, (f % 3) as f32 + 0.25, -x, 9.0, x + 0.125, -0.5];
             assert_eq!(amc.frame(f as usize), Some(&want[..]), "frame {f}");
+        }
+    }
+
+    /// A file with what the joining must get right: bones missing from some
+    /// frames (the first among them), frame-number jumps, a header line and
+    /// comments after the first frame, NaN, a zero-dof bone; `newline` between lines.
+    fn awkward_file(frames: u32, newline: &str) -> String {
+        let mut src = format!("# made by a test{newline}:FULLY-SPECIFIED{newline}:RADIANS{newline}");
+        let mut x: u32 = 12345;
+        for f in 0..frames {
+            x = x.wrapping_mul(1_103_515_245).wrapping_add(12345);
+            let number = if x % 29 == 0 { f + 3 } else { f + 1 };
+            src.push_str(&format!("{number}{newline}"));
+            if f == 40 {
+                src.push_str(&format!(":DEGREES{newline}# a comment{newline}"));
+            }
+            if f == 0 || x % 7 != 1 {
+                src.push_str(&format!("root {f} 1.5 -2.25 {} 0.5 6{newline}", if f == 77 { "nan" } else { "3" }));
+            }
+            if x % 5 != 2 {
+                src.push_str(&format!("hip {}.25 -{f} 9{newline}", f % 3));
+            }
+            src.push_str(&format!("toe{newline}"));
+            if f > 0 && x % 3 != 0 {
+                src.push_str(&format!("knee {f}.125 -0.5{newline}"));
+            }
+        }
+        src
+    }
+
+    #[test]
+    fn pieces_read_like_one_go() {
+        for newline in ["\n", "\r\n", "\r"] {
+            let src = awkward_file(400, newline);
+            assert!(cut_at_frames(src.as_bytes(), 8).len() >= 6, "the file is cut");
+            let whole = parse_in_pieces(src.as_bytes(), &LAYOUT, 1).unwrap();
+            assert_eq!(whole.frame_count, 400);
+            assert_eq!(whole.warnings.len(), 4, "{:?}", whole.warnings);
+            for pieces in 2..=9 {
+                let joined = parse_in_pieces(src.as_bytes(), &LAYOUT, pieces).unwrap();
+                let same_bits = joined.data.iter().zip(&whole.data).all(|(a, b)| a.to_bits() == b.to_bits());
+                assert!(same_bits && joined.data.len() == whole.data.len(), "{pieces} pieces, {newline:?}");
+                assert_eq!(joined.warnings, whole.warnings, "{pieces} pieces, {newline:?}");
+                assert_eq!(
+                    (joined.frame_count, joined.first_frame_number, joined.angle, joined.fully_specified),
+                    (whole.frame_count, whole.first_frame_number, whole.angle, whole.fully_specified)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn pieces_report_the_first_error_at_its_line() {
+        let good = awkward_file(300, "\n");
+        let lines: Vec<&str> = good.lines().collect();
+        for (at, bad) in [(5, "elbow 1 2 3"), (700, "hip 1 2"), (1001, "knee 1 x"), (lines.len() - 1, "root 1")] {
+            let mut broken = lines.clone();
+            broken[at] = bad;
+            let src = broken.join("\n");
+            let whole = parse_in_pieces(src.as_bytes(), &LAYOUT, 1).unwrap_err();
+            for pieces in 2..=9 {
+                let joined = parse_in_pieces(src.as_bytes(), &LAYOUT, pieces).unwrap_err();
+                assert_eq!((joined.line, joined.column, &joined.message), (whole.line, whole.column, &whole.message), "{pieces} pieces");
+            }
+            assert_eq!(whole.line as usize, at + 1);
         }
     }
 }
