@@ -29,7 +29,7 @@ impl Token<'_> {
 /// True for the bytes that separate tokens on one line: space, tab, vertical tab,
 /// form feed, and the NUL and Ctrl-Z (DOS end-of-file) padding some old files end with.
 #[inline]
-pub(crate) fn is_blank(b: u8) -> bool {
+pub(crate) const fn is_blank(b: u8) -> bool {
     matches!(b, b' ' | b'\t' | 0x0b | 0x0c | 0x00 | 0x1a)
 }
 

@@ -1,14 +1,7 @@
 //! Lines and whitespace-separated words of a BVA file, with line numbers and byte
 //! columns, plus the keyword matcher for the segment header lines.
 
-pub(crate) use crate::text::{decode_name as decode, show_bytes};
-
-/// True for the bytes that separate words on one line: space, tab, vertical tab,
-/// form feed, and the NUL and Ctrl-Z (DOS end-of-file) padding some old files end with.
-#[inline]
-pub(crate) fn is_blank(b: u8) -> bool {
-    matches!(b, b' ' | b'\t' | 0x0b | 0x0c | 0x00 | 0x1a)
-}
+pub(crate) use crate::text::{decode_name as decode, is_blank, show_bytes};
 
 /// One line of the file, without its line break.
 #[derive(Clone, Copy, Debug)]

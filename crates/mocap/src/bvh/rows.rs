@@ -215,12 +215,13 @@ const CR: u8 = 3;
 
 const CLASS: [u8; 256] = {
     let mut t = [OTHER; 256];
-    t[b' ' as usize] = BLANK;
-    t[b'\t' as usize] = BLANK;
-    t[0x0b] = BLANK;
-    t[0x0c] = BLANK;
-    t[0x00] = BLANK;
-    t[0x1a] = BLANK;
+    let mut b = 0;
+    while b < 256 {
+        if crate::text::is_blank(b as u8) {
+            t[b] = BLANK;
+        }
+        b += 1;
+    }
     t[b'\n' as usize] = LF;
     t[b'\r' as usize] = CR;
     t
