@@ -128,6 +128,8 @@ struct Scanner<'a, 'c> {
     row: usize,
     frame_line: u32,
     frame_number: i64,
+    /// The values' short decimals (see [`crate::decimal::Decimals`]).
+    decimals: crate::decimal::Decimals,
     part: Part,
 }
 
@@ -355,6 +357,7 @@ impl<'a, 'c> Scanner<'a, 'c> {
             row: 0,
             frame_line: 0,
             frame_number: 0,
+            decimals: crate::decimal::Decimals::for_text(src),
             part: Part {
                 // An estimate from the bytes present, never from the file's numbers.
                 amc: Amc { width: columns.width, data: Vec::with_capacity(src.len() / 10), ..Amc::default() },
@@ -557,7 +560,7 @@ impl<'a, 'c> Scanner<'a, 'c> {
             }
             let rest = self.src.get(q..).unwrap_or(&[]);
             // Short decimals are finite and end at a separator; the rest is checked.
-            let (v, used) = match crate::decimal::parse_short(rest) {
+            let (v, used) = match self.decimals.read(rest) {
                 Some(parsed) => parsed,
                 None => self.other_value(q, bone, k)?,
             };

@@ -300,6 +300,7 @@ fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring
     let mut k = 0usize;
     let mut base = 0usize;
     let mut notes = RowNotes::default();
+    let decimals = crate::decimal::Decimals::for_text(chunk);
     let column = |i: usize, line_start: isize| u32::try_from(i as isize - line_start + 1).unwrap_or(u32::MAX);
     let row_error = |line: u32, column: u32, k: usize| {
         ParseError::new(line, column, format!("motion row has {k} values, expected {width} (one per channel)"))
@@ -327,7 +328,7 @@ fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring
                 let rest = chunk.get(i..).unwrap_or(&[]);
                 // Short decimals are finite and end at a separator; anything else
                 // goes through the general reader.
-                let (value, used) = match crate::decimal::parse_short(rest) {
+                let (value, used) = match decimals.read(rest) {
                     Some(parsed) => parsed,
                     None => read_other_number(rest, line, column(i, line_start), &mut notes)?,
                 };
