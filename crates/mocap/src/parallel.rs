@@ -13,6 +13,23 @@ pub(crate) fn max_threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get()).min(8)
 }
 
+/// Inputs smaller than this are read on one thread.
+const PARALLEL_MIN_BYTES: usize = 1 << 20;
+/// Smallest piece worth cutting off for a thread to take.
+const PIECE_MIN_BYTES: usize = 1 << 18;
+
+/// Pieces to cut `len` bytes of text into for reading them on several threads:
+/// one below [`PARALLEL_MIN_BYTES`] or with one thread; else `per_thread` per
+/// thread (at least [`PIECE_MIN_BYTES`] each), so that threads on faster cores
+/// take more of them.
+pub(crate) fn piece_count(len: usize, per_thread: usize) -> usize {
+    let threads = max_threads();
+    if len < PARALLEL_MIN_BYTES || threads <= 1 {
+        return 1;
+    }
+    (threads * per_thread).min(len / PIECE_MIN_BYTES).max(threads)
+}
+
 /// `f` over `items`, in order; `None` for an item whose `f` panicked. Up to
 /// [`max_threads`] threads take items one at a time in order; with one item,
 /// or one thread, all on the calling thread.

@@ -168,7 +168,7 @@ struct Part {
 /// first frames, frame numbers checked across the cut, lines counted from the
 /// file's start).
 pub fn parse_amc(bytes: &[u8], layout: &[(&str, usize)]) -> Result<Amc, ParseError> {
-    parse_in_pieces(bytes, layout, piece_count(bytes.len()))
+    parse_in_pieces(bytes, layout, crate::parallel::piece_count(bytes.len(), 2))
 }
 
 /// [`parse_amc`] with the bytes cut into (at most) `pieces` pieces.
@@ -194,21 +194,6 @@ fn parse_in_pieces(bytes: &[u8], layout: &[(&str, usize)], pieces: usize) -> Res
         }
     }
     Ok(join(joined, &columns).into_amc(&columns))
-}
-
-/// Inputs smaller than this are read on one thread.
-const PARALLEL_MIN_BYTES: usize = 1 << 20;
-/// Smallest piece worth cutting off for a thread.
-const PIECE_MIN_BYTES: usize = 1 << 18;
-
-/// Pieces to cut `len` bytes into: one below [`PARALLEL_MIN_BYTES`] or on one
-/// thread; else two per thread (at least [`PIECE_MIN_BYTES`] each).
-fn piece_count(len: usize) -> usize {
-    let threads = crate::parallel::max_threads();
-    if len < PARALLEL_MIN_BYTES || threads <= 1 {
-        return 1;
-    }
-    (threads * 2).min(len / PIECE_MIN_BYTES).max(threads)
 }
 
 /// Cuts `bytes` into about `parts` pieces, each after the first starting at a

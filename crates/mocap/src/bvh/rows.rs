@@ -43,13 +43,10 @@ struct Origin {
     column_offset: u32,
 }
 
-/// Inputs smaller than this are parsed on one thread.
-const PARALLEL_MIN_BYTES: usize = 1 << 20;
-
 /// Parses `data` (everything after the MOTION header) into rows of `width` values.
 pub(crate) fn parse_rows(data: &[u8], first_line: u32, first_column: u32, width: usize) -> Result<Rows, ParseError> {
     let origin = Origin { line: first_line, column_offset: first_column.saturating_sub(1) };
-    let chunks = split_at_lines(data, piece_count(data.len()));
+    let chunks = split_at_lines(data, crate::parallel::piece_count(data.len(), 4));
     let counts: Vec<LineCount> = crate::parallel::map(chunks.clone(), |c| count_lines(c)).into_iter().collect::<Option<_>>().ok_or_else(thread_failed)?;
     let total_rows: usize = counts.iter().map(|c| c.content).sum();
     // A valid row of `width` values takes at least 2·width bytes (value + separator).
@@ -134,20 +131,6 @@ fn run_jobs(jobs: Vec<Job<'_, '_>>, width: usize) -> Vec<JobResult> {
 
 fn thread_failed() -> ParseError {
     ParseError::new(0, 0, "internal error: a parser thread failed")
-}
-
-/// Smallest piece worth cutting off for a thread to take.
-const PIECE_MIN_BYTES: usize = 1 << 18;
-
-/// Pieces to cut `len` bytes into: one below [`PARALLEL_MIN_BYTES`] or on one
-/// thread; else four per thread (at least [`PIECE_MIN_BYTES`] each), so threads
-/// on faster cores take more of them.
-fn piece_count(len: usize) -> usize {
-    let threads = crate::parallel::max_threads();
-    if len < PARALLEL_MIN_BYTES || threads <= 1 {
-        return 1;
-    }
-    (threads * 4).min(len / PIECE_MIN_BYTES).max(threads)
 }
 
 /// Cuts `data` into about `parts` pieces, each ending just after a line break.
