@@ -60,8 +60,9 @@ pub(crate) fn parse_short(s: &[u8]) -> Option<(f32, usize)> {
 }
 
 /// [`parse_short`]; with `words`, up to seven fraction digits are read from one
-/// 8-byte word (see [`Decimals`]).
-#[inline]
+/// 8-byte word (see [`Decimals`]). Always inlined: called for every value,
+/// and the WebAssembly build left it a call.
+#[inline(always)]
 fn parse_short_with(s: &[u8], words: bool) -> Option<(f32, usize)> {
     // The sign without a branch: signs vary from number to number.
     let first = s.first().copied();

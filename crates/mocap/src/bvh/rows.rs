@@ -116,8 +116,29 @@ impl RowBuilder {
         Some(())
     }
 
+    /// Reserves room for the rows `bytes` more bytes would hold, at the rate
+    /// of values per byte seen so far (at most one value per two bytes, as a
+    /// row takes; nothing when the room cannot be had or no row is in yet).
+    /// Called once the first rows are in, with what is left of the file's
+    /// announced size, it saves growing the matrix push by push: each growth
+    /// copies it into fresh memory, which a browser fills page by page.
+    pub(crate) fn reserve_for(&mut self, bytes: usize, bytes_so_far: usize) {
+        let values = self.rows.data.len();
+        if values == 0 || bytes_so_far == 0 {
+            return;
+        }
+        let estimate = (bytes as f64 * values as f64 / bytes_so_far as f64) as usize;
+        let _ = self.rows.data.try_reserve_exact(estimate.min(bytes / 2));
+    }
+
+    /// Whether no row is in yet.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.rows.data.is_empty()
+    }
+
     /// The rows so far.
-    pub(crate) fn finish(self) -> Rows {
+    pub(crate) fn finish(mut self) -> Rows {
+        self.rows.data.shrink_to_fit();
         self.rows
     }
 }

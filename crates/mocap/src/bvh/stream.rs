@@ -56,16 +56,8 @@ impl Stream {
 
     /// Appends `chunk` and parses what it completes.
     pub fn push(&mut self, chunk: &[u8]) {
-        self.push_with(chunk.len(), |room| room.copy_from_slice(chunk));
-    }
-
-    /// Appends `len` bytes that `fill` writes (into zeroed room; for bytes
-    /// copied from elsewhere, such as JavaScript's memory, without a copy in
-    /// between) and parses what they complete.
-    pub fn push_with(&mut self, len: usize, fill: impl FnOnce(&mut [u8])) {
         let start = self.bytes.len();
-        self.bytes.resize(start + len, 0);
-        fill(&mut self.bytes[start..]);
+        self.bytes.extend_from_slice(chunk);
         // Where the search for the last line feed starts: the rows' start when
         // they begin in this push, else the new bytes.
         let mut search_from = start;
@@ -86,8 +78,13 @@ impl Stream {
             let new = search_from.saturating_sub(*next);
             if let Some(end) = rest.get(new..).and_then(|r| memchr::memrchr(b'\n', r)).map(|i| i + new) {
                 let piece = &rest[..=end];
+                let first_rows = builder.is_empty();
                 if builder.push(piece).is_some() {
                     *next += piece.len();
+                    if first_rows {
+                        // Room for the rest of the file's announced size.
+                        builder.reserve_for(self.bytes.capacity().saturating_sub(self.bytes.len()), piece.len());
+                    }
                 } else {
                     self.state = State::Whole;
                 }
