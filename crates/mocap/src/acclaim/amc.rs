@@ -298,6 +298,9 @@ fn join(parts: Vec<Part>, columns: &Columns<'_>) -> Part {
 /// `before`'s last frame, as reading in one go would have.
 fn carry_into(part: &mut Part, before: &Part, columns: &Columns<'_>) {
     let width = columns.width;
+    if width == 0 {
+        return;
+    }
     let Some(last) = before.frame_count.checked_sub(1).and_then(|f| before.amc.data.get(f * width..(f + 1) * width)) else {
         return;
     };
