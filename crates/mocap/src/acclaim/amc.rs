@@ -912,4 +912,79 @@ hip\t-7\t-8.5\t-9
             assert_eq!(whole.line as usize, at + 1);
         }
     }
+
+    /// A random AMC-like file from `seed`: bones in any order, some missing,
+    /// numbers of every form, frame-number jumps, comments and header lines,
+    /// and now and then a line that is wrong.
+    fn random_file(seed: u64) -> String {
+        let mut x = seed | 1;
+        let mut next = move |n: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % n.max(1)
+        };
+        let newline = ["\n", "\r\n", "\r"][next(3) as usize];
+        let mut src = String::from(":FULLY-SPECIFIED");
+        src.push_str(newline);
+        let frames = 20 + next(150);
+        let mut number = 1 + next(3);
+        for _ in 0..frames {
+            src.push_str(&format!("{number}{newline}"));
+            number += if next(20) == 0 { 2 + next(5) } else { 1 };
+            let mut bones: Vec<(&str, usize)> = LAYOUT.to_vec();
+            for i in (1..bones.len()).rev() {
+                bones.swap(i, next(i as u64 + 1) as usize);
+            }
+            for (name, count) in bones {
+                if next(8) == 0 {
+                    continue;
+                }
+                src.push_str(name);
+                let values = if next(3000) == 0 { count + 1 } else { count };
+                for _ in 0..values {
+                    let v = match next(6) {
+                        0 => format!("{}", next(200) as i64 - 100),
+                        1 => format!("{:.4}", next(100_000) as f64 / 997.0 - 50.0),
+                        2 => format!("{:.6}", next(1_000_000) as f64 / 7.0),
+                        3 => format!("{:e}", next(1_000_000) as f64 / 3.0),
+                        4 if next(50) == 0 => "nan".to_owned(),
+                        _ => format!("-{}.{}", next(30), next(100_000)),
+                    };
+                    src.push_str(if next(4) == 0 { "\t" } else { " " });
+                    src.push_str(&v);
+                }
+                src.push_str(newline);
+            }
+            match next(40) {
+                0 => src.push_str(&format!("# a comment{newline}")),
+                1 => src.push_str(&format!(":DEGREES{newline}")),
+                2 if next(10) == 0 => src.push_str(&format!("elbow 1 2 3{newline}")),
+                _ => {}
+            }
+        }
+        src
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+        #[test]
+        fn random_files_read_in_pieces_like_one_go(seed in proptest::prelude::any::<u64>()) {
+            let src = random_file(seed);
+            let whole = parse_in_pieces(src.as_bytes(), &LAYOUT, 1);
+            for pieces in [2, 3, 5, 8] {
+                let joined = parse_in_pieces(src.as_bytes(), &LAYOUT, pieces);
+                match (&whole, &joined) {
+                    (Ok(w), Ok(j)) => {
+                        let bits = |a: &Amc| a.data.iter().map(|v| v.to_bits()).collect::<Vec<u32>>();
+                        proptest::prop_assert_eq!(bits(w), bits(j));
+                        proptest::prop_assert_eq!(&w.warnings, &j.warnings);
+                        proptest::prop_assert_eq!((w.frame_count, w.first_frame_number), (j.frame_count, j.first_frame_number));
+                    }
+                    (Err(w), Err(j)) => proptest::prop_assert_eq!(w, j),
+                    _ => proptest::prop_assert!(false, "one go {:?}, {} pieces {:?}", whole.as_ref().err(), pieces, joined.as_ref().err()),
+                }
+            }
+        }
+    }
 }
