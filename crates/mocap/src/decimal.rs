@@ -2,7 +2,7 @@
 //! shared by the BVH and AMC readers: a fast path that gives the same f32 as a
 //! general parser (`fast_float2`) for the forms it accepts, and declines the rest.
 
-use crate::text::is_blank;
+use crate::text::{is_blank, is_eol};
 
 /// `10^-e` for `e` up to 7, as the nearest f64s.
 ///
@@ -54,14 +54,10 @@ fn digits_value(word: u64, n: usize) -> u64 {
 /// `10^e` both exact in f32, so one IEEE division gives the correctly rounded result
 /// (one multiplication in f64 for up to 7 decimals: see [`TENTHS`]).
 /// Anything else (`None`) goes to the general parser.
-#[inline]
-pub(crate) fn parse_short(s: &[u8]) -> Option<(f32, usize)> {
-    parse_short_with(s, false)
-}
-
-/// [`parse_short`]; with `words`, up to seven fraction digits are read from one
-/// 8-byte word (see [`Decimals`]). Always inlined: called for every value,
-/// and the WebAssembly build left it a call.
+///
+/// With `words`, up to seven fraction digits are read from one 8-byte word
+/// (see [`Decimals`]). Always inlined: called for every value, and the
+/// WebAssembly build left it a call.
 #[inline(always)]
 fn parse_short_with(s: &[u8], words: bool) -> Option<(f32, usize)> {
     // The sign without a branch: signs vary from number to number.
@@ -93,7 +89,7 @@ fn parse_short_with(s: &[u8], words: bool) -> Option<(f32, usize)> {
         }
         fraction_digits = i - fraction_start;
     }
-    let ends_cleanly = s.get(i).is_none_or(|&b| is_blank(b) || b == b'\n' || b == b'\r');
+    let ends_cleanly = s.get(i).is_none_or(|&b| is_blank(b) || is_eol(b));
     // 19 digits cannot overflow u64; m < 2^24 is exact in f32.
     let total = int_digits + fraction_digits;
     if total == 0 || total > 19 || mantissa >= 1 << 24 || !ends_cleanly {
@@ -114,7 +110,7 @@ fn parse_short_with(s: &[u8], words: bool) -> Option<(f32, usize)> {
 /// processor predicts it and runs ahead to the next number; where the count
 /// varies (`%g`, six significant digits, as in CMU's AMC files) it mispredicts
 /// at nearly every number, and the word with bit arithmetic is faster
-/// (01_06.amc: 6.3-6.7 -> 5.5 ms on one thread). The word makes the first kind
+/// (01_06.amc: 6.3-6.7 -> 5.6-6.1 ms on one thread). The word makes the first kind
 /// slower (the 27 MB BVH take: 37.7 -> 46.9 ms): the next number's start then
 /// waits for that arithmetic. So the way is chosen from a sample of the text
 /// ([`Decimals::for_text`]); both give the same values.
@@ -134,7 +130,7 @@ impl Decimals {
     pub(crate) fn for_text(text: &[u8]) -> Decimals {
         let sample = text.get(..Self::SAMPLE_BYTES).unwrap_or(text);
         let numbers = sample
-            .split(|&b| is_blank(b) || b == b'\n' || b == b'\r')
+            .split(|&b| is_blank(b) || is_eol(b))
             .filter(|t| t.first().is_some_and(|&b| b.is_ascii_digit() || matches!(b, b'-' | b'+' | b'.')));
         let (mut count, mut changes, mut last) = (0usize, 0usize, None);
         for token in numbers {
@@ -146,7 +142,8 @@ impl Decimals {
         Decimals { words: changes * 4 > count }
     }
 
-    /// [`parse_short`] of `s`, the fraction digits read this way.
+    /// The short decimal at the start of `s` ([`parse_short_with`]), the
+    /// fraction digits read this way; `None` for anything else.
     #[inline]
     pub(crate) fn read(self, s: &[u8]) -> Option<(f32, usize)> {
         parse_short_with(s, self.words)
@@ -155,7 +152,12 @@ impl Decimals {
 
 #[cfg(test)]
 mod tests {
-    use super::{parse_short, parse_short_with, Decimals};
+    use super::{parse_short_with, Decimals};
+
+    /// A short decimal read byte by byte (the default way).
+    fn parse_short(s: &[u8]) -> Option<(f32, usize)> {
+        Decimals::default().read(s)
+    }
 
     #[test]
     fn short_decimals_match_the_general_parser_bit_for_bit() {

@@ -33,6 +33,12 @@ pub(crate) const fn is_blank(b: u8) -> bool {
     matches!(b, b' ' | b'\t' | 0x0b | 0x0c | 0x00 | 0x1a)
 }
 
+/// True for a byte that ends a line (LF or CR).
+#[inline]
+pub(crate) const fn is_eol(b: u8) -> bool {
+    b == b'\n' || b == b'\r'
+}
+
 /// The length of a UTF-8 byte-order mark at the start of `bytes` (0 or 3).
 pub(crate) fn bom_len(bytes: &[u8]) -> usize {
     if bytes.starts_with(&[0xEF, 0xBB, 0xBF]) { 3 } else { 0 }

@@ -58,13 +58,17 @@ fn is_frame_number(token: &[u8]) -> bool {
 }
 
 /// Parses the number at the start of `s`: the value and the bytes used (0 when there
-/// is no number). Short decimals on the shared fast path ([`crate::decimal::parse_short`]);
-/// everything else (exponents, long mantissas, `inf`) through `fast_float2`.
-#[inline]
+/// is no number). Short decimals on the shared fast path ([`crate::decimal::Decimals`]);
+/// everything else through [`parse_other_value`]. (The scanner takes the two
+/// steps itself, the first as its [`crate::decimal::Decimals`] chose.)
+#[cfg(test)]
 fn parse_value(s: &[u8]) -> (f32, usize) {
-    if let Some(parsed) = crate::decimal::parse_short(s) {
-        return parsed;
-    }
+    crate::decimal::Decimals::default().read(s).unwrap_or_else(|| parse_other_value(s))
+}
+
+/// A number that is not a short decimal (exponents, long mantissas, `inf`),
+/// through `fast_float2`: the value and the bytes used (0 when there is none).
+fn parse_other_value(s: &[u8]) -> (f32, usize) {
     fast_float2::parse_partial::<f32, _>(s).unwrap_or((0.0, 0))
 }
 
@@ -233,25 +237,36 @@ fn next_frame_line(bytes: &[u8], from: usize) -> Option<usize> {
     }
 }
 
-/// Whether the line starting at `start` is a frame line, as [`Scanner::run`]
-/// reads one: blanks, a frame number, blanks, then the line's end or a comment.
+/// Whether the line starting at `start` is a frame line (see [`is_frame_word`]).
 fn is_frame_line(bytes: &[u8], start: usize) -> bool {
-    let skip = |mut at: usize| {
-        while bytes.get(at).is_some_and(|&b| is_blank(b)) {
-            at += 1;
-        }
-        at
-    };
-    let p = skip(start);
-    let mut e = p;
-    while bytes.get(e).is_some_and(|&b| !is_blank(b) && !is_eol(b)) {
-        e += 1;
+    let p = skip_blanks(bytes, start);
+    let e = word_end(bytes, p);
+    is_frame_word(bytes, p, e, skip_blanks(bytes, e))
+}
+
+/// Whether the word `p..e` of a line, the next byte that is not blank at
+/// `after`, makes the line a frame line: a frame number alone on its line (a
+/// comment may follow). One rule for the scanner and for cutting a file.
+fn is_frame_word(src: &[u8], p: usize, e: usize, after: usize) -> bool {
+    src.get(after).is_none_or(|&b| is_eol(b) || b == b'#') && is_frame_number(src.get(p..e).unwrap_or(&[]))
+}
+
+/// The first byte from `at` that is not blank.
+#[inline]
+fn skip_blanks(src: &[u8], mut at: usize) -> usize {
+    while src.get(at).is_some_and(|&b| is_blank(b)) {
+        at += 1;
     }
-    let token = bytes.get(p..e).unwrap_or(&[]);
-    let after = skip(e);
-    bytes.get(p).is_some_and(|&b| !is_eol(b) && b != b'#' && b != b':')
-        && bytes.get(after).is_none_or(|&b| is_eol(b) || b == b'#')
-        && is_frame_number(token)
+    at
+}
+
+/// The end of the word starting at `at` (a blank, a line break, or the end).
+#[inline]
+fn word_end(src: &[u8], mut at: usize) -> usize {
+    while src.get(at).is_some_and(|&b| !is_blank(b) && !is_eol(b)) {
+        at += 1;
+    }
+    at
 }
 
 /// The parts, in file order, as one: values carried into each part's first
@@ -381,20 +396,14 @@ impl<'a, 'c> Scanner<'a, 'c> {
 
     /// Skips blanks from `at`.
     #[inline]
-    fn skip_blanks(&self, mut at: usize) -> usize {
-        while self.src.get(at).is_some_and(|&b| is_blank(b)) {
-            at += 1;
-        }
-        at
+    fn skip_blanks(&self, at: usize) -> usize {
+        skip_blanks(self.src, at)
     }
 
     /// The end of the token starting at `at`.
     #[inline]
-    fn token_end(&self, mut at: usize) -> usize {
-        while self.src.get(at).is_some_and(|&b| !is_blank(b) && !is_eol(b)) {
-            at += 1;
-        }
-        at
+    fn token_end(&self, at: usize) -> usize {
+        word_end(self.src, at)
     }
 
     fn run(&mut self) -> Result<(), ParseError> {
@@ -411,11 +420,9 @@ impl<'a, 'c> Scanner<'a, 'c> {
                 }
                 Some(_) => {
                     let e = self.token_end(p);
-                    let token = self.src.get(p..e).unwrap_or(&[]);
                     let after = self.skip_blanks(e);
-                    let alone = self.src.get(after).is_none_or(|&b| is_eol(b) || b == b'#');
-                    if alone && is_frame_number(token) {
-                        self.new_frame(token, p)?;
+                    if is_frame_word(self.src, p, e, after) {
+                        self.new_frame(self.src.get(p..e).unwrap_or(&[]), p)?;
                         self.pos = self.eol_from(after);
                     } else {
                         self.bone_line(p, e)?;
@@ -578,7 +585,7 @@ impl<'a, 'c> Scanner<'a, 'c> {
     /// number ending at a separator is there.
     #[cold]
     fn other_value(&mut self, q: usize, bone: usize, k: usize) -> Result<(f32, usize), ParseError> {
-        let (v, used) = parse_value(self.src.get(q..).unwrap_or(&[]));
+        let (v, used) = parse_other_value(self.src.get(q..).unwrap_or(&[]));
         if used == 0 || self.src.get(q + used).is_some_and(|&b| !is_blank(b) && !is_eol(b)) {
             let bad = self.src.get(q..self.token_end(q)).unwrap_or(&[]);
             return Err(self.error(q, format!("expected value {} of bone `{}` (a number), found `{}`", k + 1, self.bone_name(bone), show_bytes(bad))));

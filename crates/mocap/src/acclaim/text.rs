@@ -1,14 +1,7 @@
 //! Shared text helpers for the Acclaim readers: a token cursor with line and column,
 //! number parsing, name decoding and binary-data detection.
 
-pub(crate) use crate::text::{bom_len, decode_name, is_blank, line_break_len, line_end, show_bytes, Token};
-
-
-/// True for a byte that ends a line (LF or CR).
-#[inline]
-pub(crate) fn is_eol(b: u8) -> bool {
-    b == b'\n' || b == b'\r'
-}
+pub(crate) use crate::text::{bom_len, decode_name, is_blank, is_eol, line_break_len, line_end, show_bytes, Token};
 
 /// The 16-byte header GUID of a Windows Media (ASF container) file.
 const WINDOWS_MEDIA: [u8; 16] = [0x30, 0x26, 0xB2, 0x75, 0x8E, 0x66, 0xCF, 0x11, 0xA6, 0xD9, 0x00, 0xAA, 0x00, 0x62, 0xCE, 0x6C];

@@ -265,7 +265,7 @@ fn parse_quirky_number(token: &[u8]) -> Option<(f32, Quirk)> {
 }
 
 /// A number at the start of `rest` that is not a short decimal (see
-/// [`crate::decimal::parse_short`]): long, with an exponent, `inf` or `nan`, or one of
+/// [`crate::decimal::Decimals`]): long, with an exponent, `inf` or `nan`, or one of
 /// the quirky forms. Returns the value and the bytes it takes; notes the first
 /// non-finite value or decimal comma on `line`; an error at `line`, `column`
 /// when `rest` does not start with a number ending at a separator.
