@@ -472,7 +472,9 @@ impl SceneRenderer {
         let bounds = mesh_bounds.chain(capsule_bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         // The look's map, fitted to the casters (see shadow.rs).
         let full = if self.fast_look { shadow::FAST_SIZE } else { shadow::SIZE }.min(device.limits().max_texture_dimension_2d);
-        let view = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, full));
+        // Texels no smaller than the screen's pixels.
+        let pixel = shadow::ScreenPixel::of(camera, size[1]);
+        let view = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, full, pixel));
         let map = match (&mut self.fast_shadow, self.fast_look) {
             (Some(map), true) => map,
             _ => &mut self.shadow,

@@ -3,7 +3,11 @@
 //! sampler (soft edges from a small filter in the shader).
 //!
 //! The texel size is that of a square map of [`SIZE`] texels holding the
-//! casters and the floor their shadows fall on. The texture itself holds only
+//! casters and the floor their shadows fall on, or that of a screen pixel where
+//! the nearest of them is seen if that is larger: texels finer than the pixels
+//! they are seen through do not show, yet cost their clearing, filling and
+//! lookups (a figure filling a 1280×720 view needed a 1024×1792 map, about 3.5
+//! texels a pixel; it now takes 512×768). The texture itself holds only
 //! the casters (seen from the light, the floor in shadow lies behind them; a
 //! lookup outside the map is lit), on the same lattice of texels, so it is the
 //! same picture from fewer texels to clear and fill every frame: about half at
@@ -11,7 +15,8 @@
 
 use glam::{Mat4, Vec2, Vec3};
 
-/// Texels across the square the texel size is fitted to; the largest map.
+/// Texels across the square the texel size is fitted to (unless a screen
+/// pixel is larger, see [`fit_light`]); the largest map.
 pub(crate) const SIZE: u32 = 2048;
 /// The fast look's [`SIZE`]: a quarter of the texels to clear and draw every
 /// frame (a software rasteriser's cost), softer shadow edges.
@@ -170,15 +175,56 @@ fn floor_shadow_rect(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
     [lo.x - margin, lo.y - margin, hi.x + margin, hi.y + margin]
 }
 
+/// How large a screen pixel is, in world units, at each distance from the eye:
+/// what a shadow-map texel is never made smaller than (see [`fit_light`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum ScreenPixel {
+    /// A perspective view from `eye`: `per_distance` world units per pixel
+    /// per world unit of distance.
+    Perspective { eye: Vec3, per_distance: f32 },
+    /// An orthographic view: the same size everywhere.
+    Orthographic(f32),
+}
+
+impl ScreenPixel {
+    /// The pixels of `camera` on a target `height_px` pixels tall (`None` for
+    /// a degenerate projection).
+    pub fn of(camera: &crate::Camera, height_px: u32) -> Option<ScreenPixel> {
+        let scale = camera.projection.y_axis.y.abs() * height_px.max(1) as f32;
+        let per = 2.0 / scale;
+        if !per.is_finite() || per <= 0.0 {
+            return None;
+        }
+        if camera.projection.w_axis.w < 0.5 {
+            let eye = camera.view.inverse().w_axis.truncate();
+            eye.is_finite().then_some(ScreenPixel::Perspective { eye, per_distance: per })
+        } else {
+            Some(ScreenPixel::Orthographic(per))
+        }
+    }
+
+    /// The size of a pixel at the point of `min..max` nearest the eye (0 when
+    /// the eye is inside the box).
+    fn nearest_in(self, min: Vec3, max: Vec3) -> f32 {
+        match self {
+            ScreenPixel::Perspective { eye, per_distance } => (min - eye).max(eye - max).max(Vec3::ZERO).length() * per_distance,
+            ScreenPixel::Orthographic(size) => size,
+        }
+    }
+}
+
 /// Fits the light's view to casters inside `min..max` (world space) and a floor
 /// at height `floor_y` (the box's bottom without one): an orthographic view
 /// along the light whose depth range holds the box and the floor under the far
 /// end of its shadows, and the floor rectangle the shadows fall in. The texel
 /// size is that of a square of `size` texels holding the box and that floor,
+/// but never smaller than a screen `pixel` where the nearest of them is seen
+/// (finer texels would not show: a crowd seen from afar, or a figure that
+/// fills a small view, needs a far smaller map to clear, fill and look up),
 /// quantised (in steps of 25%), and the view is centred on the casters on
 /// whole texels, so that shadows do not shimmer as the figures move. `None`
 /// for an empty or non-finite box.
-pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32) -> Option<LightView> {
+pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32, pixel: Option<ScreenPixel>) -> Option<LightView> {
     let floor_y = floor_y.filter(|y| y.is_finite()).unwrap_or(min.y);
     let lo = Vec3::new(min.x, min.y.min(floor_y), min.z);
     if !(lo.is_finite() && max.is_finite() && (max - lo).min_element() >= 0.0) {
@@ -198,9 +244,12 @@ pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32) -
     };
     let (a, b) = bounds(&mut corners(lo, max).into_iter().chain(floor));
     // Square extent, grown to the next step of 1.25^k, with a margin for the filter.
-    let half = ((b.x - a.x).max(b.y - a.y) * 0.5 * 1.05).max(1e-3);
-    let half = 1.25f32.powf(half.log(1.25).ceil());
     let size = size.max(2) & !1;
+    // Where shadows are seen: the casters and the floor they fall on.
+    let seen = (lo.min(Vec3::new(x0, floor_y, z0)), max.max(Vec3::new(x1, floor_y, z1)));
+    let least = pixel.map_or(0.0, |p| p.nearest_in(seen.0, seen.1)) * size as f32 * 0.5;
+    let half = ((b.x - a.x).max(b.y - a.y) * 0.5 * 1.05).max(least).max(1e-3);
+    let half = 1.25f32.powf(half.log(1.25).ceil());
     let texel = 2.0 * half / size as f32;
     // The casters alone: the floor in their shadow lies behind them.
     let (ca, cb) = bounds(&mut corners(min, max).into_iter());
@@ -222,7 +271,7 @@ mod tests {
     #[test]
     fn fitted_casters_land_inside_the_map_and_the_floor_in_its_depth_range() {
         let (min, max) = (Vec3::new(-1.0, 0.0, -0.5), Vec3::new(1.0, 1.8, 0.5));
-        let view = fit_light(min, max, Some(-0.1), SIZE).unwrap();
+        let view = fit_light(min, max, Some(-0.1), SIZE, None).unwrap();
         let texel = view.texel;
         assert!(texel > 0.0 && texel < 0.01);
         assert!(view.texels.iter().all(|&t| t % 2 == 0 && t <= SIZE), "{:?}", view.texels);
@@ -234,7 +283,7 @@ mod tests {
             assert!(inside(c.x, view.texels[0]) && inside(c.y, view.texels[1]) && (0.0..=1.0).contains(&c.z), "{p} -> {c}");
         }
         // The fast map has texels twice as large.
-        let fast = fit_light(min, max, Some(-0.1), FAST_SIZE).unwrap();
+        let fast = fit_light(min, max, Some(-0.1), FAST_SIZE, None).unwrap();
         assert!((fast.texel - texel * (SIZE / FAST_SIZE) as f32).abs() < texel * 1e-3, "{} vs {texel}", fast.texel);
         // The floor under the far end of the shadow of the box's top lies in
         // the depth range, behind that top, on the same texel.
@@ -256,7 +305,7 @@ mod tests {
     fn a_map_trimmed_to_the_casters_keeps_the_texels_of_the_whole_square() {
         // A crowd: wide and flat, its shadows reaching well past it.
         let (min, max) = (Vec3::new(-10.6, 0.0, -8.3), Vec3::new(10.9, 1.6, 8.0));
-        let view = fit_light(min, max, Some(0.0), SIZE).unwrap();
+        let view = fit_light(min, max, Some(0.0), SIZE, None).unwrap();
         let texels = view.texels[0] as u64 * view.texels[1] as u64;
         assert!(texels * 10 < (SIZE as u64).pow(2) * 7, "{:?} of {SIZE}²", view.texels);
         let (trimmed, whole) = (view.on_map(view.texels).view_proj, view.on_map([SIZE, SIZE]).view_proj);
@@ -269,6 +318,51 @@ mod tests {
             assert!((shift - shift.round()).abs() < 1e-2, "{p}: {shift}");
             assert_eq!(trimmed.project_point3(p).z, whole.project_point3(p).z);
         }
+    }
+
+    #[test]
+    fn texels_are_never_finer_than_the_pixels_they_are_seen_through() {
+        let (min, max) = (Vec3::new(-10.6, 0.0, -8.3), Vec3::new(10.9, 1.6, 8.0));
+        let alone = fit_light(min, max, Some(0.0), SIZE, None).unwrap();
+        // Seen from about 30 units beyond the crowd's near side on a
+        // 720-pixel-tall target with a 45° field of view. Nearest: where the
+        // box (or the floor its shadows fall on) comes closest to the eye.
+        let eye = Vec3::new(0.0, 12.0, 38.0);
+        let camera = crate::Camera::look_at(eye, Vec3::ZERO, 45f32.to_radians(), 16.0 / 9.0);
+        let pixel = ScreenPixel::of(&camera, 720).unwrap();
+        let [_, _, x1, z1] = alone.floor_rect;
+        let nearest = eye.distance(Vec3::new(0.0, 1.6, z1.max(max.z)));
+        assert!(x1 > 0.0 && nearest < eye.distance(Vec3::new(0.0, 1.6, max.z)) + 1e-3);
+        let expected = 2.0 * nearest * (22.5f32.to_radians()).tan() / 720.0;
+        let ScreenPixel::Perspective { per_distance, .. } = pixel else { panic!("{pixel:?}") };
+        assert!((per_distance * nearest - expected).abs() < expected * 1e-3, "{} vs {expected}", per_distance * nearest);
+        let far = fit_light(min, max, Some(0.0), SIZE, Some(pixel)).unwrap();
+        assert!(far.texel >= expected * 0.999 && far.texel < expected * 1.25 * 1.001, "{} for pixels of {expected}", far.texel);
+        assert!(far.texel > alone.texel * 1.5, "{} vs {}", far.texel, alone.texel);
+        // On the same lattice of steps: the square of `SIZE` texels is 1.25^k.
+        let k = (far.texel * SIZE as f32 * 0.5).log(1.25);
+        assert!((k - k.round()).abs() < 1e-3, "{k}");
+        // Fewer texels to clear and fill, with the casters still inside.
+        assert!(far.texels.iter().zip(alone.texels).all(|(&f, a)| f * 3 < a * 2), "{:?} vs {:?}", far.texels, alone.texels);
+        let m = far.on_map(far.texels).view_proj;
+        assert!(corners(min, max).iter().all(|&p| m.project_point3(p).truncate().abs().max_element() < 1.0));
+        // Up close (or with the eye among the casters) the pixels are finer
+        // than the square's texels: nothing changes.
+        let close = crate::Camera::look_at(Vec3::new(0.0, 1.0, 9.0), Vec3::ZERO, 45f32.to_radians(), 16.0 / 9.0);
+        assert_eq!(fit_light(min, max, Some(0.0), SIZE, ScreenPixel::of(&close, 720)), Some(alone));
+        let inside = crate::Camera::look_at(Vec3::new(0.0, 1.0, 0.0), Vec3::X, 45f32.to_radians(), 16.0 / 9.0);
+        assert_eq!(fit_light(min, max, Some(0.0), SIZE, ScreenPixel::of(&inside, 720)), Some(alone));
+        // An orthographic view: its pixel everywhere.
+        let flat = fit_light(min, max, Some(0.0), SIZE, Some(ScreenPixel::Orthographic(0.05))).unwrap();
+        assert!(flat.texel >= 0.05 && flat.texel < 0.05 * 1.25 * 1.001, "{}", flat.texel);
+        // The fast look's square has texels twice as large, which win where
+        // they are larger than the pixels.
+        let fast = fit_light(min, max, Some(0.0), FAST_SIZE, Some(pixel)).unwrap();
+        let least = (2.0 * alone.texel).max(expected);
+        assert!(fast.texel >= least * 0.999 && fast.texel < least * 1.25 * 1.001, "{} for {least}", fast.texel);
+        // A broken camera sets no limit.
+        let broken = crate::Camera { view: glam::Mat4::IDENTITY, projection: glam::Mat4::ZERO };
+        assert_eq!(ScreenPixel::of(&broken, 720), None);
     }
 
     #[test]
@@ -286,7 +380,7 @@ mod tests {
 
     #[test]
     fn empty_or_broken_boxes_give_none() {
-        assert!(fit_light(Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), None, SIZE).is_none());
-        assert!(fit_light(Vec3::ZERO, Vec3::splat(f32::NAN), Some(0.0), SIZE).is_none());
+        assert!(fit_light(Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY), None, SIZE, None).is_none());
+        assert!(fit_light(Vec3::ZERO, Vec3::splat(f32::NAN), Some(0.0), SIZE, None).is_none());
     }
 }
