@@ -11,7 +11,9 @@
 //! so a capsule under 16 pixels wide is one triangle around it instead, the
 //! rectangle's second triangle then having no area (a crowd of 64 frames about
 //! 10% faster on lavapipe). The shader places the corners (`capsule_corner` in
-//! capsule.wgsl), in each pass by the capsule's size there.
+//! capsule.wgsl), in each pass by the capsule's size there; a capsule the CPU
+//! finds small in every pass ([`is_one_triangle`]) is given as that triangle
+//! alone, its corners numbered 4-6.
 
 use crate::{Camera, Capsule};
 use bytemuck::{Pod, Zeroable};
@@ -86,19 +88,52 @@ const CORNERS: u32 = 4;
 /// pipelines do not cull them).
 const QUAD: [u32; 6] = [0, 1, 2, 2, 1, 3];
 
-/// Appends each capsule's quad (its [`CORNERS`] corners) to `vertices`, and
-/// its two triangles to `indices`. Stops before an index would pass
-/// `u32::MAX`.
-pub(crate) fn expand(capsules: impl Iterator<Item = CapsuleInstance>, vertices: &mut Vec<CapsuleVertex>, indices: &mut Vec<u32>) {
+/// What a forced triangle's corners add to their number (capsule.wgsl's
+/// `capsule_corner` reads corners 4-6 as the triangle's 0-2 whatever the
+/// capsule's size).
+const TRIANGLE_CORNER: f32 = 4.0;
+
+/// Capsules narrower than this many pixels (texels in the shadow map) are
+/// drawn as one triangle (capsule.wgsl's `ONE_TRIANGLE_BELOW`).
+const ONE_TRIANGLE_BELOW: f32 = 16.0;
+
+/// Whether `c` is surely drawn as one triangle in every pass: its bounding
+/// sphere spans under [`ONE_TRIANGLE_BELOW`] pixels (seen by `camera` on a
+/// target `height_px` tall), and, when there is a shadow map of texels
+/// `texel` units large, the shader would make it one triangle there too. Such
+/// a capsule is given as that triangle alone ([`expand`]): three corners
+/// instead of four and no collapsed second triangle, which a software
+/// rasteriser still fetched, shaded and set up (about 3% of a 64-character
+/// frame). The rule only saves work: a triangle holds the outline at any size.
+pub(crate) fn is_one_triangle(c: &Capsule, camera: &Camera, height_px: f32, texel: Option<f32>) -> bool {
+    span_px(c, camera, height_px) < ONE_TRIANGLE_BELOW && texel.is_none_or(|t| is_one_triangle_in_map(c.radius, t))
+}
+
+/// Whether the shader draws a capsule of `radius` as one triangle in a shadow
+/// map of texels `texel` units large (with its texel of room, as `vs_shadow`).
+pub(crate) fn is_one_triangle_in_map(radius: f32, texel: f32) -> bool {
+    2.0 * (radius.abs() + texel) < ONE_TRIANGLE_BELOW * texel
+}
+
+/// Appends each capsule to `vertices` and `indices`: one that is one triangle
+/// in every pass (the flag, see [`is_one_triangle`]) as its three corners
+/// and that triangle, any other as its quad's [`CORNERS`] corners and two
+/// triangles (the shader makes it one triangle or a rectangle in each pass).
+/// Stops before an index would pass `u32::MAX`.
+pub(crate) fn expand(capsules: impl Iterator<Item = (CapsuleInstance, bool)>, vertices: &mut Vec<CapsuleVertex>, indices: &mut Vec<u32>) {
     let (fewest, _) = capsules.size_hint();
     vertices.reserve(fewest * CORNERS as usize);
     indices.reserve(fewest * QUAD.len());
-    for c in capsules {
+    for (c, one_triangle) in capsules {
         let Some(base) = u32::try_from(vertices.len()).ok().filter(|b| b.checked_add(CORNERS).is_some()) else { return };
-        for corner in 0..CORNERS {
-            vertices.push(CapsuleVertex { a: c.a, radius: c.radius.abs(), b: c.b, corner: corner as f32, color: c.color });
+        let vertex = |corner: f32| CapsuleVertex { a: c.a, radius: c.radius.abs(), b: c.b, corner, color: c.color };
+        if one_triangle {
+            vertices.extend((0..3).map(|k| vertex(TRIANGLE_CORNER + k as f32)));
+            indices.extend([base, base + 1, base + 2]);
+        } else {
+            vertices.extend((0..CORNERS).map(|k| vertex(k as f32)));
+            indices.extend(QUAD.map(|q| base + q));
         }
-        indices.extend(QUAD.map(|q| base + q));
     }
 }
 
@@ -125,20 +160,38 @@ mod tests {
     }
 
     #[test]
-    fn each_capsule_is_four_corners_and_two_triangles_of_its_own() {
+    fn each_capsule_is_four_corners_and_two_triangles_of_its_own_or_one_forced_triangle() {
         let capsules = [
             CapsuleInstance { a: [0.0, 0.0, 0.0], radius: 0.5, b: [1.0, 0.0, 0.0], color: [1.0; 4] },
             CapsuleInstance { a: [5.0, 5.0, 5.0], radius: -1.0, b: [5.0, 5.0, 5.0], color: [0.5; 4] },
+            CapsuleInstance { a: [1.0, 2.0, 3.0], radius: -0.25, b: [3.0, 2.0, 1.0], color: [0.25; 4] },
         ];
         let mut vertices = vec![CapsuleVertex::zeroed()];
         let mut indices = Vec::new();
-        expand(capsules.into_iter(), &mut vertices, &mut indices);
-        assert_eq!(vertices.len(), 1 + 8);
-        assert_eq!(indices, [1, 2, 3, 3, 2, 4, 5, 6, 7, 7, 6, 8]);
+        expand(capsules.into_iter().zip([false, false, true]), &mut vertices, &mut indices);
+        assert_eq!(vertices.len(), 1 + 4 + 4 + 3);
+        assert_eq!(indices, [1, 2, 3, 3, 2, 4, 5, 6, 7, 7, 6, 8, 9, 10, 11]);
+        let corners = [0.0, 1.0, 2.0, 3.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0];
         for (k, v) in vertices[1..].iter().enumerate() {
-            let c = &capsules[k / 4];
-            assert_eq!((v.a, v.b, v.color, v.corner), (c.a, c.b, c.color, (k % 4) as f32));
+            let c = &capsules[(k / 4).min(2)];
+            assert_eq!((v.a, v.b, v.color, v.corner), (c.a, c.b, c.color, corners[k]));
             assert_eq!(v.radius, c.radius.abs(), "a negative radius is drawn as its size");
         }
+    }
+
+    #[test]
+    fn a_capsule_is_one_triangle_when_small_on_screen_and_in_the_shadow_map() {
+        let camera = Camera::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, 0.8, 1.0);
+        let capsule = |radius: f32| Capsule { a: Vec3::new(-0.05, 0.0, 0.0), b: Vec3::new(0.05, 0.0, 0.0), radius, color: [255; 4] };
+        // About 0.2 / (9.95 tan 0.4) * 360 = 17 pixels across on 720 rows; 8 on 360.
+        let c = capsule(0.05);
+        assert!(!is_one_triangle(&c, &camera, 720.0, None));
+        assert!(is_one_triangle(&c, &camera, 360.0, None));
+        // In a map of 1 cm texels its radius is 5 texels (one triangle under 7).
+        assert!(is_one_triangle(&c, &camera, 360.0, Some(0.01)));
+        assert!(!is_one_triangle(&c, &camera, 360.0, Some(0.005)));
+        // Without a bound (reaching the eye), never.
+        let at_eye = Capsule { a: Vec3::new(0.0, 0.0, 10.0), b: Vec3::new(0.0, 0.0, 10.0), radius: 0.01, color: [255; 4] };
+        assert!(!is_one_triangle(&at_eye, &camera, 360.0, None));
     }
 }

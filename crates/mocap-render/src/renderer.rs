@@ -68,6 +68,9 @@ pub struct SceneRenderer {
     floor_cache: FloorCache,
     /// Whether the last frame's floor was copied from the cache.
     floor_copied: bool,
+    /// Whether every capsule gets four corners (tests only; see
+    /// [`SceneRenderer::give_every_capsule_four_corners`]).
+    four_corners_always: bool,
     line_scratch: Vec<LineInstance>,
     /// The lit capsules' view depths (their middles') and indices, in the
     /// order they are drawn: farthest first where outlines are blended.
@@ -194,6 +197,7 @@ impl SceneRenderer {
             bodies_cast_as_capsules: false,
             floor_cache: FloorCache::new(Copies::of(device)),
             floor_copied: false,
+            four_corners_always: false,
             line_scratch: Vec::new(),
             capsule_order: Vec::new(),
             sphere_scratch: Vec::new(),
@@ -233,6 +237,15 @@ impl SceneRenderer {
     #[doc(hidden)]
     pub fn pipeline_sets(&self) -> usize {
         self.pipelines.len()
+    }
+
+    /// Gives every capsule its quad's four corners, leaving the shader to make
+    /// it one triangle or a rectangle in each pass (as before capsules small in
+    /// every pass were given as their triangle alone), so that tests can
+    /// compare both ways' pixels.
+    #[doc(hidden)]
+    pub fn give_every_capsule_four_corners(&mut self) {
+        self.four_corners_always = true;
     }
 
     /// Copies only the floor's colour and draws its depth, as on OpenGL, whatever
@@ -501,10 +514,15 @@ impl SceneRenderer {
             order.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
         }
         let in_order = order.iter().filter_map(|&(_, i)| scene.capsules.get(i));
-        capsule::expand(in_order.map(CapsuleInstance::new), &mut capsules.vertices, &mut capsules.indices);
+        let texel = light.as_ref().map(|l| l.texel);
+        let height = size[1] as f32;
+        let forced = !self.four_corners_always;
+        let one_triangle = |c: &crate::Capsule| forced && capsule::is_one_triangle(c, camera, height, texel);
+        capsule::expand(in_order.map(|c| (CapsuleInstance::new(c), one_triangle(c))), &mut capsules.vertices, &mut capsules.indices);
         self.lit_indices = capsules.indices.len() as u32;
-        if light.is_some() {
-            let shadow_only = only_cast.map(|(a, b, radius)| CapsuleInstance::caster(a, b, radius));
+        if let Some(texel) = texel {
+            // Drawn in the shadow pass alone: one triangle there is enough.
+            let shadow_only = only_cast.map(|(a, b, radius)| (CapsuleInstance::caster(a, b, radius), forced && capsule::is_one_triangle_in_map(radius, texel)));
             capsule::expand(shadow_only, &mut capsules.vertices, &mut capsules.indices);
             self.caster_indices = capsules.indices.len() as u32;
         } else {

@@ -919,3 +919,56 @@ fn bodies_are_drawn_from_outside_and_seen_through_from_inside() {
         assert_eq!(inside, 0, "fast look {fast}: from inside, {inside} pixels of the walls are drawn");
     }
 }
+
+#[test]
+fn capsules_given_as_their_triangle_alone_draw_the_same_pixels() {
+    // Capsules small in every pass are given as their one triangle (three
+    // corners); the same scene with every capsule given four corners, the
+    // shader choosing the shape, must give the same pixels.
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    let eye = Vec3::new(0.4, 2.5, 6.0);
+    let camera = Camera::look_at(eye, Vec3::new(0.0, 0.4, 0.0), 0.8, 1.0);
+    let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 0.5, 4.0)), ..Scene::default() };
+    // A crowd of small capsules in all directions (one along the view, some
+    // balls), a large one near the eye, and shadow-only casters.
+    for i in 0..48 {
+        let t = i as f32;
+        let a = Vec3::new((t * 0.37).sin() * 1.6, 0.1 + (t * 0.23).cos().abs() * 1.2, (t * 0.61).cos() * 1.6);
+        let dir = Vec3::new((t * 1.3).cos(), (t * 0.7).sin(), (t * 2.1).sin()) * (0.05 + (i % 5) as f32 * 0.06);
+        let b = if i % 7 == 0 { a } else { a + dir };
+        let color = [(40 + i * 4) as u8, 200, (250 - i * 3) as u8, 255];
+        scene.capsules.push(Capsule { a, b, radius: 0.03 + (i % 3) as f32 * 0.02, color });
+    }
+    let along = Vec3::new(0.2, 0.8, 0.5);
+    scene.capsules.push(Capsule { a: along, b: along + (along - eye).normalize() * 0.3, radius: 0.05, color: [250, 250, 40, 255] });
+    scene.capsules.push(Capsule { a: Vec3::new(-0.3, 1.6, 4.0), b: Vec3::new(0.3, 1.9, 4.2), radius: 0.25, color: [250, 60, 60, 255] });
+    scene.shadow_casters.push(Capsule { a: Vec3::new(1.0, 1.5, -1.0), b: Vec3::new(1.4, 1.7, -1.0), radius: 0.05, color: [0; 4] });
+    scene.shadow_casters.push(Capsule { a: Vec3::new(-1.0, 1.0, 1.0), b: Vec3::new(-1.0, 2.0, 1.0), radius: 0.4, color: [0; 4] });
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let alone = read_pixels(&device, &queue, &target);
+    renderer.give_every_capsule_four_corners();
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let four = read_pixels(&device, &queue, &target);
+    let differ = alone.chunks(4).zip(four.chunks(4)).filter(|(a, b)| a != b).count();
+    assert_eq!(differ, 0, "pixels differ between the triangle alone and four corners");
+    // The picture has the capsules and their shadows.
+    let bright = alone.chunks(4).filter(|p| p[1] > 150).count();
+    assert!(bright > 200, "the capsules are drawn: {bright} pixels");
+
+    // A view of nearly 180 degrees, with a small capsule at its edge (about 85
+    // degrees off the axis, where the shader has no outline bound and covers the
+    // whole view): the same pixels too.
+    let wide = Camera::look_at(Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 1.0, -1.0), 3.0, 1.0);
+    let edge = Vec3::new(-(85f32.to_radians().sin()), 0.0, -(85f32.to_radians().cos())) * 10.0 + Vec3::Y;
+    let scene = Scene { capsules: vec![Capsule { a: edge, b: edge + Vec3::Y * 0.2, radius: 0.1, color: [255, 255, 255, 255] }], shadows: false, ..Scene::default() };
+    let frame = |renderer: &mut SceneRenderer| {
+        renderer.render(&device, &queue, &target, &scene, &wide);
+        read_pixels(&device, &queue, &target)
+    };
+    let four = frame(&mut renderer);
+    let mut fresh = SceneRenderer::new(&device, FORMAT, 1);
+    let alone = frame(&mut fresh);
+    assert!(alone == four, "a capsule at the edge of a wide view: the same pixels");
+    assert!(alone.chunks(4).any(|p| p[0] > 60), "the capsule at the edge is drawn");
+}
+

@@ -113,7 +113,8 @@ fn quad_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin
 }
 
 // Capsules narrower than this many pixels (texels in the shadow map) are
-// drawn as one triangle, wider ones as a rectangle's two.
+// drawn as one triangle, wider ones as a rectangle's two (the same constant
+// as capsule.rs's, which gives a capsule small in every pass as its triangle).
 const ONE_TRIANGLE_BELOW: f32 = 16.0;
 
 // Whether the capsule of radii `ra`, `rb` grown by `margin` is drawn as one
@@ -122,13 +123,24 @@ fn is_one_triangle(ra: f32, rb: f32, margin: f32, unit: f32) -> bool {
     return 2.0 * (max(ra, rb) + margin) < ONE_TRIANGLE_BELOW * unit;
 }
 
+// Whether `corner` is one of a forced triangle's (4-6: the CPU found the
+// capsule small in every pass and gave its triangle alone, see capsule.rs's
+// `is_one_triangle`).
+fn is_forced_triangle(corner: f32) -> bool {
+    return corner > 3.5;
+}
+
 // Corner `corner` (0-3) of the shape a capsule is drawn as: one triangle
 // (`triangle_corner`, corner 3 on corner 2, so the quad's second triangle has
 // no area and is dropped before shading) when it is small, else the rectangle
-// (`quad_corner`). A software rasteriser shades whole blocks of pixels per
-// triangle: a small capsule's two triangles shared most of theirs, while a
-// large one's triangle would cover far more pixels than its rectangle.
+// (`quad_corner`); corners 4-6 are always the triangle's 0-2. A software
+// rasteriser shades whole blocks of pixels per triangle: a small capsule's two
+// triangles shared most of theirs, while a large one's triangle would cover
+// far more pixels than its rectangle.
 fn capsule_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32, unit: f32) -> vec2<f32> {
+    if (is_forced_triangle(corner)) {
+        return triangle_corner(corner - 4.0, a, ra, b, rb, margin);
+    }
     if (is_one_triangle(ra, rb, margin, unit)) {
         return triangle_corner(min(corner, 2.0), a, ra, b, rb, margin);
     }
@@ -184,7 +196,12 @@ fn vs_main(v: CapsuleIn) -> Out {
             return out;
         }
         let k = u32(v.corner + 0.5);
-        ray = ray_of_ndc(vec2<f32>(select(-1.0, 1.0, (k & 1u) == 1u), select(-1.0, 1.0, k >= 2u)));
+        var ndc = vec2<f32>(select(-1.0, 1.0, (k & 1u) == 1u), select(-1.0, 1.0, k >= 2u));
+        if (is_forced_triangle(v.corner)) {
+            // A forced triangle's three corners: one triangle over the view.
+            ndc = vec2<f32>(select(-1.0, 3.0, k == 5u), select(-1.0, 3.0, k == 6u));
+        }
+        ray = ray_of_ndc(ndc);
         depth = near * 1.001;
     } else {
         // A triangle or rectangle (`capsule_corner`) around the axis's image holding both end circles (so
@@ -349,7 +366,8 @@ fn vs_shadow(v: CapsuleIn) -> ShadowOut {
     // are clamped, which bends the plane.
     let past_b = axis_plane_depth(triangle_corner(0.0, a.xy, r, b.xy, r, room), a, b, r);
     let past_a = axis_plane_depth(triangle_corner(0.0, b.xy, r, a.xy, r, room), a, b, r);
-    let flip = is_one_triangle(r, r, room, room) && !in_depth_range(past_b) && in_depth_range(past_a);
+    let one_triangle = is_forced_triangle(v.corner) || is_one_triangle(r, r, room, room);
+    let flip = one_triangle && !in_depth_range(past_b) && in_depth_range(past_a);
     var xy = capsule_corner(v.corner, a.xy, r, b.xy, r, room, room);
     if (flip) {
         xy = capsule_corner(v.corner, b.xy, r, a.xy, r, room, room);
