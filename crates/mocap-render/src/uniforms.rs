@@ -32,6 +32,9 @@ pub(crate) struct FrameUniforms {
     /// The least coverage of a pixel an impostor's outline draws (see
     /// [`OutlineRule`]).
     pub samples: [f32; 4],
+    /// Rows z and w of projection × view (clip-space depth and w of a world point).
+    pub clip_z: [f32; 4],
+    pub clip_w: [f32; 4],
 }
 
 /// How impostors' outlines meet the pixels.
@@ -64,6 +67,8 @@ impl FrameUniforms {
             eye: eye.to_array(),
             shadow_rect,
             samples: [if outline == OutlineRule::Filtered { 0.0 } else { 0.5 }, 0.0, 0.0, 0.0],
+            clip_z: (camera.projection * camera.view).row(2).to_array(),
+            clip_w: (camera.projection * camera.view).row(3).to_array(),
             ..Zeroable::zeroed()
         };
         if let Some(g) = grid {

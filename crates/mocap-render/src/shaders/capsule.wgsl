@@ -302,17 +302,24 @@ fn fs_main(in: Out) -> Shaded {
     let h = clamp(dot(p - a, ab) / max(dot(ab, ab), 1e-30), 0.0, 1.0);
     let out_of_axis = p - (a + ab * h);
     let n = select(-d, normalize(out_of_axis), dot(out_of_axis, out_of_axis) > 1e-20);
-    let clip = frame.projection * (frame.view * vec4<f32>(p, 1.0));
+    let clip_z = dot(frame.clip_z, vec4<f32>(p, 1.0));
+    let clip_w = dot(frame.clip_w, vec4<f32>(p, 1.0));
     // Cut by the near plane (or behind the eye): not drawn.
-    if (clip.w <= 0.0 || clip.z < 0.0) {
+    if (clip_w <= 0.0 || clip_z < 0.0) {
         discard;
     }
     var out: Shaded;
     // Alpha is the coverage (turned into samples on a multisampled target,
     // blended over what is behind at full quality on one sample); the
     // pipeline keeps the target's alpha.
-    out.color = to_target(vec4<f32>(shade(in.color.rgb, p, n), coverage));
-    out.depth = min(clip.z / clip.w, 1.0);
+    // Towards the eye: the ray reversed (in an orthographic view, towards the
+    // eye's point, as `shade` has it).
+    var v = -d;
+    if (!is_perspective()) {
+        v = normalize(frame.eye.xyz - p);
+    }
+    out.color = to_target(vec4<f32>(shade_seen(in.color.rgb, p, n, v), coverage));
+    out.depth = min(clip_z / clip_w, 1.0);
     return out;
 }
 

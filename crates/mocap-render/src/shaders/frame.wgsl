@@ -29,6 +29,10 @@ struct Frame {
     // blended at full quality on one sample), 0.5 in the fast look (a pixel is
     // drawn when its centre is covered); yzw unused.
     samples: vec4<f32>,
+    // Rows z and w of projection × view: a world point's clip-space depth
+    // and w in two dot products (the capsule shader needs them at every pixel).
+    clip_z: vec4<f32>,
+    clip_w: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;

@@ -26,8 +26,8 @@ fn key_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
     }
     let texel = frame.light_dir.w;
     // Normal offset against acne on curved surfaces.
-    let lp = frame.light_view_proj * vec4<f32>(p + n * texel * 3.0, 1.0);
-    let ndc = lp.xyz / lp.w;
+    // The light's projection is orthographic: w is 1, no division.
+    let ndc = (frame.light_view_proj * vec4<f32>(p + n * texel * 3.0, 1.0)).xyz;
     // Texture rows run down while clip-space y runs up.
     let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
     if (any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0)) || ndc.z > 1.0) {
@@ -51,8 +51,13 @@ fn key_visibility(p: vec3<f32>, n: vec3<f32>) -> f32 {
 
 // Shades a surface of linear colour `base` at `p` with unit normal `n`.
 fn shade(base: vec3<f32>, p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    return shade_seen(base, p, n, normalize(frame.eye.xyz - p));
+}
+
+// `shade`, where the unit vector `v` from `p` towards the eye is known (a
+// ray-cast impostor's: its ray reversed).
+fn shade_seen(base: vec3<f32>, p: vec3<f32>, n: vec3<f32>, v: vec3<f32>) -> vec3<f32> {
     let l = frame.light_dir.xyz;
-    let v = normalize(frame.eye.xyz - p);
     let visible = key_visibility(p, n);
     let diffuse = max(dot(n, l), 0.0) * visible;
     let ambient = mix(GROUND, SKY, n.y * 0.5 + 0.5);
