@@ -247,7 +247,9 @@ pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32, p
     let size = size.max(2) & !1;
     // Where shadows are seen: the casters and the floor they fall on.
     let seen = (lo.min(Vec3::new(x0, floor_y, z0)), max.max(Vec3::new(x1, floor_y, z1)));
+    // (A pixel too large to be a number sets no limit.)
     let least = pixel.map_or(0.0, |p| p.nearest_in(seen.0, seen.1)) * size as f32 * 0.5;
+    let least = if least.is_finite() { least } else { 0.0 };
     let half = ((b.x - a.x).max(b.y - a.y) * 0.5 * 1.05).max(least).max(1e-3);
     let half = 1.25f32.powf(half.log(1.25).ceil());
     let texel = 2.0 * half / size as f32;
@@ -360,9 +362,11 @@ mod tests {
         let fast = fit_light(min, max, Some(0.0), FAST_SIZE, Some(pixel)).unwrap();
         let least = (2.0 * alone.texel).max(expected);
         assert!(fast.texel >= least * 0.999 && fast.texel < least * 1.25 * 1.001, "{} for {least}", fast.texel);
-        // A broken camera sets no limit.
+        // A broken camera sets no limit, nor does a pixel too large to be a number.
         let broken = crate::Camera { view: glam::Mat4::IDENTITY, projection: glam::Mat4::ZERO };
         assert_eq!(ScreenPixel::of(&broken, 720), None);
+        let huge = ScreenPixel::Perspective { eye: Vec3::splat(1e30), per_distance: 1e30 };
+        assert_eq!(fit_light(min, max, Some(0.0), SIZE, Some(huge)), Some(alone));
     }
 
     #[test]
