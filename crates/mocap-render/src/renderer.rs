@@ -81,7 +81,8 @@ pub struct SceneRenderer {
     pub pixels_per_point: f32,
     /// The fast look, for a view that moves on a slow (software) GPU: shadows
     /// from a map of texels twice as large (a quarter of the texels to clear and
-    /// fill each frame) with one lookup per pixel instead of four (harder
+    /// fill each frame; unless screen pixels, which no texel is smaller than,
+    /// are larger still) with one lookup per pixel instead of four (harder
     /// edges), capsules spanning under two pixels left out (with their
     /// shadows), bodies casting their shadows as their bones' capsules
     /// ([`Scene::body_casters`]), and bodies spanning under

@@ -19,7 +19,8 @@ use glam::{Mat4, Vec2, Vec3};
 /// pixel is larger, see [`fit_light`]); the largest map.
 pub(crate) const SIZE: u32 = 2048;
 /// The fast look's [`SIZE`]: a quarter of the texels to clear and draw every
-/// frame (a software rasteriser's cost), softer shadow edges.
+/// frame (a software rasteriser's cost), softer shadow edges; where screen
+/// pixels are larger than its texels both looks' texels are the pixels'.
 pub(crate) const FAST_SIZE: u32 = 1024;
 /// Map sizes are whole steps of this many texels (so a moving crowd seldom
 /// needs a new texture).
