@@ -22,4 +22,21 @@ impl Camera {
             projection: glam::camera::rh::proj::directx::perspective(fov_y, aspect.max(1e-4), distance * 0.01, distance * 100.0),
         }
     }
+
+    /// The eye's position in the world (the view's inverse's translation).
+    pub fn eye(&self) -> Vec3 {
+        self.view.inverse().w_axis.truncate()
+    }
+
+    /// Whether the projection is a perspective one (else orthographic).
+    pub fn is_perspective(&self) -> bool {
+        self.projection.w_axis.w < 0.5
+    }
+
+    /// Pixels per world unit on a target `height_px` pixels tall: at one unit
+    /// in front of the eye in a perspective view, everywhere in an
+    /// orthographic one.
+    pub fn pixels_per_unit(&self, height_px: f32) -> f32 {
+        self.projection.y_axis.y.abs() * 0.5 * height_px
+    }
 }

@@ -30,10 +30,8 @@ pub(crate) const FAST_LOOK_MIN_SPAN_PX: f32 = 2.0;
 /// reaches the eye's plane or is not finite.
 pub(crate) fn span_px(c: &Capsule, camera: &Camera, height_px: f32) -> f32 {
     let radius = c.a.distance(c.b) * 0.5 + c.radius.abs();
-    // Pixels per world unit one unit in front of a perspective eye (or anywhere
-    // in an orthographic view).
-    let scale = camera.projection.y_axis.y.abs() * 0.5 * height_px;
-    let perspective = camera.projection.w_axis.w < 0.5;
+    let scale = camera.pixels_per_unit(height_px);
+    let perspective = camera.is_perspective();
     let span = if perspective {
         let depth = -camera.view.transform_point3((c.a + c.b) * 0.5).z - radius;
         if depth <= 0.0 { f32::INFINITY } else { 2.0 * radius * scale / depth }

@@ -191,13 +191,12 @@ impl ScreenPixel {
     /// The pixels of `camera` on a target `height_px` pixels tall (`None` for
     /// a degenerate projection).
     pub fn of(camera: &crate::Camera, height_px: u32) -> Option<ScreenPixel> {
-        let scale = camera.projection.y_axis.y.abs() * height_px.max(1) as f32;
-        let per = 2.0 / scale;
+        let per = 1.0 / camera.pixels_per_unit(height_px.max(1) as f32);
         if !per.is_finite() || per <= 0.0 {
             return None;
         }
-        if camera.projection.w_axis.w < 0.5 {
-            let eye = camera.view.inverse().w_axis.truncate();
+        if camera.is_perspective() {
+            let eye = camera.eye();
             eye.is_finite().then_some(ScreenPixel::Perspective { eye, per_distance: per })
         } else {
             Some(ScreenPixel::Orthographic(per))

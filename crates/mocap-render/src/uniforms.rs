@@ -53,7 +53,8 @@ impl FrameUniforms {
     /// The block for one frame into a target of `size` pixels and `format`,
     /// with impostor outlines drawn by `outline`.
     pub fn new(camera: &Camera, size: [u32; 2], outline: OutlineRule, format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>) -> FrameUniforms {
-        let eye = camera.view.inverse().w_axis.truncate().extend(0.0);
+        let eye = camera.eye().extend(0.0);
+        let view_proj = camera.projection * camera.view;
         let (light_view_proj, texel, strength, shadow_rect) = match light {
             Some(fit) => (fit.view_proj, fit.texel, 1.0, fit.floor_rect),
             None => (Mat4::IDENTITY, 0.0, 0.0, [0.0; 4]),
@@ -67,8 +68,8 @@ impl FrameUniforms {
             eye: eye.to_array(),
             shadow_rect,
             samples: [if outline == OutlineRule::Filtered { 0.0 } else { 0.5 }, 0.0, 0.0, 0.0],
-            clip_z: (camera.projection * camera.view).row(2).to_array(),
-            clip_w: (camera.projection * camera.view).row(3).to_array(),
+            clip_z: view_proj.row(2).to_array(),
+            clip_w: view_proj.row(3).to_array(),
             ..Zeroable::zeroed()
         };
         if let Some(g) = grid {

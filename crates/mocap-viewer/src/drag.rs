@@ -60,7 +60,7 @@ impl ViewGeometry {
     /// The point under `pos` on the plane through `through` that faces the camera.
     pub fn on_plane(&self, pos: egui::Pos2, through: Vec3) -> Option<Vec3> {
         let (origin, dir) = self.ray(pos)?;
-        let eye = self.camera.view.inverse().w_axis.truncate();
+        let eye = self.camera.eye();
         let normal = (eye - through).normalize_or_zero();
         let denom = dir.dot(normal);
         if denom.abs() < 1e-6 {
