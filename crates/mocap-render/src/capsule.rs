@@ -29,11 +29,22 @@ pub(crate) const FAST_LOOK_MIN_SPAN_PX: f32 = 2.0;
 /// target `height_px` pixels tall (at its nearest depth); infinite when it
 /// reaches the eye's plane or is not finite.
 pub(crate) fn span_px(c: &Capsule, camera: &Camera, height_px: f32) -> f32 {
+    span_px_at(c, middle_depth(c, camera), camera, height_px)
+}
+
+/// The view-space z of `c`'s middle (more negative is farther): the depth the
+/// lit capsules are ordered by, and [`span_px_at`]'s.
+pub(crate) fn middle_depth(c: &Capsule, camera: &Camera) -> f32 {
+    camera.view.transform_point3((c.a + c.b) * 0.5).z
+}
+
+/// [`span_px`] of `c` whose middle is at view-space z `middle_z`
+/// ([`middle_depth`], for a caller that has it already).
+pub(crate) fn span_px_at(c: &Capsule, middle_z: f32, camera: &Camera, height_px: f32) -> f32 {
     let radius = c.a.distance(c.b) * 0.5 + c.radius.abs();
     let scale = camera.pixels_per_unit(height_px);
-    let perspective = camera.is_perspective();
-    let span = if perspective {
-        let depth = -camera.view.transform_point3((c.a + c.b) * 0.5).z - radius;
+    let span = if camera.is_perspective() {
+        let depth = -middle_z - radius;
         if depth <= 0.0 { f32::INFINITY } else { 2.0 * radius * scale / depth }
     } else {
         2.0 * radius * scale
@@ -95,16 +106,16 @@ const TRIANGLE_CORNER: f32 = 4.0;
 /// drawn as one triangle (capsule.wgsl's `ONE_TRIANGLE_BELOW`).
 const ONE_TRIANGLE_BELOW: f32 = 16.0;
 
-/// Whether `c` is surely drawn as one triangle in every pass: its bounding
-/// sphere spans under [`ONE_TRIANGLE_BELOW`] pixels (seen by `camera` on a
-/// target `height_px` tall), and, when there is a shadow map of texels
+/// Whether a capsule of `radius` is surely drawn as one triangle in every
+/// pass: its bounding sphere spans under [`ONE_TRIANGLE_BELOW`] pixels
+/// (`span_px`, see [`span_px`]), and, when there is a shadow map of texels
 /// `texel` units large, the shader would make it one triangle there too. Such
 /// a capsule is given as that triangle alone ([`expand`]): three corners
 /// instead of four and no collapsed second triangle, which a software
 /// rasteriser still fetched, shaded and set up (about 3% of a 64-character
 /// frame). The rule only saves work: a triangle holds the outline at any size.
-pub(crate) fn is_one_triangle(c: &Capsule, camera: &Camera, height_px: f32, texel: Option<f32>) -> bool {
-    span_px(c, camera, height_px) < ONE_TRIANGLE_BELOW && texel.is_none_or(|t| is_one_triangle_in_map(c.radius, t))
+pub(crate) fn is_one_triangle(span_px: f32, radius: f32, texel: Option<f32>) -> bool {
+    span_px < ONE_TRIANGLE_BELOW && texel.is_none_or(|t| is_one_triangle_in_map(radius, t))
 }
 
 /// Whether the shader draws a capsule of `radius` as one triangle in a shadow
@@ -183,13 +194,16 @@ mod tests {
         let capsule = |radius: f32| Capsule { a: Vec3::new(-0.05, 0.0, 0.0), b: Vec3::new(0.05, 0.0, 0.0), radius, color: [255; 4] };
         // About 0.2 / (9.95 tan 0.4) * 360 = 17 pixels across on 720 rows; 8 on 360.
         let c = capsule(0.05);
-        assert!(!is_one_triangle(&c, &camera, 720.0, None));
-        assert!(is_one_triangle(&c, &camera, 360.0, None));
+        let one = |c: &Capsule, height: f32, texel| is_one_triangle(span_px(c, &camera, height), c.radius, texel);
+        assert!(!one(&c, 720.0, None));
+        assert!(one(&c, 360.0, None));
         // In a map of 1 cm texels its radius is 5 texels (one triangle under 7).
-        assert!(is_one_triangle(&c, &camera, 360.0, Some(0.01)));
-        assert!(!is_one_triangle(&c, &camera, 360.0, Some(0.005)));
+        assert!(one(&c, 360.0, Some(0.01)));
+        assert!(!one(&c, 360.0, Some(0.005)));
         // Without a bound (reaching the eye), never.
         let at_eye = Capsule { a: Vec3::new(0.0, 0.0, 10.0), b: Vec3::new(0.0, 0.0, 10.0), radius: 0.01, color: [255; 4] };
-        assert!(!is_one_triangle(&at_eye, &camera, 360.0, None));
+        assert!(!one(&at_eye, 360.0, None));
+        // The span from a middle depth the caller has is the same.
+        assert_eq!(span_px_at(&c, middle_depth(&c, &camera), &camera, 360.0), span_px(&c, &camera, 360.0));
     }
 }

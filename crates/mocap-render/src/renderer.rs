@@ -72,9 +72,10 @@ pub struct SceneRenderer {
     /// [`SceneRenderer::give_every_capsule_four_corners`]).
     four_corners_always: bool,
     line_scratch: Vec<LineInstance>,
-    /// The lit capsules' view depths (their middles') and indices, in the
-    /// order they are drawn: farthest first where outlines are blended.
-    capsule_order: Vec<(f32, usize)>,
+    /// The lit capsules' view depths (their middles'), spans in pixels and
+    /// indices, in the order they are drawn: farthest first where outlines
+    /// are blended.
+    capsule_order: Vec<(f32, f32, usize)>,
     sphere_scratch: Vec<SphereInstance>,
     draw_calls: u32,
     /// Physical pixels per logical pixel; scales line widths.
@@ -504,22 +505,26 @@ impl SceneRenderer {
         self.spheres.upload(device, queue, &self.sphere_scratch);
         let capsules = &mut self.capsules;
         capsules.clear();
+        // Each capsule's middle depth and span, once.
+        let height = size[1] as f32;
+        let placed = scene.capsules.iter().enumerate().map(|(i, c)| {
+            let z = capsule::middle_depth(c, camera);
+            (z, capsule::span_px_at(c, z, camera, height), i)
+        });
         // The fast look leaves out capsules spanning under a couple of pixels.
         let min_span = if self.fast_look { capsule::FAST_LOOK_MIN_SPAN_PX } else { 0.0 };
-        let shown = scene.capsules.iter().enumerate().filter(|(_, c)| min_span <= 0.0 || capsule::span_px(c, camera, size[1] as f32) >= min_span);
-        // Blended outlines need what lies behind them drawn first.
         let order = &mut self.capsule_order;
         order.clear();
-        order.extend(shown.map(|(i, c)| (camera.view.transform_point3((c.a + c.b) * 0.5).z, i)));
+        order.extend(placed.filter(|&(_, span, _)| min_span <= 0.0 || span >= min_span));
+        // Blended outlines need what lies behind them drawn first.
         if look.blends_outlines() {
             order.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
         }
-        let in_order = order.iter().filter_map(|&(_, i)| scene.capsules.get(i));
         let texel = light.as_ref().map(|l| l.texel);
-        let height = size[1] as f32;
         let forced = !self.four_corners_always;
-        let one_triangle = |c: &crate::Capsule| forced && capsule::is_one_triangle(c, camera, height, texel);
-        capsule::expand(in_order.map(|c| (CapsuleInstance::new(c), one_triangle(c))), &mut capsules.vertices, &mut capsules.indices);
+        let in_order = order.iter().filter_map(|&(_, span, i)| Some((scene.capsules.get(i)?, span)));
+        let with_shape = in_order.map(|(c, span)| (CapsuleInstance::new(c), forced && capsule::is_one_triangle(span, c.radius, texel)));
+        capsule::expand(with_shape, &mut capsules.vertices, &mut capsules.indices);
         self.lit_indices = capsules.indices.len() as u32;
         if let Some(texel) = texel {
             // Drawn in the shadow pass alone: one triangle there is enough.
