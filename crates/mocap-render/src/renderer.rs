@@ -620,7 +620,7 @@ impl Pipelines {
                 source: wgpu::ShaderSource::Wgsl(format!("{LIT_PRELUDE}{body}").into()),
             })
         };
-        let capsule_shader = module("mocap capsules", include_str!("shaders/capsule.wgsl"));
+        let capsule_shader = module("mocap capsules", &capsule::shader_source());
         let floor_shader = module("mocap floor", include_str!("shaders/floor.wgsl"));
         let sphere_shader = module("mocap spheres", include_str!("shaders/spheres.wgsl"));
         let line_shader = module("mocap lines", include_str!("shaders/lines.wgsl"));

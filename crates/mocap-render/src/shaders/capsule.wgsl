@@ -112,10 +112,10 @@ fn quad_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin
     return a + w * select(back, forward, (k & 1u) == 1u) + u * (max(ra, rb) + margin) * side;
 }
 
-// Capsules narrower than this many pixels (texels in the shadow map) are
-// drawn as one triangle, wider ones as a rectangle's two (the same constant
-// as capsule.rs's, which gives a capsule small in every pass as its triangle).
-const ONE_TRIANGLE_BELOW: f32 = 16.0;
+// `ONE_TRIANGLE_BELOW`: capsules narrower than this many pixels (texels in
+// the shadow map) are drawn as one triangle, wider ones as a rectangle's two.
+// Declared ahead of this file by capsule.rs (`shader_source`), whose rule for
+// capsules small in every pass uses the same value.
 
 // Whether the capsule of radii `ra`, `rb` grown by `margin` is drawn as one
 // triangle where one pixel (texel) is `unit` long.
