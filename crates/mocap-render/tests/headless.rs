@@ -972,3 +972,66 @@ fn capsules_given_as_their_triangle_alone_draw_the_same_pixels() {
     assert!(alone.chunks(4).any(|p| p[0] > 60), "the capsule at the edge is drawn");
 }
 
+
+#[test]
+fn every_pixel_an_outline_reaches_is_drawn_across_a_wide_view() {
+    // An impostor's shape must hold its capsule's outline and the edge
+    // filter's fringe: coverage falls to 0 half a pixel outside, measured
+    // across the pixel's ray, which in the image grows away from the view's
+    // axis. Small capsules over the whole of a wide view (up to about 60
+    // degrees off its axis in the corners), each pixel's coverage computed
+    // here from its ray as the shader does: every pixel with some must be drawn.
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    let fov = 1.9_f32;
+    let camera = Camera::look_at(Vec3::ZERO, Vec3::NEG_Z, fov, 1.0);
+    let mut scene = Scene { background: [0, 0, 0, 255], shadows: false, ..Scene::default() };
+    let tan = (fov * 0.5).tan();
+    for i in 0..11 {
+        for j in 0..11 {
+            // Directions spread over the view, a few pixels from its edges.
+            let (x, y) = ((i as f32 - 5.0) / 5.4 * tan, (j as f32 - 5.0) / 5.4 * tan);
+            let a = Vec3::new(x, y, -1.0) * 10.0;
+            let k = (i * 11 + j) as f32;
+            let along = Vec3::new((k * 1.3).cos(), (k * 0.7).sin(), (k * 2.1).sin()) * 0.3;
+            let b = if (i + j) % 4 == 0 { a } else { a + along };
+            scene.capsules.push(Capsule { a, b, radius: 0.04 + (i + j) as f32 % 3.0 * 0.03, color: [255, 255, 255, 255] });
+        }
+    }
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let pixels = read_pixels(&device, &queue, &target);
+    // One pixel's size at unit depth.
+    let pixel_at_unit = 2.0 * tan / SIZE as f32;
+    let coverage = |px: u32, py: u32| -> f32 {
+        let ray = Vec3::new(((px as f32 + 0.5) / SIZE as f32 * 2.0 - 1.0) * tan, (1.0 - (py as f32 + 0.5) / SIZE as f32 * 2.0) * tan, -1.0);
+        let d = ray.normalize();
+        let best = scene.capsules.iter().map(|c| {
+            let ab = c.b - c.a;
+            let across = c.a - d * c.a.dot(d);
+            let slope = ab - d * ab.dot(d);
+            let s = if slope.length_squared() > 1e-12 * ab.length_squared() { (-across.dot(slope) / slope.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+            let miss = (across + slope * s).length();
+            // The ray's point nearest the capsule, and its depth.
+            let depth = -(d * (c.a + ab * s).dot(d)).z;
+            if depth <= 0.0 {
+                return 0.0;
+            }
+            (0.5 - (miss - c.radius) / (pixel_at_unit * depth)).clamp(0.0, 1.0)
+        });
+        best.fold(0.0, f32::max)
+    };
+    let mut reached = 0;
+    let mut missed = Vec::new();
+    for py in 0..SIZE {
+        for px in 0..SIZE {
+            if coverage(px, py) > 0.05 {
+                reached += 1;
+                let i = ((py * SIZE + px) * 4) as usize;
+                if pixels[i..i + 3] == [0, 0, 0] {
+                    missed.push((px, py));
+                }
+            }
+        }
+    }
+    assert!(reached > 400, "the capsules cover pixels: {reached}");
+    assert!(missed.is_empty(), "{} of {reached} pixels the outlines reach are not drawn: {:?}", missed.len(), &missed[..missed.len().min(20)]);
+}

@@ -95,21 +95,31 @@ fn outside_view(c: vec3<f32>, r: f32) -> bool {
     return false;
 }
 
-// Corner `corner` (0: behind `a`, 1: beyond `b`, on one side; 2 and 3 on the
-// other) of a rectangle along the segment `a`–`b` in a plane holding the
-// circles of radius `ra` around `a` and `rb` around `b` (so their hull), grown
-// by `margin`.
-fn quad_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32) -> vec2<f32> {
-    let k = u32(corner + 0.5);
-    let side = select(-1.0, 1.0, k >= 2u);
+// The image of a capsule's axis from `a` to `b`: its unit direction `w`
+// (along x when it has no length), `u` square to it, and its length.
+struct Axis {
+    w: vec2<f32>,
+    u: vec2<f32>,
+    len: f32,
+};
+
+fn axis_of(a: vec2<f32>, b: vec2<f32>) -> Axis {
     let along = b - a;
     let len = length(along);
     let w = select(vec2<f32>(1.0, 0.0), along / len, len > 1e-12);
-    let u = vec2<f32>(-w.y, w.x);
+    return Axis(w, vec2<f32>(-w.y, w.x), len);
+}
+
+// Corner `k` (0: behind `a`, 1: beyond `b`, on one side; 2 and 3 on the
+// other) of a rectangle along `axis` from `a` in a plane holding the circles
+// of radius `ra` around `a` and `rb` around its other end (so their hull),
+// grown by `margin`.
+fn quad_corner(k: u32, axis: Axis, a: vec2<f32>, ra: f32, rb: f32, margin: f32) -> vec2<f32> {
+    let side = select(-1.0, 1.0, k >= 2u);
     // Either circle may reach farther back or forward (an axis seen end-on).
-    let back = min(-ra, len - rb) - margin;
-    let forward = max(len + rb, ra) + margin;
-    return a + w * select(back, forward, (k & 1u) == 1u) + u * (max(ra, rb) + margin) * side;
+    let back = min(-ra, axis.len - rb) - margin;
+    let forward = max(axis.len + rb, ra) + margin;
+    return a + axis.w * select(back, forward, (k & 1u) == 1u) + axis.u * (max(ra, rb) + margin) * side;
 }
 
 // `ONE_TRIANGLE_BELOW`: capsules narrower than this many pixels (texels in
@@ -136,39 +146,51 @@ fn is_forced_triangle(corner: f32) -> bool {
 // (`quad_corner`); corners 4-6 are always the triangle's 0-2. A software
 // rasteriser shades whole blocks of pixels per triangle: a small capsule's two
 // triangles shared most of theirs, while a large one's triangle would cover
-// far more pixels than its rectangle.
+// far more pixels than its rectangle. (A software rasteriser also computes
+// both shapes, whichever is drawn: they share the axis.)
 fn capsule_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32, unit: f32) -> vec2<f32> {
-    if (is_forced_triangle(corner)) {
-        return triangle_corner(corner - 4.0, a, ra, b, rb, margin);
-    }
-    if (is_one_triangle(ra, rb, margin, unit)) {
-        return triangle_corner(min(corner, 2.0), a, ra, b, rb, margin);
-    }
-    return quad_corner(corner, a, ra, b, rb, margin);
+    let axis = axis_of(a, b);
+    let forced = is_forced_triangle(corner);
+    let k = u32(select(min(corner, 2.0), corner - 4.0, forced) + 0.5);
+    let triangle = triangle_corner(k, axis, a, b, max(ra, rb) + margin);
+    let quad = quad_corner(u32(corner + 0.5), axis, a, ra, rb, margin);
+    return select(quad, triangle, forced || is_one_triangle(ra, rb, margin, unit));
 }
 
-// Corner `corner` (0: the apex beyond `b`; 1 and 2: behind `a`, one on each
-// side) of a triangle holding the circles of radius `ra` around `a` and `rb`
-// around `b` (so their hull, a capsule's outline), grown by `margin`. With h
-// the larger radius plus `margin`, its sides are tangent to the circle of
-// radius h around `b` and pass outside the one around `a`, and its base is
-// tangent to that one.
-fn triangle_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32) -> vec2<f32> {
-    let k = u32(corner + 0.5);
-    let along = b - a;
-    let len = length(along);
-    let w = select(vec2<f32>(1.0, 0.0), along / len, len > 1e-12);
-    let u = vec2<f32>(-w.y, w.x);
-    let h = max(ra, rb) + margin;
-    // The apex this far beyond `b`: about the least area (2h for a ball,
-    // the equilateral triangle around it; farther for a longer capsule).
-    let d = 2.0 * h + 0.75 * len;
-    if (k == 0u) {
-        return b + w * d;
-    }
+// How far beyond `b` the apex of `triangle_corner`'s triangle lies, for an
+// axis of length `len` and half width `h`: about the least area (2h for a
+// ball, the equilateral triangle around it; farther for a longer capsule).
+fn apex_distance(len: f32, h: f32) -> f32 {
+    return 2.0 * h + 0.75 * len;
+}
+
+// Corner `k` (0: the apex beyond `b`; 1 and 2: behind `a`, one on each side)
+// of a triangle along `axis` from `a` to `b` holding the circles of radius `h`
+// around both ends (so the hull of any smaller circles there, a capsule's
+// outline grown by a margin). Its sides are tangent to the circle around `b`
+// and pass outside the one around `a`, and its base is tangent to that one.
+fn triangle_corner(k: u32, axis: Axis, a: vec2<f32>, b: vec2<f32>, h: f32) -> vec2<f32> {
+    let d = apex_distance(axis.len, h);
     // The sides leave the axis at the angle whose sine is h / d.
-    let half_width = (len + d + h) * h / sqrt(max(d * d - h * h, 1e-30));
-    return a - w * h + u * half_width * select(-1.0, 1.0, k == 2u);
+    let half_width = (axis.len + d + h) * h / sqrt(max(d * d - h * h, 1e-30));
+    let base = a - axis.w * h + axis.u * half_width * select(-1.0, 1.0, k == 2u);
+    return select(base, b + axis.w * d, k == 0u);
+}
+
+// How much wider than on the view's axis the edge filter's fringe is in ray
+// coordinates around the capsule whose ends' outline bounds are `ea` and `eb`
+// (`sphere_bound`'s). The filter measures how far a pixel's ray passes
+// outside the capsule, across the ray; a ray at angle t off the axis turns
+// that into t's secant times as much in ray coordinates (a secant squared for
+// the angle, times the cosine by which the point is nearer than along the
+// axis), which is at most the secant at the bounds' farthest point. 1 for an
+// orthographic view.
+fn fringe_stretch(ea: vec3<f32>, eb: vec3<f32>) -> f32 {
+    if (!is_perspective()) {
+        return 1.0;
+    }
+    let farthest = max(length(ea.xy) + ea.z, length(eb.xy) + eb.z);
+    return sqrt(1.0 + farthest * farthest);
 }
 
 // Size of one pixel in ray coordinates.
@@ -204,10 +226,13 @@ fn vs_main(v: CapsuleIn) -> Out {
         ray = ray_of_ndc(ndc);
         depth = near * 1.001;
     } else {
-        // A triangle or rectangle (`capsule_corner`) around the axis's image holding both end circles (so
-        // their hull, the capsule's outline), with room for the edge filter
-        // (coverage falls to 0 half a pixel out).
-        let margin = (0.75 - frame.samples.x) * pixel_in_ray_units();
+        // A triangle or rectangle (`capsule_corner`) around the axis's image
+        // holding both end circles (so their hull, the capsule's outline),
+        // with room for the edge filter: coverage falls to 0 half a pixel
+        // out (none in the fast look), which `fringe_stretch` widens, and a
+        // twentieth of a pixel against rounding.
+        let fringe = (0.5 - frame.samples.x) * fringe_stretch(ea, eb) + 0.05;
+        let margin = fringe * pixel_in_ray_units();
         ray = capsule_corner(v.corner, ea.xy, ea.z, eb.xy, eb.z, margin, pixel_in_ray_units());
         // In front of the capsule, behind the near plane.
         depth = max(min(-a.z, -b.z) - r, near * 1.001);
@@ -371,14 +396,13 @@ fn vs_shadow(v: CapsuleIn) -> ShadowOut {
     // other end if the depth stays in range there (the same for the three
     // corners: they compute it from the same capsule). Depths out of range
     // are clamped, which bends the plane.
-    let past_b = axis_plane_depth(triangle_corner(0.0, a.xy, r, b.xy, r, room), a, b, r);
-    let past_a = axis_plane_depth(triangle_corner(0.0, b.xy, r, a.xy, r, room), a, b, r);
+    let axis = axis_of(a.xy, b.xy);
+    let apex = apex_distance(axis.len, r + room);
+    let past_b = axis_plane_depth(b.xy + axis.w * apex, a, b, r);
+    let past_a = axis_plane_depth(a.xy - axis.w * apex, a, b, r);
     let one_triangle = is_forced_triangle(v.corner) || is_one_triangle(r, r, room, room);
     let flip = one_triangle && !in_depth_range(past_b) && in_depth_range(past_a);
-    var xy = capsule_corner(v.corner, a.xy, r, b.xy, r, room, room);
-    if (flip) {
-        xy = capsule_corner(v.corner, b.xy, r, a.xy, r, room, room);
-    }
+    let xy = capsule_corner(v.corner, select(a.xy, b.xy, flip), r, select(b.xy, a.xy, flip), r, room, room);
     var out: ShadowOut;
     out.position = vec4<f32>(xy * per_unit, clamp(axis_plane_depth(xy, a, b, r), 0.0, 1.0), 1.0);
     out.xy = xy;
