@@ -35,6 +35,25 @@ pub(crate) struct FrameUniforms {
     /// Rows z and w of projection × view (clip-space depth and w of a world point).
     pub clip_z: [f32; 4],
     pub clip_w: [f32; 4],
+    /// The view's six planes in view space (normal towards the inside, unit
+    /// length, and offset), see [`view_planes`].
+    pub view_planes: [[f32; 4]; 6],
+}
+
+/// The planes bounding what `projection` shows (left, right, bottom, top,
+/// near, far), in view space: a point `p` is inside where
+/// `dot(n.xyz, p) + n.w >= 0` for every plane `n`, and `dot(n.xyz, p) + n.w`
+/// is its distance from the plane. The capsule shader's `outside_view` (once a
+/// frame here instead of at every corner, where a software rasteriser
+/// computed them for every capsule). A degenerate plane leaves nothing outside.
+fn view_planes(projection: &Mat4) -> [[f32; 4]; 6] {
+    let row = |i| projection.row(i);
+    let (x, y, z, w) = (row(0), row(1), row(2), row(3));
+    // w ± x, w ± y >= 0 (the sides), z >= 0 (near), w - z >= 0 (far).
+    [w + x, w - x, w + y, w - y, z, w - z].map(|n| {
+        let length = n.truncate().length();
+        if length > 0.0 && length.is_finite() { (n / length).to_array() } else { [0.0, 0.0, 0.0, 1.0] }
+    })
 }
 
 /// How impostors' outlines meet the pixels.
@@ -70,6 +89,7 @@ impl FrameUniforms {
             samples: [if outline == OutlineRule::Filtered { 0.0 } else { 0.5 }, 0.0, 0.0, 0.0],
             clip_z: view_proj.row(2).to_array(),
             clip_w: view_proj.row(3).to_array(),
+            view_planes: view_planes(&camera.projection),
             ..Zeroable::zeroed()
         };
         if let Some(g) = grid {
@@ -82,5 +102,36 @@ impl FrameUniforms {
             u.floor_color = crate::color::for_target(g.floor_color, format);
         }
         u
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::{Vec3, Vec4};
+
+    /// The signed distance of view-space `p` from each plane.
+    fn distances(planes: &[[f32; 4]; 6], p: Vec3) -> [f32; 6] {
+        planes.map(|n| Vec4::from_array(n).truncate().dot(p) + n[3])
+    }
+
+    #[test]
+    fn view_planes_bound_what_the_projection_shows_at_true_distances() {
+        // Perspective: 90 degrees tall, square, near 0.1, far 100.
+        let perspective = glam::camera::rh::proj::directx::perspective(std::f32::consts::FRAC_PI_2, 1.0, 0.1, 100.0);
+        let planes = view_planes(&perspective);
+        assert!(distances(&planes, Vec3::new(0.0, 0.0, -5.0)).iter().all(|&d| d > 0.0), "the axis is inside");
+        // 2 units left of the 45-degree left plane at depth 5, and beyond the far plane.
+        let [left, right, ..] = distances(&planes, Vec3::new(-5.0 - 2.0 * 2f32.sqrt(), 0.0, -5.0));
+        assert!((left + 2.0).abs() < 1e-4 && right > 0.0, "{left} {right}");
+        let [.., near, far] = distances(&planes, Vec3::new(0.0, 0.0, -103.0));
+        assert!((far + 3.0).abs() < 1e-3 && near > 0.0, "{near} {far}");
+        assert!(distances(&planes, Vec3::new(0.0, 0.0, 1.0))[4] < 0.0, "behind the eye is outside the near plane");
+        // Orthographic: a box 2 x 2 wide.
+        let ortho = glam::camera::rh::proj::directx::orthographic(-1.0, 1.0, -1.0, 1.0, 0.1, 10.0);
+        let [_, _, bottom, top, ..] = distances(&view_planes(&ortho), Vec3::new(0.0, 1.5, -1.0));
+        assert!((top + 0.5).abs() < 1e-5 && (bottom - 2.5).abs() < 1e-5, "{bottom} {top}");
+        // A degenerate projection leaves nothing outside.
+        assert!(distances(&view_planes(&Mat4::ZERO), Vec3::splat(1e6)).iter().all(|&d| d > 0.0));
     }
 }

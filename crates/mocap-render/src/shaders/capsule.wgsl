@@ -77,18 +77,11 @@ fn sphere_bound(p: vec3<f32>, r: f32) -> vec3<f32> {
 }
 
 // Whether the sphere of view-space centre `c` and radius `r` lies wholly
-// outside the view (beyond one of its planes in clip space).
+// outside the view (beyond one of its planes).
 fn outside_view(c: vec3<f32>, r: f32) -> bool {
-    let p = frame.projection;
-    let x = vec4<f32>(p[0][0], p[1][0], p[2][0], p[3][0]);
-    let y = vec4<f32>(p[0][1], p[1][1], p[2][1], p[3][1]);
-    let z = vec4<f32>(p[0][2], p[1][2], p[2][2], p[3][2]);
-    let w = vec4<f32>(p[0][3], p[1][3], p[2][3], p[3][3]);
-    // w ± x, w ± y >= 0 (the sides), z >= 0 (near), w - z >= 0 (far).
-    let planes = array<vec4<f32>, 6>(w + x, w - x, w + y, w - y, z, w - z);
     for (var i = 0; i < 6; i++) {
-        let n = planes[i];
-        if (dot(n.xyz, c) + n.w < -r * length(n.xyz)) {
+        let n = frame.view_planes[i];
+        if (dot(n.xyz, c) + n.w < -r) {
             return true;
         }
     }

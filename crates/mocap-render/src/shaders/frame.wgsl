@@ -33,6 +33,9 @@ struct Frame {
     // and w in two dot products (the capsule shader needs them at every pixel).
     clip_z: vec4<f32>,
     clip_w: vec4<f32>,
+    // The view's six planes in view space (unit normal towards the inside,
+    // offset): a point p is inside where dot(n.xyz, p) + n.w >= 0 for each.
+    view_planes: array<vec4<f32>, 6>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;
