@@ -126,8 +126,12 @@ pub(crate) struct LightView {
     /// Texels across and down the casters need (with a border), at most the
     /// map size fitted to; even.
     pub texels: [u32; 2],
-    /// Where on the floor the shadows fall: min x, min z, max x, max z.
+    /// Where on the floor the shadows fall, with a margin (what the map is
+    /// fitted to): min x, min z, max x, max z.
     pub floor_rect: [f32; 4],
+    /// The part of the floor the floor's shadow is drawn over
+    /// ([`floor_shadow_rect`]).
+    pub floor_shadow: [f32; 4],
 }
 
 impl LightView {
@@ -137,7 +141,7 @@ impl LightView {
         let half = Vec2::new(size[0] as f32, size[1] as f32) * 0.5 * self.texel;
         let (lo, hi) = (self.center - half, self.center + half);
         let projection = glam::camera::rh::proj::directx::orthographic(lo.x, hi.x, lo.y, hi.y, self.near, self.far);
-        LightFit { view_proj: projection * self.view, texel: self.texel, floor_rect: self.floor_rect }
+        LightFit { view_proj: projection * self.view, texel: self.texel, floor_shadow: self.floor_shadow }
     }
 }
 
@@ -148,8 +152,9 @@ pub(crate) struct LightFit {
     pub view_proj: Mat4,
     /// Size of one shadow-map texel in world units.
     pub texel: f32,
-    /// Where on the floor the shadows fall: min x, min z, max x, max z.
-    pub floor_rect: [f32; 4],
+    /// The part of the floor the floor's shadow is drawn over: min x, min z,
+    /// max x, max z.
+    pub floor_shadow: [f32; 4],
 }
 
 /// The eight corners of the box `min..max`.
@@ -161,19 +166,53 @@ fn corners(min: Vec3, max: Vec3) -> [Vec3; 8] {
 }
 
 /// The rectangle (min x, min z, max x, max z) on the floor at `floor_y` where the
-/// shadows of casters inside `min..max` fall, with a margin for soft edges.
-fn floor_shadow_rect(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
+/// shadows of casters inside `min..max` fall, with a margin for soft edges
+/// (what the map is fitted to; the floor's shadow is drawn over
+/// [`floor_shadow_rect`]).
+fn floor_rect(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
+    let rect = shadows_on_floor(min, max, floor_y);
+    grown(rect, (rect[2] - rect[0]).max(rect[3] - rect[1]) * 0.05)
+}
+
+/// The rectangle on the floor at `floor_y` holding the shadows of casters
+/// inside `min..max`: the box's corners carried along the key light down to
+/// the floor (corners below it stay where they are).
+fn shadows_on_floor(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
     let l = key_light_direction();
-    let (mut lo, mut hi) = (glam::Vec2::splat(f32::INFINITY), glam::Vec2::splat(f32::NEG_INFINITY));
+    let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
     for p in corners(min, max) {
-        // Along the light down to the floor (points below it stay where they are).
         let q = p - l * ((p.y - floor_y).max(0.0) / l.y);
-        let q = glam::Vec2::new(q.x, q.z);
+        let q = Vec2::new(q.x, q.z);
         lo = lo.min(q);
         hi = hi.max(q);
     }
-    let margin = (hi - lo).max_element() * 0.05;
-    [lo.x - margin, lo.y - margin, hi.x + margin, hi.y + margin]
+    [lo.x, lo.y, hi.x, hi.y]
+}
+
+/// `rect` grown by `by` on every side.
+fn grown(rect: [f32; 4], by: f32) -> [f32; 4] {
+    [rect[0] - by, rect[1] - by, rect[2] + by, rect[3] + by]
+}
+
+/// Texels, in the light's view, from the casters to the farthest floor point
+/// whose shadow-map lookups can find them: the lookup point is raised three
+/// texels along the floor's normal (lighting.wgsl) and its four filtered taps
+/// read up to 1.75 texels beyond it; with room.
+const FLOOR_LOOKUP_REACH: f32 = 6.0;
+
+/// The part of the floor at `floor_y` the floor's shadow is drawn over
+/// (floor.wgsl's `vs_shadow`), for casters inside `min..max` and a map of
+/// `texel`-unit texels: where their shadows fall, grown by as far as the
+/// lookups reach (a distance in the light's view is up to 1 / y of the light's
+/// direction as long on the floor), within `fitted` (the rectangle the map was
+/// fitted to). Every floor point outside it is lit, so drawing it there changed
+/// nothing, and on a software rasteriser each such pixel cost four lookups: the
+/// rectangle the map is fitted to has a margin of a twentieth of its size
+/// on each side (about a fifth more floor at 64 characters).
+fn floor_shadow_rect(min: Vec3, max: Vec3, floor_y: f32, texel: f32, fitted: [f32; 4]) -> [f32; 4] {
+    let reach = FLOOR_LOOKUP_REACH * texel / key_light_direction().y;
+    let [x0, z0, x1, z1] = grown(shadows_on_floor(min, max, floor_y), reach);
+    [x0.max(fitted[0]), z0.max(fitted[1]), x1.min(fitted[2]), z1.min(fitted[3])]
 }
 
 /// How large a screen pixel is, in world units, at each distance from the eye:
@@ -236,7 +275,7 @@ pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32, p
     let view = glam::camera::rh::view::look_at_mat4(center + l * radius * 2.0, center, Vec3::Y);
     // The box's corners and, on the floor, the far end of the shadows they cast:
     // floor points there lie farther from the light than the box.
-    let floor_rect = floor_shadow_rect(min, max, floor_y);
+    let floor_rect = floor_rect(min, max, floor_y);
     let [x0, z0, x1, z1] = floor_rect;
     let floor = [Vec3::new(x0, floor_y, z0), Vec3::new(x1, floor_y, z0), Vec3::new(x0, floor_y, z1), Vec3::new(x1, floor_y, z1)];
     let bounds = |points: &mut dyn Iterator<Item = Vec3>| {
@@ -263,7 +302,8 @@ pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32, p
     // View space looks down -Z: depths are -z.
     let depth = b.z - a.z;
     let (near, far) = (-b.z - depth * 0.05 - 1e-3, -a.z + depth * 0.05 + 1e-3);
-    Some(LightView { view, center, near, far, texel, texels, floor_rect })
+    let floor_shadow = floor_shadow_rect(min, max, floor_y, texel, floor_rect);
+    Some(LightView { view, center, near, far, texel, texels, floor_rect, floor_shadow })
 }
 
 #[cfg(test)]
@@ -290,7 +330,7 @@ mod tests {
         // The floor under the far end of the shadow of the box's top lies in
         // the depth range, behind that top, on the same texel.
         let rect = view.floor_rect;
-        assert_eq!(rect, floor_shadow_rect(min, max, -0.1));
+        assert_eq!(rect, floor_rect(min, max, -0.1));
         let l = key_light_direction();
         for top in corners(min, max).into_iter().filter(|p| p.y == max.y) {
             let shadow = top - l * ((top.y + 0.1) / l.y);
@@ -301,6 +341,73 @@ mod tests {
         }
         // Higher points are closer to the light.
         assert!(m.project_point3(Vec3::new(0.0, 1.8, 0.0)).z < m.project_point3(Vec3::new(0.0, 0.0, 0.0)).z);
+    }
+
+    #[test]
+    fn the_floors_shadow_is_drawn_wherever_a_lookup_can_find_a_caster() {
+        // A crowd on a floor a little below its feet, and a small box high up.
+        for (min, max, floor_y) in [(Vec3::new(-10.6, 0.0, -8.3), Vec3::new(10.9, 1.6, 8.0), -0.05), (Vec3::new(0.2, 2.0, -0.3), Vec3::new(0.5, 2.2, 0.1), 0.0)] {
+            let view = fit_light(min, max, Some(floor_y), SIZE, None).unwrap();
+            let (texel, drawn, fitted) = (view.texel, view.floor_shadow, view.floor_rect);
+            assert!(drawn[0] >= fitted[0] && drawn[1] >= fitted[1] && drawn[2] <= fitted[2] && drawn[3] <= fitted[3], "{drawn:?} in {fitted:?}");
+            // Smaller than the fitted rectangle, which has a margin of a twentieth.
+            let area = |r: [f32; 4]| (r[2] - r[0]) * (r[3] - r[1]);
+            assert!(area(drawn) < area(fitted) * 0.9, "{drawn:?} vs {fitted:?}");
+            // The casters' box in the light's view (x, y): the convex hull of
+            // its corners there, anticlockwise.
+            let to_light = |p: Vec3| view.view.transform_point3(p).truncate();
+            let hull = convex_hull(corners(min, max).map(to_light));
+            // Floor points on a fine grid around the fitted rectangle: each
+            // whose lookup (raised three texels, as lighting.wgsl) may read a
+            // caster's texel lies where the shadow is drawn.
+            let mut reached = 0;
+            for i in 0..=400 {
+                for j in 0..=400 {
+                    let x = fitted[0] - 1.0 + (fitted[2] - fitted[0] + 2.0) * i as f32 / 400.0;
+                    let z = fitted[1] - 1.0 + (fitted[3] - fitted[1] + 2.0) * j as f32 / 400.0;
+                    let q = to_light(Vec3::new(x, floor_y, z) + Vec3::Y * texel * 3.0);
+                    // How far a lookup reads around its point: the taps 0.75
+                    // texel out and their bilinear texel.
+                    if distance_to_polygon(q, &hull) <= 1.75 * texel {
+                        reached += 1;
+                        assert!(x >= drawn[0] && x <= drawn[2] && z >= drawn[1] && z <= drawn[3], "({x}, {z}) reaches a caster outside {drawn:?}");
+                    }
+                }
+            }
+            assert!(reached > 1000, "{reached}");
+        }
+    }
+
+    /// The convex hull of `points`, anticlockwise (gift wrapping).
+    fn convex_hull(points: [Vec2; 8]) -> Vec<Vec2> {
+        let start = points.iter().copied().fold(points[0], |a, p| if (p.x, p.y) < (a.x, a.y) { p } else { a });
+        let mut hull = vec![start];
+        loop {
+            let last = hull[hull.len() - 1];
+            // The next corner: every point lies left of last -> next.
+            let next = points.iter().copied().filter(|&p| p != last).fold(None, |best: Option<Vec2>, p| match best {
+                Some(b) if (b - last).perp_dot(p - last) >= 0.0 => Some(b),
+                _ => Some(p),
+            });
+            match next {
+                Some(n) if n != start && hull.len() < 9 => hull.push(n),
+                _ => return hull,
+            }
+        }
+    }
+
+    /// The distance from `q` to the convex polygon `hull` (anticlockwise); 0 inside.
+    fn distance_to_polygon(q: Vec2, hull: &[Vec2]) -> f32 {
+        let edges = hull.iter().zip(hull.iter().cycle().skip(1));
+        if edges.clone().all(|(&a, &b)| (b - a).perp_dot(q - a) >= 0.0) {
+            return 0.0;
+        }
+        edges
+            .map(|(&a, &b)| {
+                let t = ((q - a).dot(b - a) / (b - a).length_squared().max(1e-12)).clamp(0.0, 1.0);
+                q.distance(a + (b - a) * t)
+            })
+            .fold(f32::INFINITY, f32::min)
     }
 
     #[test]

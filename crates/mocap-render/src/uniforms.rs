@@ -27,7 +27,8 @@ pub(crate) struct FrameUniforms {
     pub floor_minor: [f32; 4],
     pub floor_major: [f32; 4],
     pub floor_color: [f32; 4],
-    /// Floor area under the shadow casters: min x, min z, max x, max z.
+    /// The part of the floor its shadow is drawn over: min x, min z, max x,
+    /// max z (see `shadow::floor_shadow_rect`).
     pub shadow_rect: [f32; 4],
     /// The least coverage of a pixel an impostor's outline draws (see
     /// [`OutlineRule`]).
@@ -75,7 +76,7 @@ impl FrameUniforms {
         let eye = camera.eye().extend(0.0);
         let view_proj = camera.projection * camera.view;
         let (light_view_proj, texel, strength, shadow_rect) = match light {
-            Some(fit) => (fit.view_proj, fit.texel, 1.0, fit.floor_rect),
+            Some(fit) => (fit.view_proj, fit.texel, 1.0, fit.floor_shadow),
             None => (Mat4::IDENTITY, 0.0, 0.0, [0.0; 4]),
         };
         let mut u = FrameUniforms {

@@ -1,7 +1,8 @@
 // The floor: one quad on the plane y = floor height, with anti-aliased grid lines
 // and a fade to the background with distance; then the key light's soft shadow as
-// a second quad covering only the shadow map's footprint, multiplied over it (so
-// the shadow lookups, costly on software rasterisers, run only where needed).
+// a second quad covering only the floor where a lookup can find a caster
+// (`frame.shadow_rect`), multiplied over it (so the shadow lookups, costly on
+// software rasterisers, run only where needed).
 // `Frame`, `frame` and `key_visibility` come from frame.wgsl and lighting.wgsl.
 
 struct Out {

@@ -22,7 +22,8 @@ struct Frame {
     floor_minor: vec4<f32>,
     floor_major: vec4<f32>,
     floor_color: vec4<f32>,
-    // The floor area the shadow map covers: min x, min z, max x, max z.
+    // The part of the floor its shadow is drawn over (where a lookup can
+    // find a caster, see shadow.rs): min x, min z, max x, max z.
     shadow_rect: vec4<f32>,
     // x: the least coverage of a pixel an outline draws: 0 where outlines are
     // filtered (coverage becomes samples on a multisampled target, and is
