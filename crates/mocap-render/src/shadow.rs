@@ -165,13 +165,11 @@ fn corners(min: Vec3, max: Vec3) -> [Vec3; 8] {
     })
 }
 
-/// The rectangle (min x, min z, max x, max z) on the floor at `floor_y` where the
-/// shadows of casters inside `min..max` fall, with a margin for soft edges
-/// (what the map is fitted to; the floor's shadow is drawn over
-/// [`floor_shadow_rect`]).
-fn floor_rect(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
-    let rect = shadows_on_floor(min, max, floor_y);
-    grown(rect, (rect[2] - rect[0]).max(rect[3] - rect[1]) * 0.05)
+/// The rectangle (min x, min z, max x, max z) on the floor holding `shadows`
+/// ([`shadows_on_floor`]), with a margin for soft edges: what the map is
+/// fitted to (the floor's shadow is drawn over [`floor_shadow_rect`]).
+fn floor_rect(shadows: [f32; 4]) -> [f32; 4] {
+    grown(shadows, (shadows[2] - shadows[0]).max(shadows[3] - shadows[1]) * 0.05)
 }
 
 /// The rectangle on the floor at `floor_y` holding the shadows of casters
@@ -200,18 +198,18 @@ fn grown(rect: [f32; 4], by: f32) -> [f32; 4] {
 /// read up to 1.75 texels beyond it; with room.
 const FLOOR_LOOKUP_REACH: f32 = 6.0;
 
-/// The part of the floor at `floor_y` the floor's shadow is drawn over
-/// (floor.wgsl's `vs_shadow`), for casters inside `min..max` and a map of
-/// `texel`-unit texels: where their shadows fall, grown by as far as the
-/// lookups reach (a distance in the light's view is up to 1 / y of the light's
-/// direction as long on the floor), within `fitted` (the rectangle the map was
-/// fitted to). Every floor point outside it is lit, so drawing it there changed
+/// The part of the floor the floor's shadow is drawn over (floor.wgsl's
+/// `vs_shadow`), for casters whose shadows fall in `shadows`
+/// ([`shadows_on_floor`]) and a map of `texel`-unit texels: `shadows` grown
+/// by as far as the lookups reach (a distance in the light's view is up to
+/// 1 / y of the light's direction as long on the floor), within `fitted` (the
+/// rectangle the map was fitted to). Every floor point outside it is lit, so drawing it there changed
 /// nothing, and on a software rasteriser each such pixel cost four lookups: the
 /// rectangle the map is fitted to has a margin of a twentieth of its size
 /// on each side (about a fifth more floor at 64 characters).
-fn floor_shadow_rect(min: Vec3, max: Vec3, floor_y: f32, texel: f32, fitted: [f32; 4]) -> [f32; 4] {
+fn floor_shadow_rect(shadows: [f32; 4], texel: f32, fitted: [f32; 4]) -> [f32; 4] {
     let reach = FLOOR_LOOKUP_REACH * texel / key_light_direction().y;
-    let [x0, z0, x1, z1] = grown(shadows_on_floor(min, max, floor_y), reach);
+    let [x0, z0, x1, z1] = grown(shadows, reach);
     [x0.max(fitted[0]), z0.max(fitted[1]), x1.min(fitted[2]), z1.min(fitted[3])]
 }
 
@@ -275,7 +273,8 @@ pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32, p
     let view = glam::camera::rh::view::look_at_mat4(center + l * radius * 2.0, center, Vec3::Y);
     // The box's corners and, on the floor, the far end of the shadows they cast:
     // floor points there lie farther from the light than the box.
-    let floor_rect = floor_rect(min, max, floor_y);
+    let shadows = shadows_on_floor(min, max, floor_y);
+    let floor_rect = floor_rect(shadows);
     let [x0, z0, x1, z1] = floor_rect;
     let floor = [Vec3::new(x0, floor_y, z0), Vec3::new(x1, floor_y, z0), Vec3::new(x0, floor_y, z1), Vec3::new(x1, floor_y, z1)];
     let bounds = |points: &mut dyn Iterator<Item = Vec3>| {
@@ -302,7 +301,7 @@ pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32, p
     // View space looks down -Z: depths are -z.
     let depth = b.z - a.z;
     let (near, far) = (-b.z - depth * 0.05 - 1e-3, -a.z + depth * 0.05 + 1e-3);
-    let floor_shadow = floor_shadow_rect(min, max, floor_y, texel, floor_rect);
+    let floor_shadow = floor_shadow_rect(shadows, texel, floor_rect);
     Some(LightView { view, center, near, far, texel, texels, floor_rect, floor_shadow })
 }
 
@@ -330,7 +329,7 @@ mod tests {
         // The floor under the far end of the shadow of the box's top lies in
         // the depth range, behind that top, on the same texel.
         let rect = view.floor_rect;
-        assert_eq!(rect, floor_rect(min, max, -0.1));
+        assert_eq!(rect, floor_rect(shadows_on_floor(min, max, -0.1)));
         let l = key_light_direction();
         for top in corners(min, max).into_iter().filter(|p| p.y == max.y) {
             let shadow = top - l * ((top.y + 0.1) / l.y);
