@@ -140,9 +140,8 @@ fn is_forced_triangle(corner: f32) -> bool {
 // rasteriser shades whole blocks of pixels per triangle: a small capsule's two
 // triangles shared most of theirs, while a large one's triangle would cover
 // far more pixels than its rectangle. (A software rasteriser also computes
-// both shapes, whichever is drawn: they share the axis.)
-fn capsule_corner(corner: f32, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32, unit: f32) -> vec2<f32> {
-    let axis = axis_of(a, b);
+// both shapes, whichever is drawn: they share `axis`, `axis_of(a, b)`.)
+fn capsule_corner(corner: f32, axis: Axis, a: vec2<f32>, ra: f32, b: vec2<f32>, rb: f32, margin: f32, unit: f32) -> vec2<f32> {
     let forced = is_forced_triangle(corner);
     let k = u32(select(min(corner, 2.0), corner - 4.0, forced) + 0.5);
     let triangle = triangle_corner(k, axis, a, b, max(ra, rb) + margin);
@@ -226,7 +225,7 @@ fn vs_main(v: CapsuleIn) -> Out {
         // twentieth of a pixel against rounding.
         let fringe = (0.5 - frame.samples.x) * fringe_stretch(ea, eb) + 0.05;
         let margin = fringe * pixel_in_ray_units();
-        ray = capsule_corner(v.corner, ea.xy, ea.z, eb.xy, eb.z, margin, pixel_in_ray_units());
+        ray = capsule_corner(v.corner, axis_of(ea.xy, eb.xy), ea.xy, ea.z, eb.xy, eb.z, margin, pixel_in_ray_units());
         // In front of the capsule, behind the near plane.
         depth = max(min(-a.z, -b.z) - r, near * 1.001);
     }
@@ -395,7 +394,12 @@ fn vs_shadow(v: CapsuleIn) -> ShadowOut {
     let past_a = axis_plane_depth(a.xy - axis.w * apex, a, b, r);
     let one_triangle = is_forced_triangle(v.corner) || is_one_triangle(r, r, room, room);
     let flip = one_triangle && !in_depth_range(past_b) && in_depth_range(past_a);
-    let xy = capsule_corner(v.corner, select(a.xy, b.xy, flip), r, select(b.xy, a.xy, flip), r, room, room);
+    // Flipped, the shape runs from `b` to `a`: the same axis reversed.
+    var along = axis;
+    if (flip) {
+        along = Axis(-axis.w, -axis.u, axis.len);
+    }
+    let xy = capsule_corner(v.corner, along, select(a.xy, b.xy, flip), r, select(b.xy, a.xy, flip), r, room, room);
     var out: ShadowOut;
     out.position = vec4<f32>(xy * per_unit, clamp(axis_plane_depth(xy, a, b, r), 0.0, 1.0), 1.0);
     out.xy = xy;
