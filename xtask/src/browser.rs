@@ -136,7 +136,7 @@ pub fn bench() -> Result<(), String> {
     let chromium = setup::chromium()?;
     setup::playwright()?;
     let file = corpus_dir().map(|c| c.join(BENCH_FILE)).filter(|f| f.is_file());
-    println!("transfer size: {} bytes gzipped (wasm + js + html + css; aim <= {} = 2.0 MiB)", crate::dist::download_size(&dist), crate::dist::DOWNLOAD_AIM);
+    println!("transfer size: {} bytes gzipped (wasm + js + html + css; aim <= {} = 2.0 MB)", crate::dist::download_size(&dist), crate::dist::DOWNLOAD_AIM);
     let url = spawn_server(dist.clone())?;
     let mut cmd = node("bench.mjs");
     cmd.args([url.as_str()]).arg(&chromium);

@@ -43,6 +43,7 @@ pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
     if uses_size_flags(toolchain, fast) {
         rustflags.push(' ');
         rustflags.push_str(SIZE_FLAGS);
+        cargo.arg(STD_SIZE_FEATURES);
     }
     cargo.env("CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS", rustflags);
     cargo
@@ -86,6 +87,16 @@ pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
 ///   message. The page installs no panic hook, so a message was never shown:
 ///   the browser reports "unreachable" either way.
 const SIZE_FLAGS: &str = "-Zfmt-debug=shallow -Zlocation-detail=none -Zunstable-options -Cpanic=immediate-abort";
+
+/// The standard library built for size where it is built from source (with
+/// [`SIZE_FLAGS`]): `optimize_for_size` swaps std's sorts for a merge sort
+/// (stable) and a heapsort (unstable), both O(n log n), instead of driftsort and
+/// ipnsort, each monomorphised per element type, and picks smaller integer
+/// formatting, string escaping and slice rotation. The core's hot float parsing
+/// is its own (`decimal.rs`, fast_float2), so std's float parser losing its fast
+/// path costs only header numbers. Measured on the web-release wasm, gzipped:
+/// 2,046,971 -> 1,998,030 bytes.
+const STD_SIZE_FEATURES: &str = "-Zbuild-std-features=optimize_for_size";
 
 /// Whether a build with `toolchain` gets [`SIZE_FLAGS`] (release builds with std
 /// built from source).
@@ -166,8 +177,10 @@ fn wasm_opt_version(wasm_opt: &Path) -> u32 {
     crate::util::output(Command::new(wasm_opt).arg("--version")).and_then(|v| v.split_whitespace().nth(2).and_then(|n| n.parse::<u32>().ok())).unwrap_or(0)
 }
 
-/// Most the page may weigh, gzipped: 2.0 MiB (issue 14's aim for the download).
-pub const DOWNLOAD_AIM: u64 = 2 * 1024 * 1024;
+/// Most the page may weigh, gzipped: 2.0 MB (issue 14's aim for the download),
+/// read as the stricter decimal 2,000,000 bytes, which is also under 2.0 MiB
+/// (2,097,152), the unit of the issue's "today 2.32 MiB".
+pub const DOWNLOAD_AIM: u64 = 2_000_000;
 
 /// The page's download, gzipped (`gzip -9 -n`): every wasm, JavaScript, HTML and CSS
 /// file in `dist` (the API examples' pages too). `bench-web` prints it and
