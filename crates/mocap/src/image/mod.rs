@@ -1,8 +1,10 @@
 //! Images the formats refer to (model skins): decoded to RGBA8 in memory by
 //! [`decode`]. [`pcx`] reads ZSoft PCX, the Quake 2 skin format, which no well-kept
-//! image crate reads; BMP, PNG and JPEG come from the `image` crate. The format is
+//! image crate reads; [`jpeg`] calls zune-jpeg; BMP and PNG come from the `image`
+//! crate. The format is
 //! found from the content ([`ImageFormat::detect`]), never from the extension alone.
 
+pub mod jpeg;
 pub mod pcx;
 
 use crate::error::ParseError;
@@ -74,7 +76,7 @@ pub fn decode(format: ImageFormat, bytes: &[u8]) -> Result<Rgba, ParseError> {
         ImageFormat::Pcx => return pcx::decode(bytes),
         ImageFormat::Bmp => ::image::ImageFormat::Bmp,
         ImageFormat::Png => ::image::ImageFormat::Png,
-        ImageFormat::Jpeg => ::image::ImageFormat::Jpeg,
+        ImageFormat::Jpeg => return jpeg::decode(bytes),
     };
     let mut reader = ::image::ImageReader::with_format(std::io::Cursor::new(bytes), kind);
     let mut limits = ::image::Limits::default();
