@@ -426,8 +426,9 @@ impl AppRunner {
                     super::set_clipboard_text(&text);
                 }
                 egui::OutputCommand::TextSelectionSettled(_) => {} // No PRIMARY selection on web
-                egui::OutputCommand::CopyImage(image) => {
-                    super::set_clipboard_image(&image);
+                // Vendored change: images are not copied (see VENDORED.md).
+                egui::OutputCommand::CopyImage(_) => {
+                    log::warn!("copying an image to the clipboard is not supported in this build");
                 }
                 egui::OutputCommand::OpenUrl(open_url) => {
                     super::open_url(&open_url.url, open_url.new_tab);
