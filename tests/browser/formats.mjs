@@ -9,7 +9,7 @@
 // - a Quake 2 MD2 model dropped with its skin opens as one character with its
 //   animations; picking one plays it (the picture changes while it plays) and the
 //   skin's colours are on screen (not without the skin); ?url=model&url=skin#anim=
-//   opens the pair on that animation.
+//   opens the pair on that animation; a JPEG skin works as the BMP one does.
 import fs from 'node:fs';
 import path from 'node:path';
 import { launch, state, waitState, waitFrames, changeAndRender, decodePng, dropFiles, waitDropped, view3d, reporter } from './common.mjs';
@@ -140,6 +140,27 @@ try {
     check(s2.clips[0].modelFrame >= 40 && s2.clips[0].modelFrame <= 45 && /^run/.test(s2.clips[0].frameName), 'the frames drawn are the run frames');
     check(moved.changed > 100, `the picture changes while it plays (${moved.changed} pixels)`);
     await page.screenshot({ path: shot('md2-page') });
+  });
+
+  await step('an MD2 model dropped with a JPEG skin is drawn with it', async () => {
+    // The BMP skin re-encoded as JPEG by the browser (the project has no JPEG
+    // skin of its own, and the corpus none).
+    const bmp = [...read(md2('irrlicht_faerie/faerie2.bmp'))];
+    const jpeg = await page.evaluate(async (bytes) => {
+      const bitmap = await createImageBitmap(new Blob([new Uint8Array(bytes)], { type: 'image/bmp' }));
+      const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
+      canvas.getContext('2d').drawImage(bitmap, 0, 0);
+      const blob = await canvas.convertToBlob({ type: 'image/jpeg', quality: 0.9 });
+      return [...new Uint8Array(await blob.arrayBuffer())];
+    }, bmp);
+    check(jpeg[0] === 0xff && jpeg[1] === 0xd8, `the browser made a JPEG (${jpeg.length} bytes)`);
+    await dropFiles(page, [{ name: 'faerie.md2', bytes: read(md2('irrlicht_faerie/faerie.md2')) }, { name: 'faerie2.jpg', bytes: Buffer.from(jpeg) }]);
+    const s = await waitDropped(page, 'faerie2.jpg');
+    check(s.error === null && s.clips.length === 1 && s.clips[0].skin === 'faerie2.jpg', `the JPEG skin is used (${s.clips[0] && s.clips[0].skin}, ${s.error})`);
+    await changeAndRender(page, (v) => { v.pause(); v.seek(0); });
+    const still = await view3d(page, shot('md2-jpeg'));
+    const px = await pixels(context, still, plain);
+    check(px.saturated > 400, `the JPEG skin's colours are on screen (${px.saturated} strongly coloured pixels)`);
   });
 
   await step('?url=model.md2&url=skin.pcx#anim=1:run opens the pair on that animation', async () => {
