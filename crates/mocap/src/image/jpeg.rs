@@ -32,7 +32,7 @@ pub fn decode(bytes: &[u8]) -> Result<Rgba, ParseError> {
     let output = output_colorspace(input);
     decoder.set_options(options.jpeg_set_out_colorspace(output));
     let pixels = decoder.decode().map_err(zune)?;
-    let rgba = to_rgba(&pixels, output.num_components()).ok_or_else(|| fail("the decoder gave an unexpected pixel layout"))?;
+    let rgba = to_rgba(pixels, output.num_components()).ok_or_else(|| fail("the decoder gave an unexpected pixel layout"))?;
     if rgba.len() != width as usize * height as usize * 4 {
         return Err(fail("the decoded pixels do not fill the image"));
     }
@@ -52,13 +52,14 @@ fn output_colorspace(input: ColorSpace) -> ColorSpace {
 }
 
 /// `pixels` of `components` bytes each (1 grey, 2 grey + alpha, 3 RGB, 4 RGBA)
-/// as RGBA8; `None` for another count or a length that is not whole pixels.
-fn to_rgba(pixels: &[u8], components: usize) -> Option<Vec<u8>> {
+/// as RGBA8 (RGBA as it is); `None` for another count or a length that is not
+/// whole pixels.
+fn to_rgba(pixels: Vec<u8>, components: usize) -> Option<Vec<u8>> {
     if components == 0 || components > 4 || !pixels.len().is_multiple_of(components) {
         return None;
     }
     if components == 4 {
-        return Some(pixels.to_vec());
+        return Some(pixels);
     }
     let mut out = Vec::with_capacity(pixels.len() / components * 4);
     for p in pixels.chunks_exact(components) {
@@ -79,13 +80,13 @@ mod tests {
 
     #[test]
     fn every_layout_becomes_rgba() {
-        assert_eq!(to_rgba(&[7, 9], 1), Some(vec![7, 7, 7, 255, 9, 9, 9, 255]));
-        assert_eq!(to_rgba(&[7, 9], 2), Some(vec![7, 7, 7, 9]));
-        assert_eq!(to_rgba(&[1, 2, 3], 3), Some(vec![1, 2, 3, 255]));
-        assert_eq!(to_rgba(&[1, 2, 3, 4], 4), Some(vec![1, 2, 3, 4]));
-        assert_eq!(to_rgba(&[1, 2, 3, 4], 3), None);
-        assert_eq!(to_rgba(&[1], 0), None);
-        assert_eq!(to_rgba(&[1; 5], 5), None);
+        assert_eq!(to_rgba(vec![7, 9], 1), Some(vec![7, 7, 7, 255, 9, 9, 9, 255]));
+        assert_eq!(to_rgba(vec![7, 9], 2), Some(vec![7, 7, 7, 9]));
+        assert_eq!(to_rgba(vec![1, 2, 3], 3), Some(vec![1, 2, 3, 255]));
+        assert_eq!(to_rgba(vec![1, 2, 3, 4], 4), Some(vec![1, 2, 3, 4]));
+        assert_eq!(to_rgba(vec![1, 2, 3, 4], 3), None);
+        assert_eq!(to_rgba(vec![1], 0), None);
+        assert_eq!(to_rgba(vec![1; 5], 5), None);
     }
 
     #[test]
