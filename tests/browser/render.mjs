@@ -76,7 +76,7 @@ try {
     await page.keyboard.press('m');
     await waitState(page, (s) => s.drawMode === 'sticks');
     const s = await changeAndRender(page, (v) => v.seek(31));
-    check(s.samples === 4 && !s.reduced, `lines and joint balls are multisampled (${s.samples} samples)`);
+    check(s.samples === 1 && !s.reduced, `lines and joint balls: full quality on one sample, outlines blended (${s.samples} samples)`);
     const sticks = await view(page, shot('sticks'));
     const [a, b] = [await pixelStats(context, capsules), await pixelStats(context, sticks)];
     check(b.figure < a.figure, `sticks cover fewer pixels than capsules (${b.figure} < ${a.figure})`);
@@ -87,7 +87,8 @@ try {
   await step('the m key again switches to the body, then back to capsules', async () => {
     await page.keyboard.press('m');
     const s = await waitState(page, (s) => s.drawMode === 'body');
-    await changeAndRender(page, (v) => v.seek(30));
+    const sb = await changeAndRender(page, (v) => v.seek(30));
+    check(sb.samples === 4 && !sb.reduced, `the body (a mesh) is multisampled (${sb.samples} samples)`);
     const body = await view(page, shot('body'));
     const [a, b] = [await pixelStats(context, capsules), await pixelStats(context, body)];
     check(b.figure > a.figure, `the body covers more pixels than the capsules (${b.figure} > ${a.figure})`);

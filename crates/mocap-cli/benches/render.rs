@@ -18,7 +18,7 @@
 //!
 //! "frame" is a whole frame as a window would show it: pose every character,
 //! build the primitives, draw (shadow map + scene; 4× MSAA where the scene needs
-//! it, one sample with blended outlines for capsules, as
+//! it, one sample with blended outlines for capsules, lines and spheres, as
 //! `SceneRenderer::samples_for` says) and wait for the GPU; the median of five
 //! runs of 20 frames, and the best run.
 //! "+ readback" adds copying the pixels back to memory, as `mocap render` does.

@@ -13,7 +13,8 @@ use std::sync::Arc;
 /// Colour format of the offscreen target (sRGB, read back as RGBA8).
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// Multisampling for anti-aliasing, for scenes that need it
-/// (`SceneRenderer::samples_for`: capsule-only scenes are smooth on one sample).
+/// (`SceneRenderer::samples_for`: scenes without meshes or bodies are smooth on
+/// one sample).
 const SAMPLES: u32 = 4;
 /// Vertical field of view, radians.
 const FOV_Y: f32 = 0.8;

@@ -25,6 +25,8 @@ pub(crate) struct PipelineSpec<'a> {
     pub fast_look: bool,
     /// The shaders' `SHADOWS` constant (lighting.wgsl).
     pub shadows: bool,
+    /// The shaders' `BLEND_OUTLINES` constant (frame.wgsl).
+    pub blend_outlines: bool,
     /// The colour channels written (none: depth only, in a pass with colour).
     pub color_writes: wgpu::ColorWrites,
 }
@@ -39,7 +41,12 @@ pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: 
     // frame.wgsl and lighting.wgsl: the shaders encode sRGB for plain unorm targets.
     let encode_srgb = spec.color.is_some_and(|(format, _)| !format.is_srgb());
     let flag = |on: bool| if on { 1.0 } else { 0.0 };
-    let constants = [("FAST_LOOK", flag(spec.fast_look)), ("SHADOWS", flag(spec.shadows)), ("ENCODE_SRGB", flag(encode_srgb))];
+    let constants = [
+        ("FAST_LOOK", flag(spec.fast_look)),
+        ("SHADOWS", flag(spec.shadows)),
+        ("ENCODE_SRGB", flag(encode_srgb)),
+        ("BLEND_OUTLINES", flag(spec.blend_outlines)),
+    ];
     let options = || wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
     let targets = [spec.color.map(|(format, blend)| wgpu::ColorTargetState {
         format,

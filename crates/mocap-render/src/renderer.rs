@@ -32,10 +32,13 @@ use glam::Vec3;
 /// multisampled target their coverage (computed from each pixel's ray) is
 /// turned into samples; on a single-sampled target it is the alpha the pixel
 /// is blended with, and the capsules are drawn farthest first, so that an
-/// outline's fringe is blended over what lies behind it. So a scene
-/// whose every primitive is smooth on one sample
-/// ([`Scene::smooth_on_one_sample`]: capsules and the floor) is drawn at full
-/// quality into a single-sampled target, without the cost of multisampling.
+/// outline's fringe is blended over what lies behind it. Lines and spheres
+/// are filtered the same way on a single-sampled target (a pixel's coverage
+/// by the line's strip or the sphere's disc; each drawn farthest first, the
+/// lines before the spheres). So a scene whose every primitive is smooth on
+/// one sample ([`Scene::smooth_on_one_sample`]: all but meshes and bodies) is
+/// drawn at full quality into a single-sampled target, without the cost of
+/// multisampling.
 pub struct SceneRenderer {
     format: wgpu::TextureFormat,
     sample_count: u32,
@@ -104,8 +107,8 @@ struct PipelineKey {
 }
 
 impl PipelineKey {
-    /// Whether capsule outlines are blended by their coverage (drawn farthest
-    /// first): full quality on one sample.
+    /// Whether capsule, line and sphere outlines are blended by their
+    /// coverage (drawn farthest first): full quality on one sample.
     fn blends_outlines(self) -> bool {
         self.samples == 1 && !self.fast_look
     }
@@ -360,13 +363,16 @@ impl SceneRenderer {
             pass.set_pipeline(&pipelines.skinned);
             self.draw_calls += self.skinned.draw(&mut pass);
         }
-        if let Some((buffer, count)) = self.spheres.get() {
-            pass.set_pipeline(&pipelines.spheres);
-            pass.set_vertex_buffer(0, buffer.slice(..));
-            pass.draw(0..6, 0..count);
-            self.draw_calls += 1;
+        // Blended outlines: the lines first, so that a joint's fringe is
+        // blended over the bones entering it (else a bone's line behind a
+        // joint's fringe would be hidden by the fringe's depth).
+        if key.blends_outlines() {
+            self.draw_calls += draw_lines(&mut pass, &pipelines.lines, &self.lines);
+            self.draw_calls += draw_spheres(&mut pass, &pipelines.spheres, &self.spheres);
+        } else {
+            self.draw_calls += draw_spheres(&mut pass, &pipelines.spheres, &self.spheres);
+            self.draw_calls += draw_lines(&mut pass, &pipelines.lines, &self.lines);
         }
-        self.draw_calls += draw_lines(&mut pass, &pipelines.lines, &self.lines);
         self.draw_calls += draw_lines(&mut pass, &pipelines.overlay_lines, &self.overlay_lines);
     }
 
@@ -466,14 +472,22 @@ impl SceneRenderer {
     fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget, scene: &Scene, camera: &Camera) -> (bool, FrameUniforms) {
         let size = target.size();
         let ppp = self.pixels_per_point;
+        // Blended outlines need what lies behind them drawn first.
+        let farthest_first = self.key_for(target.sample_count(), false).blends_outlines();
         self.line_scratch.clear();
         self.line_scratch.extend(scene.lines.iter().map(|l| LineInstance::new(l, ppp)));
+        if farthest_first {
+            sort_farthest_first(&mut self.line_scratch, camera, |l| (Vec3::from(l.a) + Vec3::from(l.b)) * 0.5);
+        }
         self.lines.upload(device, queue, &self.line_scratch);
         self.line_scratch.clear();
         self.line_scratch.extend(scene.overlay_lines.iter().map(|l| LineInstance::new(l, ppp)));
         self.overlay_lines.upload(device, queue, &self.line_scratch);
         self.sphere_scratch.clear();
         self.sphere_scratch.extend(scene.spheres.iter().map(SphereInstance::new));
+        if farthest_first {
+            sort_farthest_first(&mut self.sphere_scratch, camera, |s| Vec3::from(s.center));
+        }
         // The casters that are not drawn lit (the lit capsules cast too):
         // spheres (capsules of zero length) and capsules that only cast.
         let spheres = scene.spheres.iter().map(|s| (s.center, s.center, s.radius));
@@ -542,6 +556,34 @@ impl SceneRenderer {
         }
         capsules.upload(device, queue);
         (light.is_some(), uniforms)
+    }
+}
+
+/// Draws the uploaded `spheres` with `pipeline`; returns the draw calls made.
+fn draw_spheres<'a>(pass: &mut wgpu::RenderPass<'a>, pipeline: &'a wgpu::RenderPipeline, spheres: &'a GrowingBuffer) -> u32 {
+    let Some((buffer, count)) = spheres.get() else { return 0 };
+    pass.set_pipeline(pipeline);
+    pass.set_vertex_buffer(0, buffer.slice(..));
+    pass.draw(0..6, 0..count);
+    1
+}
+
+/// Orders `items` farthest from `camera` first, by the view depth of the
+/// point `at` gives for each (blended outlines need what lies behind them
+/// drawn first).
+fn sort_farthest_first<T>(items: &mut [T], camera: &Camera, at: impl Fn(&T) -> Vec3) {
+    items.sort_by_cached_key(|item| FloatOrd(camera.view.transform_point3(at(item)).z));
+}
+
+/// An `f32` ordered by `total_cmp` (for sorting by a computed key).
+#[derive(PartialEq, PartialOrd)]
+struct FloatOrd(f32);
+
+impl Eq for FloatOrd {}
+
+impl Ord for FloatOrd {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.0.total_cmp(&other.0)
     }
 }
 
@@ -659,6 +701,7 @@ impl Pipelines {
             color_writes: wgpu::ColorWrites::ALL,
             fast_look: key.fast_look,
             shadows: key.shadows,
+            blend_outlines: key.blends_outlines(),
         };
         // Depth-only passes into the shadow map: every caster's `vs_shadow`, no colour.
         let depth_only = PipelineSpec {
@@ -733,7 +776,14 @@ impl Pipelines {
         let spheres = pipeline::build(
             device,
             &lit_layout,
-            &PipelineSpec { label: "mocap spheres", shader: &sphere_shader, buffers: &spheres, cull_back: false, ..base },
+            &PipelineSpec {
+                label: "mocap spheres",
+                shader: &sphere_shader,
+                buffers: &spheres,
+                color: Some((format, wgpu::BlendState { color: coverage, alpha: KEEP })),
+                cull_back: false,
+                ..base
+            },
         );
         let lines = pipeline::build(
             device,

@@ -93,12 +93,13 @@ impl Default for Scene {
 
 impl Scene {
     /// Whether everything in the scene is anti-aliased without multisampling:
-    /// only capsules (whose outlines [`crate::SceneRenderer`] filters on one
-    /// sample), shadow casters and the floor (whose lines and edge are
-    /// filtered in its shader). Such a scene is drawn at full quality into a
-    /// single-sampled target; lines, spheres and meshes have hard edges there.
+    /// capsules, lines and spheres (whose outlines [`crate::SceneRenderer`]
+    /// filters on one sample), shadow casters and the floor (whose lines and
+    /// edge are filtered in its shader), but no meshes or bodies. Such a scene
+    /// is drawn at full quality into a single-sampled target; meshes have hard
+    /// edges there.
     pub fn smooth_on_one_sample(&self) -> bool {
-        self.lines.is_empty() && self.overlay_lines.is_empty() && self.spheres.is_empty() && self.meshes.is_empty() && self.skinned.is_empty()
+        self.meshes.is_empty() && self.skinned.is_empty()
     }
 
     /// Empties the primitive lists, keeping their allocations.

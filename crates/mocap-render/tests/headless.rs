@@ -28,11 +28,18 @@ fn setup(samples: u32) -> Option<(wgpu::Device, wgpu::Queue, SceneRenderer, Rend
 }
 
 fn read_pixels(device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget) -> Vec<u8> {
-    let row = SIZE * 4;
+    assert_eq!(target.size(), [SIZE, SIZE]);
+    read_pixels_of(device, queue, target)
+}
+
+/// The pixels of a target of any size, rows top to bottom.
+fn read_pixels_of(device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget) -> Vec<u8> {
+    let [width, height] = target.size();
+    let row = width * 4;
     let padded = row.div_ceil(256) * 256;
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: None,
-        size: u64::from(padded * SIZE),
+        size: u64::from(padded * height),
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
@@ -41,9 +48,9 @@ fn read_pixels(device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget
         wgpu::TexelCopyTextureInfo { texture: &target.color, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(SIZE) },
+            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(height) },
         },
-        wgpu::Extent3d { width: SIZE, height: SIZE, depth_or_array_layers: 1 },
+        wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
     );
     queue.submit([encoder.finish()]);
     buffer.map_async(wgpu::MapMode::Read, .., |r| r.expect("map"));
@@ -699,10 +706,79 @@ fn capsule_outlines_are_blended_on_one_sample_as_on_a_multisampled_target() {
     assert!(blended_off <= 2, "blended outlines match the multisampled picture: {blended_off} pixels differ (fast look {hard_off})");
     assert_eq!(swapped(&blended), 0, "no pixel takes the other capsule's hue");
     assert!(blended.chunks(4).all(|p| p[3] == 255), "the target keeps its alpha");
-    // Anything drawn with hard edges on one sample makes the scene multisampled.
-    let sticks = Scene { spheres: vec![Sphere { center: Vec3::ZERO, radius: 0.1, color: [255; 4] }], ..scene.clone() };
-    assert!(!sticks.smooth_on_one_sample());
-    assert_eq!(renderer.samples_for(&sticks), 4);
+    // Lines and spheres are filtered on one sample too; a mesh, drawn with
+    // hard edges there, makes the scene multisampled.
+    let sticks = Scene {
+        spheres: vec![Sphere { center: Vec3::ZERO, radius: 0.1, color: [255; 4] }],
+        lines: vec![Line { a: Vec3::ZERO, b: Vec3::Y, color: [255; 4], width_px: 3.0 }],
+        ..scene.clone()
+    };
+    assert!(sticks.smooth_on_one_sample());
+    assert_eq!(renderer.samples_for(&sticks), 1);
+    let transform = mocap_render::glam::Mat4::IDENTITY;
+    let mesh = mocap_render::MeshDraw { mesh: quad_mesh(&[0.0], false), frames: [0, 0], blend: 0.0, transform, tint: [255; 4] };
+    let with_mesh = Scene { meshes: vec![mesh], ..sticks };
+    assert!(!with_mesh.smooth_on_one_sample());
+    assert_eq!(renderer.samples_for(&with_mesh), 4);
+}
+
+/// Sticks on one sample: lines and spheres filtered by their coverage and
+/// blended (drawn farthest first, lines before spheres), against a reference
+/// drawn on one sample with hard edges at four times the size and averaged
+/// down (16 samples a pixel); the fast look keeps hard edges. The same lines
+/// on a multisampled target are as they were.
+#[test]
+fn line_and_sphere_outlines_are_blended_on_one_sample() {
+    let Some((device, queue, mut renderer, multisampled)) = setup(4) else { return };
+    let single = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
+    let big = RenderTarget::new(&device, FORMAT, 1, [SIZE * 4, SIZE * 4]);
+    let camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 0.8, 1.0);
+    let bone = |a: Vec3, b: Vec3| Line { a, b, color: [240, 240, 240, 255], width_px: 3.0 };
+    let joint = |center: Vec3, color| Sphere { center, radius: 0.12, color };
+    let (hip, knee, foot, other) = (Vec3::new(-0.6, 0.8, 0.0), Vec3::new(0.1, -0.1, 0.3), Vec3::new(0.7, -0.9, 0.0), Vec3::new(0.2, 0.7, -0.6));
+    let scene = Scene {
+        background: [0, 0, 0, 255],
+        lines: vec![bone(hip, knee), bone(knee, foot), bone(knee, other)],
+        spheres: vec![joint(knee, [255, 60, 60, 255]), joint(hip, [60, 60, 255, 255]), joint(foot, [60, 255, 60, 255]), joint(other, [60, 200, 255, 255])],
+        grid: None,
+        shadows: false,
+        ..Scene::default()
+    };
+    let draw = |renderer: &mut SceneRenderer, target: &RenderTarget| {
+        renderer.render(&device, &queue, target, &scene, &camera);
+        read_pixels_of(&device, &queue, target)
+    };
+    let blended = draw(&mut renderer, &single);
+    assert_eq!(renderer.draw_calls(), 2, "one draw of the lines, one of the spheres");
+    renderer.fast_look = true;
+    let hard = draw(&mut renderer, &single);
+    // The reference: hard edges four times as fine, lines four times as wide.
+    renderer.pixels_per_point = 4.0;
+    let fine = draw(&mut renderer, &big);
+    renderer.pixels_per_point = 1.0;
+    renderer.fast_look = false;
+    let fine = &fine;
+    let reference: Vec<u8> = (0..SIZE * SIZE)
+        .flat_map(|i| {
+            let (x, y) = (i % SIZE, i / SIZE);
+            let at = move |dx: u32, dy: u32, c: usize| u32::from(fine[(((y * 4 + dy) * SIZE * 4 + x * 4 + dx) * 4) as usize + c]);
+            (0..4).map(move |c| ((0..16).map(|k| at(k % 4, k / 4, c)).sum::<u32>() / 16) as u8)
+        })
+        .collect();
+    let count = |pixels: &[u8], limit: u8| pixels.chunks(4).zip(reference.chunks(4)).filter(|(p, q)| channel_diff(p, q) > limit).count();
+    let edge = reference.chunks(4).filter(|p| p[..3].iter().any(|&c| c > 20 && c < 200)).count();
+    let (blended_off, hard_off) = (count(&blended, 64), count(&hard, 64));
+    eprintln!("{edge} partly covered pixels in the reference; more than 64 levels off: blended {blended_off}, fast look {hard_off}");
+    assert!(edge > 150, "the reference has smooth outlines ({edge} partly covered pixels)");
+    assert!(hard_off > 60, "the fast look's outlines are hard: {hard_off} pixels differ from the reference");
+    assert!(blended_off * 8 < hard_off, "blended outlines are close to the reference: {blended_off} pixels differ (fast look {hard_off})");
+    assert!(blended.chunks(4).all(|p| p[3] == 255), "the target keeps its alpha");
+    // On a multisampled target the lines keep their hard quads (the samples
+    // smooth them) and no fringe: the one-sample blended picture is no wider.
+    renderer.render(&device, &queue, &multisampled, &scene, &camera);
+    let msaa = read_pixels(&device, &queue, &multisampled);
+    let lit = |pixels: &[u8]| pixels.chunks(4).filter(|p| p[..3] != [0, 0, 0]).count();
+    assert!(lit(&msaa) <= lit(&blended) + lit(&blended) / 10, "multisampled {} against blended {} lit pixels", lit(&msaa), lit(&blended));
 }
 
 #[test]

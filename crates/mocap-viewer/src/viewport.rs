@@ -14,7 +14,7 @@ const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 struct Gpu {
     renderer: SceneRenderer,
     /// Multisampled when the adapter can: full quality for scenes that need
-    /// it (meshes, lines, spheres).
+    /// it (meshes and bodies).
     target: RenderTarget,
     /// One sample, made when first needed beside a multisampled `target`:
     /// the fast look, and full quality for scenes smooth on one sample

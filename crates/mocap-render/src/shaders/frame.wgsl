@@ -46,6 +46,12 @@ struct Frame {
 // sRGB targets hold no encoding: software rasterisers run both sides of a branch.
 override ENCODE_SRGB: bool = false;
 
+// Whether lines' and spheres' outlines are filtered by their coverage and
+// blended over what is behind them (one sample at full quality: the renderer
+// draws them farthest first); else they are hard, and a multisampled target's
+// samples smooth the lines. A pipeline constant like ENCODE_SRGB.
+override BLEND_OUTLINES: bool = false;
+
 // Linear colour to what the target stores: sRGB targets encode in hardware,
 // plain unorm targets (egui's, which composites in gamma space) here.
 fn to_target(c: vec4<f32>) -> vec4<f32> {
