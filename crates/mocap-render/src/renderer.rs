@@ -576,10 +576,21 @@ fn sort_farthest_first<T>(items: &mut [T], camera: &Camera, at: impl Fn(&T) -> V
 }
 
 /// An `f32` ordered by `total_cmp` (for sorting by a computed key).
-#[derive(PartialEq, PartialOrd)]
 struct FloatOrd(f32);
 
+impl PartialEq for FloatOrd {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other).is_eq()
+    }
+}
+
 impl Eq for FloatOrd {}
+
+impl PartialOrd for FloatOrd {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
 
 impl Ord for FloatOrd {
     fn cmp(&self, other: &Self) -> std::cmp::Ordering {
@@ -837,5 +848,25 @@ impl Pipelines {
             &PipelineSpec { label: "mocap skinned shadows", shader: &skinned_shader, buffers: &skinned_buffers, ..depth_only },
         );
         Pipelines { shadow, floor, floor_depth, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn farthest_first_orders_by_view_depth_whatever_the_list_order() {
+        let camera = Camera::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, 0.8, 1.0);
+        // Depths along the view: z = 2 is nearest the eye at z = 5; a NaN
+        // sorts to one end without breaking the order of the rest.
+        let mut points = vec![Vec3::new(0.0, 0.0, 2.0), Vec3::new(1.0, 0.0, -3.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(-1.0, 0.0, -1.0)];
+        sort_farthest_first(&mut points, &camera, |p| *p);
+        let zs: Vec<f32> = points.iter().map(|p| p.z).collect();
+        assert_eq!(zs, [-3.0, -1.0, 0.0, 2.0]);
+        let mut with_nan = vec![Vec3::new(0.0, 0.0, 1.0), Vec3::NAN, Vec3::new(0.0, 0.0, -2.0)];
+        sort_farthest_first(&mut with_nan, &camera, |p| *p);
+        let finite: Vec<f32> = with_nan.iter().map(|p| p.z).filter(|z| z.is_finite()).collect();
+        assert_eq!(finite, [-2.0, 1.0]);
     }
 }
