@@ -66,6 +66,9 @@ fn a_damaged_jpeg_is_an_error_or_a_picture_never_a_panic() {
             Err(e) => assert!(e.to_string().contains("JPEG"), "{e}"),
         }
     }
+    let cut = decode_any("skin.jpg", &file[..file.len() / 3]).map(|_| String::new()).unwrap_or_else(|e| e.to_string());
+    let header_only = decode_any("skin.jpg", &file[..40]).expect_err("no frame header yet");
+    assert_eq!(header_only.to_string(), "byte 0: cannot decode this JPEG image: the file ends before the image does", "(a third of it: {cut})");
     // Flipped bytes throughout the entropy-coded data and the tables.
     for at in (2..file.len()).step_by(5) {
         let mut bad = file.clone();

@@ -17,7 +17,10 @@ use zune_jpeg::JpegDecoder;
 /// broken data is an error, never a panic.
 pub fn decode(bytes: &[u8]) -> Result<Rgba, ParseError> {
     let fail = |why: &str| ParseError::at_byte(0, format!("cannot decode this JPEG image: {why}"));
-    let zune = |e: DecodeErrors| fail(e.to_string().trim_matches('"'));
+    let zune = |e: DecodeErrors| match e {
+        DecodeErrors::IoErrors(_) | DecodeErrors::ExhaustedData => fail("the file ends before the image does"),
+        e => fail(e.to_string().trim_matches('"')),
+    };
     // The decoder's own size limits stay at what JPEG allows: [`MAX_SIDE`] is
     // checked below, with a message of our own, once the header is read.
     let jpeg_side = usize::from(u16::MAX);
