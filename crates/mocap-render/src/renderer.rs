@@ -471,23 +471,6 @@ impl SceneRenderer {
     /// needed, and the uniforms.
     fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget, scene: &Scene, camera: &Camera) -> (bool, FrameUniforms) {
         let size = target.size();
-        let ppp = self.pixels_per_point;
-        // Blended outlines need what lies behind them drawn first.
-        let farthest_first = self.key_for(target.sample_count(), false).blends_outlines();
-        self.line_scratch.clear();
-        self.line_scratch.extend(scene.lines.iter().map(|l| LineInstance::new(l, ppp)));
-        if farthest_first {
-            sort_farthest_first(&mut self.line_scratch, camera, |l| (Vec3::from(l.a) + Vec3::from(l.b)) * 0.5);
-        }
-        self.lines.upload(device, queue, &self.line_scratch);
-        self.line_scratch.clear();
-        self.line_scratch.extend(scene.overlay_lines.iter().map(|l| LineInstance::new(l, ppp)));
-        self.overlay_lines.upload(device, queue, &self.line_scratch);
-        self.sphere_scratch.clear();
-        self.sphere_scratch.extend(scene.spheres.iter().map(SphereInstance::new));
-        if farthest_first {
-            sort_farthest_first(&mut self.sphere_scratch, camera, |s| Vec3::from(s.center));
-        }
         // The casters that are not drawn lit (the lit capsules cast too):
         // spheres (capsules of zero length) and capsules that only cast.
         let spheres = scene.spheres.iter().map(|s| (s.center, s.center, s.radius));
@@ -522,7 +505,6 @@ impl SceneRenderer {
         let look = self.key_for(target.sample_count(), light.is_some());
         let uniforms = FrameUniforms::new(camera, size, look.outline(), self.format, scene.grid.as_ref(), light.as_ref());
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
-        self.spheres.upload(device, queue, &self.sphere_scratch);
         let capsules = &mut self.capsules;
         capsules.clear();
         // Each capsule's middle depth and span, once.
@@ -536,9 +518,8 @@ impl SceneRenderer {
         let order = &mut self.capsule_order;
         order.clear();
         order.extend(placed.filter(|&(_, span, _)| min_span <= 0.0 || span >= min_span));
-        // Blended outlines need what lies behind them drawn first.
         if look.blends_outlines() {
-            order.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
+            sort_farthest_first(order, |&(z, _, _)| z);
         }
         let texel = light.as_ref().map(|l| l.texel);
         let forced = !self.four_corners_always;
@@ -555,7 +536,31 @@ impl SceneRenderer {
             self.caster_indices = 0;
         }
         capsules.upload(device, queue);
+        self.upload_lines_and_spheres(device, queue, scene, camera, look);
         (light.is_some(), uniforms)
+    }
+}
+
+impl SceneRenderer {
+    /// Uploads the scene's lines, overlay lines and spheres, the lines and
+    /// spheres farthest first where `look` blends their outlines.
+    fn upload_lines_and_spheres(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene, camera: &Camera, look: PipelineKey) {
+        let ppp = self.pixels_per_point;
+        let z_row = camera.view.row(2);
+        let view_z = |p: Vec3| z_row.dot(p.extend(1.0));
+        self.line_scratch.clear();
+        self.line_scratch.extend(scene.overlay_lines.iter().map(|l| LineInstance::new(l, ppp)));
+        self.overlay_lines.upload(device, queue, &self.line_scratch);
+        self.line_scratch.clear();
+        self.line_scratch.extend(scene.lines.iter().map(|l| LineInstance::new(l, ppp)));
+        self.sphere_scratch.clear();
+        self.sphere_scratch.extend(scene.spheres.iter().map(SphereInstance::new));
+        if look.blends_outlines() {
+            sort_farthest_first(&mut self.line_scratch, |l| view_z((Vec3::from(l.a) + Vec3::from(l.b)) * 0.5));
+            sort_farthest_first(&mut self.sphere_scratch, |s| view_z(Vec3::from(s.center)));
+        }
+        self.lines.upload(device, queue, &self.line_scratch);
+        self.spheres.upload(device, queue, &self.sphere_scratch);
     }
 }
 
@@ -568,34 +573,10 @@ fn draw_spheres<'a>(pass: &mut wgpu::RenderPass<'a>, pipeline: &'a wgpu::RenderP
     1
 }
 
-/// Orders `items` farthest from `camera` first, by the view depth of the
-/// point `at` gives for each (blended outlines need what lies behind them
-/// drawn first).
-fn sort_farthest_first<T>(items: &mut [T], camera: &Camera, at: impl Fn(&T) -> Vec3) {
-    items.sort_by_cached_key(|item| FloatOrd(camera.view.transform_point3(at(item)).z));
-}
-
-/// An `f32` ordered by `total_cmp` (for sorting by a computed key).
-struct FloatOrd(f32);
-
-impl PartialEq for FloatOrd {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other).is_eq()
-    }
-}
-
-impl Eq for FloatOrd {}
-
-impl PartialOrd for FloatOrd {
-    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for FloatOrd {
-    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
-        self.0.total_cmp(&other.0)
-    }
+/// Orders `items` farthest first by their view-space depth `z` (more negative
+/// is farther): blended outlines need what lies behind them drawn first.
+fn sort_farthest_first<T>(items: &mut [T], z: impl Fn(&T) -> f32) {
+    items.sort_unstable_by(|p, q| z(p).total_cmp(&z(q)));
 }
 
 /// Draws the uploaded `lines` with `pipeline`; returns the draw calls made.
@@ -858,14 +839,15 @@ mod tests {
     #[test]
     fn farthest_first_orders_by_view_depth_whatever_the_list_order() {
         let camera = Camera::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::ZERO, 0.8, 1.0);
+        let z = |p: &Vec3| camera.view.transform_point3(*p).z;
         // Depths along the view: z = 2 is nearest the eye at z = 5; a NaN
         // sorts to one end without breaking the order of the rest.
         let mut points = vec![Vec3::new(0.0, 0.0, 2.0), Vec3::new(1.0, 0.0, -3.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(-1.0, 0.0, -1.0)];
-        sort_farthest_first(&mut points, &camera, |p| *p);
+        sort_farthest_first(&mut points, z);
         let zs: Vec<f32> = points.iter().map(|p| p.z).collect();
         assert_eq!(zs, [-3.0, -1.0, 0.0, 2.0]);
         let mut with_nan = vec![Vec3::new(0.0, 0.0, 1.0), Vec3::NAN, Vec3::new(0.0, 0.0, -2.0)];
-        sort_farthest_first(&mut with_nan, &camera, |p| *p);
+        sort_farthest_first(&mut with_nan, z);
         let finite: Vec<f32> = with_nan.iter().map(|p| p.z).filter(|z| z.is_finite()).collect();
         assert_eq!(finite, [-2.0, 1.0]);
     }

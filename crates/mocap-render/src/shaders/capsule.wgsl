@@ -305,7 +305,7 @@ fn fs_main(in: Out) -> Shaded {
     if (is_perspective()) {
         pixel *= max(dot(o + d * t_close - frame.eye.xyz, forward), 1e-20);
     }
-    let coverage = clamp(0.5 - (miss - r) / pixel, 0.0, 1.0);
+    let coverage = outline_coverage((miss - r) / pixel);
     if (coverage <= 0.0 || coverage < frame.samples.x) {
         discard;
     }

@@ -52,6 +52,13 @@ override ENCODE_SRGB: bool = false;
 // samples smooth the lines. A pipeline constant like ENCODE_SRGB.
 override BLEND_OUTLINES: bool = false;
 
+// How much of a pixel an outline covers when the pixel's centre is
+// `outside_px` pixels outside it (negative: inside): a one-pixel-wide ramp,
+// the edge filter of capsules and spheres.
+fn outline_coverage(outside_px: f32) -> f32 {
+    return clamp(0.5 - outside_px, 0.0, 1.0);
+}
+
 // Linear colour to what the target stores: sRGB targets encode in hardware,
 // plain unorm targets (egui's, which composites in gamma space) here.
 fn to_target(c: vec4<f32>) -> vec4<f32> {

@@ -37,7 +37,7 @@ fn vs_main(
     // coverage filter.
     let reach = select(1.0, 1.0 + 1.0 / max(pixels, 1e-6), BLEND_OUTLINES);
     let uv = vec2<f32>(xs[i], ys[i]) * reach;
-    let corner = vec4<f32>(c.xy + uv * radius, c.z + radius, 1.0);
+    let corner = front + vec4<f32>(uv * radius, 0.0, 0.0);
     var out: Out;
     out.position = frame.projection * corner;
     out.color = color;
@@ -55,7 +55,7 @@ fn fs_main(in: Out) -> @location(0) vec4<f32> {
     // or with BLEND_OUTLINES filtered across the outline (a pixel wide).
     var coverage = select(1.0, 0.0, r2 > 1.0);
     if (BLEND_OUTLINES) {
-        coverage = clamp(0.5 + (1.0 - sqrt(r2)) * in.pixels, 0.0, 1.0);
+        coverage = outline_coverage((sqrt(r2) - 1.0) * in.pixels);
     }
     if (coverage <= 0.0) {
         discard;
