@@ -103,7 +103,8 @@ async function loadUrls(viewer, urls, limit) {
     }
   }
   for (const record of window.mocapUrlLoads) record.done = true;
-  if (errors.length > 0) viewer.showError(errors.join('\n'));
+  // The banner says whether any link opened (it then replaced what was open).
+  if (errors.length > 0) viewer.showError(errors.join('\n'), source.urls.length > 0);
 }
 
 function hasWebGL2() {

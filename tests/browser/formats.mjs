@@ -142,6 +142,7 @@ try {
     await page.screenshot({ path: shot('md2-page') });
   });
 
+  let jpegBytes = Buffer.alloc(0);
   await step('an MD2 model dropped with a JPEG skin is drawn with it', async () => {
     // The BMP skin re-encoded as JPEG by the browser (the project has no JPEG
     // skin of its own, and the corpus none).
@@ -161,6 +162,16 @@ try {
     const still = await view3d(page, shot('md2-jpeg'));
     const px = await pixels(context, still, plain);
     check(px.saturated > 400, `the JPEG skin's colours are on screen (${px.saturated} strongly coloured pixels)`);
+    jpegBytes = Buffer.from(jpeg);
+  });
+
+  await step('a drop that partly opens says so: the model opens, its skin cut inside its header is named', async () => {
+    await dropFiles(page, [{ name: 'faerie.md2', bytes: read(md2('irrlicht_faerie/faerie.md2')) }, { name: 'cut.jpg', bytes: jpegBytes.subarray(0, 200) }]);
+    const s = await waitDropped(page, 'cut.jpg');
+    check(s.clips.length === 1 && s.clips[0].name === 'faerie.md2' && s.clips[0].skin === null, `the model opens without the skin (${s.clips.map((c) => c.name)}, ${s.clips[0] && s.clips[0].skin})`);
+    check(/^cut\.jpg:byte \d+: /.test(s.error ?? ''), `the skin's error names it: ${s.error}`);
+    check(s.errorNote === 'The other files opened.', `the banner does not claim that what was open is still open: ${s.errorNote}`);
+    await page.screenshot({ path: shot('md2-partly') });
   });
 
   await step('?url=model.md2&url=skin.pcx#anim=1:run opens the pair on that animation', async () => {

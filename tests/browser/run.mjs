@@ -105,6 +105,7 @@ try {
     await page.screenshot({ path: shot('error') });
     check(/broken\.bvh:\d+:\d+/.test(s.error), `error names file, line and column: ${s.error}`);
     check(s.clips.length === 1 && s.clips[0].name === before.clips[0].name, `previous clip ${before.clips[0].name} still open`);
+    check(s.errorNote === 'What was open is still open.', `the banner says the clip is still open: ${s.errorNote}`);
   });
 } finally {
   await close();

@@ -89,7 +89,7 @@ impl Viewer {
         let capture = match job.capturer.finish() {
             Ok(c) => c,
             Err(e) => {
-                self.error = Some(format!("{}: {e}", job.name));
+                self.refuse(format!("{}: {e}", job.name));
                 return;
             }
         };

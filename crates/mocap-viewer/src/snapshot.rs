@@ -120,8 +120,12 @@ pub struct Snapshot {
     /// Whether the last frame started from the floor drawn for an earlier one
     /// (a still camera) instead of drawing it.
     pub floor_copied: bool,
-    /// Last load error, shown in the page.
+    /// The banner's message (the last failure to open files, or a refused action).
     pub error: Option<String>,
+    /// The banner's line under the message: what became of what was open
+    /// ("What was open is still open.", "The other files opened.", "Nothing was
+    /// changed."), or `None`.
+    pub error_note: Option<&'static str>,
     /// Joint labels the hierarchy panel drew in its last frame.
     pub tree_labels: Vec<String>,
     /// Frames the 3D view has rendered.
@@ -159,7 +163,8 @@ impl Snapshot {
             reduced: v.viewport.reduced,
             samples: v.viewport.samples,
             floor_copied: v.viewport.floor_copied,
-            error: v.error.clone(),
+            error: v.error.as_ref().map(|n| n.message.clone()),
+            error_note: v.error.as_ref().and_then(|n| n.note(!v.stage.actors.is_empty())),
             tree_labels,
             frames_rendered,
             view: v.view_fragment(),

@@ -9,6 +9,7 @@ use crate::panels::Panels;
 use crate::playback::{Playback, Timing};
 use crate::selection::Selection;
 use crate::settings::{DrawMode, ViewSettings};
+use crate::notice::Notice;
 use crate::snapshot::Snapshot;
 use crate::stage::Stage;
 use crate::viewport::Viewport;
@@ -65,8 +66,9 @@ pub struct Viewer {
     pub settings: ViewSettings,
     /// Selected joint and its character.
     pub selected: Option<Selection>,
-    /// Last load error (what was open stays open).
-    pub error: Option<String>,
+    /// The banner's message: the last failure to open files or refused action, and
+    /// what became of what was open.
+    pub error: Option<Notice>,
     /// Set when the user pressed "Open…" or "Add…"; the host shows a file picker and clears it.
     pub open_requested: Option<OpenMode>,
     /// Set when the user pressed "Share"; the host builds the link and clears it.
@@ -142,7 +144,7 @@ impl Viewer {
         }
         if files.is_empty() {
             if !errors.is_empty() {
-                self.error = Some(errors.join("\n"));
+                self.error = Some(Notice::open_failed(errors.join("\n"), false));
             }
             return errors;
         }
@@ -174,16 +176,22 @@ impl Viewer {
 
     /// Opens what was read (replacing or adding) and shows the errors.
     fn open_loaded(&mut self, assets: Vec<(String, mocap::Asset)>, errors: Vec<String>, mode: OpenMode) -> Vec<String> {
-        if !assets.is_empty() {
+        let opened_any = !assets.is_empty();
+        if opened_any {
             match mode {
                 OpenMode::Replace => self.open_assets(assets),
                 OpenMode::Add => assets.into_iter().for_each(|(name, asset)| self.add_asset(&name, asset)),
             }
         }
         if !errors.is_empty() {
-            self.error = Some(errors.join("\n"));
+            self.error = Some(Notice::open_failed(errors.join("\n"), opened_any));
         }
         errors
+    }
+
+    /// Shows `message` in the banner as an action that was refused (nothing changed).
+    pub fn refuse(&mut self, message: String) {
+        self.error = Some(Notice::refused(message));
     }
 
     /// Replaces everything open with `assets` (name, clip or model): time 0, play
@@ -408,7 +416,7 @@ impl Viewer {
         egui::CentralPanel::no_frame().show(ui, |ui| {
             let (_, dragged) = self.viewport.show(ui, render_state, &mut self.camera, &self.scene, &handles, self.settings.quality, self.playback.playing && !self.stage.actors.is_empty());
             joint_drag = dragged;
-            ui::overlay::show(ui, self);
+            ui::overlay::show(ui, &mut self.error, !self.stage.actors.is_empty());
         });
         if joint_drag.is_none() {
             self.ring_drag = None;
@@ -477,7 +485,7 @@ impl Viewer {
             (Action::Orbit(px), _) if px > 0.0 && self.settings.pose_mode && self.has_corrections() => {
                 // In Edit mode with a correction, k sets the key instead of orbiting.
                 if let Err(message) = self.set_key() {
-                    self.error = Some(message);
+                    self.refuse(message);
                 }
             }
             (Action::Orbit(px), _) => self.camera.orbit(px, 0.0),
@@ -488,7 +496,7 @@ impl Viewer {
             (Action::ResetCamera, _) => self.reset_camera(),
             (Action::SetKey, _) => {
                 if let Err(message) = self.set_key() {
-                    self.error = Some(message);
+                    self.refuse(message);
                 }
             }
             (Action::Undo, _) => {
@@ -649,7 +657,7 @@ impl Viewer {
                 self.selected = joint.map(|joint| Selection { character, joint });
                 self.pose();
             }
-            Err(message) => self.error = Some(message),
+            Err(message) => self.refuse(message),
         }
     }
 

@@ -161,3 +161,35 @@ fn view_fragment_accepts_frames_names_and_junk() {
     v.apply_fragment("sel=NoSuchJoint");
     assert_eq!(v.selected, None);
 }
+
+#[test]
+fn banner_says_what_became_of_what_was_open() {
+    const BAD: &[u8] = b"HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0\n";
+    // Nothing in the drop opens: the open clip stays, and the banner says so.
+    let mut v = loaded();
+    let errors = v.open_files(&[("bad.bvh", BAD)], mocap_viewer::OpenMode::Replace);
+    assert_eq!(errors.len(), 1);
+    let s = v.snapshot();
+    assert_eq!((s.clips[0].name.as_str(), s.error.as_deref()), ("walk.bvh", Some(errors[0].as_str())));
+    assert_eq!(s.error_note, Some("What was open is still open."));
+    // Part of the drop opens and replaces what was open: the banner must not claim
+    // that what was open is still open.
+    let errors = v.open_files(&[("second.bvh", WALK), ("bad.bvh", BAD)], mocap_viewer::OpenMode::Replace);
+    let s = v.snapshot();
+    assert_eq!(s.clips.iter().map(|c| c.name.as_str()).collect::<Vec<_>>(), ["second.bvh"]);
+    assert_eq!(s.error.as_deref(), Some(errors[0].as_str()));
+    assert_eq!(s.error_note, Some("The other files opened."));
+    // Nothing open and nothing opened: no second line.
+    let mut empty = Viewer::default();
+    empty.open_files(&[("bad.bvh", BAD)], mocap_viewer::OpenMode::Replace);
+    assert!(empty.snapshot().error.is_some_and(|e| e.starts_with("bad.bvh:")));
+    assert_eq!(empty.snapshot().error_note, None);
+    // A refused action (the timeline's "× key" where there is no key) is not a
+    // file that failed to open.
+    let refusal = v.delete_key(5).expect_err("no key at frame 5");
+    v.refuse(refusal);
+    let notice = v.error.clone().expect("the refusal is shown");
+    assert_eq!(notice.outcome, mocap_viewer::Outcome::Refused);
+    assert!(notice.headline().starts_with("Could not do that: "), "{}", notice.headline());
+    assert_eq!(v.snapshot().error_note, Some("Nothing was changed."));
+}

@@ -71,7 +71,7 @@ impl MocapViewer {
                 self.with_viewer(|v| v.open_files(&files, mode))
             }
             Err(message) => {
-                self.show_error(&message);
+                self.show_error(&message, None);
                 return vec![message];
             }
         };
@@ -479,10 +479,13 @@ impl MocapViewer {
         self.with_viewer(|v| v.apply_fragment(fragment));
     }
 
-    /// Shows a message in the viewer's error banner (the open clip, if any, stays).
+    /// Shows a message about files that could not be opened in the viewer's error
+    /// banner. `opened` says whether other files given with them did open (the
+    /// banner then says so); when it is false or omitted the banner says that what
+    /// was open is still open.
     #[wasm_bindgen(js_name = showError)]
-    pub fn show_error(&self, message: &str) {
-        self.with_viewer(|v| v.error = Some(message.to_owned()));
+    pub fn show_error(&self, message: &str, opened: Option<bool>) {
+        self.with_viewer(|v| v.error = Some(mocap_viewer::Notice::open_failed(message.to_owned(), opened.unwrap_or(false))));
     }
 
     /// Switches the embed layout (3D view and a minimal timeline) on or off.

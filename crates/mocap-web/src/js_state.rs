@@ -65,6 +65,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "samples", f64::from(s.samples));
     set(&o, "floorCopied", s.floor_copied);
     set(&o, "error", opt(&s.error));
+    set(&o, "errorNote", s.error_note.map_or(JsValue::NULL, JsValue::from_str));
     set(&o, "treeLabels", strings(&s.tree_labels));
     set(&o, "framesRendered", s.frames_rendered as f64);
     set(&o, "view", s.view.as_str());

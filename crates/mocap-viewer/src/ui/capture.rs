@@ -23,7 +23,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
     let hint = "Turn the model's vertex animation into skeletal motion: a humanoid fitted in its first frame (or a rig dropped as JSON), four tracked vertices per joint";
     if ui.button("Capture skeleton").on_hover_text(hint).clicked() {
         if let Err(e) = viewer.start_capture(index) {
-            viewer.error = Some(e);
+            viewer.refuse(e);
         }
     }
     ui.label(egui::RichText::new(rig_note.unwrap_or_else(|| "automatic fit (drop a rig .json to use yours)".to_owned())).weak());
@@ -45,13 +45,13 @@ fn rig_setup(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
             let hint = "Place a skeleton in the model's first frame to adjust by hand: drag its joints and spin handles, bind, paint";
             if ui.button("Fit skeleton").on_hover_text(hint).clicked() {
                 if let Err(e) = viewer.start_rig_edit(index, None) {
-                    viewer.error = Some(e);
+                    viewer.refuse(e);
                 }
             }
             for (i, name) in clips {
                 if ui.small_button(format!("fit {name}")).on_hover_text("Fit this clip's skeleton (its first pose) instead of the humanoid").clicked() {
                     if let Err(e) = viewer.start_rig_edit(index, Some(i)) {
-                        viewer.error = Some(e);
+                        viewer.refuse(e);
                     }
                 }
             }

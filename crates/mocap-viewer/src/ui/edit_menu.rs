@@ -100,7 +100,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     }
     if let Some((e, label)) = edit {
         if let Err(message) = viewer.edit(index, &e, &label) {
-            viewer.error = Some(message);
+            viewer.refuse(message);
         }
         ui.close();
     }

@@ -93,7 +93,7 @@ pub fn show(ctx: &egui::Context, viewer: &mut Viewer) {
         if let Some(source) = dialog.source {
             match viewer.add_layer(dialog.character, source, &dialog.layer()) {
                 Ok(()) => return,
-                Err(message) => viewer.error = Some(message),
+                Err(message) => viewer.refuse(message),
             }
         }
     }

@@ -63,7 +63,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                     }
                     match result {
                         Some(Ok(frame)) => viewer.seek(frame),
-                        Some(Err(message)) => viewer.error = Some(message),
+                        Some(Err(message)) => viewer.refuse(message),
                         None => {}
                     }
                 }
@@ -169,7 +169,7 @@ fn key_marks(ui: &egui::Ui, viewer: &mut Viewer, slider: &egui::Response, timing
                 viewer.set_playing(false);
                 viewer.seek(to);
             }
-            Err(message) => viewer.error = Some(message),
+            Err(message) => viewer.refuse(message),
         }
     }
 }
