@@ -112,7 +112,9 @@ fn body_build_time(corpus: &Path) {
     let start = Instant::now();
     let mut vertices = 0;
     for _ in 0..runs {
-        let body = mocap::body::build(clip.skeleton(), &bind, |l| mocap_render::body_radius(l, extent)).expect("a body");
+        let joints = clip.skeleton().joints();
+        let radii = mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
+        let body = mocap::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0)).expect("a body");
         vertices = body.positions().len();
     }
     let ms = start.elapsed().as_secs_f64() * 1e3 / runs as f64;

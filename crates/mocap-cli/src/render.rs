@@ -259,9 +259,12 @@ pub struct Body {
 }
 
 /// The body of `clip` ([`mocap::body::build`] around its bind pose, tube radii by
-/// the capsule mode's rule for a figure of `extent` file units).
+/// [`mocap_render::body_radii`] for a figure of `extent` file units).
 pub fn body(clip: &mocap::Clip, extent: f32) -> Option<Body> {
-    let skin = mocap::body::build(clip.skeleton(), &clip.bind_pose(), |length| mocap_render::body_radius(length, extent)).ok()?;
+    let bind = clip.bind_pose();
+    let joints = clip.skeleton().joints();
+    let radii = mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
+    let skin = mocap::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0)).ok()?;
     let mesh = SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), clip.skeleton().len()).ok()?;
     Some(Body { mesh: Arc::new(mesh), inverse_bind: skin.inverse_bind().to_vec() })
 }

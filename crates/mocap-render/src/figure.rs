@@ -1,6 +1,7 @@
 //! Skeletons to primitives: one figure (a posed skeleton) becomes bones and joints
 //! in the chosen [`DrawMode`]. Knows joint positions and parents, no file formats.
 
+use crate::radius::{bone_radii, bone_radius};
 use crate::{Capsule, Line, Scene, Sphere};
 use glam::Vec3;
 
@@ -87,28 +88,6 @@ pub struct FigureStyle {
     pub highlight: Option<(usize, [u8; 4])>,
 }
 
-/// Bones longer than this share of the figure's size are helpers, not limbs.
-pub const HELPER_BONE: f32 = 0.75;
-
-/// Bone radius (capsule mode) for a bone of `length` in a figure of `size`: thick
-/// for long limbs, thin for fingers, within 0.8%–4% of the figure's size. Bones
-/// longer than [`HELPER_BONE`] × `size` are no limb (a rig helper joint, a root
-/// left on the floor far from the hips): they are drawn as thin rods (0.4%) so
-/// that they stay visible without hiding the figure.
-pub fn bone_radius(length: f32, size: f32) -> f32 {
-    if length > size * HELPER_BONE {
-        return size * 0.004;
-    }
-    (length * 0.2).clamp(size * 0.008, size * 0.04)
-}
-
-/// Tube radius of a bone in body mode: the capsule rule ([`bone_radius`]: helper
-/// bones thin rods, fingers thin, long limbs thick) at 1.8× the thickness, so the
-/// tubes read as a body rather than a stick figure.
-pub fn body_radius(length: f32, size: f32) -> f32 {
-    bone_radius(length, size) * 1.8
-}
-
 /// Figures with more bones than this are simplified by [`figure`], so that a file
 /// with a 200,000-joint chain stays drawable on a software GPU.
 pub const MAX_FIGURE_BONES: usize = 16_384;
@@ -152,11 +131,19 @@ pub fn figure(joints: impl IntoIterator<Item = (Option<usize>, bool)>) -> Vec<Fi
 /// Appends the figure posed at `positions` (world space, one per joint of `joints`:
 /// points, or anything that converts to its position, such as a world transform)
 /// to `scene`. Joints with non-finite positions and their bones are skipped.
+/// Capsules (and a body's shadow casters) are as thick as [`bone_radii`] says for
+/// this pose.
 pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoint], positions: &[P], style: &FigureStyle) {
     let size = if style.size.is_finite() && style.size > 0.0 { style.size } else { 1.0 };
     let joint_radius = size * 0.012;
     let highlight = style.highlight.map(|(j, _)| j);
     let at = |i: usize| positions.get(i).map(|&p| p.into()).filter(|p: &Vec3| p.is_finite());
+    let mut radii = Vec::new();
+    if style.mode != DrawMode::Sticks {
+        bone_radii(joints.len(), |j| joints.get(j).and_then(|x| x.parent), at, size, &mut radii);
+    }
+    // A bone the rule gave no radius (its parent comes after it) keeps its own.
+    let radius_of = |i: usize, length: f32| radii.get(i).copied().filter(|r| *r > 0.0).unwrap_or_else(|| bone_radius(length, size));
     for (i, joint) in joints.iter().enumerate() {
         let Some(p) = at(i) else {
             continue;
@@ -170,7 +157,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
         match style.mode {
             DrawMode::Capsules => {
                 if let Some(q) = parent {
-                    let radius = bone_radius(q.distance(p), size);
+                    let radius = radius_of(i, q.distance(p));
                     scene.capsules.push(Capsule { a: q, b: p, radius, color });
                 } else if joint.marker {
                     // A root: a ball so a lone root (or the hips) is visible.
@@ -183,7 +170,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
             DrawMode::Body => {
                 // The body's shadow in the fast look: its bones' capsules.
                 if let Some(q) = parent {
-                    let radius = bone_radius(q.distance(p), size);
+                    let radius = radius_of(i, q.distance(p));
                     scene.body_casters.push(Capsule { a: q, b: p, radius, color });
                 }
                 if is_highlight {
@@ -285,10 +272,4 @@ mod tests {
         assert!(small.iter().enumerate().all(|(i, j)| j.parent == i.checked_sub(1) && j.marker));
     }
 
-    #[test]
-    fn radius_is_bounded() {
-        assert_eq!(bone_radius(0.3, 1.0), 0.04);
-        assert_eq!(bone_radius(100.0, 1.0), 0.004, "a helper bone is a thin rod");
-        assert_eq!(bone_radius(0.0, 1.0), 0.008);
-    }
 }

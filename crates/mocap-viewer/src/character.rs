@@ -184,10 +184,18 @@ pub struct Body {
 
 /// The generated body of a clip whose first pose is `extent` file units across:
 /// [`mocap::body::build`] around [`mocap::Clip::bind_pose`], tube radii by
-/// [`mocap_render::body_radius`] (the capsule rule, thicker). `None` when the
-/// skeleton gets none (too many bones).
+/// [`mocap_render::body_radii`] (the capsule mode's radii in that pose, thicker).
+/// `None` when the skeleton gets none (too many bones).
 pub fn body_skin(clip: &mocap::Clip, extent: f32) -> Option<mocap::skin::Skin> {
-    mocap::body::build(clip.skeleton(), &clip.bind_pose(), |length| mocap_render::body_radius(length, extent)).ok()
+    body_skin_with(clip, extent, mocap::body::Detail::FULL)
+}
+
+/// [`body_skin`] with tubes cut as `detail` says.
+fn body_skin_with(clip: &mocap::Clip, extent: f32, detail: mocap::body::Detail) -> Option<mocap::skin::Skin> {
+    let bind = clip.bind_pose();
+    let joints = clip.skeleton().joints();
+    let radii = mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
+    mocap::body::build_with(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0), detail).ok()
 }
 
 /// Builds the body of a clip character ([`body_skin`]) once; later calls do nothing.
@@ -201,7 +209,7 @@ pub fn ensure_body(c: &mut Character) {
         let joints = clip.skeleton().len();
         let mesh_of = |skin: &mocap::skin::Skin| SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), joints).ok();
         let mesh = mesh_of(&skin)?;
-        let coarse = mocap::body::build_with(clip.skeleton(), &clip.bind_pose(), |length| mocap_render::body_radius(length, extent), mocap::body::Detail::COARSE).ok();
+        let coarse = body_skin_with(clip, extent, mocap::body::Detail::COARSE);
         let coarse = coarse.as_ref().and_then(mesh_of).map(Arc::new);
         Some(Body { mesh: Arc::new(mesh), coarse, inverse_bind: skin.inverse_bind().to_vec() })
     });

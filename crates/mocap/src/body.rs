@@ -3,8 +3,8 @@
 //!
 //! Every bone (a joint and its parent at different places in the bind pose) gets a
 //! closed tube with round ends (a capsule mesh) of the radius the caller's rule
-//! gives for its length (the viewer passes the capsule mode's rule, so fingers,
-//! toes and long helper bones look the same in both modes). A tube is owned by the
+//! gives for it (the viewer passes the capsule mode's radii, thicker, so fingers,
+//! toes, the torso and long helper bones look the same in both modes). A tube is owned by the
 //! bone's parent joint (whose rotation swings it); near its far end the weight
 //! fades half-way to the child joint, near its near end half-way to the parent's
 //! parent. Where two bones meet both ends share the same blend, so a bent elbow is
@@ -177,13 +177,16 @@ impl Builder {
 }
 
 /// Builds the body of `skeleton` around its bind pose (`bind`: one model
-/// transform per joint, file units); `radius(length)` gives a bone's tube radius.
-pub fn build(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(f32) -> f32) -> Result<Skin, BodyError> {
+/// transform per joint, file units); `radius(joint, length)` gives the tube
+/// radius of the bone from `joint`'s parent to `joint` (a radius that is not a
+/// positive number gives a tenth of the length). A skeleton with no bone asks
+/// `radius(root, 0.0)` for each root's ball.
+pub fn build(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(usize, f32) -> f32) -> Result<Skin, BodyError> {
     build_with(skeleton, bind, radius, Detail::FULL)
 }
 
 /// [`build`] with tubes cut as `detail` says.
-pub fn build_with(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(f32) -> f32, detail: Detail) -> Result<Skin, BodyError> {
+pub fn build_with(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(usize, f32) -> f32, detail: Detail) -> Result<Skin, BodyError> {
     let joints = skeleton.joints();
     if bind.len() != joints.len() || bind.iter().any(|t| !t.translation.is_finite()) {
         return Err(BodyError::BindPose { given: bind.len(), joints: joints.len() });
@@ -202,14 +205,14 @@ pub fn build_with(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(f32) 
     let index = |j: usize| u32::try_from(j).unwrap_or(u32::MAX);
     for &(p, j) in &bones {
         let length = at(p).distance(at(j));
-        let r = radius(length);
+        let r = radius(j, length);
         let r = if r.is_finite() && r > 0.0 { r } else { length * 0.1 };
         let near = joints.get(p).and_then(|x| x.parent).map(index);
         b.tube(at(p), at(j), r, Owners { owner: index(p), far: Some(index(j)), near });
     }
     if bones.is_empty() {
         for root in skeleton.roots() {
-            let r = radius(0.0);
+            let r = radius(root, 0.0);
             let r = if r.is_finite() && r > 0.0 { r } else { 0.05 };
             b.tube(at(root), at(root), r, Owners { owner: index(root), far: None, near: None });
         }

@@ -22,7 +22,7 @@ fn walk() -> Clip {
 fn baked_walk(clip: &Clip) -> Vec<u8> {
     let bind = clip.bind_pose();
     let extent = clip.pose_extent();
-    let body = mocap::body::build(clip.skeleton(), &bind, |l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8).unwrap();
+    let body = mocap::body::build(clip.skeleton(), &bind, |_, l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8).unwrap();
     let triangles: Vec<[u32; 3]> = body.indices().chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
     let (mut model, mut m, mut p, mut n) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let frames: Vec<(String, Vec<Vec3>)> = (0..clip.frame_count())
@@ -198,7 +198,7 @@ fn corpus_characters_are_captured_by_the_automatic_fit() {
 fn float_frames(clip: &Clip) -> Vec<Vec<Vec3>> {
     let bind = clip.bind_pose();
     let extent = clip.pose_extent();
-    let body = mocap::body::build(clip.skeleton(), &bind, |l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8).unwrap();
+    let body = mocap::body::build(clip.skeleton(), &bind, |_, l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8).unwrap();
     let (mut model, mut m, mut p, mut n) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     (0..clip.frame_count())
         .map(|f| {

@@ -76,8 +76,8 @@ fn closed(indices: &[u32]) -> bool {
 
 /// The capsule mode's radius rule (mocap-render's `bone_radius`), here so the core
 /// tests need no renderer.
-fn radius(size: f32) -> impl Fn(f32) -> f32 {
-    move |length: f32| if length > size * 0.75 { size * 0.004 } else { (length * 0.2).clamp(size * 0.008, size * 0.04) }
+fn radius(size: f32) -> impl Fn(usize, f32) -> f32 {
+    move |_, length: f32| if length > size * 0.75 { size * 0.004 } else { (length * 0.2).clamp(size * 0.008, size * 0.04) }
 }
 
 #[test]
@@ -126,7 +126,7 @@ fn a_bent_elbow_leaves_no_gap() {
     let clip = mocap::bvh::parse(text.as_bytes()).unwrap();
     let mut bind = Vec::new();
     clip.world_transforms_into(0, &mut bind);
-    let body = mocap::body::build(clip.skeleton(), &bind, |_| 0.1).unwrap();
+    let body = mocap::body::build(clip.skeleton(), &bind, |_, _| 0.1).unwrap();
     let mut posed = Vec::new();
     clip.world_transforms_into(1, &mut posed);
     let (mut m, mut p, mut n) = (Vec::new(), Vec::new(), Vec::new());
