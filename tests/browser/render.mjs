@@ -100,6 +100,13 @@ try {
     check(w.view.includes('weights'), `the weights view is in the fragment (${w.view})`);
     const grey = (await pixelStats(context, weights)).figure;
     check(grey < b.figure / 2, `the weights view colours the body (${grey} grey pixels left of ${b.figure})`);
+    // The body casts its shadow at full quality (the shadow map is fitted to
+    // where the posed body is).
+    const sh = await changeAndRender(page, (v) => v.applyViewState('draw=joints&shadows=1'));
+    const shadowed = await view(page, shot('body-shadow'));
+    const ps = await pixelStats(context, shadowed, body);
+    check(sh.samples === 4 && ps.darker > 300, `the body's shadow darkens the floor (${ps.darker} pixels, ${sh.samples} samples)`);
+    await changeAndRender(page, (v) => v.applyViewState('shadows=0'));
     await page.keyboard.press('m');
     await waitState(page, (s) => s.drawMode === 'capsules');
   });

@@ -356,7 +356,7 @@ impl StageView {
             if let Some(body) = body {
                 let mut matrices = Vec::with_capacity(body.inverse_bind.len());
                 mocap::skin::skinning_matrices(pose, &body.inverse_bind, &mut matrices);
-                scene.skinned.push(SkinnedDraw { mesh: body.mesh.clone(), coarse: None, matrices, tint: color, weights_view: false, margin: extent * 0.1 });
+                scene.skinned.push(SkinnedDraw { mesh: body.mesh.clone(), coarse: None, matrices, tint: color, weights_view: false });
             }
             let style = FigureStyle {
                 mode: if self.mode == DrawMode::Body && body.is_none() { DrawMode::Capsules } else { self.mode },

@@ -25,6 +25,7 @@
 #![warn(missing_docs)]
 
 mod blit;
+mod bounds;
 mod buffer;
 mod camera;
 mod capsule;

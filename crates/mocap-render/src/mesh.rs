@@ -140,17 +140,7 @@ impl MeshDraw {
     /// World-space bounds of the whole mesh (every frame) where it is drawn.
     pub fn world_bounds(&self) -> Option<(Vec3, Vec3)> {
         let (min, max) = self.mesh.bounds();
-        if !(min.x <= max.x) {
-            return None;
-        }
-        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-        for i in 0..8 {
-            let pick = |bit: usize, a: f32, b: f32| if i & bit == 0 { a } else { b };
-            let p = self.transform.transform_point3(Vec3::new(pick(1, min.x, max.x), pick(2, min.y, max.y), pick(4, min.z, max.z)));
-            lo = lo.min(p);
-            hi = hi.max(p);
-        }
-        (lo.is_finite() && hi.is_finite()).then_some((lo, hi))
+        crate::bounds::transform_box(&self.transform, min, max)
     }
 }
 

@@ -42,6 +42,11 @@ pub struct SkinnedMeshData {
     vertices: Vec<SkinnedVertex>,
     indices: Vec<u32>,
     joint_count: u32,
+    /// Per joint, the bind-pose box around the vertices it moves (empty, min
+    /// past max, for a joint that moves none): a skinned vertex is a weighted
+    /// mean of its joints' matrices applied to it, so the posed mesh lies inside
+    /// these boxes carried by their joints' matrices.
+    joint_boxes: Vec<(Vec3, Vec3)>,
 }
 
 impl SkinnedMeshData {
@@ -66,16 +71,24 @@ impl SkinnedMeshData {
         if joints.iter().zip(weights).any(|(j, w)| j.iter().zip(w).any(|(j, w)| *w > 0.0 && *j as usize >= joint_count)) {
             return Err("a vertex is weighted to a joint past the skeleton".into());
         }
-        let joint_count = u32::try_from(joint_count).map_err(|_| "too many joints")?;
+        let joint_count_u32 = u32::try_from(joint_count).map_err(|_| "too many joints")?;
+        let mut joint_boxes = vec![(Vec3::INFINITY, Vec3::NEG_INFINITY); joint_count];
+        for ((p, js), ws) in positions.iter().zip(joints).zip(weights) {
+            for (j, w) in js.iter().zip(ws) {
+                if let (true, Some(b)) = (*w > 0.0 && p.is_finite(), joint_boxes.get_mut(*j as usize)) {
+                    *b = (b.0.min(*p), b.1.max(*p));
+                }
+            }
+        }
         let vertices = (0..n)
             .map(|i| SkinnedVertex {
                 position: positions[i].to_array(),
                 normal: normals[i].to_array(),
-                joints: joints[i].map(|j| j.min(joint_count.saturating_sub(1))),
+                joints: joints[i].map(|j| j.min(joint_count_u32.saturating_sub(1))),
                 weights: weights[i],
             })
             .collect();
-        Ok(SkinnedMeshData { vertices, indices, joint_count })
+        Ok(SkinnedMeshData { vertices, indices, joint_count: joint_count_u32, joint_boxes })
     }
 
     /// Joints the mesh is bound to (matrices a draw needs).
@@ -105,25 +118,17 @@ pub struct SkinnedDraw {
     pub tint: [u8; 4],
     /// Colour by bone influences instead of the tint.
     pub weights_view: bool,
-    /// How far the surface reaches from the joints at most (world units): for
-    /// fitting the shadow map around the draw.
-    pub margin: f32,
 }
 
 impl SkinnedDraw {
-    /// A box around the posed mesh: the joints' positions grown by
-    /// [`SkinnedDraw::margin`] (for fitting the shadow map).
+    /// A box around the posed mesh (for fitting the shadow map and sizing the
+    /// draw on screen): each joint's bind-pose box around the vertices it moves,
+    /// carried by its matrix, together. `None` when no joint moves a vertex.
     pub fn world_bounds(&self) -> Option<(Vec3, Vec3)> {
-        let margin = if self.margin.is_finite() { self.margin.max(0.0) } else { 0.0 };
-        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-        for m in &self.matrices {
-            let p = m.w_axis.truncate();
-            if p.is_finite() {
-                lo = lo.min(p);
-                hi = hi.max(p);
-            }
-        }
-        (lo.x <= hi.x).then(|| (lo - Vec3::splat(margin), hi + Vec3::splat(margin)))
+        self.mesh.joint_boxes.iter().enumerate().fold(None, |bounds, (j, &(min, max))| {
+            let m = self.matrices.get(j).copied().unwrap_or(Mat4::IDENTITY);
+            crate::bounds::union(bounds, crate::bounds::transform_box(&m, min, max))
+        })
     }
 }
 

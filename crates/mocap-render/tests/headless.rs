@@ -333,7 +333,7 @@ fn gpu_skinning_matches_the_cpu_blend() {
     let camera = Camera::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.0);
     let tint = [200, 180, 160, 255];
     let mut scene = Scene { shadows: false, ..Scene::default() };
-    scene.skinned = vec![SkinnedDraw { mesh: mesh.clone(), coarse: None, matrices: matrices.clone(), tint, weights_view: false, margin: 0.3 }];
+    scene.skinned = vec![SkinnedDraw { mesh: mesh.clone(), coarse: None, matrices: matrices.clone(), tint, weights_view: false }];
     renderer.render(&device, &queue, &target, &scene, &camera);
     let gpu = read_pixels(&device, &queue, &target);
     // The CPU blend: Σ wᵢ·Mᵢ applied to each vertex.
@@ -364,7 +364,7 @@ fn gpu_skinning_matches_the_cpu_blend() {
     assert!(columns_of(10..40) + 10.0 < columns_of(80..110), "bent toward -X at the top");
     // The weights view colours by joint, not by the tint.
     scene.meshes.clear();
-    scene.skinned = vec![SkinnedDraw { mesh, coarse: None, matrices, tint, weights_view: true, margin: 0.3 }];
+    scene.skinned = vec![SkinnedDraw { mesh, coarse: None, matrices, tint, weights_view: true }];
     renderer.render(&device, &queue, &target, &scene, &camera);
     let weights_view = read_pixels(&device, &queue, &target);
     let changed = gpu.chunks(4).zip(weights_view.chunks(4)).filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 30)).count();
@@ -894,7 +894,7 @@ fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
     use mocap_render::SkinnedDraw;
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     let mesh = pillar(0.0);
-    let body = SkinnedDraw { mesh, coarse: None, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false, margin: 0.3 };
+    let body = SkinnedDraw { mesh, coarse: None, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false };
     let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
     let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
     renderer.render(&device, &queue, &target, &scene, &camera);
@@ -949,7 +949,7 @@ fn the_fast_look_draws_a_small_body_with_its_coarse_mesh_and_a_near_one_with_its
     use mocap_render::SkinnedDraw;
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     // The "coarse" mesh is set apart (at x = 1) so the picture tells which is drawn.
-    let body = SkinnedDraw { mesh: pillar(0.0), coarse: Some(pillar(1.0)), matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false, margin: 0.3 };
+    let body = SkinnedDraw { mesh: pillar(0.0), coarse: Some(pillar(1.0)), matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false };
     let scene = Scene { skinned: vec![body], shadows: false, ..Scene::default() };
     let red_columns = |renderer: &mut SceneRenderer, camera: &Camera| {
         renderer.render(&device, &queue, &target, &scene, camera);
@@ -980,7 +980,7 @@ fn bodies_are_drawn_from_outside_and_seen_through_from_inside() {
     use mocap_render::glam::Mat4;
     use mocap_render::SkinnedDraw;
     let Some((device, queue, mut renderer, target)) = setup(4) else { return };
-    let body = SkinnedDraw { mesh: pillar(0.0), coarse: None, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false, margin: 0.3 };
+    let body = SkinnedDraw { mesh: pillar(0.0), coarse: None, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false };
     let scene = Scene { skinned: vec![body], shadows: false, ..Scene::default() };
     let background = Scene::default().background;
     for fast in [false, true] {

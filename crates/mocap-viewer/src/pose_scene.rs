@@ -63,7 +63,7 @@ pub fn character_primitives(
     if let Some(body) = body {
         let mut matrices = Vec::with_capacity(body.inverse_bind.len());
         mocap::skin::skinning_matrices(transforms, &body.inverse_bind, &mut matrices);
-        scene.skinned.push(SkinnedDraw { mesh: body.mesh.clone(), coarse: body.coarse.clone(), matrices, tint: color, weights_view: settings.show_weights, margin: size * 0.1 });
+        scene.skinned.push(SkinnedDraw { mesh: body.mesh.clone(), coarse: body.coarse.clone(), matrices, tint: color, weights_view: settings.show_weights });
     }
     let style = FigureStyle {
         mode,

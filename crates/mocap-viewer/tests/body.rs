@@ -75,3 +75,35 @@ fn a_skeleton_too_big_for_a_body_keeps_its_capsules() {
     v.pose();
     assert!(v.scene().skinned.is_empty(), "the build is not retried every frame");
 }
+
+#[test]
+fn the_bodys_bounds_hold_the_posed_body_where_it_is_drawn() {
+    // The shadow map is fitted to these bounds: a box elsewhere left body mode
+    // without its shadow.
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    v.set_playing(false);
+    v.apply_fragment("mode=body");
+    let c = &v.stage.actors[0];
+    let skin = mocap_viewer::character::body_skin(c.clip().unwrap(), c.extent).expect("a body");
+    for frame in [0, 20, 40, 60] {
+        v.seek(frame);
+        v.pose();
+        let draw = &v.scene().skinned[0];
+        let (lo, hi) = draw.world_bounds().expect("bounds");
+        let (mut positions, mut normals) = (Vec::new(), Vec::new());
+        mocap::skin::skin_vertices(&skin, &draw.matrices, &mut positions, &mut normals);
+        let (mut vlo, mut vhi) = (mocap::glam::Vec3::INFINITY, mocap::glam::Vec3::NEG_INFINITY);
+        for p in &positions {
+            assert!(p.cmpge(lo - 1e-4).all() && p.cmple(hi + 1e-4).all(), "frame {frame}: vertex {p} outside {lo}..{hi}");
+            (vlo, vhi) = (vlo.min(*p), vhi.max(*p));
+        }
+        for t in v.stage.actors[0].extra.pose.iter() {
+            assert!(t.translation.cmpge(lo).all() && t.translation.cmple(hi).all(), "frame {frame}: joint {} outside", t.translation);
+        }
+        // And no looser than a fifth of the body's height on any side (each
+        // joint's box is turned with it, and the box around that is larger).
+        let slack = (vhi.y - vlo.y) * 0.2;
+        assert!((vlo - lo).max_element() < slack && (hi - vhi).max_element() < slack, "frame {frame}: {lo}..{hi} around {vlo}..{vhi}");
+    }
+}
