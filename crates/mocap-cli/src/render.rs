@@ -370,9 +370,9 @@ impl StageView {
         }
     }
 
-    /// A floor under the lowest point of the motion, with 0.5 m cells.
+    /// A floor at the stage's floor height, with 0.5 m cells.
     fn floor(&self) -> Grid {
-        let b = self.stage.bounds();
+        let b = self.stage.floor_bounds();
         Grid::floor(b.min, b.max, self.stage.extent(), 0.5)
     }
 

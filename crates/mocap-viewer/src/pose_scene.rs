@@ -100,9 +100,9 @@ fn push_axes(t: &Transform, length: f32, scene: &mut Scene) {
     }
 }
 
-/// A floor at the lowest point the visible motions reach, with 0.5 m cells (1 m
-/// major lines), covering all of them.
+/// A floor at the stage's floor height ([`mocap::stage::Stage::floor_height`]),
+/// with 0.5 m cells (1 m major lines), covering every visible character.
 pub fn floor_grid(stage: &Stage) -> Grid {
-    let b = stage.bounds();
+    let b = stage.floor_bounds();
     Grid::floor(b.min, b.max, stage.extent(), 0.5)
 }

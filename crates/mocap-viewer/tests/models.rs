@@ -103,6 +103,14 @@ fn a_model_and_a_bvh_stand_side_by_side_at_one_scale() {
     let mesh = &v.scene().meshes[0];
     let (lo, _) = mesh.world_bounds().unwrap();
     assert!((lo.y - model.min.y).abs() < 1e-3, "the mesh is drawn where the stage placed it");
+    // Both stand on the floor: the model on its standing frame's feet (its death
+    // frames reach lower), the clip on its lowest point.
+    let floor = v.scene().grid.as_ref().expect("a floor").center.y;
+    assert!((floor - stage.floor_height()).abs() < 1e-5);
+    for a in &stage.actors {
+        assert!((a.world_ground() - floor).abs() < 1e-3, "{} stands at {} over a floor at {floor}", a.name, a.world_ground());
+    }
+    assert!(model.min.y < floor - 0.05, "the faerie's death frames sink below the floor ({} vs {floor})", model.min.y);
 }
 
 #[test]

@@ -188,6 +188,13 @@ impl MorphMesh {
         self.bounds
     }
 
+    /// Bounds of the first key frame (file units): the pose a model stands in
+    /// (MD2 models are centred on their origin; their feet are this box's
+    /// bottom, and frames such as deaths reach lower).
+    pub fn first_bounds(&self) -> Aabb {
+        self.first_bounds
+    }
+
     /// Height of the first frame (file units): the size a unit guess reads.
     pub fn height(&self) -> f32 {
         self.first_bounds.size().y

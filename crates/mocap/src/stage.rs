@@ -121,6 +121,23 @@ impl<E> Actor<E> {
         self.local_bounds().translated(self.placement())
     }
 
+    /// Height of what the actor stands on, in file units: a clip's lowest point
+    /// over its motion; a model's lowest point in its first key frame (its
+    /// standing pose: MD2 models are centred on their origin, and frames such
+    /// as deaths sink below their feet). 0 when unknown.
+    pub fn ground(&self) -> f32 {
+        let y = match self.asset.model() {
+            Some(m) => m.mesh.first_bounds().min.y,
+            None => self.bounds.min.y,
+        };
+        if y.is_finite() { y } else { 0.0 }
+    }
+
+    /// [`Actor::ground`] in metres, where the actor stands.
+    pub fn world_ground(&self) -> f32 {
+        self.ground() * self.scale() + self.placement().y
+    }
+
     /// Size of the first pose in metres.
     pub fn world_extent(&self) -> f32 {
         self.extent * self.scale()
@@ -257,6 +274,12 @@ impl<E> Stage<E> {
 
     /// Recomputes every actor's layout offset. Spread lanes count hidden actors too,
     /// so hiding one moves no other.
+    ///
+    /// Heights: in Spread every actor stands on the floor (its [`Actor::ground`]
+    /// at height 0), so clips whose files put the floor at different heights, and
+    /// models, stand side by side. In Overlay clips stay where their files put
+    /// them, to compare in place, and models stand at height 0 (a model's origin
+    /// is its centre, not its floor).
     pub fn arrange(&mut self) {
         let offsets = match self.layout {
             Layout::Overlay => vec![Vec3::ZERO; self.actors.len()],
@@ -267,9 +290,30 @@ impl<E> Stage<E> {
                 spread(&bounds, extent * GAP_PER_EXTENT)
             }
         };
+        let spread_out = self.layout == Layout::Spread;
         for (c, o) in self.actors.iter_mut().zip(offsets) {
-            c.layout_offset = o;
+            let stands = spread_out || c.asset.model().is_some();
+            let lift = if stands { -c.ground() * c.scale() } else { 0.0 };
+            c.layout_offset = Vec3::new(o.x, if lift.is_finite() { lift } else { 0.0 }, o.z);
         }
+    }
+
+    /// Height of the floor in metres: the lowest ground a visible actor stands on
+    /// ([`Actor::world_ground`]); 0 when none is visible.
+    pub fn floor_height(&self) -> f32 {
+        let y = self.visible().map(|(_, c)| c.world_ground()).fold(f32::INFINITY, f32::min);
+        if y.is_finite() { y } else { 0.0 }
+    }
+
+    /// What a floor is laid under: [`Stage::bounds`] with its bottom at
+    /// [`Stage::floor_height`] (empty when nothing is visible).
+    pub fn floor_bounds(&self) -> Aabb {
+        let b = self.bounds();
+        if !(b.min.x <= b.max.x) {
+            return b;
+        }
+        let floor = self.floor_height();
+        Aabb { min: b.min.with_y(floor), max: b.max.with_y(b.max.y.max(floor)) }
     }
 
     /// The visible actors with their indices.
@@ -318,6 +362,38 @@ mod tests {
             text.push_str(&format!("{f}\n"));
         }
         crate::bvh::parse(text.as_bytes()).unwrap()
+    }
+
+    #[test]
+    fn actors_stand_on_one_floor() {
+        // A model centred on its origin (Y-up, Quake units): standing from -24 to
+        // 32, its death frame reaching down to -32.
+        let stand = vec![Vec3::new(0.0, -24.0, 0.0), Vec3::new(10.0, 32.0, 0.0), Vec3::new(-10.0, 0.0, 5.0)];
+        let death = vec![Vec3::new(0.0, -32.0, 0.0), Vec3::new(30.0, -28.0, 0.0), Vec3::new(-10.0, -30.0, 5.0)];
+        let md2 = crate::md2::build(&[("stand01".into(), stand), ("death01".into(), death)], &[[0, 1, 2]]).unwrap();
+        let model = Model::new(crate::morph::MorphMesh::from_md2(&md2), None);
+        // A clip whose feet hang 1.7 below its root.
+        let hanging = clip(2, 0.1, -1.7);
+        let mut stage = Stage::new(vec![Actor::new("m", model, ()), Actor::new("c", hanging, ())], Layout::Spread);
+        // Spread: each stands on the floor, at 0.
+        for a in &stage.actors {
+            assert!(a.world_ground().abs() < 1e-4, "{}: ground at {}", a.name, a.world_ground());
+        }
+        assert!(stage.floor_height().abs() < 1e-4);
+        assert!(stage.actors[0].world_bounds().min.y < -0.1, "its death frame sinks below the floor");
+        assert_eq!(stage.floor_bounds().min.y, stage.floor_height());
+        assert!(stage.floor_bounds().max.y >= stage.bounds().max.y);
+        // Overlay: the clip stays where its file puts it; the model still stands at 0.
+        stage.set_layout(Layout::Overlay);
+        assert_eq!(stage.actors[1].placement(), Vec3::ZERO);
+        assert!(stage.actors[0].world_ground().abs() < 1e-4);
+        assert!((stage.floor_height() + 1.7).abs() < 1e-4, "the floor under the clip's feet: {}", stage.floor_height());
+        // Another animation does not move the model up or down.
+        let lift = stage.actors[0].placement().y;
+        assert!(stage.set_animation(0, "death"));
+        assert_eq!(stage.actors[0].placement().y, lift);
+        // Nothing visible: the floor at 0.
+        assert_eq!(Stage::<()>::default().floor_height(), 0.0);
     }
 
     #[test]
