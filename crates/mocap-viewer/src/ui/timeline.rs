@@ -86,7 +86,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
         ui.horizontal(|ui| {
             let mut f = frame;
             ui.spacing_mut().slider_width = (ui.available_width() - 60.0).max(100.0);
-            let slider = ui.add(egui::Slider::new(&mut f, 0..=timing.last()).show_value(true).trailing_fill(true));
+            let slider = frame_slider(ui, &mut f, timing.last());
             if slider.changed() {
                 viewer.playback.seek(f, timing);
             }
@@ -188,7 +188,7 @@ fn minimal(ui: &mut egui::Ui, viewer: &mut Viewer, play: &str, frame: usize, tim
         }
         let mut f = frame;
         ui.spacing_mut().slider_width = (ui.available_width() - 60.0).max(100.0);
-        if ui.add(egui::Slider::new(&mut f, 0..=timing.last()).show_value(true).trailing_fill(true)).changed() {
+        if frame_slider(ui, &mut f, timing.last()).changed() {
             viewer.playback.seek(f, timing);
         }
     });
@@ -203,4 +203,12 @@ fn key_mode(ui: &mut egui::Ui, settings: &mut crate::settings::ViewSettings) {
     if !settings.key_between {
         ui.add(egui::DragValue::new(&mut settings.key_window).range(0..=60).prefix("± ").suffix(" frames")).on_hover_text("Frames on each side over which the key fades in and out");
     }
+}
+
+/// The playhead's slider over frames `0..=last`. A clip of one frame has nothing
+/// to scrub: its slider is shown at the start and disabled (egui would put the
+/// handle of an empty range half-way along).
+fn frame_slider(ui: &mut egui::Ui, frame: &mut usize, last: usize) -> egui::Response {
+    let slider = egui::Slider::new(frame, 0..=last.max(1)).show_value(true).trailing_fill(true);
+    ui.add_enabled(last > 0, slider)
 }
