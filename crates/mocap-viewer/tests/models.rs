@@ -152,6 +152,14 @@ fn capture_skeleton_adds_a_clip_inside_the_model_and_its_rig_can_be_saved_and_dr
     assert_eq!(s.clips[1].frames, 198);
     assert_eq!(s.layout, "overlay", "the skeleton shows inside the mesh");
     assert_eq!(s.clips[0].animation.as_deref(), Some("all"), "the model plays every frame, in step with the clip");
+    // Where they are drawn, the skeleton's joints are inside the model's mesh.
+    v.pose();
+    let (lo, hi) = v.scene().meshes[0].world_bounds().expect("the model is drawn");
+    let grow = (hi - lo) * 0.05;
+    for t in v.stage.actors[1].extra.pose.iter() {
+        let p = t.translation;
+        assert!(p.cmpge(lo - grow).all() && p.cmple(hi + grow).all(), "joint at {p} outside the model's {lo}..{hi}");
+    }
     let result = v.capture_result.clone().unwrap();
     assert!(result.report.joints.iter().filter(|j| j.tracked.is_ok()).count() > 15);
     assert!(result.animations.iter().any(|(n, a, b)| n == "run" && b - a == 5));

@@ -277,9 +277,10 @@ impl<E> Stage<E> {
     ///
     /// Heights: in Spread every actor stands on the floor (its [`Actor::ground`]
     /// at height 0), so clips whose files put the floor at different heights, and
-    /// models, stand side by side. In Overlay clips stay where their files put
-    /// them, to compare in place, and models stand at height 0 (a model's origin
-    /// is its centre, not its floor).
+    /// models (whose origin is their centre), stand side by side. In Overlay every
+    /// actor stays where its file puts it, to compare in place (a skeleton
+    /// captured from a model stays inside it), over a floor under the lowest
+    /// ground ([`Stage::floor_height`]).
     pub fn arrange(&mut self) {
         let offsets = match self.layout {
             Layout::Overlay => vec![Vec3::ZERO; self.actors.len()],
@@ -292,8 +293,7 @@ impl<E> Stage<E> {
         };
         let spread_out = self.layout == Layout::Spread;
         for (c, o) in self.actors.iter_mut().zip(offsets) {
-            let stands = spread_out || c.asset.model().is_some();
-            let lift = if stands { -c.ground() * c.scale() } else { 0.0 };
+            let lift = if spread_out { -c.ground() * c.scale() } else { 0.0 };
             c.layout_offset = Vec3::new(o.x, if lift.is_finite() { lift } else { 0.0 }, o.z);
         }
     }
@@ -383,15 +383,15 @@ mod tests {
         assert!(stage.actors[0].world_bounds().min.y < -0.1, "its death frame sinks below the floor");
         assert_eq!(stage.floor_bounds().min.y, stage.floor_height());
         assert!(stage.floor_bounds().max.y >= stage.bounds().max.y);
-        // Overlay: the clip stays where its file puts it; the model still stands at 0.
-        stage.set_layout(Layout::Overlay);
-        assert_eq!(stage.actors[1].placement(), Vec3::ZERO);
-        assert!(stage.actors[0].world_ground().abs() < 1e-4);
-        assert!((stage.floor_height() + 1.7).abs() < 1e-4, "the floor under the clip's feet: {}", stage.floor_height());
         // Another animation does not move the model up or down.
         let lift = stage.actors[0].placement().y;
         assert!(stage.set_animation(0, "death"));
         assert_eq!(stage.actors[0].placement().y, lift);
+        // Overlay: both stay where their files put them, over a floor under the
+        // lower ground (the clip's feet, 1.7 below its root).
+        stage.set_layout(Layout::Overlay);
+        assert!(stage.actors.iter().all(|a| a.placement() == Vec3::ZERO));
+        assert!((stage.floor_height() + 1.7).abs() < 1e-4, "the floor under the clip's feet: {}", stage.floor_height());
         // Nothing visible: the floor at 0.
         assert_eq!(Stage::<()>::default().floor_height(), 0.0);
     }
