@@ -99,7 +99,7 @@ await step('TypeScript types', async () => {
     'export function startViewer(canvas: HTMLCanvasElement, options?: ViewerOptions): Promise<MocapViewer>',
     'addClip(clip: MotionClip, file_name: string): void', 'loadClip(clip: MotionClip, file_name: string): void',
     'add(file_name: string, bytes: Uint8Array | number[]): string | undefined', 'setVisible(index: number, visible: boolean): boolean',
-    'remove(index: number): boolean', "setLayout(layout: 'spread' | 'overlay'): boolean",
+    'remove(index: number): boolean', "setLayout(layout: 'spread' | 'overlay'): boolean", 'setUpAxis(index: number, up: string): boolean',
     'worldPositions(frame: number): Float32Array', 'toBvh(): string', 'export interface ViewerOptions',
     'readonly jointNames: string[]', 'readonly parents: Int32Array']) {
     check(dts.includes(needle), `mocap_web.d.ts has ${needle}`);
@@ -191,6 +191,24 @@ try {
     await page.screenshot({ path: path.join(outDir, 'api-start-viewer.png') });
     check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
   });
+  await step('the up axis: guessed, set by the handle, kept in the fragment', async () => {
+    await page.goto(base);
+    await page.waitForFunction(() => window.mocapViewer && window.mocapViewer.state().clips.length === 1, null, { timeout: 60000 });
+    const r = await page.evaluate(() => {
+      const v = window.mocapViewer;
+      v.pause();
+      const guessed = v.state().clips[0].up;
+      const set = v.setUpAxis(0, 'z');
+      const after = v.state();
+      const refused = [v.setUpAxis(0, 'q'), v.setUpAxis(5, 'y')];
+      v.applyViewState('up=y');
+      return { guessed, set, up: after.clips[0].up, view: after.view, refused, back: v.state().clips[0].up };
+    });
+    check(r.guessed === 'y' && r.set && r.up === 'z' && r.view.includes('up=z'), `walk.bvh is Y-up; setUpAxis(0, 'z') stands it along Z (${r.guessed}, ${r.up}, ${r.view})`);
+    check(!r.refused[0] && !r.refused[1], 'an unknown axis or character is refused');
+    check(r.back === 'y', `the fragment sets it back (${r.back})`);
+  });
+
   await step('edits on the page: undo, and Save as BVH downloads the edited clip', async () => {
     await page.goto(base);
     await page.waitForFunction(() => window.mocapViewer && window.mocapViewer.state().clips.length === 1, null, { timeout: 60000 });

@@ -159,7 +159,8 @@ pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
     let joints = skeleton.joint_count();
     let end_sites = skeleton.len() - joints;
     let bounds = clip.bounds();
-    let units = clip.units();
+    let up = clip.up_axis();
+    let units = clip.units_along(up);
     let warnings: Vec<String> = clip.warnings.iter().map(ToString::to_string).collect();
     if as_json {
         return print_json(&json!({
@@ -175,6 +176,7 @@ pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
             "duration": clip.duration(),
             "bounds": { "min": vec3(bounds.min), "max": vec3(bounds.max) },
             "units": units.name(),
+            "up": up.name(),
             "angle_unit": clip.motion().angle_unit().name(),
             "metadata": clip.metadata.iter().map(|(k, v)| json!([k, v])).collect::<Vec<_>>(),
             "warnings": warnings,
@@ -189,7 +191,8 @@ pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
     let _ = writeln!(out, "frame time: {} s ({:.3} fps)", clip.frame_time(), clip.fps());
     let _ = writeln!(out, "duration:   {:.3} s", clip.duration());
     let _ = writeln!(out, "bounds:     min {:?} max {:?}", bounds.min.to_array(), bounds.max.to_array());
-    let _ = writeln!(out, "units:      {} (guessed from a first-pose height of {:.3})", units.name(), clip.pose_height());
+    let _ = writeln!(out, "up:         {} (guessed from the motion)", up.name());
+    let _ = writeln!(out, "units:      {} (guessed from a first-pose height of {:.3})", units.name(), clip.pose_height_along(up));
     for (k, v) in &clip.metadata {
         let _ = writeln!(out, "{:<11} {}", format!("{k}:"), v.replace('\n', "\n            "));
     }
@@ -627,6 +630,8 @@ pub struct RenderOptions<'a> {
     pub camera: Option<&'a str>,
     /// Animation the models play (`all` for every frame).
     pub animation: Option<&'a str>,
+    /// The up axis of every clip (`y` or `z`; guessed per clip when absent).
+    pub up: Option<&'a str>,
 }
 
 /// `mocap render`: `files` may hold models with their skins (`--skin` files are
@@ -638,6 +643,10 @@ pub fn render(files: &[PathBuf], shot: Shot, out: &Path, size: &str, options: &R
     let orbit = options.camera.map(crate::render::parse_orbit).transpose()?.unwrap_or_default();
     let assets = read_set(files)?.into_iter().map(|l| (l.name, l.asset)).collect();
     let mut stage = crate::render::StageView::new(assets).with_mode(mode);
+    if let Some(name) = options.up {
+        let up = mocap::UpAxis::from_name(name).ok_or_else(|| format!("--up: expected y or z, found `{name}`"))?;
+        stage.set_up_axis(up);
+    }
     if let Some(name) = options.animation {
         if !stage.set_animation(name) {
             return Err(format!("--animation {name}: no model in {} has that animation", shown(files)));

@@ -227,6 +227,9 @@ enum Command {
         /// Camera `yaw,pitch[,distance]` in degrees and metres (default frames the motion).
         #[arg(long, allow_hyphen_values = true)]
         camera: Option<String>,
+        /// The file axis that points up in every clip, `y` or `z` (default: guessed per clip from its motion).
+        #[arg(long)]
+        up: Option<String>,
     },
     /// Checks files or directories (recursively): one line per file.
     Validate {
@@ -317,7 +320,7 @@ fn main() -> ExitCode {
             frames_out: frames_out.as_deref(),
             output: &output,
         }),
-        Command::Render { mut files, skin, animation, frame, time, frames, sheet, columns, out, size, mode, camera } => {
+        Command::Render { mut files, skin, animation, frame, time, frames, sheet, columns, out, size, mode, camera, up } => {
             files.extend(skin);
             let shot = match (frame, time, frames, sheet) {
                 (_, Some(t), _, _) => commands::Shot::Time(t),
@@ -325,7 +328,7 @@ fn main() -> ExitCode {
                 (_, _, _, true) => commands::Shot::Sheet(columns),
                 (f, ..) => commands::Shot::Frame(f.unwrap_or(0)),
             };
-            let options = commands::RenderOptions { mode: &mode, camera: camera.as_deref(), animation: animation.as_deref() };
+            let options = commands::RenderOptions { mode: &mode, camera: camera.as_deref(), animation: animation.as_deref(), up: up.as_deref() };
             commands::render(&files, shot, &out, &size, &options)
         }
     };

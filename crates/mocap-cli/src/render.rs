@@ -307,6 +307,13 @@ impl StageView {
         found
     }
 
+    /// Stands every clip up along its file's `up` axis (instead of the guess).
+    pub fn set_up_axis(&mut self, up: mocap::UpAxis) {
+        for i in 0..self.stage.actors.len() {
+            self.stage.set_up_axis(i, up);
+        }
+    }
+
     /// The same stage drawn in `mode` (body mode builds the bodies).
     pub fn with_mode(mut self, mode: DrawMode) -> StageView {
         self.mode = mode;

@@ -69,6 +69,25 @@ fn info_json_reports_counts_timing_bounds_units() {
 }
 
 #[test]
+fn info_says_which_axis_is_up() {
+    // A figure standing along +Z: hips at 1, spine up, arms along X, legs down to 0.
+    let mut z_up = String::from("HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 1\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n");
+    z_up.push_str("JOINT Chest\n{\nOFFSET 0 0 0.5\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT L\n{\nOFFSET 0.6 0 0.3\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 0.4\n}\n}\n}\n");
+    z_up.push_str("JOINT Leg\n{\nOFFSET 0.1 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 -1\n}\n}\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n");
+    z_up.push_str(&format!("0 0 1{}\n0 0.1 1{}\n", " 0".repeat(12), " 0".repeat(12)));
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text, up) in [("z.bvh", z_up.as_str(), "z"), ("y.bvh", SIMPLE, "y")] {
+        let file = write_temp(dir.path(), name, text);
+        let out = mocap(&["info", file.to_str().unwrap(), "--json"]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
+        assert_eq!(v["up"], up, "{name}");
+        let text = stdout(&mocap(&["info", file.to_str().unwrap()]));
+        assert!(text.contains(&format!("up:         {up} (guessed from the motion)")), "{text}");
+    }
+}
+
+#[test]
 fn errors_are_file_line_col_with_failure_status_and_no_backtrace() {
     let dir = tempfile::tempdir().unwrap();
     let file = write_temp(dir.path(), "bad.bvh", &SIMPLE.replace("0 10 0", "0 ten 0"));

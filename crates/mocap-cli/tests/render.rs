@@ -244,6 +244,7 @@ fn render_rejects_bad_arguments_clearly() {
         (vec![f, "--out", "x.png", "--mode", "boxes"], "expected `capsules`, `sticks` or `body`"),
         (vec![f, "--out", "d", "--frames", "5:1"], "a <= b"),
         (vec![f, "--out", "x.png", "--frame", "99"], "out of range"),
+        (vec![f, "--out", "x.png", "--up", "x"], "--up: expected y or z"),
     ] {
         let out = run(&args);
         assert!(!out.status.success());

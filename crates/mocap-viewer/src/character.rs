@@ -121,7 +121,8 @@ pub fn rotate_joint(c: &mut Character, joint: usize, rotation: mocap::glam::Quat
 pub fn drawn_local_rotation(c: &Character, joint: usize) -> Option<mocap::glam::Quat> {
     let clip = c.clip()?;
     let world = c.extra.pose.get(joint)?.rotation;
-    let parent = clip.skeleton().joints().get(joint)?.parent.and_then(|p| c.extra.pose.get(p)).map_or(mocap::glam::Quat::IDENTITY, |t| t.rotation);
+    // A root's parent frame is the file's axes turned up (Actor::place).
+    let parent = clip.skeleton().joints().get(joint)?.parent.and_then(|p| c.extra.pose.get(p)).map_or(c.up.rotation(), |t| t.rotation);
     Some((parent.inverse() * world).normalize())
 }
 
@@ -135,7 +136,7 @@ pub fn drag_joint(c: &mut Character, joint: usize, world: mocap::glam::Vec3, tim
     let clip = c.clip()?;
     let skeleton = clip.skeleton();
     let parent = skeleton.joints().get(joint)?.parent;
-    let target = (world - c.placement()) / c.scale();
+    let target = c.to_file(world);
     if !target.is_finite() {
         return None;
     }
@@ -254,7 +255,7 @@ pub fn pose_at(c: &mut Character, time: f64, smooth: bool, lock_feet: bool, scra
         (false, true) => Interpolation::Nearest,
     };
     if lock_feet && c.extra.foot_lock.is_none() {
-        c.extra.foot_lock = c.clip().map(mocap::contact::FootLock::new);
+        c.extra.foot_lock = c.clip().map(|clip| mocap::contact::FootLock::with_up(clip, c.up));
     }
     let mut pose = std::mem::take(&mut c.extra.pose);
     let mut ghost = std::mem::take(&mut c.extra.ghost);

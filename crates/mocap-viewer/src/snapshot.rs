@@ -38,6 +38,8 @@ pub struct ClipSummary {
     pub edited: bool,
     /// Frames keyed (pose corrections made keys), in order.
     pub keys: Vec<usize>,
+    /// Which file axis points up: `y` or `z` (a model: `y`).
+    pub up: &'static str,
 }
 
 impl ClipSummary {
@@ -63,6 +65,7 @@ impl ClipSummary {
             edited: false,
             keys: Vec::new(),
             foot_contacts: c.extra.foot_lock.as_ref().map_or(Vec::new(), |l| l.contacts().map(|k| k.iter().filter(|x| **x).count()).collect()),
+            up: c.up.name(),
         }
     }
 }

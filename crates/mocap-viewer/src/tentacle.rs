@@ -95,7 +95,7 @@ impl Tentacle {
                 *slot = Quat::from_rotation_z(bend.to_radians()) * Quat::from_rotation_x(swing.to_radians());
             }
         }
-        let target = (self.target - c.placement()) / c.scale();
+        let target = c.to_file(self.target);
         if self.follow && target.is_finite() {
             if let Ok(chain) = Chain::new(skeleton, 0, skeleton.len().saturating_sub(1)) {
                 let options = Options { iterations: 64, tolerance: 1e-4, ..Options::default() };

@@ -12,7 +12,9 @@
 //! metres as `n:x,y,z` joined by `;` (`offset=2:0.5,0,-1`; characters not listed sit
 //! at zero; `none` or absent when all are zero), `mode` `capsules`, `sticks` or `body`,
 //! `anim` the animations models play as `n:name` joined by `;` (`anim=1:run`; models
-//! not listed play all their frames; `none` or absent when all do),
+//! not listed play all their frames; `none` or absent when all do), `up` the file
+//! axis that points up in each character, one letter per character in order (`up=yz`:
+//! the second is Z-up; absent: as guessed when the clips opened),
 //! `shadows` 0/1, `quality` `auto`, `full` or `fast` (see [`crate::quality`]), `draw` a comma list of `joints`, `axes`, `follow`, `interp`, `weights`, `pose`, `footlock`, and `panels` a comma list of `tree`, `inspector` (or
 //! `none`). Timeline frames (`f`, `range`, the frame shown) count in the frame time
 //! of the selection's character, else the first one. Unknown keys and unreadable
@@ -49,6 +51,8 @@ pub struct ViewState {
     pub offsets: Option<Vec<(usize, Vec3)>>,
     /// Animations played by models (0-based character; written 1-based); the rest play all frames.
     pub animations: Option<Vec<(usize, String)>>,
+    /// The up axis of each character, in order (models take none).
+    pub up: Option<Vec<mocap::UpAxis>>,
     /// Capsules, sticks or body.
     pub mode: Option<crate::settings::DrawMode>,
     /// Soft shadows on the floor.
@@ -91,6 +95,7 @@ impl ViewState {
                 "layout" => s.layout = Layout::parse(v),
                 "hide" => s.hidden = parse_hidden(v),
                 "offset" => s.offsets = parse_offsets(v),
+                "up" => s.up = parse_up(v),
                 "draw" => s.draw = Some(flags(v, DRAW_NAMES)),
                 "mode" => s.mode = crate::settings::DrawMode::from_name(v),
                 "shadows" => s.shadows = flag(v),
@@ -142,6 +147,9 @@ impl ViewState {
         if !animations.is_empty() {
             parts.push(format!("anim={}", animations.join(";")));
         }
+        if !viewer.stage.actors.is_empty() {
+            parts.push(format!("up={}", viewer.stage.actors.iter().map(|c| c.up.name()).collect::<String>()));
+        }
         parts.push(format!("mode={}", st.mode.name()));
         parts.push(format!("shadows={}", u8::from(st.shadows)));
         parts.push(format!("quality={}", st.quality.name()));
@@ -158,6 +166,13 @@ impl ViewState {
             && layout != viewer.stage.layout
         {
             viewer.stage.set_layout(layout);
+        }
+        if let Some(up) = &self.up {
+            for (i, &axis) in up.iter().enumerate() {
+                if viewer.stage.actors.get(i).is_some_and(|c| c.clip().is_some() && c.up != axis) {
+                    viewer.set_up_axis(i, axis);
+                }
+            }
         }
         if let Some(hidden) = &self.hidden {
             for (i, c) in viewer.stage.actors.iter_mut().enumerate() {
@@ -285,6 +300,11 @@ fn parse_hidden(v: &str) -> Option<Vec<usize>> {
 
 /// `none`, empty, or `n:name` items joined by `;` (`n` 1-based, 0-based out; the
 /// name percent-encoded), from the raw value.
+/// `up=yzy`: one axis letter per character; `None` when a letter is neither.
+fn parse_up(v: &str) -> Option<Vec<mocap::UpAxis>> {
+    v.chars().map(|c| mocap::UpAxis::from_name(c.encode_utf8(&mut [0; 4]))).collect()
+}
+
 fn parse_animations(raw: &str) -> Option<Vec<(usize, String)>> {
     if raw.is_empty() || raw == "none" {
         return Some(Vec::new());
@@ -380,6 +400,14 @@ mod tests {
         assert_eq!((s.mode, s.shadows), (None, None));
         assert_eq!(ViewState::parse("quality=fast").quality, Some(crate::quality::Quality::Fast));
         assert_eq!(ViewState::parse("quality=ultra").quality, None);
+    }
+
+    #[test]
+    fn up_axes_by_character() {
+        assert_eq!(ViewState::parse("up=yz").up, Some(vec![mocap::UpAxis::Y, mocap::UpAxis::Z]));
+        assert_eq!(ViewState::parse("up=Z").up, Some(vec![mocap::UpAxis::Z]));
+        assert_eq!(ViewState::parse("up=yx").up, None, "an unknown letter: nothing");
+        assert_eq!(ViewState::parse("t=1").up, None);
     }
 
     #[test]

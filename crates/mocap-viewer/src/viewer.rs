@@ -238,6 +238,20 @@ impl Viewer {
         true
     }
 
+    /// Stands clip `index` up along its file's `up` axis (the unit is guessed again
+    /// from the height along it; foot contacts are found again); the camera frames
+    /// the stage. False (no change) for a model or no such character.
+    pub fn set_up_axis(&mut self, index: usize, up: mocap::UpAxis) -> bool {
+        if !self.stage.set_up_axis(index, up) {
+            return false;
+        }
+        if let Some(c) = self.stage.actors.get_mut(index) {
+            c.extra.foot_lock = None;
+        }
+        self.camera.frame(self.stage.bounds());
+        true
+    }
+
     /// Closes character `index` (0-based); returns whether it existed.
     pub fn remove(&mut self, index: usize) -> bool {
         if !self.stage.remove(index) {
@@ -791,6 +805,11 @@ impl Viewer {
         c.extra.color = old.extra.color;
         c.visible = old.visible;
         c.offset = old.offset;
+        // An up axis set by hand stays; a guessed one is guessed again (an edit
+        // turning the file to Y-up changes the guess).
+        if old.clip().is_some_and(|clip| clip.up_axis() != old.up) {
+            c.set_up(old.up);
+        }
         // The character stays where it stands (an edit does not move it to a new
         // lane centre; changing the layout arranges again).
         c.layout_offset = old.layout_offset;
@@ -910,7 +929,8 @@ impl Viewer {
         let Some(r) = self.ring_drag else { return };
         let Some(angle) = crate::drag::ring_angle(&view, d.pointer, r.center, r.axis, r.from) else { return };
         let turned = mocap::glam::Quat::from_axis_angle(r.axis, angle - r.start) * r.world;
-        let parent = c.clip().and_then(|clip| clip.skeleton().joints().get(r.joint)?.parent).and_then(|p| c.extra.pose.get(p)).map_or(mocap::glam::Quat::IDENTITY, |p| p.rotation);
+        // A root's parent frame is the file's axes turned up (Actor::place).
+        let parent = c.clip().and_then(|clip| clip.skeleton().joints().get(r.joint)?.parent).and_then(|p| c.extra.pose.get(p)).map_or(c.up.rotation(), |p| p.rotation);
         self.rotate_joint(r.character, r.joint, (parent.inverse() * turned).normalize());
     }
 

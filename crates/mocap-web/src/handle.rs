@@ -432,6 +432,15 @@ impl MocapViewer {
         self.with_viewer(|v| v.set_animation(index as usize, name)).unwrap_or(false)
     }
 
+    /// Stands clip `index` (0-based) up along its file's `'y'` or `'z'` axis (the
+    /// viewer guesses it when the clip opens); returns whether that clip exists
+    /// and the axis is one of those.
+    #[wasm_bindgen(js_name = setUpAxis)]
+    pub fn set_up_axis(&self, index: u32, up: &str) -> bool {
+        let Some(up) = mocap::UpAxis::from_name(up) else { return false };
+        self.with_viewer(|v| v.set_up_axis(index as usize, up)).unwrap_or(false)
+    }
+
     /// Shows or hides character `index` (0-based, as in `state().clips`); returns whether it exists.
     #[wasm_bindgen(js_name = setVisible)]
     pub fn set_visible(&self, index: u32, visible: bool) -> bool {

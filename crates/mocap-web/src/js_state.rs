@@ -39,6 +39,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
             set(&o, "modelFrame", c.model_frame.as_ref().map_or(JsValue::NULL, |(f, _)| JsValue::from_f64(*f as f64)));
             set(&o, "frameName", c.model_frame.as_ref().map_or(JsValue::NULL, |(_, n)| JsValue::from_str(n)));
             set(&o, "skin", opt(&c.skin));
+            set(&o, "up", c.up);
             set(&o, "corrected", c.corrected);
             set(&o, "edited", c.edited);
             let keys: Array = c.keys.iter().map(|k| JsValue::from_f64(*k as f64)).collect();

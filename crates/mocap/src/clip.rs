@@ -10,6 +10,7 @@ use crate::pose::{self, LocalPose};
 use crate::sample::{sample, Interpolation, SampleScratch};
 use crate::skeleton::Skeleton;
 use crate::time::Timeline;
+use crate::up::UpAxis;
 use glam::Vec3;
 
 /// An axis-aligned bounding box.
@@ -323,16 +324,32 @@ impl Clip {
         self.first_pose_bounds().size().max_element()
     }
 
-    /// The first pose's height (BVH is Y-up); its largest edge when it is lying down
-    /// or the file is Z-up (height under a quarter of the largest edge).
+    /// The first pose's height along the guessed up axis ([`Clip::up_axis`]).
     pub fn pose_height(&self) -> f32 {
+        self.pose_height_along(self.up_axis())
+    }
+
+    /// The first pose's height along `up`; its largest edge when it is lying down
+    /// (height under a quarter of the largest edge).
+    pub fn pose_height_along(&self, up: UpAxis) -> f32 {
         let size = self.first_pose_bounds().size();
-        if size.y >= 0.25 * size.max_element() { size.y } else { size.max_element() }
+        let height = up.height(size);
+        if height >= 0.25 * size.max_element() { height } else { size.max_element() }
+    }
+
+    /// Which file axis points up, guessed from the motion ([`UpAxis::guess`]).
+    pub fn up_axis(&self) -> UpAxis {
+        UpAxis::guess(self)
     }
 
     /// Guess of the file's length unit from the height of the first pose.
     pub fn units(&self) -> Units {
         Units::guess(self.pose_height())
+    }
+
+    /// Guess of the file's length unit from the first pose's height along `up`.
+    pub fn units_along(&self, up: UpAxis) -> Units {
+        Units::guess(self.pose_height_along(up))
     }
 }
 

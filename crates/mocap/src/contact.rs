@@ -14,6 +14,7 @@ use crate::clip::Clip;
 use crate::fk::Transform;
 use crate::ik::{self, Chain};
 use crate::pose::LocalPose;
+use crate::up::UpAxis;
 use glam::Vec3;
 
 /// Frames over which a lock eases in before a contact run and out after it.
@@ -47,17 +48,25 @@ pub struct FootLock {
 }
 
 impl FootLock {
-    /// Finds the legs of `clip` and the contact frames of their feet.
+    /// Finds the legs of `clip` and the contact frames of their feet, with up
+    /// along the clip's guessed axis ([`Clip::up_axis`]).
     pub fn new(clip: &Clip) -> FootLock {
+        FootLock::with_up(clip, clip.up_axis())
+    }
+
+    /// [`FootLock::new`] with up along the file axis `up` (heights and the floor
+    /// are measured along it; the anchors stay in the file's axes).
+    pub fn with_up(clip: &Clip, up: UpAxis) -> FootLock {
         let skeleton = clip.skeleton();
         let chains = ik::default_chains(skeleton);
         let rest = crate::fk::rest_positions(skeleton);
-        let root_y = skeleton.roots().next().and_then(|r| rest.get(r)).map_or(0.0, |p| p.y);
+        let height = |p: &Vec3| up.to_y_up(*p).y;
+        let root_y = skeleton.roots().next().and_then(|r| rest.get(r)).map_or(0.0, height);
         // Legs: the chains ending below the root in the rest pose, the lowest two.
         let legs: Vec<Chain> = chains
             .into_iter()
             .map(|(_, c)| c)
-            .filter(|c| rest.get(c.effector()).is_some_and(|p| p.y < root_y))
+            .filter(|c| rest.get(c.effector()).is_some_and(|p| height(p) < root_y))
             .take(2)
             .collect();
         let frames = clip.frame_count();
@@ -74,7 +83,7 @@ impl FootLock {
                 track.push(model.get(leg.effector()).map_or(Vec3::ZERO, |t| t.translation));
             }
         }
-        let legs = legs.into_iter().zip(tracks).map(|(chain, track)| leg(chain, &track, size, dt)).collect();
+        let legs = legs.into_iter().zip(tracks).map(|(chain, track)| leg(chain, &track, up, size, dt)).collect();
         FootLock { legs }
     }
 
@@ -106,16 +115,17 @@ impl FootLock {
     }
 }
 
-/// Contacts, weights and anchors of one foot's track.
-fn leg(chain: Chain, track: &[Vec3], size: f32, dt: f32) -> Leg {
+/// Contacts, weights and anchors of one foot's track (file axes, up along `up`).
+fn leg(chain: Chain, track: &[Vec3], up: UpAxis, size: f32, dt: f32) -> Leg {
     let n = track.len();
-    let floor = track.iter().map(|p| p.y).filter(|y| y.is_finite()).fold(f32::INFINITY, f32::min);
+    let upright: Vec<Vec3> = track.iter().map(|p| up.to_y_up(*p)).collect();
+    let floor = upright.iter().map(|p| p.y).filter(|y| y.is_finite()).fold(f32::INFINITY, f32::min);
     let speed = |f: usize| {
-        let (a, b) = (track[f.saturating_sub(1)], track[(f + 1).min(n - 1)]);
+        let (a, b) = (upright[f.saturating_sub(1)], upright[(f + 1).min(n - 1)]);
         let span = ((f + 1).min(n - 1) - f.saturating_sub(1)).max(1) as f32 * dt.max(1e-6);
         Vec3::new(b.x - a.x, 0.0, b.z - a.z).length() / span
     };
-    let contact: Vec<bool> = (0..n).map(|f| track[f].y <= floor + HEIGHT_SHARE * size && speed(f) <= SPEED_SHARE * size).collect();
+    let contact: Vec<bool> = (0..n).map(|f| upright[f].y <= floor + HEIGHT_SHARE * size && speed(f) <= SPEED_SHARE * size).collect();
     let mut weight = vec![0.0f32; n];
     let mut anchor = track.to_vec();
     let mut f = 0;

@@ -50,6 +50,7 @@ pub mod skin;
 pub mod stage;
 mod text;
 pub mod time;
+pub mod up;
 
 pub use asset::Asset;
 pub use channel::{AngleUnit, Channel, ChannelKind};
@@ -63,5 +64,6 @@ pub use pose::LocalPose;
 pub use sample::{Interpolation, SampleScratch};
 pub use skeleton::{EulerConvention, Joint, Limit, Skeleton};
 pub use time::Timeline;
+pub use up::UpAxis;
 
 pub use load::{load, load_one, Format, Input, Loaded, Loader};

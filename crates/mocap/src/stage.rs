@@ -11,6 +11,7 @@ use crate::fk::{local_to_model, Transform};
 use crate::pose::LocalPose;
 use crate::sample::{Interpolation, SampleScratch};
 use crate::time::Timeline;
+use crate::up::UpAxis;
 use glam::Vec3;
 
 /// Gap between spread lanes, as a share of the largest character's size.
@@ -61,8 +62,11 @@ pub struct Actor<E> {
     pub name: String,
     /// The clip or model.
     pub asset: Asset,
-    /// Guessed length unit.
+    /// Guessed length unit (from the height along [`Actor::up`]).
     pub units: Units,
+    /// Which file axis points up (guessed for a clip, Y for a model; see
+    /// [`Actor::set_up`]).
+    pub up: UpAxis,
     /// Bounds of all joints over all frames, file units.
     pub bounds: Aabb,
     /// Size of the first pose in file units (a humanoid's height; 1 when unknown).
@@ -83,9 +87,17 @@ impl<E> Actor<E> {
         let asset = asset.into();
         let extent = asset.extent();
         let extent = if extent.is_finite() && extent > 0.0 { extent } else { 1.0 };
+        let (up, units) = match asset.clip() {
+            Some(clip) => {
+                let up = clip.up_axis();
+                (up, clip.units_along(up))
+            }
+            None => (UpAxis::Y, asset.units()),
+        };
         Actor {
             name: name.to_owned(),
-            units: asset.units(),
+            units,
+            up,
             bounds: asset.bounds(),
             asset,
             extent,
@@ -106,14 +118,30 @@ impl<E> Actor<E> {
         self.layout_offset + self.offset
     }
 
-    /// File units to the world: the unit's scale, then the placement.
+    /// File units to the world: the up axis turned to Y, the unit's scale, then
+    /// the placement.
     pub fn world_matrix(&self) -> glam::Mat4 {
-        glam::Mat4::from_scale_rotation_translation(Vec3::splat(self.scale()), glam::Quat::IDENTITY, self.placement())
+        glam::Mat4::from_scale_rotation_translation(Vec3::splat(self.scale()), self.up.rotation(), self.placement())
     }
 
-    /// Bounds of the whole motion in metres, before placement.
+    /// A point in the world (metres) in the file's units and axes
+    /// ([`Actor::world_matrix`] undone).
+    pub fn to_file(&self, world: Vec3) -> Vec3 {
+        self.up.from_y_up((world - self.placement()) / self.scale())
+    }
+
+    /// Sets which file axis points up, and guesses the unit again from the height
+    /// along it (a model stays Y-up). The caller arranges the stage again.
+    pub fn set_up(&mut self, up: UpAxis) {
+        if let Some(clip) = self.asset.clip() {
+            self.units = clip.units_along(up);
+            self.up = up;
+        }
+    }
+
+    /// Bounds of the whole motion in metres, Y up, before placement.
     pub fn local_bounds(&self) -> Aabb {
-        self.bounds.scaled(self.scale())
+        self.up.box_to_y_up(self.bounds).scaled(self.scale())
     }
 
     /// Bounds of the whole motion in metres, where it stands.
@@ -121,14 +149,15 @@ impl<E> Actor<E> {
         self.local_bounds().translated(self.placement())
     }
 
-    /// Height of what the actor stands on, in file units: a clip's lowest point
+    /// Height of what the actor stands on, in file units along the world's up
+    /// (after [`Actor::up`]): a clip's lowest point
     /// over its motion; a model's lowest point in its first key frame (its
     /// standing pose: MD2 models are centred on their origin, and frames such
     /// as deaths sink below their feet). 0 when unknown.
     pub fn ground(&self) -> f32 {
         let y = match self.asset.model() {
             Some(m) => m.mesh.first_bounds().min.y,
-            None => self.bounds.min.y,
+            None => self.up.box_to_y_up(self.bounds).min.y,
         };
         if y.is_finite() { y } else { 0.0 }
     }
@@ -194,9 +223,13 @@ impl<E> Actor<E> {
             return;
         };
         local_to_model(clip.skeleton(), local, out);
-        let (scale, at) = (self.scale(), self.placement());
+        let (scale, at, up) = (self.scale(), self.placement(), self.up);
+        let turn = up.rotation();
         for t in out.iter_mut() {
-            t.translation = t.translation * scale + at;
+            t.translation = up.to_y_up(t.translation) * scale + at;
+            if up != UpAxis::Y {
+                t.rotation = turn * t.rotation;
+            }
             t.scale *= scale;
         }
     }
@@ -261,6 +294,15 @@ impl<E> Stage<E> {
         true
     }
 
+    /// Sets which file axis points up in clip `index` ([`Actor::set_up`]) and
+    /// arranges again; false (no change) when there is no such clip.
+    pub fn set_up_axis(&mut self, index: usize, up: UpAxis) -> bool {
+        let Some(actor) = self.actors.get_mut(index).filter(|a| a.clip().is_some()) else { return false };
+        actor.set_up(up);
+        self.arrange();
+        true
+    }
+
     /// Shows or hides actor `index`; returns whether it exists.
     pub fn set_visible(&mut self, index: usize, visible: bool) -> bool {
         self.actors.get_mut(index).map(|c| c.visible = visible).is_some()
@@ -309,7 +351,7 @@ impl<E> Stage<E> {
     /// [`Stage::floor_height`] (empty when nothing is visible).
     pub fn floor_bounds(&self) -> Aabb {
         let b = self.bounds();
-        if !(b.min.x <= b.max.x) {
+        if b.is_empty() {
             return b;
         }
         let floor = self.floor_height();

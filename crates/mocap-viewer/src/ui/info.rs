@@ -4,17 +4,19 @@
 
 use crate::character::Character;
 
-/// Shows the info section for `doc`, one of `count` open characters.
-pub fn show(ui: &mut egui::Ui, doc: Option<&Character>, count: usize) {
+/// Shows the info section for `doc`, one of `count` open characters; returns the
+/// up axis the user picked for it, if they picked another.
+pub fn show(ui: &mut egui::Ui, doc: Option<&Character>, count: usize) -> Option<mocap::UpAxis> {
     ui.heading("Clip").on_hover_text("The selected joint's character, else the first one");
     let Some(doc) = doc else {
         ui.label("No clip open");
-        return;
+        return None;
     };
     let Some(clip) = doc.clip() else {
         model_facts(ui, doc, count);
-        return;
+        return None;
     };
+    let mut picked = None;
     egui::Grid::new("info").num_columns(2).striped(true).show(ui, |ui| {
         let mut row = |k: &str, v: String| {
             ui.label(k);
@@ -35,6 +37,16 @@ pub fn show(ui: &mut egui::Ui, doc: Option<&Character>, count: usize) {
         for (key, value) in clip.metadata.iter().filter(|(k, _)| k != "documentation") {
             row(key, value.clone());
         }
+        ui.label("Up").on_hover_text("Which file axis points up (guessed from the motion: BVH is Y-up, some tools write Z-up)");
+        ui.horizontal(|ui| {
+            for up in [mocap::UpAxis::Y, mocap::UpAxis::Z] {
+                let label = if up == mocap::UpAxis::Y { "Y" } else { "Z" };
+                if ui.selectable_label(doc.up == up, label).on_hover_text(format!("Stand the character up along the file's {label} axis")).clicked() && doc.up != up {
+                    picked = Some(up);
+                }
+            }
+        });
+        ui.end_row();
     });
     if let Some((_, text)) = clip.metadata.iter().find(|(k, _)| k == "documentation") {
         egui::CollapsingHeader::new("Documentation").id_salt("documentation").show(ui, |ui| {
@@ -51,6 +63,7 @@ pub fn show(ui: &mut egui::Ui, doc: Option<&Character>, count: usize) {
             }
         });
     }
+    picked
 }
 
 /// The file facts of a model: name, frames and rate, units.

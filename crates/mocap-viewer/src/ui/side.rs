@@ -7,7 +7,10 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     egui::Panel::right("side").resizable(true).default_size(280.0).show(ui, |ui| {
         egui::ScrollArea::vertical().auto_shrink([false, false]).show(ui, |ui| {
             let current = viewer.stage.actors.get(viewer.current());
-            super::info::show(ui, current, viewer.stage.actors.len());
+            if let Some(up) = super::info::show(ui, current, viewer.stage.actors.len()) {
+                viewer.set_up_axis(viewer.current(), up);
+            }
+            let current = viewer.stage.actors.get(viewer.current());
             ui.separator();
             if let Some((c, model)) = current.and_then(|c| Some((c, c.model()?))) {
                 super::model_info::show(ui, c, model);
