@@ -21,7 +21,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
         ui.label(format!("{}: a model has no motion to edit", c.name));
         return;
     };
-    let (name, fps, units) = (c.name.clone(), 1.0 / clip.frame_time(), clip.units());
+    let (name, fps, units) = (c.name.clone(), 1.0 / clip.frame_time(), c.units);
     let selected = viewer.selected.filter(|s| s.character == index).and_then(|s| clip.skeleton().joints().get(s.joint)).map(|j| j.name.clone());
     ui.label(egui::RichText::new(format!("Editing {name}")).weak());
     let mut edit: Option<(Edit, String)> = None;
