@@ -8,8 +8,9 @@
 //! poses are often bones along X that the motion's rotations stand up): a clip
 //! is Z-up when its posed frames are much deeper along Z than along Y (in the
 //! median of frames spread over the clip) and its root does not travel along Z
-//! as far as the figure is tall (a crawl along Z in a Y-up file travels). Files
-//! the guess gets wrong can be set by hand.
+//! as far as the figure is tall (a crawl along Z in a Y-up file travels), unless
+//! its rest pose stands clearly along Y (a Y-up figure lying down in place: push-ups).
+//! Files the guess gets wrong can be set by hand.
 
 use crate::clip::{Aabb, Clip};
 use glam::{Quat, Vec3};
@@ -22,6 +23,9 @@ const GUESS_FRAMES: usize = 16;
 /// On the corpus, Y-up clips measure at most 1.02 (VR trackers) and 0.73 for a
 /// body, Z-up ones at least 2.18 (a walk: its stride is deep along Y).
 const Z_OVER_Y: f32 = 1.5;
+
+/// A rest pose this much taller along Y than deep along Z stands along Y.
+const REST_Y_OVER_Z: f32 = 2.0;
 
 /// Fewer joints than this give no evidence (a lone bone lies any way).
 const MIN_JOINTS: usize = 4;
@@ -132,7 +136,7 @@ impl UpAxis {
             tallest = tallest.max(size.z);
             ratios.push(size.z / size.y.max(f32::MIN_POSITIVE));
         }
-        if ratios.is_empty() {
+        if ratios.is_empty() || rest_stands_along_y(clip) {
             return UpAxis::Y;
         }
         ratios.sort_by(f32::total_cmp);
@@ -144,6 +148,20 @@ impl UpAxis {
             UpAxis::Y
         }
     }
+}
+
+/// Whether the skeleton's rest pose (its offsets alone) stands clearly along Y:
+/// then a motion lying along Z is a Y-up figure lying down (push-ups, a nap),
+/// not a Z-up file. Rest poses of Z-up files point along Z, or along X.
+fn rest_stands_along_y(clip: &Clip) -> bool {
+    let skip_roots = clip.skeleton().joints().iter().any(|j| j.parent.is_some());
+    let mut b = Aabb::EMPTY;
+    for (joint, p) in clip.skeleton().joints().iter().zip(crate::fk::rest_positions(clip.skeleton())) {
+        if !(skip_roots && joint.parent.is_none()) && p.is_finite() {
+            b.include(p);
+        }
+    }
+    !b.is_empty() && b.size().y > REST_Y_OVER_Z * b.size().z
 }
 
 #[cfg(test)]
@@ -165,5 +183,40 @@ mod tests {
         let b = UpAxis::Z.box_to_y_up(Aabb { min: Vec3::new(-1.0, -2.0, 0.0), max: Vec3::new(1.0, 3.0, 17.0) });
         assert_eq!((b.min, b.max), (Vec3::new(-1.0, 0.0, -3.0), Vec3::new(1.0, 17.0, 2.0)));
         assert!(UpAxis::Z.box_to_y_up(Aabb::EMPTY).is_empty());
+    }
+
+    /// A figure whose rest pose stands along `up` (Y or Z): hips, spine, head,
+    /// two arms and two legs, over 8 frames in place; `lying` turns the root a
+    /// quarter about X in every frame.
+    fn figure(up: UpAxis, lying: bool) -> Clip {
+        let at = |x: f32, h: f32| {
+            let p = if up == UpAxis::Y { Vec3::new(x, h, 0.0) } else { Vec3::new(x, 0.0, h) };
+            format!("OFFSET {} {} {}\n", p.x, p.y, p.z)
+        };
+        let mut s = format!("HIERARCHY\nROOT Hips\n{{\n{}CHANNELS 6 Xposition Yposition Zposition Xrotation Yrotation Zrotation\n", at(0.0, 1.0));
+        s.push_str(&format!("JOINT Spine\n{{\n{}CHANNELS 3 Xrotation Yrotation Zrotation\nJOINT Head\n{{\n{}CHANNELS 3 Xrotation Yrotation Zrotation\nEnd Site\n{{\n{}}}\n}}\n", at(0.0, 0.5), at(0.0, 0.3), at(0.0, 0.2)));
+        for x in [0.3f32, -0.3] {
+            s.push_str(&format!("JOINT Arm{x}\n{{\n{}CHANNELS 3 Xrotation Yrotation Zrotation\nEnd Site\n{{\n{}}}\n}}\n", at(x, 0.3), at(0.0, -0.6)));
+        }
+        s.push_str("}\n");
+        for x in [0.1f32, -0.1] {
+            s.push_str(&format!("JOINT Leg{x}\n{{\n{}CHANNELS 3 Xrotation Yrotation Zrotation\nEnd Site\n{{\n{}}}\n}}\n", at(x, 0.0), at(0.0, -1.0)));
+        }
+        s.push_str("}\nMOTION\nFrames: 8\nFrame Time: 0.1\n");
+        let turn = if lying { if up == UpAxis::Y { -90.0 } else { 90.0 } } else { 0.0 };
+        for _ in 0..8 {
+            s.push_str(&format!("0 0 0 {turn} 0 0{}\n", " 0".repeat(3 * 6)));
+        }
+        crate::bvh::parse(s.as_bytes()).unwrap()
+    }
+
+    #[test]
+    fn guesses_from_the_motion_and_the_rest_pose() {
+        assert_eq!(UpAxis::guess(&figure(UpAxis::Y, false)), UpAxis::Y);
+        assert_eq!(UpAxis::guess(&figure(UpAxis::Z, false)), UpAxis::Z, "stands along Z");
+        // A Y-up figure lying along Z in place (push-ups) is no Z-up file.
+        assert_eq!(UpAxis::guess(&figure(UpAxis::Y, true)), UpAxis::Y);
+        // A Z-up file whose motion lays it along Y is read as it moves: Y.
+        assert_eq!(UpAxis::guess(&figure(UpAxis::Z, true)), UpAxis::Y);
     }
 }
