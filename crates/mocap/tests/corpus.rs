@@ -109,6 +109,16 @@ fn up_axis_guesses_on_every_corpus_clip() {
         checked += 1;
     }
     assert!(checked > 15, "{checked} clips");
+    // CMU's Acclaim takes and the generated BVA walk are Y-up.
+    for (asf, amc) in [("01.asf", "01_01.amc"), ("01.asf", "01_06.amc"), ("02.asf", "02_01.amc")] {
+        let read = |name: &str| std::fs::read(dir.join("asf_amc/cmu").join(name)).unwrap();
+        let (skeleton, motion) = (read(asf), read(amc));
+        let files = [mocap::Input { name: asf, bytes: &skeleton }, mocap::Input { name: amc, bytes: &motion }];
+        let loaded = mocap::load(&files).into_iter().find_map(Result::ok).expect("the take opens");
+        assert_eq!(loaded.asset.clip().unwrap().up_axis(), mocap::UpAxis::Y, "{amc}");
+    }
+    let bva = std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bva")).unwrap();
+    assert_eq!(mocap::load_one("walk.bva", &bva).unwrap().clip().unwrap().up_axis(), mocap::UpAxis::Y);
     // The MakeHuman walk, read Z-up, is 1.7 m tall in decimetres.
     let walk = mocap::bvh::parse(&std::fs::read(dir.join("bvh/makehuman/walk1.bvh")).unwrap()).unwrap();
     assert_eq!(walk.units(), mocap::Units::Decimeters, "height {}", walk.pose_height());
