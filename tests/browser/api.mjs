@@ -19,6 +19,13 @@ await step('parseMotion in Node on the built package', async () => {
   const parents = clip.parents;
   check(names[0] === 'Hips' && parents.length === names.length && parents[0] === -1 && parents instanceof Int32Array,
     `${names.length} joints, root ${names[0]}, parents an Int32Array`);
+  // A figure standing along +Z (hips at 1, spine up, an arm along X, a leg down to 0).
+  const zUp = 'HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 1\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n'
+    + 'JOINT Chest\n{\nOFFSET 0 0 0.5\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT L\n{\nOFFSET 0.6 0 0.3\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 0.4\n}\n}\n}\n'
+    + 'JOINT Leg\n{\nOFFSET 0.1 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 -1\n}\n}\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n'
+    + `0 0 1${' 0'.repeat(12)}\n0 0.1 1${' 0'.repeat(12)}\n`;
+  const standing = pkg.parseMotion(new TextEncoder().encode(zUp), 'z.bvh');
+  check(clip.upAxis === 'y' && standing.upAxis === 'z', `upAxis: walk.bvh ${clip.upAxis}, a Z-up figure ${standing.upAxis}`);
   const p = clip.worldPositions(10);
   check(p instanceof Float32Array && p.length === 3 * names.length && p.every(Number.isFinite), `worldPositions(10): ${p.length} finite floats`);
   const indices = clip.bodyIndices();
@@ -101,7 +108,7 @@ await step('TypeScript types', async () => {
     'add(file_name: string, bytes: Uint8Array | number[]): string | undefined', 'setVisible(index: number, visible: boolean): boolean',
     'remove(index: number): boolean', "setLayout(layout: 'spread' | 'overlay'): boolean", 'setUpAxis(index: number, up: string): boolean',
     'worldPositions(frame: number): Float32Array', 'toBvh(): string', 'export interface ViewerOptions',
-    'readonly jointNames: string[]', 'readonly parents: Int32Array']) {
+    'readonly jointNames: string[]', 'readonly parents: Int32Array', 'readonly upAxis: string']) {
     check(dts.includes(needle), `mocap_web.d.ts has ${needle}`);
   }
 });

@@ -68,6 +68,14 @@ impl MotionClip {
         self.clip.frame_time()
     }
 
+    /// Which file axis points up, guessed from the motion: `'y'` (BVH's
+    /// convention) or `'z'` (some tools' files; turn positions by it to stand the
+    /// figure up, as the viewer does).
+    #[wasm_bindgen(getter, js_name = upAxis)]
+    pub fn up_axis(&self) -> String {
+        self.clip.up_axis().name().to_owned()
+    }
+
     /// World positions of every joint at `frame` (clamped), as `x, y, z` per joint in file units.
     #[wasm_bindgen(js_name = worldPositions)]
     pub fn world_positions(&mut self, frame: u32) -> Vec<f32> {
