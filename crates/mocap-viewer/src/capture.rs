@@ -100,6 +100,9 @@ impl Viewer {
         let added = self.stage.actors.len() - 1;
         if let (Some(offset), Some(c)) = (model_placement, self.stage.actors.get_mut(added)) {
             c.offset = offset;
+            // The skeleton lives in the model's axes (Y-up), whatever way its
+            // motion lies (a swimming dolphin lies along Z).
+            c.set_up(mocap::UpAxis::Y);
         }
         self.set_layout(Layout::Overlay);
         self.capture_result = Some(CaptureResult {
