@@ -232,6 +232,36 @@ fn comparison_detects_a_changed_image() {
 }
 
 #[test]
+fn a_z_up_clip_is_stood_up_as_guessed_and_up_sets_it() {
+    if std::env::var_os("MOCAP_SKIP_GPU_TESTS").is_some() {
+        eprintln!("MOCAP_SKIP_GPU_TESTS set: skipping the up-axis render");
+        return;
+    }
+    // A figure standing along +Z: hips at 1, spine up, arms along X, legs down to 0.
+    let mut text = String::from("HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 1\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n");
+    text.push_str("JOINT Chest\n{\nOFFSET 0 0 0.5\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT L\n{\nOFFSET 0.6 0 0.3\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 0.4\n}\n}\n}\n");
+    text.push_str("JOINT Leg\n{\nOFFSET 0.1 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 -1\n}\n}\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n");
+    text.push_str(&format!("0 0 1{}\n0 0.1 1{}\n", " 0".repeat(12), " 0".repeat(12)));
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("z.bvh");
+    std::fs::write(&file, text).unwrap();
+    let render = |up: Option<&str>| {
+        let out = dir.path().join(format!("{}.png", up.unwrap_or("guess")));
+        let mut command = Command::new(env!("CARGO_BIN_EXE_mocap"));
+        command.arg("render").arg(&file).args(["--size", "160x120", "--camera", "0,10,4"]).arg("--out").arg(&out);
+        if let Some(up) = up {
+            command.args(["--up", up]);
+        }
+        let output = command.output().unwrap();
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        decode(&out).1
+    };
+    let (guess, z, y) = (render(None), render(Some("z")), render(Some("y")));
+    assert_eq!(differing_share(&guess, &z, 24), 0.0, "the guess is Z");
+    assert!(differing_share(&guess, &y, 24) > 0.02, "read Y-up it lies down: another picture");
+}
+
+#[test]
 fn render_rejects_bad_arguments_clearly() {
     let run = |args: &[&str]| Command::new(env!("CARGO_BIN_EXE_mocap")).arg("render").args(args).output().unwrap();
     let dir = tempfile::tempdir().unwrap();
