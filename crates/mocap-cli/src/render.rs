@@ -293,7 +293,13 @@ impl StageView {
                 Asset::Clip(clip) => Look::Figure(mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site()))), None),
                 Asset::Model(model) => Look::Mesh(mesh_data(model)),
             };
-            Actor::new(&name, asset, look)
+            let mut actor = Actor::new(&name, asset, look);
+            // Bone radii once, in the pose the body is built around (see `body`).
+            if let (Some(clip), Look::Figure(figure, _)) = (actor.asset.clip(), &mut actor.extra) {
+                let bind: Vec<mocap::glam::Vec3> = clip.bind_pose().iter().map(|t| t.translation).collect();
+                mocap_render::size_figure(figure, &bind, actor.extent);
+            }
+            actor
         });
         StageView { stage: Stage::new(actors.collect(), Layout::Spread), mode: DrawMode::default(), scratch: Default::default() }
     }

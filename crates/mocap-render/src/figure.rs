@@ -1,7 +1,7 @@
 //! Skeletons to primitives: one figure (a posed skeleton) becomes bones and joints
 //! in the chosen [`DrawMode`]. Knows joint positions and parents, no file formats.
 
-use crate::radius::{bone_radii, bone_radius};
+use crate::radius::bone_radius;
 use crate::{Capsule, Line, Scene, Sphere};
 use glam::Vec3;
 
@@ -61,14 +61,18 @@ impl DrawMode {
 }
 
 /// One joint of a figure: its parent (earlier in the list; its bone runs from
-/// there) and whether it gets a joint marker (end points such as End Sites get a
-/// bone but no marker). Build figures with [`figure`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// there), whether it gets a joint marker (end points such as End Sites get a
+/// bone but no marker) and how thick its bone is. Build figures with [`figure`],
+/// size them once with [`size_figure`].
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FigureJoint {
     /// Index of the parent joint, `None` for a root.
     pub parent: Option<usize>,
     /// Draw a joint marker (ball, axes) here.
     pub marker: bool,
+    /// Radius of the bone from the parent as a share of the figure's size, set
+    /// by [`size_figure`]; 0 (unsized): [`bone_radius`] of the length drawn.
+    pub radius: f32,
 }
 
 /// Looks of one figure.
@@ -101,7 +105,7 @@ pub const MAX_FIGURE_BONES: usize = 16_384;
 /// kept joint hanging from its nearest kept ancestor; a joint left out gets neither
 /// a parent nor a marker, so nothing is drawn for it. One linear pass.
 pub fn figure(joints: impl IntoIterator<Item = (Option<usize>, bool)>) -> Vec<FigureJoint> {
-    let mut out: Vec<FigureJoint> = joints.into_iter().map(|(parent, marker)| FigureJoint { parent, marker }).collect();
+    let mut out: Vec<FigureJoint> = joints.into_iter().map(|(parent, marker)| FigureJoint { parent, marker, radius: 0.0 }).collect();
     let stride = out.len().div_ceil(MAX_FIGURE_BONES).max(1);
     if stride == 1 {
         return out;
@@ -122,7 +126,7 @@ pub fn figure(joints: impl IntoIterator<Item = (Option<usize>, bool)>) -> Vec<Fi
         if let (Some(slot), Some(a), Some(joint)) = (depth.get_mut(i), anchor.get_mut(i), out.get_mut(i)) {
             *slot = d;
             *a = if kept { i } else { from.unwrap_or(i) };
-            *joint = if kept { FigureJoint { parent: from, marker: joint.marker } } else { FigureJoint { parent: None, marker: false } };
+            *joint = if kept { FigureJoint { parent: from, ..*joint } } else { FigureJoint { parent: None, marker: false, radius: 0.0 } };
         }
     }
     out
@@ -131,19 +135,14 @@ pub fn figure(joints: impl IntoIterator<Item = (Option<usize>, bool)>) -> Vec<Fi
 /// Appends the figure posed at `positions` (world space, one per joint of `joints`:
 /// points, or anything that converts to its position, such as a world transform)
 /// to `scene`. Joints with non-finite positions and their bones are skipped.
-/// Capsules (and a body's shadow casters) are as thick as [`bone_radii`] says for
-/// this pose.
+/// Capsules (and a body's shadow casters) are as thick as the figure was sized
+/// ([`FigureJoint::radius`]).
 pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoint], positions: &[P], style: &FigureStyle) {
     let size = if style.size.is_finite() && style.size > 0.0 { style.size } else { 1.0 };
     let joint_radius = size * 0.012;
     let highlight = style.highlight.map(|(j, _)| j);
     let at = |i: usize| positions.get(i).map(|&p| p.into()).filter(|p: &Vec3| p.is_finite());
-    let mut radii = Vec::new();
-    if style.mode != DrawMode::Sticks {
-        bone_radii(joints.len(), |j| joints.get(j).and_then(|x| x.parent), at, size, &mut radii);
-    }
-    // A bone the rule gave no radius (its parent comes after it) keeps its own.
-    let radius_of = |i: usize, length: f32| radii.get(i).copied().filter(|r| *r > 0.0).unwrap_or_else(|| bone_radius(length, size));
+    let radius_of = |joint: &FigureJoint, length: f32| if joint.radius > 0.0 { joint.radius * size } else { bone_radius(length, size) };
     for (i, joint) in joints.iter().enumerate() {
         let Some(p) = at(i) else {
             continue;
@@ -157,7 +156,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
         match style.mode {
             DrawMode::Capsules => {
                 if let Some(q) = parent {
-                    let radius = radius_of(i, q.distance(p));
+                    let radius = radius_of(joint, q.distance(p));
                     scene.capsules.push(Capsule { a: q, b: p, radius, color });
                 } else if joint.marker {
                     // A root: a ball so a lone root (or the hips) is visible.
@@ -170,7 +169,7 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
             DrawMode::Body => {
                 // The body's shadow in the fast look: its bones' capsules.
                 if let Some(q) = parent {
-                    let radius = radius_of(i, q.distance(p));
+                    let radius = radius_of(joint, q.distance(p));
                     scene.body_casters.push(Capsule { a: q, b: p, radius, color });
                 }
                 if is_highlight {
@@ -197,9 +196,9 @@ mod tests {
 
     fn chain() -> (Vec<FigureJoint>, Vec<Vec3>) {
         let joints = vec![
-            FigureJoint { parent: None, marker: true },
-            FigureJoint { parent: Some(0), marker: true },
-            FigureJoint { parent: Some(1), marker: false },
+            FigureJoint { parent: None, marker: true, radius: 0.0 },
+            FigureJoint { parent: Some(0), marker: true, radius: 0.0 },
+            FigureJoint { parent: Some(1), marker: false, radius: 0.0 },
         ];
         (joints, vec![Vec3::ZERO, Vec3::Y, Vec3::new(0.0, 2.0, 0.0)])
     }

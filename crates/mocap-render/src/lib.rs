@@ -50,7 +50,7 @@ pub use blit::{Blit, BlitSource};
 pub use camera::Camera;
 pub use color::srgb_to_linear;
 pub use figure::{DrawMode, FigureJoint, FigureStyle, HIGHLIGHT_COLOR, JOINT_COLOR, MAX_FIGURE_BONES, PALETTE, figure, push_figure};
-pub use radius::{BODY_THICKNESS, HELPER_BONE, MAX_CARRIED, body_radii, bone_radii, bone_radius};
+pub use radius::{BODY_THICKNESS, HELPER_BONE, MAX_CARRIED, body_radii, bone_radii, bone_radius, size_figure};
 pub use grid::Grid;
 pub use mesh::{MeshDraw, MorphMeshData, MorphVertex, NEUTRAL_TINT, SkinImage};
 pub use renderer::SceneRenderer;

@@ -15,6 +15,7 @@
 //! runs from the parent to the joint) and position; one pass from the last joint
 //! to the first, no recursion.
 
+use crate::figure::FigureJoint;
 use glam::Vec3;
 
 /// Bones longer than this share of the figure's size are helpers, not limbs.
@@ -69,6 +70,18 @@ pub fn bone_radii(count: usize, parent: impl Fn(usize) -> Option<usize>, positio
         if let Some(sum) = carried.get_mut(p) {
             *sum += r * r;
         }
+    }
+}
+
+/// Sizes `figure` once, when it is built: each bone's [`bone_radii`] in the pose
+/// `positions` (one per joint: the bind pose a generated body is built around,
+/// so capsules and body agree), stored as a share of the figure's `size`.
+pub fn size_figure(figure: &mut [FigureJoint], positions: &[Vec3], size: f32) {
+    let size = if size.is_finite() && size > 0.0 { size } else { 1.0 };
+    let mut radii = Vec::new();
+    bone_radii(figure.len(), |j| figure.get(j).and_then(|x| x.parent), |j| positions.get(j).copied(), size, &mut radii);
+    for (joint, r) in figure.iter_mut().zip(radii) {
+        joint.radius = r / size;
     }
 }
 
@@ -148,6 +161,25 @@ mod tests {
         // A body's tubes are thicker by the body factor.
         let body = body_radii(2, |j| j.checked_sub(1), |j| Some(Vec3::Y * j as f32 * 0.3), 1.0);
         assert_eq!(body, [0.0, bone_radius(0.3, 1.0) * BODY_THICKNESS]);
+    }
+
+    #[test]
+    fn a_sized_figure_draws_its_capsules_as_thick_as_the_rule() {
+        let (parents, positions) = torso();
+        let mut figure = crate::figure(parents.iter().map(|&p| (p, true)));
+        size_figure(&mut figure, &positions, 1.7);
+        let mut radii = Vec::new();
+        bone_radii(parents.len(), |j| parents[j], |j| positions.get(j).copied(), 1.7, &mut radii);
+        for (joint, r) in figure.iter().zip(&radii) {
+            assert!((joint.radius * 1.7 - r).abs() < 1e-6);
+        }
+        // Drawn at another size (metres instead of file units) the shares hold.
+        let mut scene = crate::Scene::default();
+        let style = crate::FigureStyle { mode: crate::DrawMode::Capsules, color: [1; 4], joint_color: [2; 4], size: 3.4, show_joints: false, highlight: None };
+        let doubled: Vec<Vec3> = positions.iter().map(|p| *p * 2.0).collect();
+        crate::push_figure(&mut scene, &figure, &doubled, &style);
+        let chest = scene.capsules.iter().find(|c| c.b == doubled[2]).expect("the chest bone");
+        assert!((chest.radius - 2.0 * radii[2]).abs() < 1e-5, "{} vs {}", chest.radius, 2.0 * radii[2]);
     }
 
     #[test]

@@ -231,7 +231,13 @@ pub fn new_character(name: &str, asset: Asset, open: &[Character]) -> Character 
         }
         Asset::Model(model) => look.mesh = mesh_data(model),
     }
-    Actor::new(name, asset, look)
+    let mut c = Actor::new(name, asset, look);
+    // Bone radii once, in the pose the body is built around (see body_skin).
+    if let Some(clip) = c.asset.clip() {
+        let bind: Vec<mocap::glam::Vec3> = clip.bind_pose().iter().map(|t| t.translation).collect();
+        mocap_render::size_figure(&mut c.extra.figure, &bind, c.extent);
+    }
+    c
 }
 
 /// The renderer's copy of a model's key frames and skin.
