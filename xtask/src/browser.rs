@@ -42,8 +42,10 @@ fn expected_acclaim(out: &Path, corpus: &Path) -> Result<PathBuf, String> {
     let (asf, amc) = (corpus.join(ACCLAIM_PAIR.0), corpus.join(ACCLAIM_PAIR.1));
     let read = |p: &Path| std::fs::read(p).map_err(|e| format!("{}: {e}", p.display()));
     let (asf_bytes, amc_bytes) = (read(&asf)?, read(&amc)?);
-    let inputs = [mocap::Input { name: "02.asf", bytes: &asf_bytes }, mocap::Input { name: "02_01.amc", bytes: &amc_bytes }];
-    let clip = mocap::load(&inputs).pop().ok_or("no clip")?.map_err(|e| e.to_string())?.into_clip().ok_or("not a clip")?;
+    let inputs =
+        [mocap::Input { name: "02.asf", bytes: &asf_bytes }, mocap::Input { name: "02_01.amc", bytes: &amc_bytes }];
+    let clip =
+        mocap::load(&inputs).pop().ok_or("no clip")?.map_err(|e| e.to_string())?.into_clip().ok_or("not a clip")?;
     let joint = clip.skeleton().find(ACCLAIM_JOINT).ok_or("no ltibia")?;
     let p = clip.world_positions(0).get(joint).copied().ok_or("no position")?;
     let json = format!(
@@ -136,7 +138,11 @@ pub fn bench() -> Result<(), String> {
     let chromium = setup::chromium()?;
     setup::playwright()?;
     let file = corpus_dir().map(|c| c.join(BENCH_FILE)).filter(|f| f.is_file());
-    println!("transfer size: {} bytes gzipped (wasm + js + html + css; aim <= {} = 2.0 MB)", crate::dist::download_size(&dist), crate::dist::DOWNLOAD_AIM);
+    println!(
+        "transfer size: {} bytes gzipped (wasm + js + html + css; aim <= {} = 2.0 MB)",
+        crate::dist::download_size(&dist),
+        crate::dist::DOWNLOAD_AIM
+    );
     let url = spawn_server(dist.clone())?;
     let mut cmd = node("bench.mjs");
     cmd.args([url.as_str()]).arg(&chromium);
@@ -172,8 +178,13 @@ fn expected_frames(out: &Path) -> Result<PathBuf, String> {
             if !file.is_file() {
                 continue;
             }
-            let info = output(Command::new(&cargo).current_dir(root()).args(["run", "-q", "-p", "mocap-cli", "--", "info", "--json"]).arg(&file))
-                .ok_or_else(|| format!("mocap info {} failed", file.display()))?;
+            let info = output(
+                Command::new(&cargo)
+                    .current_dir(root())
+                    .args(["run", "-q", "-p", "mocap-cli", "--", "info", "--json"])
+                    .arg(&file),
+            )
+            .ok_or_else(|| format!("mocap info {} failed", file.display()))?;
             let frames = json_number(&info, "\"frames\"").ok_or("no frames in mocap info output")?;
             entries.push(format!("{{\"path\":{:?},\"frames\":{frames}}}", file.display().to_string()));
         }

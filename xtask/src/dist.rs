@@ -114,7 +114,9 @@ const MIN_WASM_OPT: u32 = 116;
 fn optimize(wasm: &Path, npm_fallback: bool) {
     let system = setup::wasm_opt().map(PathBuf::from).filter(|w| wasm_opt_version(w) >= MIN_WASM_OPT);
     let Some(wasm_opt) = system.or_else(|| npm_fallback.then(setup::npm_wasm_opt).flatten()) else {
-        eprintln!("xtask: no wasm-opt {MIN_WASM_OPT} or newer (cargo xtask dist --opt uses npm's binaryen); skipping size optimisation");
+        eprintln!(
+            "xtask: no wasm-opt {MIN_WASM_OPT} or newer (cargo xtask dist --opt uses npm's binaryen); skipping size optimisation"
+        );
         return;
     };
     let out = wasm.with_extension("opt.wasm");
@@ -129,7 +131,8 @@ fn optimize(wasm: &Path, npm_fallback: bool) {
     ];
     let before = sizes(wasm);
     let started = std::time::Instant::now();
-    let ok = run(Command::new(&wasm_opt).args(["-Os", "--strip-debug"]).args(features).arg(wasm).arg("-o").arg(&out)).is_ok();
+    let ok = run(Command::new(&wasm_opt).args(["-Os", "--strip-debug"]).args(features).arg(wasm).arg("-o").arg(&out))
+        .is_ok();
     if ok && std::fs::rename(&out, wasm).is_ok() {
         let after = sizes(wasm);
         println!(
@@ -161,7 +164,11 @@ fn minify_js(dist: &Path) {
     for file in files {
         let before = sizes(&file);
         let out = file.with_extension("min.js");
-        let ok = run(Command::new(&esbuild).arg(&file).args(["--minify", "--format=esm", "--log-level=warning"]).arg(format!("--outfile={}", out.display()))).is_ok();
+        let ok = run(Command::new(&esbuild)
+            .arg(&file)
+            .args(["--minify", "--format=esm", "--log-level=warning"])
+            .arg(format!("--outfile={}", out.display())))
+        .is_ok();
         if ok && std::fs::rename(&out, &file).is_ok() {
             let after = sizes(&file);
             println!("xtask: minified {}: {} -> {} bytes gzipped", file.display(), before.1, after.1);
@@ -174,7 +181,9 @@ fn minify_js(dist: &Path) {
 
 /// A wasm-opt's version number (0 when it cannot say).
 fn wasm_opt_version(wasm_opt: &Path) -> u32 {
-    crate::util::output(Command::new(wasm_opt).arg("--version")).and_then(|v| v.split_whitespace().nth(2).and_then(|n| n.parse::<u32>().ok())).unwrap_or(0)
+    crate::util::output(Command::new(wasm_opt).arg("--version"))
+        .and_then(|v| v.split_whitespace().nth(2).and_then(|n| n.parse::<u32>().ok()))
+        .unwrap_or(0)
 }
 
 /// Most the page may weigh, gzipped: 2.0 MB (issue 14's aim for the download),
@@ -213,7 +222,9 @@ pub fn check_download_size(dist: &Path) -> Result<(), String> {
         return Err("download size: nothing measured (is gzip installed?)".into());
     }
     if flagged && total > DOWNLOAD_AIM {
-        return Err(format!("download size: {total} bytes gzipped, over the {DOWNLOAD_AIM}-byte aim (see README, Performance)"));
+        return Err(format!(
+            "download size: {total} bytes gzipped, over the {DOWNLOAD_AIM}-byte aim (see README, Performance)"
+        ));
     }
     Ok(())
 }
@@ -221,7 +232,10 @@ pub fn check_download_size(dist: &Path) -> Result<(), String> {
 /// A file's size raw and gzipped (`gzip -9 -n`: no name stored; 0 when gzip is missing).
 pub fn sizes(file: &Path) -> (u64, u64) {
     let raw = std::fs::metadata(file).map_or(0, |m| m.len());
-    let gz = crate::util::output(Command::new("sh").arg("-c").arg(format!("gzip -9 -n -c '{}' | wc -c", file.display()))).and_then(|s| s.trim().parse().ok()).unwrap_or(0);
+    let gz =
+        crate::util::output(Command::new("sh").arg("-c").arg(format!("gzip -9 -n -c '{}' | wc -c", file.display())))
+            .and_then(|s| s.trim().parse().ok())
+            .unwrap_or(0);
     (raw, gz)
 }
 

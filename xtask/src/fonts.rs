@@ -142,6 +142,9 @@ mod tests {
     fn committed_fonts_match_their_sources_and_recipe() {
         let committed = std::fs::read_to_string(super::dir().join("SOURCES")).unwrap_or_default();
         let now = super::sources_record().unwrap_or_else(|e| panic!("{e}: run `cargo xtask gen-fonts`"));
-        assert!(committed == now, "data/fonts is stale (egui's fonts or the recipe changed, or a font was edited): run `cargo xtask gen-fonts`\ncommitted:\n{committed}\nnow:\n{now}");
+        assert!(
+            committed == now,
+            "data/fonts is stale (egui's fonts or the recipe changed, or a font was edited): run `cargo xtask gen-fonts`\ncommitted:\n{committed}\nnow:\n{now}"
+        );
     }
 }

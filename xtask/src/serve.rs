@@ -13,7 +13,11 @@ pub fn serve_command(args: &[String]) -> Result<(), String> {
         Some(i) => args.get(i + 1).and_then(|p| p.parse().ok()).ok_or("--port needs a number")?,
         None => 8080,
     };
-    let dist = if args.iter().any(|a| a == "--no-build") { root().join("dist") } else { crate::dist::dist(args.iter().any(|a| a == "--fast"))? };
+    let dist = if args.iter().any(|a| a == "--no-build") {
+        root().join("dist")
+    } else {
+        crate::dist::dist(args.iter().any(|a| a == "--fast"))?
+    };
     let listener = TcpListener::bind(("127.0.0.1", port)).map_err(|e| format!("port {port}: {e}"))?;
     println!("serving {} on http://127.0.0.1:{port}/", dist.display());
     serve_forever(listener, dist);

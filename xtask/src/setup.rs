@@ -69,9 +69,10 @@ pub fn locked_wasm_bindgen_version() -> Result<String, String> {
     let mut lines = lock.lines();
     while let Some(line) = lines.next() {
         if line.trim() == "name = \"wasm-bindgen\""
-            && let Some(v) = lines.next().and_then(|l| l.trim().strip_prefix("version = \"")) {
-                return Ok(v.trim_end_matches('"').to_owned());
-            }
+            && let Some(v) = lines.next().and_then(|l| l.trim().strip_prefix("version = \""))
+        {
+            return Ok(v.trim_end_matches('"').to_owned());
+        }
     }
     Err("wasm-bindgen not found in Cargo.lock".into())
 }
@@ -79,10 +80,13 @@ pub fn locked_wasm_bindgen_version() -> Result<String, String> {
 /// Path of a wasm-bindgen CLI matching the crate version, installing it if needed.
 pub fn wasm_bindgen_cli() -> Result<String, String> {
     let version = locked_wasm_bindgen_version()?;
-    let cargo_bin = std::env::var("CARGO_HOME").map(PathBuf::from).unwrap_or_else(|_| home().join(".cargo")).join("bin");
+    let cargo_bin =
+        std::env::var("CARGO_HOME").map(PathBuf::from).unwrap_or_else(|_| home().join(".cargo")).join("bin");
     let candidates = ["wasm-bindgen".to_owned(), cargo_bin.join("wasm-bindgen").display().to_string()];
     for c in &candidates {
-        if output(Command::new(c).arg("--version")).is_some_and(|v| v.split_whitespace().nth(1) == Some(version.as_str())) {
+        if output(Command::new(c).arg("--version"))
+            .is_some_and(|v| v.split_whitespace().nth(1) == Some(version.as_str()))
+        {
             return Ok(c.clone());
         }
     }
@@ -114,7 +118,10 @@ pub fn playwright() -> Result<(), String> {
     }
     let dir = root().join("tests/browser");
     if ["playwright-core", "three", "esbuild"].iter().any(|p| !dir.join("node_modules").join(p).is_dir()) {
-        run(Command::new("npm").args(["install", "--no-audit", "--no-fund"]).current_dir(&dir).env("PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD", "1"))?;
+        run(Command::new("npm")
+            .args(["install", "--no-audit", "--no-fund"])
+            .current_dir(&dir)
+            .env("PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD", "1"))?;
     }
     Ok(())
 }
@@ -135,7 +142,9 @@ pub fn npm_wasm_opt() -> Option<PathBuf> {
     let dir = root().join("tests/browser");
     let bin = dir.join("node_modules/.bin/wasm-opt");
     if !bin.is_file() {
-        let _ = run(Command::new("npm").args(["install", "--no-save", "--no-audit", "--no-fund", "binaryen@132.0.0"]).current_dir(&dir));
+        let _ = run(Command::new("npm")
+            .args(["install", "--no-save", "--no-audit", "--no-fund", "binaryen@132.0.0"])
+            .current_dir(&dir));
     }
     bin.is_file().then_some(bin)
 }

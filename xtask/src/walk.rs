@@ -159,9 +159,11 @@ mod tests {
     #[test]
     fn walk_bva_segments_stand_where_the_bvh_joints_are() {
         let bvh = mocap::bvh::parse(super::walk_bvh().as_bytes()).expect("walk.bvh parses");
-        let bytes = std::fs::read(crate::util::root().join("data/walk.bva")).unwrap_or_else(|e| panic!("data/walk.bva: {e}: {STALE}"));
+        let bytes = std::fs::read(crate::util::root().join("data/walk.bva"))
+            .unwrap_or_else(|e| panic!("data/walk.bva: {e}: {STALE}"));
         let bva = mocap::load_one("walk.bva", &bytes).expect("walk.bva loads").clip().cloned().expect("a clip");
-        let joints: Vec<usize> = (0..bvh.skeleton().len()).filter(|&j| !bvh.skeleton().joints()[j].is_end_site()).collect();
+        let joints: Vec<usize> =
+            (0..bvh.skeleton().len()).filter(|&j| !bvh.skeleton().joints()[j].is_end_site()).collect();
         let height = bvh.pose_height();
         assert!(height > 100.0, "figure height {height} cm");
         assert_eq!(bva.frame_count(), bvh.frame_count());
@@ -175,7 +177,12 @@ mod tests {
                 let name = &bvh.skeleton().joints()[j].name;
                 assert_eq!(&bva.skeleton().joints()[2 * k].name, name);
                 let error = (got[2 * k] - want[j]).length();
-                assert!(error <= 1e-3 * height, "frame {frame}, {name}: segment at {} but joint at {} ({error} cm)", got[2 * k], want[j]);
+                assert!(
+                    error <= 1e-3 * height,
+                    "frame {frame}, {name}: segment at {} but joint at {} ({error} cm)",
+                    got[2 * k],
+                    want[j]
+                );
             }
         }
     }

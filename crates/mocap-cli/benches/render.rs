@@ -49,7 +49,10 @@ fn main() {
         }
     };
     let joints = clip.clip().map_or(0, |c| c.skeleton().joint_count());
-    println!("adapter: {}   skeleton: {joints} joints (+ End Sites), 1280x720, shadows on, samples as the renderer chooses", gpu.adapter_name());
+    println!(
+        "adapter: {}   skeleton: {joints} joints (+ End Sites), 1280x720, shadows on, samples as the renderer chooses",
+        gpu.adapter_name()
+    );
     let mut offscreen = Offscreen::new(&gpu, [1280, 720]);
     for mode in [DrawMode::Capsules, DrawMode::Sticks] {
         for count in [1usize, 16, 64] {
@@ -62,7 +65,9 @@ fn main() {
     }
     // What a window draws while playing once frames are slow (the viewer's
     // automatic rule, crates/mocap-viewer/src/quality.rs); never a final image.
-    println!("capsules, the fast look (a playing window's frames once they are slow: no MSAA, shadow-map texels twice as large, one lookup, capsules under 2 pixels left out):");
+    println!(
+        "capsules, the fast look (a playing window's frames once they are slow: no MSAA, shadow-map texels twice as large, one lookup, capsules under 2 pixels left out):"
+    );
     let mut fast = Offscreen::with_samples(&gpu, [1280, 720], 1);
     fast.set_fast_look(true);
     for count in [1usize, 16, 64] {
@@ -86,14 +91,18 @@ fn main() {
         measure(&gpu, &mut offscreen, &waste, DrawMode::Capsules, count, true);
     }
     let (model, skin) = (read("md2/irrlicht_faerie/faerie.md2"), read("md2/irrlicht_faerie/faerie2.bmp"));
-    let files = [mocap::Input { name: "faerie.md2", bytes: &model }, mocap::Input { name: "faerie2.bmp", bytes: &skin }];
+    let files =
+        [mocap::Input { name: "faerie.md2", bytes: &model }, mocap::Input { name: "faerie2.bmp", bytes: &skin }];
     let runs = 50;
     let start = Instant::now();
     for _ in 0..runs {
         std::hint::black_box(mocap::load(std::hint::black_box(&files)));
     }
     let load_ms = start.elapsed().as_secs_f64() * 1e3 / runs as f64;
-    println!("load faerie.md2 ({} KB) + faerie2.bmp: {load_ms:.2} ms (parse, drawing mesh, skin decode)", model.len() / 1024);
+    println!(
+        "load faerie.md2 ({} KB) + faerie2.bmp: {load_ms:.2} ms (parse, drawing mesh, skin decode)",
+        model.len() / 1024
+    );
 }
 
 /// Times building the body of the corpus BVH skeleton with the most joints.
@@ -103,7 +112,9 @@ fn body_build_time(corpus: &Path) {
         .lines()
         .filter_map(|l| l.split('\t').next())
         .filter(|p| p.ends_with(".bvh"))
-        .filter_map(|p| Some((p.to_owned(), mocap::load_one(p, &std::fs::read(corpus.join(p)).ok()?).ok()?.clip()?.clone())))
+        .filter_map(|p| {
+            Some((p.to_owned(), mocap::load_one(p, &std::fs::read(corpus.join(p)).ok()?).ok()?.clip()?.clone()))
+        })
         .max_by_key(|(_, c)| c.skeleton().len());
     let Some((path, clip)) = largest else { return };
     let bind = clip.bind_pose();
@@ -113,8 +124,14 @@ fn body_build_time(corpus: &Path) {
     let mut vertices = 0;
     for _ in 0..runs {
         let joints = clip.skeleton().joints();
-        let radii = mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
-        let body = mocap::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0)).expect("a body");
+        let radii = mocap_render::body_radii(
+            joints.len(),
+            |j| joints.get(j)?.parent,
+            |j| Some(bind.get(j)?.translation),
+            extent,
+        );
+        let body =
+            mocap::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0)).expect("a body");
         vertices = body.positions().len();
     }
     let ms = start.elapsed().as_secs_f64() * 1e3 / runs as f64;

@@ -1,7 +1,7 @@
 //! The subcommands. Each returns an exit code or a message for stderr.
 
 use mocap::{Asset, Clip, Format, Input, Loaded, Model};
-use serde_json::{json, Value};
+use serde_json::{Value, json};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -30,7 +30,12 @@ pub fn find_skeleton(amc: &Path) -> Result<PathBuf, String> {
     match (by_name, skeletons.as_slice()) {
         (Some(s), _) => Ok(s.clone()),
         (None, [only]) => Ok(only.clone()),
-        (None, []) => Err(format!("{}: an Acclaim motion needs its skeleton, and {} has no .asf file; give it too: mocap … SKELETON.asf {}", amc.display(), dir.display(), amc.display())),
+        (None, []) => Err(format!(
+            "{}: an Acclaim motion needs its skeleton, and {} has no .asf file; give it too: mocap … SKELETON.asf {}",
+            amc.display(),
+            dir.display(),
+            amc.display()
+        )),
         (None, _) => Err(format!(
             "{}: an Acclaim motion needs its skeleton: no .asf in {} starts its name, and there are {}; give the right one too: mocap … SKELETON.asf {}",
             amc.display(),
@@ -71,7 +76,10 @@ fn load_files(mut files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<Loaded>, String>
 fn read_clip(paths: &[PathBuf]) -> Result<Clip, String> {
     match one_asset(read_set(paths)?, paths)? {
         Asset::Clip(clip) => Ok(clip),
-        Asset::Model(_) => Err(format!("{}: a model has no skeleton or motion; give a motion file (.bvh, .bva, or .asf with .amc)", shown(paths))),
+        Asset::Model(_) => Err(format!(
+            "{}: a model has no skeleton or motion; give a motion file (.bvh, .bva, or .asf with .amc)",
+            shown(paths)
+        )),
     }
 }
 
@@ -80,7 +88,10 @@ fn one_asset(mut set: Vec<Loaded>, paths: &[PathBuf]) -> Result<Asset, String> {
     match set.len() {
         1 => Ok(set.remove(0).asset),
         0 => Err(format!("{}: no clip or model in these files", shown(paths))),
-        n => Err(format!("{}: these files hold {n} clips or models; give one (an .asf skeleton with one .amc, one .bvh/.bva, or one .md2 with its skin)", shown(paths))),
+        n => Err(format!(
+            "{}: these files hold {n} clips or models; give one (an .asf skeleton with one .amc, one .bvh/.bva, or one .md2 with its skin)",
+            shown(paths)
+        )),
     }
 }
 
@@ -111,7 +122,8 @@ fn info_model(path: &str, model: &Model, as_json: bool) -> Result<ExitCode, Stri
     let mesh = &model.mesh;
     let units = mesh.units();
     let counts = mesh.source_counts;
-    let animations: Vec<Value> = mesh.animations().iter().map(|a| json!({ "name": a.name, "first": a.first, "last": a.last })).collect();
+    let animations: Vec<Value> =
+        mesh.animations().iter().map(|a| json!({ "name": a.name, "first": a.first, "last": a.last })).collect();
     let skin = model.skin.as_ref().map(|s| s.name.clone());
     if as_json {
         return print_json(&json!({
@@ -136,7 +148,11 @@ fn info_model(path: &str, model: &Model, as_json: bool) -> Result<ExitCode, Stri
     let _ = writeln!(out, "vertices:   {}", counts.vertices);
     let _ = writeln!(out, "triangles:  {}", counts.triangles);
     let _ = writeln!(out, "tex coords: {} (skin {}×{})", counts.tex_coords, mesh.skin_size[0], mesh.skin_size[1]);
-    let _ = writeln!(out, "skins:      {}", if mesh.skins.is_empty() { "(none named)".to_owned() } else { mesh.skins.join(", ") });
+    let _ = writeln!(
+        out,
+        "skins:      {}",
+        if mesh.skins.is_empty() { "(none named)".to_owned() } else { mesh.skins.join(", ") }
+    );
     if let Some(skin) = &skin {
         let _ = writeln!(out, "skin used:  {skin}");
     }
@@ -192,7 +208,12 @@ pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
     let _ = writeln!(out, "duration:   {:.3} s", clip.duration());
     let _ = writeln!(out, "bounds:     min {:?} max {:?}", bounds.min.to_array(), bounds.max.to_array());
     let _ = writeln!(out, "up:         {} (guessed from the motion)", up.name());
-    let _ = writeln!(out, "units:      {} (guessed from a first-pose height of {:.3})", units.name(), clip.pose_height_along(up));
+    let _ = writeln!(
+        out,
+        "units:      {} (guessed from a first-pose height of {:.3})",
+        units.name(),
+        clip.pose_height_along(up)
+    );
     for (k, v) in &clip.metadata {
         let _ = writeln!(out, "{:<11} {}", format!("{k}:"), v.replace('\n', "\n            "));
     }
@@ -206,7 +227,11 @@ pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
 pub fn pose(paths: &[PathBuf], frame: usize) -> Result<ExitCode, String> {
     let clip = read_clip(paths)?;
     if frame >= clip.frame_count().max(1) {
-        return Err(format!("{}: frame {frame} is out of range (the clip has {} frames)", shown(paths), clip.frame_count()));
+        return Err(format!(
+            "{}: frame {frame} is out of range (the clip has {} frames)",
+            shown(paths),
+            clip.frame_count()
+        ));
     }
     let mut positions = Vec::new();
     clip.world_positions_into(frame, &mut positions);
@@ -251,7 +276,9 @@ pub enum EditOp {
 /// The core edit for `op` on `clip` (units are resolved against the clip's guess).
 fn core_edit(op: &EditOp, clip: &Clip) -> Result<mocap::edit::Edit, String> {
     use mocap::edit::Edit;
-    let number = |flag: &str, v: &str| v.trim().parse::<f64>().ok().filter(|x| x.is_finite()).ok_or_else(|| format!("--{flag} {v}: expected a number"));
+    let number = |flag: &str, v: &str| {
+        v.trim().parse::<f64>().ok().filter(|x| x.is_finite()).ok_or_else(|| format!("--{flag} {v}: expected a number"))
+    };
     Ok(match op {
         EditOp::Trim(v) => {
             let (a, b) = v.split_once(':').ok_or_else(|| format!("--trim {v}: expected a:b (frames)"))?;
@@ -261,12 +288,17 @@ fn core_edit(op: &EditOp, clip: &Clip) -> Result<mocap::edit::Edit, String> {
         EditOp::Fps(v) => Edit::Resample { fps: number("fps", v)? },
         EditOp::Reverse => Edit::Reverse,
         EditOp::PingPong => Edit::PingPong,
-        EditOp::Knit(v) => Edit::LoopKnit { frames: v.trim().parse().map_err(|_| format!("--knit {v}: expected a frame count"))? },
+        EditOp::Knit(v) => {
+            Edit::LoopKnit { frames: v.trim().parse().map_err(|_| format!("--knit {v}: expected a frame count"))? }
+        }
         EditOp::InPlace(turning) => Edit::InPlace { remove_turning: *turning },
         EditOp::Up(v) => {
             let t = v.trim().to_ascii_lowercase();
             let (negative, axis) = t.strip_prefix('-').map_or((false, t.as_str()), |a| (true, a));
-            let from = ["x", "y", "z"].iter().position(|a| *a == axis).ok_or_else(|| format!("--up {v}: expected x, y, z, -x, -y or -z"))?;
+            let from = ["x", "y", "z"]
+                .iter()
+                .position(|a| *a == axis)
+                .ok_or_else(|| format!("--up {v}: expected x, y, z, -x, -y or -z"))?;
             Edit::UpAxis { from, negative }
         }
         EditOp::Units(v) => {
@@ -303,7 +335,8 @@ pub fn edit(inputs: &[PathBuf], ops: &[EditOp], output: &Path) -> Result<ExitCod
     for w in warnings {
         eprintln!("{}: warning: {w}", output.display());
     }
-    std::fs::write(output, mocap::bvh::write(&baked)).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+    std::fs::write(output, mocap::bvh::write(&baked))
+        .map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -333,7 +366,11 @@ pub fn layer(base: &Path, layer: &Path, request: &LayerRequest, output: &Path) -
     let map = request
         .map
         .iter()
-        .map(|m| m.split_once('=').map(|(b, l)| (b.to_owned(), l.to_owned())).ok_or_else(|| format!("--map {m}: expected BASE=LAYER")))
+        .map(|m| {
+            m.split_once('=')
+                .map(|(b, l)| (b.to_owned(), l.to_owned()))
+                .ok_or_else(|| format!("--map {m}: expected BASE=LAYER"))
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let settings = mocap::layer::Layer {
         subtree: request.subtree.to_owned(),
@@ -343,7 +380,8 @@ pub fn layer(base: &Path, layer: &Path, request: &LayerRequest, output: &Path) -
         blend: if request.additive { mocap::layer::Blend::Additive } else { mocap::layer::Blend::Override },
         map,
     };
-    let out = mocap::layer::apply(&base_clip, &layer_clip, &settings).map_err(|e| format!("{} + {}: {e}", base.display(), layer.display()))?;
+    let out = mocap::layer::apply(&base_clip, &layer_clip, &settings)
+        .map_err(|e| format!("{} + {}: {e}", base.display(), layer.display()))?;
     std::fs::write(output, mocap::bvh::write(&out)).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
     Ok(ExitCode::SUCCESS)
 }
@@ -380,7 +418,8 @@ pub fn capture(request: &CaptureRequest) -> Result<ExitCode, String> {
     }
     let model_path = request.model;
     let bytes = std::fs::read(model_path).map_err(|e| format!("{}: cannot read: {e}", model_path.display()))?;
-    let md2 = mocap::md2::parse(&bytes).map_err(|e| format!("{}:{}:{}: {}", model_path.display(), e.line, e.column, e.message))?;
+    let md2 = mocap::md2::parse(&bytes)
+        .map_err(|e| format!("{}:{}:{}: {}", model_path.display(), e.line, e.column, e.message))?;
     use mocap::capture::{Capturer, RigChoice};
     let given = match request.rig {
         Some(path) => {
@@ -402,7 +441,11 @@ pub fn capture(request: &CaptureRequest) -> Result<ExitCode, String> {
         (Some(rig), _) => RigChoice::Given(rig),
         (None, t) => RigChoice::Fit(t.as_ref().map(|(clip, model)| (clip.skeleton(), model.as_slice()))),
     };
-    let options = mocap::capture::Options { vertices_per_joint: request.vertices.max(4), average_shapes: !request.raw_vertices, ..mocap::capture::Options::default() };
+    let options = mocap::capture::Options {
+        vertices_per_joint: request.vertices.max(4),
+        average_shapes: !request.raw_vertices,
+        ..mocap::capture::Options::default()
+    };
     let started = std::time::Instant::now();
     let capturer = Capturer::new(&md2, choice, &options).map_err(|e| format!("{}: {e}", model_path.display()))?;
     if let Some(path) = request.save_rig {
@@ -421,7 +464,11 @@ pub fn capture(request: &CaptureRequest) -> Result<ExitCode, String> {
     );
     let clip = match request.animation {
         Some(name) => cap.animation_clip(name).ok_or_else(|| {
-            format!("--animation {name}: {} has {}", model_path.display(), cap.animations.iter().map(|a| a.name.as_str()).collect::<Vec<_>>().join(", "))
+            format!(
+                "--animation {name}: {} has {}",
+                model_path.display(),
+                cap.animations.iter().map(|a| a.name.as_str()).collect::<Vec<_>>().join(", ")
+            )
         })?,
         None => cap.clip.clone(),
     };
@@ -431,11 +478,13 @@ pub fn capture(request: &CaptureRequest) -> Result<ExitCode, String> {
         for a in &cap.animations {
             let Some(part) = cap.animation_clip(&a.name) else { continue };
             let path = output.with_file_name(format!("{stem}-{}.bvh", a.name));
-            std::fs::write(&path, mocap::bvh::write(&part)).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+            std::fs::write(&path, mocap::bvh::write(&part))
+                .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
         }
     }
     if let Some(path) = request.frames_out {
-        std::fs::write(path, mocap::capture::frames::write(&cap.frames())).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+        std::fs::write(path, mocap::capture::frames::write(&cap.frames()))
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -459,10 +508,21 @@ pub fn ik(paths: &[PathBuf], request: &IkRequest) -> Result<ExitCode, String> {
     let clip = read_clip(paths)?;
     let skeleton = clip.skeleton();
     if request.frame >= clip.frame_count().max(1) {
-        return Err(format!("{}: frame {} is out of range (the clip has {} frames)", shown(paths), request.frame, clip.frame_count()));
+        return Err(format!(
+            "{}: frame {} is out of range (the clip has {} frames)",
+            shown(paths),
+            request.frame,
+            clip.frame_count()
+        ));
     }
-    let effector = skeleton.find(request.joint).ok_or_else(|| format!("{}: no joint named `{}`", shown(paths), request.joint))?;
-    let xyz: Vec<f32> = request.target.split(',').map(|v| v.trim().parse::<f32>()).collect::<Result<_, _>>().map_err(|_| format!("--target {}: expected x,y,z (numbers)", request.target))?;
+    let effector =
+        skeleton.find(request.joint).ok_or_else(|| format!("{}: no joint named `{}`", shown(paths), request.joint))?;
+    let xyz: Vec<f32> = request
+        .target
+        .split(',')
+        .map(|v| v.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("--target {}: expected x,y,z (numbers)", request.target))?;
     let target = match xyz.as_slice() {
         &[x, y, z] if xyz.iter().all(|v| v.is_finite()) => mocap::glam::Vec3::new(x, y, z),
         _ => return Err(format!("--target {}: expected x,y,z (three finite numbers)", request.target)),
@@ -478,7 +538,12 @@ pub fn ik(paths: &[PathBuf], request: &IkRequest) -> Result<ExitCode, String> {
     // Within a ten-thousandth of the chain's length, with passes to spare (CCD
     // converges slowly on some chains; the others stop as soon as they are there).
     let length = chain.rest_length(skeleton);
-    let options = mocap::ik::Options { angle_unit: clip.motion().angle_unit(), iterations: 2000, tolerance: 1e-4 * length.max(1e-6), ..Default::default() };
+    let options = mocap::ik::Options {
+        angle_unit: clip.motion().angle_unit(),
+        iterations: 2000,
+        tolerance: 1e-4 * length.max(1e-6),
+        ..Default::default()
+    };
     let result = match solver {
         "two-bone" if chain.joints().len() == 3 => {
             // Bend toward where the middle joint points now (keeps the knee forward).
@@ -486,7 +551,12 @@ pub fn ik(paths: &[PathBuf], request: &IkRequest) -> Result<ExitCode, String> {
             let root = mocap::ik::model_transform(skeleton, &pose, chain.root()).translation;
             mocap::ik::two_bone(skeleton, &mut pose, &chain, target, mid + (mid - root), &options)
         }
-        "two-bone" => return Err(format!("--solver two-bone needs a chain of two bones (this one has {})", chain.joints().len() - 1)),
+        "two-bone" => {
+            return Err(format!(
+                "--solver two-bone needs a chain of two bones (this one has {})",
+                chain.joints().len() - 1
+            ));
+        }
         "ccd" => mocap::ik::ccd(skeleton, &mut pose, &chain, target, &options),
         "fabrik" => mocap::ik::fabrik(skeleton, &mut pose, &chain, target, &options),
         other => return Err(format!("--solver {other}: expected two-bone, ccd or fabrik")),
@@ -564,9 +634,12 @@ fn is_motion_file(path: &Path) -> bool {
 fn describe(file: &Path) -> Result<String, String> {
     let one = [file.to_path_buf()];
     Ok(match one_asset(read_set(&one)?, &one)? {
-        Asset::Model(model) => format!("MD2 model, {} vertices, {} frames", model.mesh.source_counts.vertices, model.mesh.frame_count()),
+        Asset::Model(model) => {
+            format!("MD2 model, {} vertices, {} frames", model.mesh.source_counts.vertices, model.mesh.frame_count())
+        }
         Asset::Clip(clip) => {
-            let warn = if clip.warnings.is_empty() { String::new() } else { format!(", {} warnings", clip.warnings.len()) };
+            let warn =
+                if clip.warnings.is_empty() { String::new() } else { format!(", {} warnings", clip.warnings.len()) };
             format!("{} joints, {} frames{warn}", clip.skeleton().len(), clip.frame_count())
         }
     })
@@ -636,9 +709,16 @@ pub struct RenderOptions<'a> {
 
 /// `mocap render`: `files` may hold models with their skins (`--skin` files are
 /// added to the set).
-pub fn render(files: &[PathBuf], shot: Shot, out: &Path, size: &str, options: &RenderOptions) -> Result<ExitCode, String> {
+pub fn render(
+    files: &[PathBuf],
+    shot: Shot,
+    out: &Path,
+    size: &str,
+    options: &RenderOptions,
+) -> Result<ExitCode, String> {
     let mode = options.mode;
-    let mode = mocap_render::DrawMode::from_name(mode).ok_or_else(|| format!("--mode {mode}: expected `capsules`, `sticks` or `body`"))?;
+    let mode = mocap_render::DrawMode::from_name(mode)
+        .ok_or_else(|| format!("--mode {mode}: expected `capsules`, `sticks` or `body`"))?;
     let size = crate::render::parse_size(size)?;
     let orbit = options.camera.map(crate::render::parse_orbit).transpose()?.unwrap_or_default();
     let assets = read_set(files)?.into_iter().map(|l| (l.name, l.asset)).collect();
@@ -661,7 +741,9 @@ pub fn render(files: &[PathBuf], shot: Shot, out: &Path, size: &str, options: &R
                 Shot::Time(t) if t.is_finite() => t.max(0.0),
                 Shot::Time(_) => return Err("--time must be a number of seconds".into()),
                 Shot::Frame(f) if f < timeline.frames().max(1) => timeline.time_of(f),
-                Shot::Frame(f) => return Err(format!("frame {f} is out of range (the clip has {} frames)", timeline.frames())),
+                Shot::Frame(f) => {
+                    return Err(format!("frame {f} is out of range (the clip has {} frames)", timeline.frames()));
+                }
                 _ => 0.0,
             };
             let mut offscreen = crate::render::Offscreen::new(&gpu, size);

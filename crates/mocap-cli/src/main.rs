@@ -2,8 +2,8 @@
 //!
 //! Errors go to stderr as `FILE:LINE:COL: message` with a non-zero exit status.
 
-use mocap_cli::commands::{self, EditOp};
 use clap::{ArgMatches, CommandFactory, FromArgMatches, Parser, Subcommand};
+use mocap_cli::commands::{self, EditOp};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -276,7 +276,12 @@ fn edit_ops(matches: &ArgMatches) -> Result<Vec<EditOp>, String> {
     for (i, v) in values("drop_joint") {
         ops.push((i, EditOp::Remove(v, false)));
     }
-    for (id, op) in [("reverse", EditOp::Reverse), ("ping_pong", EditOp::PingPong), ("in_place", EditOp::InPlace(false)), ("in_place_turning", EditOp::InPlace(true))] {
+    for (id, op) in [
+        ("reverse", EditOp::Reverse),
+        ("ping_pong", EditOp::PingPong),
+        ("in_place", EditOp::InPlace(false)),
+        ("in_place_turning", EditOp::InPlace(true)),
+    ] {
         if let Some(i) = flag(id) {
             ops.push((i, op));
         }
@@ -304,11 +309,23 @@ fn main() -> ExitCode {
             Some(Err(e)) => Err(e),
             None => Err("edit: no arguments".into()),
         },
-        Command::Ik { files, joint, target, frame, bones, solver, json: _ } => {
-            commands::ik(&files, &commands::IkRequest { joint: &joint, target: &target, frame, bones, solver: solver.as_deref() })
-        }
+        Command::Ik { files, joint, target, frame, bones, solver, json: _ } => commands::ik(
+            &files,
+            &commands::IkRequest { joint: &joint, target: &target, frame, bones, solver: solver.as_deref() },
+        ),
         Command::Validate { paths } => commands::validate(&paths),
-        Command::Capture { model, rig, skeleton, animation, split, vertices, raw_vertices, save_rig, frames_out, output } => commands::capture(&commands::CaptureRequest {
+        Command::Capture {
+            model,
+            rig,
+            skeleton,
+            animation,
+            split,
+            vertices,
+            raw_vertices,
+            save_rig,
+            frames_out,
+            output,
+        } => commands::capture(&commands::CaptureRequest {
             model: &model,
             rig: rig.as_deref(),
             skeleton: skeleton.as_deref(),
@@ -320,7 +337,21 @@ fn main() -> ExitCode {
             frames_out: frames_out.as_deref(),
             output: &output,
         }),
-        Command::Render { mut files, skin, animation, frame, time, frames, sheet, columns, out, size, mode, camera, up } => {
+        Command::Render {
+            mut files,
+            skin,
+            animation,
+            frame,
+            time,
+            frames,
+            sheet,
+            columns,
+            out,
+            size,
+            mode,
+            camera,
+            up,
+        } => {
             files.extend(skin);
             let shot = match (frame, time, frames, sheet) {
                 (_, Some(t), _, _) => commands::Shot::Time(t),
@@ -328,7 +359,12 @@ fn main() -> ExitCode {
                 (_, _, _, true) => commands::Shot::Sheet(columns),
                 (f, ..) => commands::Shot::Frame(f.unwrap_or(0)),
             };
-            let options = commands::RenderOptions { mode: &mode, camera: camera.as_deref(), animation: animation.as_deref(), up: up.as_deref() };
+            let options = commands::RenderOptions {
+                mode: &mode,
+                camera: camera.as_deref(),
+                animation: animation.as_deref(),
+                up: up.as_deref(),
+            };
             commands::render(&files, shot, &out, &size, &options)
         }
     };

@@ -6,7 +6,10 @@
 use mocap::glam::Vec3;
 use mocap::stage::{Actor, Layout, PoseScratch, Stage};
 use mocap::{Asset, Interpolation, Model, Timeline};
-use mocap_render::{Camera, DrawMode, FigureJoint, FigureStyle, Grid, MeshDraw, MorphMeshData, RenderTarget, Scene, SceneRenderer, SkinImage, SkinnedDraw, SkinnedMeshData, wgpu};
+use mocap_render::{
+    Camera, DrawMode, FigureJoint, FigureStyle, Grid, MeshDraw, MorphMeshData, RenderTarget, Scene, SceneRenderer,
+    SkinImage, SkinnedDraw, SkinnedMeshData, wgpu,
+};
 use std::path::Path;
 use std::sync::Arc;
 
@@ -18,7 +21,6 @@ const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 const SAMPLES: u32 = 4;
 /// Vertical field of view, radians.
 const FOV_Y: f32 = 0.8;
-
 
 /// Where the camera is: orbit angles in degrees and a distance in file units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -40,7 +42,9 @@ impl Default for Orbit {
 /// Parses `yaw,pitch[,distance]`.
 pub fn parse_orbit(text: &str) -> Result<Orbit, String> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    let number = |s: &str| s.parse::<f32>().ok().filter(|v| v.is_finite()).ok_or_else(|| format!("--camera: `{s}` is not a number"));
+    let number = |s: &str| {
+        s.parse::<f32>().ok().filter(|v| v.is_finite()).ok_or_else(|| format!("--camera: `{s}` is not a number"))
+    };
     match parts.as_slice() {
         [yaw, pitch] => Ok(Orbit { yaw: number(yaw)?, pitch: number(pitch)?, distance: None }),
         [yaw, pitch, distance] => {
@@ -208,13 +212,23 @@ impl Offscreen {
         let [w, h] = self.target.size();
         let single = self.choose_target(gpu, scene);
         let target = pick(&self.target, &self.single, single);
-        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("mocap render") });
+        let mut encoder =
+            gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("mocap render") });
         self.renderer.encode(&gpu.device, &gpu.queue, &mut encoder, target, scene, camera);
         encoder.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo { texture: &target.color, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+            wgpu::TexelCopyTextureInfo {
+                texture: &target.color,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
             wgpu::TexelCopyBufferInfo {
                 buffer: &self.readback,
-                layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(self.padded_row), rows_per_image: Some(h) },
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(self.padded_row),
+                    rows_per_image: Some(h),
+                },
             },
             wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
         );
@@ -263,17 +277,32 @@ pub struct Body {
 pub fn body(clip: &mocap::Clip, extent: f32) -> Option<Body> {
     let bind = clip.bind_pose();
     let joints = clip.skeleton().joints();
-    let radii = mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
+    let radii =
+        mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
     let skin = mocap::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0)).ok()?;
-    let mesh = SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), clip.skeleton().len()).ok()?;
+    let mesh = SkinnedMeshData::new(
+        skin.positions(),
+        skin.normals(),
+        skin.joints(),
+        skin.weights(),
+        skin.indices().to_vec(),
+        clip.skeleton().len(),
+    )
+    .ok()?;
     Some(Body { mesh: Arc::new(mesh), inverse_bind: skin.inverse_bind().to_vec() })
 }
 
 /// The renderer's copy of a model's mesh and skin ([`MorphMeshData::from_frames`]).
 pub fn mesh_data(model: &Model) -> Option<Arc<MorphMeshData>> {
     let m = &model.mesh;
-    let skin = model.skin.as_ref().map(|s| SkinImage { width: s.image.width, height: s.image.height, pixels: s.image.pixels.clone() });
-    MorphMeshData::from_frames(m.vertex_count(), m.positions(), m.normals(), m.tex_coords(), m.indices(), skin).ok().map(Arc::new)
+    let skin = model.skin.as_ref().map(|s| SkinImage {
+        width: s.image.width,
+        height: s.image.height,
+        pixels: s.image.pixels.clone(),
+    });
+    MorphMeshData::from_frames(m.vertex_count(), m.positions(), m.normals(), m.tex_coords(), m.indices(), skin)
+        .ok()
+        .map(Arc::new)
 }
 
 /// How `mocap render` draws the shared [`Stage`] (the one the viewer uses: clips
@@ -290,7 +319,10 @@ impl StageView {
     pub fn new(assets: Vec<(String, Asset)>) -> StageView {
         let actors = assets.into_iter().map(|(name, asset)| {
             let look = match &asset {
-                Asset::Clip(clip) => Look::Figure(mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site()))), None),
+                Asset::Clip(clip) => Look::Figure(
+                    mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site()))),
+                    None,
+                ),
                 Asset::Model(model) => Look::Mesh(mesh_data(model)),
             };
             let mut actor = Actor::new(&name, asset, look);
@@ -301,7 +333,11 @@ impl StageView {
             }
             actor
         });
-        StageView { stage: Stage::new(actors.collect(), Layout::Spread), mode: DrawMode::default(), scratch: Default::default() }
+        StageView {
+            stage: Stage::new(actors.collect(), Layout::Spread),
+            mode: DrawMode::default(),
+            scratch: Default::default(),
+        }
     }
 
     /// Plays animation `name` on every model that has it; false when none has.
@@ -359,7 +395,13 @@ impl StageView {
                     if let (Some(mesh), Some(at)) = (mesh, actor.morph_at(time, Interpolation::Linear)) {
                         let tint = if mesh.has_skin() { [255; 4] } else { mocap_render::NEUTRAL_TINT };
                         let frames = [at.frame0, at.frame1].map(|f| u32::try_from(f).unwrap_or(u32::MAX));
-                        scene.meshes.push(MeshDraw { mesh: mesh.clone(), frames, blend: at.blend, transform: actor.world_matrix(), tint });
+                        scene.meshes.push(MeshDraw {
+                            mesh: mesh.clone(),
+                            frames,
+                            blend: at.blend,
+                            transform: actor.world_matrix(),
+                            tint,
+                        });
                     }
                     continue;
                 }
@@ -369,7 +411,13 @@ impl StageView {
             if let Some(body) = body {
                 let mut matrices = Vec::with_capacity(body.inverse_bind.len());
                 mocap::skin::skinning_matrices(pose, &body.inverse_bind, &mut matrices);
-                scene.skinned.push(SkinnedDraw { mesh: body.mesh.clone(), coarse: None, matrices, tint: color, weights_view: false });
+                scene.skinned.push(SkinnedDraw {
+                    mesh: body.mesh.clone(),
+                    coarse: None,
+                    matrices,
+                    tint: color,
+                    weights_view: false,
+                });
             }
             let style = FigureStyle {
                 mode: if self.mode == DrawMode::Body && body.is_none() { DrawMode::Capsules } else { self.mode },

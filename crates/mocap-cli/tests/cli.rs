@@ -71,7 +71,9 @@ fn info_json_reports_counts_timing_bounds_units() {
 #[test]
 fn info_says_which_axis_is_up() {
     // A figure standing along +Z: hips at 1, spine up, arms along X, legs down to 0.
-    let mut z_up = String::from("HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 1\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n");
+    let mut z_up = String::from(
+        "HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 1\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n",
+    );
     z_up.push_str("JOINT Chest\n{\nOFFSET 0 0 0.5\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT L\n{\nOFFSET 0.6 0 0.3\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 0.4\n}\n}\n}\n");
     z_up.push_str("JOINT Leg\n{\nOFFSET 0.1 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 -1\n}\n}\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n");
     z_up.push_str(&format!("0 0 1{}\n0 0.1 1{}\n", " 0".repeat(12), " 0".repeat(12)));
@@ -97,7 +99,10 @@ fn errors_are_file_line_col_with_failure_status_and_no_backtrace() {
         let out = mocap(&a);
         assert!(!out.status.success());
         let err = stderr(&out);
-        assert_eq!(err.trim(), format!("{}:8:12: expected the y value of OFFSET (a number), found `ten`", file.display()));
+        assert_eq!(
+            err.trim(),
+            format!("{}:8:12: expected the y value of OFFSET (a number), found `ten`", file.display())
+        );
         assert!(!err.contains("panicked"));
     }
     let out = mocap(&["pose", dir.path().join("missing.bvh").to_str().unwrap()]);
@@ -153,10 +158,15 @@ const ASF: &str = ":version 1.10\n:name T\n:units\n  mass 1.0\n  length 1.0\n  a
 const AMC: &str = ":FULLY-SPECIFIED\n:DEGREES\n1\nroot 1 2 3 0 0 0\nup 10 20 30\nside 5 6\n2\nroot 1 2 3 0 90 0\nup -10 0 45\nside 0 0\n";
 
 fn positions(json: &Value) -> Vec<[f64; 3]> {
-    json["joints"].as_array().unwrap().iter().map(|j| {
-        let p = j["position"].as_array().unwrap();
-        [p[0].as_f64().unwrap(), p[1].as_f64().unwrap(), p[2].as_f64().unwrap()]
-    }).collect()
+    json["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| {
+            let p = j["position"].as_array().unwrap();
+            [p[0].as_f64().unwrap(), p[1].as_f64().unwrap(), p[2].as_f64().unwrap()]
+        })
+        .collect()
 }
 
 #[test]
@@ -182,7 +192,9 @@ fn an_amc_alone_finds_its_skeleton_and_converts_to_bvh_and_bva() {
     let bvh = d.join("out.bvh");
     let out = mocap(&["convert", asf.to_str().unwrap(), amc.to_str().unwrap(), "-o", bvh.to_str().unwrap()]);
     assert!(out.status.success(), "{}", stderr(&out));
-    let back = positions(&serde_json::from_str(&stdout(&mocap(&["pose", bvh.to_str().unwrap(), "--frame", "1", "--json"]))).unwrap());
+    let back = positions(
+        &serde_json::from_str(&stdout(&mocap(&["pose", bvh.to_str().unwrap(), "--frame", "1", "--json"]))).unwrap(),
+    );
     assert_eq!(back.len(), expected.len());
     for (a, b) in expected.iter().zip(&back) {
         assert!((0..3).all(|k| (a[k] - b[k]).abs() < 1e-4), "{a:?} vs {b:?}");
@@ -191,9 +203,16 @@ fn an_amc_alone_finds_its_skeleton_and_converts_to_bvh_and_bva() {
     let bva = d.join("out.bva");
     let out = mocap(&["convert", amc.to_str().unwrap(), "-o", bva.to_str().unwrap()]);
     assert!(out.status.success(), "{}", stderr(&out));
-    let segs = positions(&serde_json::from_str(&stdout(&mocap(&["pose", bva.to_str().unwrap(), "--frame", "1", "--json"]))).unwrap());
+    let segs = positions(
+        &serde_json::from_str(&stdout(&mocap(&["pose", bva.to_str().unwrap(), "--frame", "1", "--json"]))).unwrap(),
+    );
     for (j, seg) in [(0, 0), (1, 2), (2, 4)] {
-        assert!((0..3).all(|k| (expected[j][k] - segs[seg][k]).abs() < 1e-3), "joint {j}: {:?} vs {:?}", expected[j], segs[seg]);
+        assert!(
+            (0..3).all(|k| (expected[j][k] - segs[seg][k]).abs() < 1e-3),
+            "joint {j}: {:?} vs {:?}",
+            expected[j],
+            segs[seg]
+        );
     }
     // BVA → BVH says that scale is dropped.
     let again = d.join("again.bvh");
@@ -214,9 +233,17 @@ fn an_amc_without_a_skeleton_says_what_it_needs() {
     assert!(!out.status.success() && stderr(&out).contains("give the right one"), "{}", stderr(&out));
     // A Windows Media file named .asf is refused clearly.
     let wm = dir.path().join("movie.asf");
-    std::fs::write(&wm, [0x30, 0x26, 0xB2, 0x75, 0x8E, 0x66, 0xCF, 0x11, 0xA6, 0xD9, 0x00, 0xAA, 0x00, 0x62, 0xCE, 0x6C, 0, 0, 0, 1]).unwrap();
+    std::fs::write(
+        &wm,
+        [0x30, 0x26, 0xB2, 0x75, 0x8E, 0x66, 0xCF, 0x11, 0xA6, 0xD9, 0x00, 0xAA, 0x00, 0x62, 0xCE, 0x6C, 0, 0, 0, 1],
+    )
+    .unwrap();
     let out = mocap(&["validate", wm.to_str().unwrap()]);
-    assert!(!out.status.success() && stdout(&out).contains("movie.asf:1:1: not an Acclaim skeleton"), "{}", stdout(&out));
+    assert!(
+        !out.status.success() && stdout(&out).contains("movie.asf:1:1: not an Acclaim skeleton"),
+        "{}",
+        stdout(&out)
+    );
 }
 
 #[test]
@@ -235,7 +262,11 @@ fn corpus() -> Option<PathBuf> {
     if dir.join("MANIFEST.tsv").is_file() {
         return Some(dir);
     }
-    assert!(std::env::var("MOCAP_SKIP_CORPUS").is_ok_and(|v| v == "1"), "{}: corpus not found (opt out with MOCAP_SKIP_CORPUS=1)", dir.display());
+    assert!(
+        std::env::var("MOCAP_SKIP_CORPUS").is_ok_and(|v| v == "1"),
+        "{}: corpus not found (opt out with MOCAP_SKIP_CORPUS=1)",
+        dir.display()
+    );
     None
 }
 
@@ -246,7 +277,10 @@ fn info_and_validate_read_md2_models() {
     let out = mocap(&["info", faerie.to_str().unwrap(), "--json"]);
     assert!(out.status.success(), "{}", stderr(&out));
     let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
-    assert_eq!((v["frames"].as_u64(), v["vertices"].as_u64(), v["triangles"].as_u64(), v["tex_coords"].as_u64()), (Some(198), Some(366), Some(654), Some(487)));
+    assert_eq!(
+        (v["frames"].as_u64(), v["vertices"].as_u64(), v["triangles"].as_u64(), v["tex_coords"].as_u64()),
+        (Some(198), Some(366), Some(654), Some(487))
+    );
     assert_eq!(v["skin_size"], serde_json::json!([220, 193]));
     assert_eq!(v["animations"][0]["name"], "stand");
     let text = stdout(&mocap(&["info", faerie.to_str().unwrap()]));
@@ -282,7 +316,9 @@ fn ik_moves_a_hand_to_a_target_and_reports_the_pose() {
     let p: Vec<f64> = hand.as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
     let target = format!("{},{},{}", p[0] + 6.0, p[1] + 8.0, p[2] - 4.0);
     for solver in ["two-bone", "ccd", "fabrik"] {
-        let out = mocap(&["ik", walk, "--joint", "LeftHand", "--target", &target, "--frame", "12", "--solver", solver, "--json"]);
+        let out = mocap(&[
+            "ik", walk, "--joint", "LeftHand", "--target", &target, "--frame", "12", "--solver", solver, "--json",
+        ]);
         assert!(out.status.success(), "{}", stderr(&out));
         let v: Value = serde_json::from_str(&stdout(&out)).unwrap();
         assert_eq!(v["chain"], serde_json::json!(["LeftArm", "LeftForeArm", "LeftHand"]), "the default arm chain");
@@ -292,14 +328,19 @@ fn ik_moves_a_hand_to_a_target_and_reports_the_pose() {
         let d = ((g[0] - p[0] - 6.0).powi(2) + (g[1] - p[1] - 8.0).powi(2) + (g[2] - p[2] + 4.0).powi(2)).sqrt();
         assert!(d < 1e-2, "{solver}: the hand is {d} from the target");
         // The other hand did not move.
-        let other = |v: &Value| v["joints"].as_array().unwrap().iter().find(|j| j["name"] == "RightHand").unwrap()["position"].clone();
+        let other = |v: &Value| {
+            v["joints"].as_array().unwrap().iter().find(|j| j["name"] == "RightHand").unwrap()["position"].clone()
+        };
         assert_eq!(other(&v), other(&pose));
     }
     for (args, needle) in [
         (vec!["--joint", "Nope", "--target", "0,0,0"], "no joint named `Nope`"),
         (vec!["--joint", "LeftHand", "--target", "1,2"], "expected x,y,z"),
         (vec!["--joint", "LeftHand", "--target", "0,0,0", "--solver", "magic"], "expected two-bone, ccd or fabrik"),
-        (vec!["--joint", "LeftHand", "--target", "0,0,0", "--bones", "4", "--solver", "two-bone"], "needs a chain of two bones"),
+        (
+            vec!["--joint", "LeftHand", "--target", "0,0,0", "--bones", "4", "--solver", "two-bone"],
+            "needs a chain of two bones",
+        ),
     ] {
         let mut all = vec!["ik", walk];
         all.extend(args);
@@ -327,7 +368,29 @@ fn edit_applies_its_flags_in_the_order_given() {
     assert_eq!(frames(&b), 10);
     // Every edit kind runs and writes a file that reads back.
     let c = out("c.bvh");
-    let all = ["edit", walk, "--reverse", "--ping-pong", "--knit", "4", "--in-place", "--up", "z", "--units", "m", "--scale", "2", "--rename", "Head=Kopf", "--remove", "LeftForeArm", "--drop-joint", "RightForeArm", "-o", &c];
+    let all = [
+        "edit",
+        walk,
+        "--reverse",
+        "--ping-pong",
+        "--knit",
+        "4",
+        "--in-place",
+        "--up",
+        "z",
+        "--units",
+        "m",
+        "--scale",
+        "2",
+        "--rename",
+        "Head=Kopf",
+        "--remove",
+        "LeftForeArm",
+        "--drop-joint",
+        "RightForeArm",
+        "-o",
+        &c,
+    ];
     let r = mocap(&all);
     assert!(r.status.success(), "{}", stderr(&r));
     let v: Value = serde_json::from_str(&stdout(&mocap(&["info", &c, "--json"]))).unwrap();
@@ -361,15 +424,20 @@ fn layer_puts_a_second_motion_on_a_subtree() {
     let out = out.to_str().unwrap();
     let r = mocap(&["layer", walk, "--subtree", "RightShoulder", wave, "--weight", "1", "-o", out]);
     assert!(r.status.success(), "{}", stderr(&r));
-    let pose = |file: &str, frame: &str| -> Value { serde_json::from_str(&stdout(&mocap(&["pose", file, "--frame", frame, "--json"]))).unwrap() };
-    let at = |v: &Value, name: &str| v["joints"].as_array().unwrap().iter().find(|j| j["name"] == name).unwrap()["position"].clone();
+    let pose = |file: &str, frame: &str| -> Value {
+        serde_json::from_str(&stdout(&mocap(&["pose", file, "--frame", frame, "--json"]))).unwrap()
+    };
+    let at = |v: &Value, name: &str| {
+        v["joints"].as_array().unwrap().iter().find(|j| j["name"] == name).unwrap()["position"].clone()
+    };
     let (layered, base, layer) = (pose(out, "10"), pose(walk, "10"), pose(wave, "10"));
     assert_eq!(at(&layered, "LeftHand"), at(&base, "LeftHand"), "outside the subtree: the base");
     let (h, w) = (at(&layered, "RightHand"), at(&layer, "RightHand"));
     let (hips_l, hips_w) = (at(&layered, "Hips"), at(&layer, "Hips"));
     // The hand hangs from the base's shoulder but turned as in the layer: relative to the hips it moved.
     assert_ne!(h, at(&base, "RightHand"));
-    let rel = |p: &Value, o: &Value| (0..3).map(|k| p[k].as_f64().unwrap() - o[k].as_f64().unwrap()).collect::<Vec<_>>();
+    let rel =
+        |p: &Value, o: &Value| (0..3).map(|k| p[k].as_f64().unwrap() - o[k].as_f64().unwrap()).collect::<Vec<_>>();
     let (a, c) = (rel(&h, &hips_l), rel(&w, &hips_w));
     let d: f64 = a.iter().zip(&c).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt();
     assert!(d < 15.0, "the layered hand is near the layer's (relative to the hips): {a:?} vs {c:?}");
@@ -386,7 +454,17 @@ fn capture_turns_an_md2_into_bvh_with_a_report_a_rig_and_the_frame_layout() {
     std::fs::create_dir_all(&dir).unwrap();
     let model = corpus.join("md2/waste/tris.md2");
     let (out, rig, frames) = (dir.join("waste.bvh"), dir.join("rig.json"), dir.join("waste.cap"));
-    let o = mocap(&["capture", model.to_str().unwrap(), "--split", "--save-rig", rig.to_str().unwrap(), "--frames-out", frames.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    let o = mocap(&[
+        "capture",
+        model.to_str().unwrap(),
+        "--split",
+        "--save-rig",
+        rig.to_str().unwrap(),
+        "--frames-out",
+        frames.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let report = stdout(&o);
     assert!(report.contains("max resid") && report.contains("198 frames") && report.contains("run 40–45"), "{report}");
@@ -401,16 +479,41 @@ fn capture_turns_an_md2_into_bvh_with_a_report_a_rig_and_the_frame_layout() {
     assert_eq!(&bytes[..8], b"MOCAPCF1");
     // The saved rig captures the same again, and one animation alone.
     let again = dir.join("run.bvh");
-    let o = mocap(&["capture", model.to_str().unwrap(), "--rig", rig.to_str().unwrap(), "--animation", "run", "-o", again.to_str().unwrap()]);
+    let o = mocap(&[
+        "capture",
+        model.to_str().unwrap(),
+        "--rig",
+        rig.to_str().unwrap(),
+        "--animation",
+        "run",
+        "-o",
+        again.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(std::fs::read(&again).unwrap(), std::fs::read(dir.join("waste-run.bvh")).unwrap());
     // Errors say what is wrong.
     let o = mocap(&["capture", model.to_str().unwrap(), "--animation", "fly", "-o", again.to_str().unwrap()]);
-    assert!(!o.status.success() && stderr(&o).contains("--animation fly: ") && stderr(&o).contains("stand"), "{}", stderr(&o));
+    assert!(
+        !o.status.success() && stderr(&o).contains("--animation fly: ") && stderr(&o).contains("stand"),
+        "{}",
+        stderr(&o)
+    );
     std::fs::write(dir.join("bad.json"), "{\"format\": \"x\"").unwrap();
-    let o = mocap(&["capture", model.to_str().unwrap(), "--rig", dir.join("bad.json").to_str().unwrap(), "-o", again.to_str().unwrap()]);
+    let o = mocap(&[
+        "capture",
+        model.to_str().unwrap(),
+        "--rig",
+        dir.join("bad.json").to_str().unwrap(),
+        "-o",
+        again.to_str().unwrap(),
+    ]);
     assert!(!o.status.success() && stderr(&o).contains("bad.json: rig: line 1"), "{}", stderr(&o));
-    let o = mocap(&["capture", corpus.join("md2/assimp_malformed/malformed_zero_numvertices.md2").to_str().unwrap(), "-o", again.to_str().unwrap()]);
+    let o = mocap(&[
+        "capture",
+        corpus.join("md2/assimp_malformed/malformed_zero_numvertices.md2").to_str().unwrap(),
+        "-o",
+        again.to_str().unwrap(),
+    ]);
     assert!(!o.status.success() && stderr(&o).contains("num_xyz is 0"), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }

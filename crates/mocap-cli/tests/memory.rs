@@ -45,5 +45,8 @@ fn frames_on_lavapipe_do_not_fault_their_memory_in_again() {
     }
     let per_frame = (faults() - before) / frames as i64;
     eprintln!("{per_frame} page faults a frame ({} capsules)", scene.capsules.len());
-    assert!(per_frame < 300, "{per_frame} page faults a frame: the driver's per-frame memory is handed back and faulted in again");
+    assert!(
+        per_frame < 300,
+        "{per_frame} page faults a frame: the driver's per-frame memory is handed back and faulted in again"
+    );
 }

@@ -80,7 +80,9 @@ fn golden_dir() -> PathBuf {
 }
 
 fn decode(path: &Path) -> ([u32; 2], Vec<u8>) {
-    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))));
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())),
+    ));
     let mut reader = decoder.read_info().unwrap();
     let mut buf = vec![0; reader.output_buffer_size()];
     let info = reader.next_frame(&mut buf).unwrap();
@@ -91,7 +93,11 @@ fn decode(path: &Path) -> ([u32; 2], Vec<u8>) {
 
 /// Share of pixels whose largest channel difference exceeds `tolerance`.
 fn differing_share(a: &[u8], b: &[u8], tolerance: u8) -> f64 {
-    let differing = a.chunks(4).zip(b.chunks(4)).filter(|(p, q)| p.iter().zip(q.iter()).any(|(x, y)| x.abs_diff(*y) > tolerance)).count();
+    let differing = a
+        .chunks(4)
+        .zip(b.chunks(4))
+        .filter(|(p, q)| p.iter().zip(q.iter()).any(|(x, y)| x.abs_diff(*y) > tolerance))
+        .count();
     differing as f64 / (a.len() / 4).max(1) as f64
 }
 
@@ -116,7 +122,10 @@ fn corpus_dir() -> Option<PathBuf> {
         eprintln!("{}: corpus not found, skipped (MOCAP_SKIP_CORPUS=1)", dir.display());
         return None;
     }
-    panic!("{}: corpus not found (put ../shared beside the repository, or opt out with MOCAP_SKIP_CORPUS=1)", dir.display());
+    panic!(
+        "{}: corpus not found (put ../shared beside the repository, or opt out with MOCAP_SKIP_CORPUS=1)",
+        dir.display()
+    );
 }
 
 /// Renders `files` with `args` (plus --out) and checks against `name`.
@@ -149,7 +158,11 @@ fn check_golden_files(name: &str, files: &[PathBuf], args: &[&str]) {
     if share > 0.005 {
         let kept = std::env::temp_dir().join(format!("mocap-golden-actual-{name}"));
         let _ = std::fs::copy(&out, &kept);
-        panic!("{name}: {:.3}% of pixels differ (limit 0.5%); the rendered image is at {}", share * 100.0, kept.display());
+        panic!(
+            "{name}: {:.3}% of pixels differ (limit 0.5%); the rendered image is at {}",
+            share * 100.0,
+            kept.display()
+        );
     }
 }
 
@@ -160,7 +173,11 @@ fn golden_single_frame() {
 
 #[test]
 fn golden_sticks_mode() {
-    check_golden("figure_sticks.png", 1, &["--frame", "2", "--size", "320x180", "--mode", "sticks", "--camera", "-20,10"]);
+    check_golden(
+        "figure_sticks.png",
+        1,
+        &["--frame", "2", "--size", "320x180", "--mode", "sticks", "--camera", "-20,10"],
+    );
 }
 
 #[test]
@@ -187,7 +204,11 @@ fn golden_textured_md2() {
     let model = corpus.join("md2/waste/tris.md2");
     let skin = corpus.join("md2/waste/waste.pcx");
     let skin = skin.to_str().unwrap();
-    check_golden_files("md2_waste_run.png", &[model], &["--skin", skin, "--animation", "run", "--time", "0.25", "--size", "320x240", "--camera", "35,12"]);
+    check_golden_files(
+        "md2_waste_run.png",
+        &[model],
+        &["--skin", skin, "--animation", "run", "--time", "0.25", "--size", "320x240", "--camera", "35,12"],
+    );
 }
 
 /// Without a skin the model gets the neutral material: the same frame, grey.
@@ -238,7 +259,9 @@ fn a_z_up_clip_is_stood_up_as_guessed_and_up_sets_it() {
         return;
     }
     // A figure standing along +Z: hips at 1, spine up, arms along X, legs down to 0.
-    let mut text = String::from("HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 1\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n");
+    let mut text = String::from(
+        "HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 1\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n",
+    );
     text.push_str("JOINT Chest\n{\nOFFSET 0 0 0.5\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT L\n{\nOFFSET 0.6 0 0.3\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 0.4\n}\n}\n}\n");
     text.push_str("JOINT Leg\n{\nOFFSET 0.1 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 -1\n}\n}\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n");
     text.push_str(&format!("0 0 1{}\n0 0.1 1{}\n", " 0".repeat(12), " 0".repeat(12)));

@@ -40,7 +40,12 @@ impl Blit {
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("mocap blit"),
             layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState { module: &shader, entry_point: Some("vs_main"), compilation_options: Default::default(), buffers: &[] },
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
             primitive: wgpu::PrimitiveState::default(),
             depth_stencil: None,
             multisample: wgpu::MultisampleState::default(),
@@ -53,7 +58,8 @@ impl Blit {
             multiview_mask: None,
             cache: None,
         });
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor { label: Some("mocap blit"), ..Default::default() });
+        let sampler =
+            device.create_sampler(&wgpu::SamplerDescriptor { label: Some("mocap blit"), ..Default::default() });
         Blit { pipeline, layout, sampler }
     }
 

@@ -14,7 +14,8 @@ pub(crate) fn transform_box(m: &Mat4, min: Vec3, max: Vec3) -> Option<(Vec3, Vec
     let half = (max - min) * 0.5;
     // Each world axis reaches as far as the box's half-extents along the
     // transformed axes, taken in absolute value.
-    let reach = m.x_axis.truncate().abs() * half.x + m.y_axis.truncate().abs() * half.y + m.z_axis.truncate().abs() * half.z;
+    let reach =
+        m.x_axis.truncate().abs() * half.x + m.y_axis.truncate().abs() * half.y + m.z_axis.truncate().abs() * half.z;
     let (lo, hi) = (center - reach, center + reach);
     (lo.is_finite() && hi.is_finite()).then_some((lo, hi))
 }
@@ -35,7 +36,11 @@ mod tests {
 
     #[test]
     fn a_box_through_a_transform_holds_every_corner() {
-        let m = Mat4::from_scale_rotation_translation(Vec3::splat(2.0), Quat::from_rotation_y(0.7) * Quat::from_rotation_x(-0.3), Vec3::new(1.0, -2.0, 3.0));
+        let m = Mat4::from_scale_rotation_translation(
+            Vec3::splat(2.0),
+            Quat::from_rotation_y(0.7) * Quat::from_rotation_x(-0.3),
+            Vec3::new(1.0, -2.0, 3.0),
+        );
         let (min, max) = (Vec3::new(-1.0, 0.0, -0.5), Vec3::new(0.5, 2.0, 0.25));
         let (lo, hi) = transform_box(&m, min, max).unwrap();
         let mut tight = (Vec3::INFINITY, Vec3::NEG_INFINITY);
@@ -44,7 +49,10 @@ mod tests {
             let p = m.transform_point3(Vec3::new(pick(1, min.x, max.x), pick(2, min.y, max.y), pick(4, min.z, max.z)));
             tight = (tight.0.min(p), tight.1.max(p));
         }
-        assert!((lo - tight.0).abs().max_element() < 1e-5 && (hi - tight.1).abs().max_element() < 1e-5, "{lo} {hi} vs {tight:?}");
+        assert!(
+            (lo - tight.0).abs().max_element() < 1e-5 && (hi - tight.1).abs().max_element() < 1e-5,
+            "{lo} {hi} vs {tight:?}"
+        );
         assert_eq!(transform_box(&m, max, min), None, "an empty box");
         assert_eq!(transform_box(&Mat4::from_translation(Vec3::NAN), min, max), None);
         assert_eq!(union(None, Some((min, max))), Some((min, max)));

@@ -19,7 +19,12 @@ impl Camera {
         let up = if (eye - target).normalize_or_zero().abs().y > 0.999 { Vec3::Z } else { Vec3::Y };
         Camera {
             view: glam::camera::rh::view::look_at_mat4(eye, target, up),
-            projection: glam::camera::rh::proj::directx::perspective(fov_y, aspect.max(1e-4), distance * 0.01, distance * 100.0),
+            projection: glam::camera::rh::proj::directx::perspective(
+                fov_y,
+                aspect.max(1e-4),
+                distance * 0.01,
+                distance * 100.0,
+            ),
         }
     }
 

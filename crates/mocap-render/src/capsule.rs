@@ -65,7 +65,12 @@ pub(crate) struct CapsuleInstance {
 impl CapsuleInstance {
     /// The scene's capsule, its colour made linear.
     pub fn new(c: &Capsule) -> CapsuleInstance {
-        CapsuleInstance { a: c.a.to_array(), radius: c.radius, b: c.b.to_array(), color: crate::srgb_to_linear(c.color) }
+        CapsuleInstance {
+            a: c.a.to_array(),
+            radius: c.radius,
+            b: c.b.to_array(),
+            color: crate::srgb_to_linear(c.color),
+        }
     }
 
     /// A capsule that only casts a shadow (no colour; a sphere is `a` = `b`).
@@ -88,7 +93,8 @@ pub(crate) struct CapsuleVertex {
 }
 
 /// Vertex attributes of [`CapsuleVertex`] (locations 0-4).
-pub(crate) const ATTRIBUTES: [wgpu::VertexAttribute; 5] = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32, 2 => Float32x3, 3 => Float32, 4 => Float32x4];
+pub(crate) const ATTRIBUTES: [wgpu::VertexAttribute; 5] =
+    wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32, 2 => Float32x3, 3 => Float32, 4 => Float32x4];
 
 /// Corners of a capsule's quad.
 const CORNERS: u32 = 4;
@@ -137,12 +143,18 @@ pub(crate) fn is_one_triangle_in_map(radius: f32, texel: f32) -> bool {
 /// and that triangle, any other as its quad's [`CORNERS`] corners and two
 /// triangles (the shader makes it one triangle or a rectangle in each pass).
 /// Stops before an index would pass `u32::MAX`.
-pub(crate) fn expand(capsules: impl Iterator<Item = (CapsuleInstance, bool)>, vertices: &mut Vec<CapsuleVertex>, indices: &mut Vec<u32>) {
+pub(crate) fn expand(
+    capsules: impl Iterator<Item = (CapsuleInstance, bool)>,
+    vertices: &mut Vec<CapsuleVertex>,
+    indices: &mut Vec<u32>,
+) {
     let (fewest, _) = capsules.size_hint();
     vertices.reserve(fewest * CORNERS as usize);
     indices.reserve(fewest * QUAD.len());
     for (c, one_triangle) in capsules {
-        let Some(base) = u32::try_from(vertices.len()).ok().filter(|b| b.checked_add(CORNERS).is_some()) else { return };
+        let Some(base) = u32::try_from(vertices.len()).ok().filter(|b| b.checked_add(CORNERS).is_some()) else {
+            return;
+        };
         let vertex = |corner: f32| CapsuleVertex { a: c.a, radius: c.radius.abs(), b: c.b, corner, color: c.color };
         if one_triangle {
             vertices.extend((0..3).map(|k| vertex(TRIANGLE_CORNER + k as f32)));
@@ -170,9 +182,15 @@ mod tests {
         // Its length counts, and farther is smaller.
         let long = span_px(&capsule(Vec3::new(-1.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), 0.1), &camera, 1000.0);
         assert!(long > 10.0 * ball);
-        assert!(span_px(&capsule(Vec3::new(0.0, 0.0, -20.0), Vec3::new(0.0, 0.0, -20.0), 0.1), &camera, 1000.0) < ball / 2.0);
+        assert!(
+            span_px(&capsule(Vec3::new(0.0, 0.0, -20.0), Vec3::new(0.0, 0.0, -20.0), 0.1), &camera, 1000.0)
+                < ball / 2.0
+        );
         // At or behind the eye, or not finite: no bound.
-        assert_eq!(span_px(&capsule(Vec3::new(0.0, 0.0, 10.0), Vec3::new(0.0, 0.0, 10.0), 0.1), &camera, 1000.0), f32::INFINITY);
+        assert_eq!(
+            span_px(&capsule(Vec3::new(0.0, 0.0, 10.0), Vec3::new(0.0, 0.0, 10.0), 0.1), &camera, 1000.0),
+            f32::INFINITY
+        );
         assert_eq!(span_px(&capsule(Vec3::splat(f32::NAN), Vec3::ZERO, 0.1), &camera, 1000.0), f32::INFINITY);
     }
 
@@ -199,7 +217,12 @@ mod tests {
     #[test]
     fn a_capsule_is_one_triangle_when_small_on_screen_and_in_the_shadow_map() {
         let camera = Camera::look_at(Vec3::new(0.0, 0.0, 10.0), Vec3::ZERO, 0.8, 1.0);
-        let capsule = |radius: f32| Capsule { a: Vec3::new(-0.05, 0.0, 0.0), b: Vec3::new(0.05, 0.0, 0.0), radius, color: [255; 4] };
+        let capsule = |radius: f32| Capsule {
+            a: Vec3::new(-0.05, 0.0, 0.0),
+            b: Vec3::new(0.05, 0.0, 0.0),
+            radius,
+            color: [255; 4],
+        };
         // About 0.2 / (9.95 tan 0.4) * 360 = 17 pixels across on 720 rows; 8 on 360.
         let c = capsule(0.05);
         let one = |c: &Capsule, height: f32, texel| is_one_triangle(span_px(c, &camera, height), c.radius, texel);
@@ -209,7 +232,8 @@ mod tests {
         assert!(one(&c, 360.0, Some(0.01)));
         assert!(!one(&c, 360.0, Some(0.005)));
         // Without a bound (reaching the eye), never.
-        let at_eye = Capsule { a: Vec3::new(0.0, 0.0, 10.0), b: Vec3::new(0.0, 0.0, 10.0), radius: 0.01, color: [255; 4] };
+        let at_eye =
+            Capsule { a: Vec3::new(0.0, 0.0, 10.0), b: Vec3::new(0.0, 0.0, 10.0), radius: 0.01, color: [255; 4] };
         assert!(!one(&at_eye, 360.0, None));
         // The span from a middle depth the caller has is the same.
         assert_eq!(span_px_at(&c, middle_depth(&c, &camera), &camera, 360.0), span_px(&c, &camera, 360.0));

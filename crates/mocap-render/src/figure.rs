@@ -105,7 +105,8 @@ pub const MAX_FIGURE_BONES: usize = 16_384;
 /// kept joint hanging from its nearest kept ancestor; a joint left out gets neither
 /// a parent nor a marker, so nothing is drawn for it. One linear pass.
 pub fn figure(joints: impl IntoIterator<Item = (Option<usize>, bool)>) -> Vec<FigureJoint> {
-    let mut out: Vec<FigureJoint> = joints.into_iter().map(|(parent, marker)| FigureJoint { parent, marker, radius: 0.0 }).collect();
+    let mut out: Vec<FigureJoint> =
+        joints.into_iter().map(|(parent, marker)| FigureJoint { parent, marker, radius: 0.0 }).collect();
     let stride = out.len().div_ceil(MAX_FIGURE_BONES).max(1);
     if stride == 1 {
         return out;
@@ -126,7 +127,11 @@ pub fn figure(joints: impl IntoIterator<Item = (Option<usize>, bool)>) -> Vec<Fi
         if let (Some(slot), Some(a), Some(joint)) = (depth.get_mut(i), anchor.get_mut(i), out.get_mut(i)) {
             *slot = d;
             *a = if kept { i } else { from.unwrap_or(i) };
-            *joint = if kept { FigureJoint { parent: from, ..*joint } } else { FigureJoint { parent: None, marker: false, radius: 0.0 } };
+            *joint = if kept {
+                FigureJoint { parent: from, ..*joint }
+            } else {
+                FigureJoint { parent: None, marker: false, radius: 0.0 }
+            };
         }
     }
     out
@@ -137,12 +142,19 @@ pub fn figure(joints: impl IntoIterator<Item = (Option<usize>, bool)>) -> Vec<Fi
 /// to `scene`. Joints with non-finite positions and their bones are skipped.
 /// Capsules (and a body's shadow casters) are as thick as the figure was sized
 /// ([`FigureJoint::radius`]).
-pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoint], positions: &[P], style: &FigureStyle) {
+pub fn push_figure<P: Copy + Into<Vec3>>(
+    scene: &mut Scene,
+    joints: &[FigureJoint],
+    positions: &[P],
+    style: &FigureStyle,
+) {
     let size = if style.size.is_finite() && style.size > 0.0 { style.size } else { 1.0 };
     let joint_radius = size * 0.012;
     let highlight = style.highlight.map(|(j, _)| j);
     let at = |i: usize| positions.get(i).map(|&p| p.into()).filter(|p: &Vec3| p.is_finite());
-    let radius_of = |joint: &FigureJoint, length: f32| if joint.radius > 0.0 { joint.radius * size } else { bone_radius(length, size) };
+    let radius_of = |joint: &FigureJoint, length: f32| {
+        if joint.radius > 0.0 { joint.radius * size } else { bone_radius(length, size) }
+    };
     for (i, joint) in joints.iter().enumerate() {
         let Some(p) = at(i) else {
             continue;
@@ -182,7 +194,8 @@ pub fn push_figure<P: Copy + Into<Vec3>>(scene: &mut Scene, joints: &[FigureJoin
                     scene.shadow_casters.push(Capsule { a: q, b: p, radius: size * 0.006, color });
                 }
                 if joint.marker && (style.show_joints || is_highlight) {
-                    let (radius, color) = if is_highlight { (joint_radius * 1.8, color) } else { (joint_radius, style.joint_color) };
+                    let (radius, color) =
+                        if is_highlight { (joint_radius * 1.8, color) } else { (joint_radius, style.joint_color) };
                     scene.spheres.push(Sphere { center: p, radius, color });
                 }
             }
@@ -239,7 +252,11 @@ mod tests {
         assert!(scene.capsules.is_empty() && scene.shadow_casters.is_empty(), "the body draws and casts itself");
         assert_eq!(scene.body_casters.len(), 2, "one per bone");
         assert_eq!((scene.body_casters[0].a, scene.body_casters[0].b), (Vec3::ZERO, Vec3::Y));
-        assert_eq!(scene.body_casters[0].radius, bone_radius(1.0, 1.8), "the capsule mode's radius, as the body's tubes");
+        assert_eq!(
+            scene.body_casters[0].radius,
+            bone_radius(1.0, 1.8),
+            "the capsule mode's radius, as the body's tubes"
+        );
     }
 
     #[test]
@@ -270,5 +287,4 @@ mod tests {
         let small = figure((0..1000usize).map(|i| (i.checked_sub(1), true)));
         assert!(small.iter().enumerate().all(|(i, j)| j.parent == i.checked_sub(1) && j.marker));
     }
-
 }

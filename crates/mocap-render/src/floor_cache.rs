@@ -59,14 +59,35 @@ pub(crate) struct FloorKey {
 impl FloorKey {
     /// The key of a frame drawn with `uniforms` over `background` into a
     /// target of `size`, `samples` and `format`.
-    pub fn new(uniforms: &FrameUniforms, background: [f32; 4], size: [u32; 2], samples: u32, format: wgpu::TextureFormat) -> FloorKey {
+    pub fn new(
+        uniforms: &FrameUniforms,
+        background: [f32; 4],
+        size: [u32; 2],
+        samples: u32,
+        format: wgpu::TextureFormat,
+    ) -> FloorKey {
         let u = uniforms;
         let [v0, v1, v2, v3] = u.view;
         let [p0, p1, p2, p3] = u.projection;
         let mut viewport = u.viewport;
         // The shadow strength (w) does not change the floor's own pixels.
         viewport[3] = 0.0;
-        let uniforms = [v0, v1, v2, v3, p0, p1, p2, p3, viewport, u.floor_center, u.floor_grid, u.floor_minor, u.floor_major, u.floor_color];
+        let uniforms = [
+            v0,
+            v1,
+            v2,
+            v3,
+            p0,
+            p1,
+            p2,
+            p3,
+            viewport,
+            u.floor_center,
+            u.floor_grid,
+            u.floor_minor,
+            u.floor_major,
+            u.floor_color,
+        ];
         FloorKey { uniforms, background, size, samples, format }
     }
 
@@ -142,6 +163,11 @@ impl FloorCache {
         let fill = self.holds != Some(key);
         self.holds = Some(key);
         let copy_depth = self.copies.all();
-        self.textures.as_ref().map(|(color, depth, _)| FloorCopy { color: color.clone(), depth: depth.clone(), copy_depth, fill })
+        self.textures.as_ref().map(|(color, depth, _)| FloorCopy {
+            color: color.clone(),
+            depth: depth.clone(),
+            copy_depth,
+            fill,
+        })
     }
 }

@@ -38,27 +38,29 @@ mod mesh;
 mod pipeline;
 mod placed;
 mod radius;
+mod renderer;
 mod scene;
 mod shadow;
 mod skinned;
 mod spheres;
 mod target;
 mod uniforms;
-mod renderer;
 
 pub use blit::{Blit, BlitSource};
 pub use camera::Camera;
 pub use color::srgb_to_linear;
-pub use figure::{DrawMode, FigureJoint, FigureStyle, HIGHLIGHT_COLOR, JOINT_COLOR, MAX_FIGURE_BONES, PALETTE, figure, push_figure};
-pub use radius::{BODY_THICKNESS, HELPER_BONE, MAX_CARRIED, body_radii, bone_radii, bone_radius, size_figure};
+pub use figure::{
+    DrawMode, FigureJoint, FigureStyle, HIGHLIGHT_COLOR, JOINT_COLOR, MAX_FIGURE_BONES, PALETTE, figure, push_figure,
+};
+pub use glam;
 pub use grid::Grid;
 pub use mesh::{MeshDraw, MorphMeshData, MorphVertex, NEUTRAL_TINT, SkinImage};
+pub use radius::{BODY_THICKNESS, HELPER_BONE, MAX_CARRIED, body_radii, bone_radii, bone_radius, size_figure};
 pub use renderer::SceneRenderer;
 pub use scene::{Capsule, Line, Scene, Sphere};
 pub use shadow::key_light_direction;
 pub use skinned::{COARSE_BODY_SPAN_PX, SkinnedDraw, SkinnedMeshData, SkinnedVertex};
 pub use target::RenderTarget;
-pub use glam;
 pub use wgpu;
 
 /// Depth format used by every pipeline and [`RenderTarget`]: 32-bit float,

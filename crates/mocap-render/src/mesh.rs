@@ -52,9 +52,18 @@ impl MorphMeshData {
     /// frame after frame; `tex_coords` one per vertex; `indices` three per triangle.
     /// Refused (with why) when the lengths do not agree, an index is out of range or
     /// the skin's pixels are not `width × height × 4` bytes.
-    pub fn new(vertex_count: usize, vertices: Vec<MorphVertex>, tex_coords: Vec<[f32; 2]>, indices: Vec<u32>, skin: Option<SkinImage>) -> Result<MorphMeshData, String> {
+    pub fn new(
+        vertex_count: usize,
+        vertices: Vec<MorphVertex>,
+        tex_coords: Vec<[f32; 2]>,
+        indices: Vec<u32>,
+        skin: Option<SkinImage>,
+    ) -> Result<MorphMeshData, String> {
         if vertex_count == 0 || vertices.is_empty() || vertices.len() % vertex_count != 0 {
-            return Err(format!("{} frame vertices are not a whole number of frames of {vertex_count}", vertices.len()));
+            return Err(format!(
+                "{} frame vertices are not a whole number of frames of {vertex_count}",
+                vertices.len()
+            ));
         }
         if tex_coords.len() != vertex_count {
             return Err(format!("{} texture coordinates for {vertex_count} vertices", tex_coords.len()));
@@ -64,7 +73,13 @@ impl MorphMeshData {
         }
         if let Some(s) = &skin {
             if s.pixels.len() as u64 != u64::from(s.width) * u64::from(s.height) * 4 || s.width == 0 || s.height == 0 {
-                return Err(format!("a {}×{} skin needs {} bytes, not {}", s.width, s.height, u64::from(s.width) * u64::from(s.height) * 4, s.pixels.len()));
+                return Err(format!(
+                    "a {}×{} skin needs {} bytes, not {}",
+                    s.width,
+                    s.height,
+                    u64::from(s.width) * u64::from(s.height) * 4,
+                    s.pixels.len()
+                ));
             }
         }
         let count = u32::try_from(vertex_count).map_err(|_| "too many vertices")?;
@@ -77,7 +92,15 @@ impl MorphMeshData {
                 max = max.max(p);
             }
         }
-        Ok(MorphMeshData { vertex_count: count, frame_count: frames, vertices, tex_coords, indices, skin, bounds: (min, max) })
+        Ok(MorphMeshData {
+            vertex_count: count,
+            frame_count: frames,
+            vertices,
+            tex_coords,
+            indices,
+            skin,
+            bounds: (min, max),
+        })
     }
 
     /// [`MorphMeshData::new`] from separate arrays: `positions` and `normals` of every
@@ -93,7 +116,8 @@ impl MorphMeshData {
         if positions.len() != normals.len() {
             return Err(format!("{} positions and {} normals", positions.len(), normals.len()));
         }
-        let vertices = positions.iter().zip(normals).map(|(&position, &normal)| MorphVertex { position, normal }).collect();
+        let vertices =
+            positions.iter().zip(normals).map(|(&position, &normal)| MorphVertex { position, normal }).collect();
         MorphMeshData::new(vertex_count, vertices, tex_coords.to_vec(), indices.to_vec(), skin)
     }
 
@@ -162,13 +186,20 @@ pub(crate) fn buffer_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 4]
     const A: [wgpu::VertexAttribute; 2] = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
     const B: [wgpu::VertexAttribute; 2] = wgpu::vertex_attr_array![2 => Float32x3, 3 => Float32x3];
     const UV: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![4 => Float32x2];
-    const INSTANCE: [wgpu::VertexAttribute; 5] = wgpu::vertex_attr_array![5 => Float32x4, 6 => Float32x4, 7 => Float32x4, 8 => Float32x4, 9 => Float32x4];
-    let vertex = |attributes, stride| Some(wgpu::VertexBufferLayout { array_stride: stride, step_mode: wgpu::VertexStepMode::Vertex, attributes });
+    const INSTANCE: [wgpu::VertexAttribute; 5] =
+        wgpu::vertex_attr_array![5 => Float32x4, 6 => Float32x4, 7 => Float32x4, 8 => Float32x4, 9 => Float32x4];
+    let vertex = |attributes, stride| {
+        Some(wgpu::VertexBufferLayout { array_stride: stride, step_mode: wgpu::VertexStepMode::Vertex, attributes })
+    };
     [
         vertex(&A, VERTEX_SIZE),
         vertex(&B, VERTEX_SIZE),
         vertex(&UV, 8),
-        Some(wgpu::VertexBufferLayout { array_stride: INSTANCE_SIZE, step_mode: wgpu::VertexStepMode::Instance, attributes: &INSTANCE }),
+        Some(wgpu::VertexBufferLayout {
+            array_stride: INSTANCE_SIZE,
+            step_mode: wgpu::VertexStepMode::Instance,
+            attributes: &INSTANCE,
+        }),
     ]
 }
 
@@ -244,8 +275,15 @@ impl MeshCache {
             let Some(mesh) = self.meshes.get(&key) else { continue };
             let last = mesh.frame_count.saturating_sub(1);
             let [r, g, b, _] = crate::srgb_to_linear(draw.tint);
-            self.draws.push(Prepared { key, frames: draw.frames.map(|f| f.min(last)), instance: self.scratch.len() as u32 });
-            self.scratch.push(MeshInstance { model: draw.transform.to_cols_array_2d(), tint_blend: [r, g, b, draw.blend.clamp(0.0, 1.0)] });
+            self.draws.push(Prepared {
+                key,
+                frames: draw.frames.map(|f| f.min(last)),
+                instance: self.scratch.len() as u32,
+            });
+            self.scratch.push(MeshInstance {
+                model: draw.transform.to_cols_array_2d(),
+                tint_blend: [r, g, b, draw.blend.clamp(0.0, 1.0)],
+            });
         }
         self.instances.upload(device, queue, &self.scratch);
     }
@@ -255,10 +293,14 @@ impl MeshCache {
         if bytes.len() as u64 > device.limits().max_buffer_size {
             return None;
         }
-        let buffer = |label, contents: &[u8], usage| device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage });
+        let buffer = |label, contents: &[u8], usage| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
+        };
         let max_side = device.limits().max_texture_dimension_2d;
         let skin = match &data.skin {
-            Some(s) if s.width <= max_side && s.height <= max_side => skin_group(device, queue, &self.skin_layout, &self.sampler, s),
+            Some(s) if s.width <= max_side && s.height <= max_side => {
+                skin_group(device, queue, &self.skin_layout, &self.sampler, s)
+            }
             _ => self.neutral.clone()?,
         };
         Some(GpuMesh {
@@ -308,7 +350,13 @@ impl MeshCache {
 }
 
 /// A bind group sampling `image` (uploaded as an sRGB texture).
-fn skin_group(device: &wgpu::Device, queue: &wgpu::Queue, layout: &wgpu::BindGroupLayout, sampler: &wgpu::Sampler, image: &SkinImage) -> wgpu::BindGroup {
+fn skin_group(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    layout: &wgpu::BindGroupLayout,
+    sampler: &wgpu::Sampler,
+    image: &SkinImage,
+) -> wgpu::BindGroup {
     let texture = device.create_texture_with_data(
         queue,
         &wgpu::TextureDescriptor {
@@ -347,11 +395,26 @@ mod tests {
     fn inconsistent_meshes_are_refused() {
         assert!(MorphMeshData::new(2, vec![v(0.0), v(1.0), v(2.0)], vec![[0.0; 2]; 2], vec![], None).is_err());
         assert!(MorphMeshData::new(1, vec![v(0.0)], vec![[0.0; 2]; 1], vec![0, 0, 1], None).is_err());
-        assert!(MorphMeshData::new(1, vec![v(0.0)], vec![[0.0; 2]; 1], vec![0, 0, 0], Some(SkinImage { width: 2, height: 2, pixels: vec![0; 4] })).is_err());
+        assert!(
+            MorphMeshData::new(
+                1,
+                vec![v(0.0)],
+                vec![[0.0; 2]; 1],
+                vec![0, 0, 0],
+                Some(SkinImage { width: 2, height: 2, pixels: vec![0; 4] })
+            )
+            .is_err()
+        );
         let ok = MorphMeshData::new(1, vec![v(0.0), v(3.0)], vec![[0.0; 2]; 1], vec![0, 0, 0], None).unwrap();
         assert_eq!((ok.vertex_count(), ok.frame_count()), (1, 2));
         assert_eq!(ok.bounds(), (Vec3::ZERO, Vec3::new(0.0, 3.0, 0.0)));
-        let draw = MeshDraw { mesh: Arc::new(ok), frames: [0, 1], blend: 0.5, transform: Mat4::from_translation(Vec3::X), tint: [255; 4] };
+        let draw = MeshDraw {
+            mesh: Arc::new(ok),
+            frames: [0, 1],
+            blend: 0.5,
+            transform: Mat4::from_translation(Vec3::X),
+            tint: [255; 4],
+        };
         assert_eq!(draw.world_bounds(), Some((Vec3::X, Vec3::new(1.0, 3.0, 0.0))));
     }
 }

@@ -32,8 +32,15 @@ pub(crate) struct PipelineSpec<'a> {
 }
 
 /// Per-instance buffer layout with `attributes` and `stride`.
-pub(crate) fn instances<'a>(attributes: &'a [wgpu::VertexAttribute], stride: usize) -> Option<wgpu::VertexBufferLayout<'a>> {
-    Some(wgpu::VertexBufferLayout { array_stride: stride as u64, step_mode: wgpu::VertexStepMode::Instance, attributes })
+pub(crate) fn instances<'a>(
+    attributes: &'a [wgpu::VertexAttribute],
+    stride: usize,
+) -> Option<wgpu::VertexBufferLayout<'a>> {
+    Some(wgpu::VertexBufferLayout {
+        array_stride: stride as u64,
+        step_mode: wgpu::VertexStepMode::Instance,
+        attributes,
+    })
 }
 
 /// Builds a triangle-list pipeline from `spec`.
@@ -92,7 +99,12 @@ pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: 
 
 /// A bind group layout of one 2D texture of `sample_type` (binding 0) and a
 /// sampler of `sampler` type (binding 1), read by fragment shaders.
-pub(crate) fn texture_layout(device: &wgpu::Device, label: &'static str, sample_type: wgpu::TextureSampleType, sampler: wgpu::SamplerBindingType) -> wgpu::BindGroupLayout {
+pub(crate) fn texture_layout(
+    device: &wgpu::Device,
+    label: &'static str,
+    sample_type: wgpu::TextureSampleType,
+    sampler: wgpu::SamplerBindingType,
+) -> wgpu::BindGroupLayout {
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(label),
         entries: &[
@@ -118,5 +130,10 @@ pub(crate) fn texture_layout(device: &wgpu::Device, label: &'static str, sample_
 
 /// [`texture_layout`] for a filterable colour texture and a filtering sampler.
 pub(crate) fn color_texture_layout(device: &wgpu::Device, label: &'static str) -> wgpu::BindGroupLayout {
-    texture_layout(device, label, wgpu::TextureSampleType::Float { filterable: true }, wgpu::SamplerBindingType::Filtering)
+    texture_layout(
+        device,
+        label,
+        wgpu::TextureSampleType::Float { filterable: true },
+        wgpu::SamplerBindingType::Filtering,
+    )
 }

@@ -20,7 +20,12 @@ pub(crate) struct PlacedMesh<V> {
 impl<V: bytemuck::Pod> PlacedMesh<V> {
     /// An empty mesh; `label` names its buffers.
     pub fn new(label: &'static str) -> PlacedMesh<V> {
-        PlacedMesh { vertex_buffer: GrowingBuffer::new(label), index_buffer: GrowingBuffer::indices(label), vertices: Vec::new(), indices: Vec::new() }
+        PlacedMesh {
+            vertex_buffer: GrowingBuffer::new(label),
+            index_buffer: GrowingBuffer::indices(label),
+            vertices: Vec::new(),
+            indices: Vec::new(),
+        }
     }
 
     /// Empties the vertices and triangles for a new frame.
@@ -38,7 +43,10 @@ impl<V: bytemuck::Pod> PlacedMesh<V> {
     /// Draws the first `count` uploaded indices (at most all of them) with
     /// `pipeline` (vertex buffer 0); returns the draw calls made (0 when none).
     pub fn draw<'a>(&'a self, pass: &mut wgpu::RenderPass<'a>, pipeline: &'a wgpu::RenderPipeline, count: u32) -> u32 {
-        let (Some((vertices, _)), Some((indices, uploaded))) = (self.vertex_buffer.get(), self.index_buffer.get()) else { return 0 };
+        let (Some((vertices, _)), Some((indices, uploaded))) = (self.vertex_buffer.get(), self.index_buffer.get())
+        else {
+            return 0;
+        };
         let count = count.min(uploaded);
         if count == 0 {
             return 0;

@@ -46,7 +46,13 @@ pub fn bone_radius(length: f32, size: f32) -> f32 {
 /// rule in this module's documentation. `parent(j)` is joint `j`'s parent (a parent
 /// at or after `j` is ignored), `position(j)` where joint `j` is (none, or not
 /// finite: no bone to or from it).
-pub fn bone_radii(count: usize, parent: impl Fn(usize) -> Option<usize>, position: impl Fn(usize) -> Option<Vec3>, size: f32, radii: &mut Vec<f32>) {
+pub fn bone_radii(
+    count: usize,
+    parent: impl Fn(usize) -> Option<usize>,
+    position: impl Fn(usize) -> Option<Vec3>,
+    size: f32,
+    radii: &mut Vec<f32>,
+) {
     let size = if size.is_finite() && size > 0.0 { size } else { 1.0 };
     let at = |j: usize| position(j).filter(|p| p.is_finite());
     radii.clear();
@@ -86,7 +92,12 @@ pub fn size_figure(figure: &mut [FigureJoint], positions: &[Vec3], size: f32) {
 }
 
 /// [`bone_radii`] for a generated body's tubes: [`BODY_THICKNESS`] times thicker.
-pub fn body_radii(count: usize, parent: impl Fn(usize) -> Option<usize>, position: impl Fn(usize) -> Option<Vec3>, size: f32) -> Vec<f32> {
+pub fn body_radii(
+    count: usize,
+    parent: impl Fn(usize) -> Option<usize>,
+    position: impl Fn(usize) -> Option<Vec3>,
+    size: f32,
+) -> Vec<f32> {
     let mut radii = Vec::new();
     bone_radii(count, parent, position, size, &mut radii);
     radii.iter_mut().for_each(|r| *r *= BODY_THICKNESS);
@@ -146,17 +157,33 @@ mod tests {
     fn what_is_carried_stops_at_its_limit_and_bad_input_gives_no_bone() {
         // A hub carrying 40 thick bones.
         let n = 42;
-        let parents: Vec<Option<usize>> = (0..n).map(|j| match j {
-            0 => None,
-            1 => Some(0),
-            _ => Some(1),
-        }).collect();
-        let positions: Vec<Vec3> = (0..n).map(|j| if j < 2 { Vec3::new(0.0, j as f32 * 0.01, 0.0) } else { Vec3::new(j as f32, 0.5, 0.0).normalize() * 0.5 }).collect();
+        let parents: Vec<Option<usize>> = (0..n)
+            .map(|j| match j {
+                0 => None,
+                1 => Some(0),
+                _ => Some(1),
+            })
+            .collect();
+        let positions: Vec<Vec3> = (0..n)
+            .map(|j| {
+                if j < 2 {
+                    Vec3::new(0.0, j as f32 * 0.01, 0.0)
+                } else {
+                    Vec3::new(j as f32, 0.5, 0.0).normalize() * 0.5
+                }
+            })
+            .collect();
         let mut radii = Vec::new();
         bone_radii(n, |j| parents[j], |j| positions.get(j).copied(), 1.0, &mut radii);
         assert_eq!(radii[1], MAX_CARRIED);
         // A parent after its child, a missing position and a NaN: no bone, no panic.
-        bone_radii(3, |j| [Some(2), Some(0), None][j], |j| [Some(Vec3::ZERO), None, Some(Vec3::NAN)][j], 1.0, &mut radii);
+        bone_radii(
+            3,
+            |j| [Some(2), Some(0), None][j],
+            |j| [Some(Vec3::ZERO), None, Some(Vec3::NAN)][j],
+            1.0,
+            &mut radii,
+        );
         assert_eq!(radii, [0.0, 0.0, 0.0]);
         // A body's tubes are thicker by the body factor.
         let body = body_radii(2, |j| j.checked_sub(1), |j| Some(Vec3::Y * j as f32 * 0.3), 1.0);
@@ -175,7 +202,14 @@ mod tests {
         }
         // Drawn at another size (metres instead of file units) the shares hold.
         let mut scene = crate::Scene::default();
-        let style = crate::FigureStyle { mode: crate::DrawMode::Capsules, color: [1; 4], joint_color: [2; 4], size: 3.4, show_joints: false, highlight: None };
+        let style = crate::FigureStyle {
+            mode: crate::DrawMode::Capsules,
+            color: [1; 4],
+            joint_color: [2; 4],
+            size: 3.4,
+            show_joints: false,
+            highlight: None,
+        };
         let doubled: Vec<Vec3> = positions.iter().map(|p| *p * 2.0).collect();
         crate::push_figure(&mut scene, &figure, &doubled, &style);
         let chest = scene.capsules.iter().find(|c| c.b == doubled[2]).expect("the chest bone");

@@ -10,14 +10,14 @@
 //! and later frames start from copies of its colour and depth (floor_cache.rs).
 
 use crate::buffer::GrowingBuffer;
-use crate::floor_cache::{Copies, FloorCache, FloorCopy, FloorKey};
 use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
+use crate::floor_cache::{Copies, FloorCache, FloorCopy, FloorKey};
 use crate::lines::{LINE_ATTRIBUTES, LineInstance};
 use crate::mesh::MeshCache;
-use crate::skinned::SkinnedCache;
 use crate::pipeline::{self, PipelineSpec, instances};
 use crate::placed::PlacedMesh;
 use crate::shadow::{self, ShadowMap};
+use crate::skinned::SkinnedCache;
 use crate::spheres::{SPHERE_ATTRIBUTES, SphereInstance};
 use crate::uniforms::{FrameUniforms, OutlineRule};
 use crate::{Camera, RenderTarget, Scene, SkinnedDraw};
@@ -139,12 +139,24 @@ struct Pipelines {
 
 /// Multiplies the colour below by the fragment's colour (floor shadows).
 const MULTIPLY: wgpu::BlendState = wgpu::BlendState {
-    color: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::Dst, dst_factor: wgpu::BlendFactor::Zero, operation: wgpu::BlendOperation::Add },
-    alpha: wgpu::BlendComponent { src_factor: wgpu::BlendFactor::Zero, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add },
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::Dst,
+        dst_factor: wgpu::BlendFactor::Zero,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::Zero,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
 };
 
 /// Keeps the target's value (the capsules' alpha channel).
-const KEEP: wgpu::BlendComponent = wgpu::BlendComponent { src_factor: wgpu::BlendFactor::Zero, dst_factor: wgpu::BlendFactor::One, operation: wgpu::BlendOperation::Add };
+const KEEP: wgpu::BlendComponent = wgpu::BlendComponent {
+    src_factor: wgpu::BlendFactor::Zero,
+    dst_factor: wgpu::BlendFactor::One,
+    operation: wgpu::BlendOperation::Add,
+};
 
 /// WGSL sources: the shared uniform and lighting code prepended to each shader.
 const LIT_PRELUDE: &str = concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/lighting.wgsl"));
@@ -277,7 +289,12 @@ impl SceneRenderer {
         if pipelines_for(&self.pipelines, key).is_some() {
             return;
         }
-        let layouts = Layouts { frame: &self.frame_layout, shadow: &self.shadow_layout, skin: &self.meshes.skin_layout, joints: &self.skinned.layout };
+        let layouts = Layouts {
+            frame: &self.frame_layout,
+            shadow: &self.shadow_layout,
+            skin: &self.meshes.skin_layout,
+            joints: &self.skinned.layout,
+        };
         let pipelines = Pipelines::new(device, &layouts, self.format, key);
         self.pipelines.push((key, pipelines));
     }
@@ -308,7 +325,8 @@ impl SceneRenderer {
         self.draw_calls = 0;
         let [r, g, b, a] = crate::color::for_target(scene.background, self.format);
         let samples = target.sample_count();
-        let floor = scene.grid.is_some().then(|| FloorKey::new(&uniforms, [r, g, b, a], target.size(), samples, self.format));
+        let floor =
+            scene.grid.is_some().then(|| FloorKey::new(&uniforms, [r, g, b, a], target.size(), samples, self.format));
         let copy = self.floor_cache.plan(device, floor);
         self.floor_copied = copy.is_some();
         let background = wgpu::Color { r: r as f64, g: g as f64, b: b as f64, a: a as f64 };
@@ -318,9 +336,17 @@ impl SceneRenderer {
             }
             let [width, height] = target.size();
             let extent = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
-            encoder.copy_texture_to_texture(copy.color.as_image_copy(), target.attachment_texture().as_image_copy(), extent);
+            encoder.copy_texture_to_texture(
+                copy.color.as_image_copy(),
+                target.attachment_texture().as_image_copy(),
+                extent,
+            );
             if copy.copy_depth {
-                encoder.copy_texture_to_texture(copy.depth.as_image_copy(), target.depth_texture().as_image_copy(), extent);
+                encoder.copy_texture_to_texture(
+                    copy.depth.as_image_copy(),
+                    target.depth_texture().as_image_copy(),
+                    extent,
+                );
             }
         }
         // The shadow map after the copies: lavapipe copies textures on its
@@ -334,7 +360,14 @@ impl SceneRenderer {
         let depth_copied = copy.as_ref().is_some_and(|c| c.copy_depth);
         let (view, resolve_target) = target.color_attachment();
         let color = (view, resolve_target, load_or_clear(copy.is_some(), background));
-        let mut pass = self.begin_lit_pass(encoder, "mocap scene", color, target.depth_view(), load_or_clear(depth_copied, 1.0), wgpu::StoreOp::Discard);
+        let mut pass = self.begin_lit_pass(
+            encoder,
+            "mocap scene",
+            color,
+            target.depth_view(),
+            load_or_clear(depth_copied, 1.0),
+            wgpu::StoreOp::Discard,
+        );
         // Made by `prepare_pipelines` above.
         let Some(pipelines) = pipelines_for(&self.pipelines, key) else { return };
         if scene.grid.is_some() {
@@ -377,7 +410,14 @@ impl SceneRenderer {
     }
 
     /// Draws `scene` into `target` and submits the work to `queue`.
-    pub fn render(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget, scene: &Scene, camera: &Camera) {
+    pub fn render(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        target: &RenderTarget,
+        scene: &Scene,
+        camera: &Camera,
+    ) {
         let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("mocap scene") });
         self.encode(device, queue, &mut encoder, target, scene, camera);
         queue.submit([encoder.finish()]);
@@ -403,24 +443,25 @@ impl SceneRenderer {
         depth_store: wgpu::StoreOp,
     ) -> wgpu::RenderPass<'a> {
         let (view, resolve_target, load) = color;
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(label),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target,
-                ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth,
-                depth_ops: Some(wgpu::Operations { load: depth_load, store: depth_store }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        })
-        .forget_lifetime();
+        let mut pass = encoder
+            .begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(label),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target,
+                    ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: depth,
+                    depth_ops: Some(wgpu::Operations { load: depth_load, store: depth_store }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            })
+            .forget_lifetime();
         pass.set_bind_group(0, &self.frame_group, &[]);
         pass.set_bind_group(1, &self.shadow_map().bind_group, &[]);
         pass
@@ -428,11 +469,24 @@ impl SceneRenderer {
 
     /// Draws the floor over `background` into the floor cache's textures (of
     /// the target's size and sample count), with the pipelines for `key`.
-    fn encode_floor_fill(&mut self, encoder: &mut wgpu::CommandEncoder, cache: &FloorCopy, key: PipelineKey, background: wgpu::Color) {
+    fn encode_floor_fill(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        cache: &FloorCopy,
+        key: PipelineKey,
+        background: wgpu::Color,
+    ) {
         let view = cache.color.create_view(&Default::default());
         let depth = cache.depth.create_view(&Default::default());
         let color = (&view, None, wgpu::LoadOp::Clear(background));
-        let mut pass = self.begin_lit_pass(encoder, "mocap floor cache", color, &depth, wgpu::LoadOp::Clear(1.0), wgpu::StoreOp::Store);
+        let mut pass = self.begin_lit_pass(
+            encoder,
+            "mocap floor cache",
+            color,
+            &depth,
+            wgpu::LoadOp::Clear(1.0),
+            wgpu::StoreOp::Store,
+        );
         if let Some(pipelines) = pipelines_for(&self.pipelines, key) {
             pass.set_pipeline(&pipelines.floor);
             pass.draw(0..6, 0..1);
@@ -469,7 +523,14 @@ impl SceneRenderer {
 
     /// Uploads instances and uniforms; returns whether the shadow pass is
     /// needed, and the uniforms.
-    fn upload(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTarget, scene: &Scene, camera: &Camera) -> (bool, FrameUniforms) {
+    fn upload(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        target: &RenderTarget,
+        scene: &Scene,
+        camera: &Camera,
+    ) -> (bool, FrameUniforms) {
         let size = target.size();
         // The casters that are not drawn lit (the lit capsules cast too):
         // spheres (capsules of zero length) and capsules that only cast.
@@ -482,14 +543,18 @@ impl SceneRenderer {
         self.meshes.prepare(device, queue, &scene.meshes);
         // The fast look draws bodies small on screen with their coarse meshes.
         let fast_look = self.fast_look;
-        self.skinned.prepare(device, queue, &scene.skinned, |d| fast_look && body_span_px(d, camera, size[1] as f32) < crate::skinned::COARSE_BODY_SPAN_PX);
+        self.skinned.prepare(device, queue, &scene.skinned, |d| {
+            fast_look && body_span_px(d, camera, size[1] as f32) < crate::skinned::COARSE_BODY_SPAN_PX
+        });
         let skinned_bounds = scene.skinned.iter().filter_map(SkinnedDraw::world_bounds);
-        let mesh_bounds = scene.meshes.iter().filter_map(|m| m.world_bounds()).chain(skinned_bounds).filter(|_| scene.shadows);
+        let mesh_bounds =
+            scene.meshes.iter().filter_map(|m| m.world_bounds()).chain(skinned_bounds).filter(|_| scene.shadows);
         let casters = scene.capsules.iter().map(|c| (c.a, c.b, c.radius)).chain(only_cast.clone());
         let capsule_bounds = if scene.shadows { caster_bounds(casters) } else { None };
         let bounds = mesh_bounds.chain(capsule_bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         // The look's map, fitted to the casters (see shadow.rs).
-        let full = if self.fast_look { shadow::FAST_SIZE } else { shadow::SIZE }.min(device.limits().max_texture_dimension_2d);
+        let full =
+            if self.fast_look { shadow::FAST_SIZE } else { shadow::SIZE }.min(device.limits().max_texture_dimension_2d);
         // Texels no smaller than the screen's pixels.
         let pixel = shadow::ScreenPixel::of(camera, size[1]);
         let view = bounds.and_then(|(min, max)| shadow::fit_light(min, max, floor_y, full, pixel));
@@ -503,7 +568,8 @@ impl SceneRenderer {
         let light = view.map(|v| v.on_map(map.size));
         // The frame's pipelines, which set how outlines are drawn.
         let look = self.key_for(target.sample_count(), light.is_some());
-        let uniforms = FrameUniforms::new(camera, size, look.outline(), self.format, scene.grid.as_ref(), light.as_ref());
+        let uniforms =
+            FrameUniforms::new(camera, size, look.outline(), self.format, scene.grid.as_ref(), light.as_ref());
         queue.write_buffer(&self.uniforms, 0, bytemuck::bytes_of(&uniforms));
         let capsules = &mut self.capsules;
         capsules.clear();
@@ -524,12 +590,15 @@ impl SceneRenderer {
         let texel = light.as_ref().map(|l| l.texel);
         let forced = !self.four_corners_always;
         let in_order = order.iter().filter_map(|&(_, span, i)| Some((scene.capsules.get(i)?, span)));
-        let with_shape = in_order.map(|(c, span)| (CapsuleInstance::new(c), forced && capsule::is_one_triangle(span, c.radius, texel)));
+        let with_shape = in_order
+            .map(|(c, span)| (CapsuleInstance::new(c), forced && capsule::is_one_triangle(span, c.radius, texel)));
         capsule::expand(with_shape, &mut capsules.vertices, &mut capsules.indices);
         self.lit_indices = capsules.indices.len() as u32;
         if let Some(texel) = texel {
             // Drawn in the shadow pass alone: one triangle there is enough.
-            let shadow_only = only_cast.map(|(a, b, radius)| (CapsuleInstance::caster(a, b, radius), forced && capsule::is_one_triangle_in_map(radius, texel)));
+            let shadow_only = only_cast.map(|(a, b, radius)| {
+                (CapsuleInstance::caster(a, b, radius), forced && capsule::is_one_triangle_in_map(radius, texel))
+            });
             capsule::expand(shadow_only, &mut capsules.vertices, &mut capsules.indices);
             self.caster_indices = capsules.indices.len() as u32;
         } else {
@@ -544,7 +613,14 @@ impl SceneRenderer {
 impl SceneRenderer {
     /// Uploads the scene's lines, overlay lines and spheres, the lines and
     /// spheres farthest first where `look` blends their outlines.
-    fn upload_lines_and_spheres(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene, camera: &Camera, look: PipelineKey) {
+    fn upload_lines_and_spheres(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+        camera: &Camera,
+        look: PipelineKey,
+    ) {
         let ppp = self.pixels_per_point;
         let z_row = camera.view.row(2);
         let view_z = |p: Vec3| z_row.dot(p.extend(1.0));
@@ -565,7 +641,11 @@ impl SceneRenderer {
 }
 
 /// Draws the uploaded `spheres` with `pipeline`; returns the draw calls made.
-fn draw_spheres<'a>(pass: &mut wgpu::RenderPass<'a>, pipeline: &'a wgpu::RenderPipeline, spheres: &'a GrowingBuffer) -> u32 {
+fn draw_spheres<'a>(
+    pass: &mut wgpu::RenderPass<'a>,
+    pipeline: &'a wgpu::RenderPipeline,
+    spheres: &'a GrowingBuffer,
+) -> u32 {
     let Some((buffer, count)) = spheres.get() else { return 0 };
     pass.set_pipeline(pipeline);
     pass.set_vertex_buffer(0, buffer.slice(..));
@@ -580,7 +660,11 @@ fn sort_farthest_first<T>(items: &mut [T], z: impl Fn(&T) -> f32) {
 }
 
 /// Draws the uploaded `lines` with `pipeline`; returns the draw calls made.
-fn draw_lines<'a>(pass: &mut wgpu::RenderPass<'a>, pipeline: &'a wgpu::RenderPipeline, lines: &'a GrowingBuffer) -> u32 {
+fn draw_lines<'a>(
+    pass: &mut wgpu::RenderPass<'a>,
+    pipeline: &'a wgpu::RenderPipeline,
+    lines: &'a GrowingBuffer,
+) -> u32 {
     let Some((buffer, count)) = lines.get() else { return 0 };
     pass.set_pipeline(pipeline);
     pass.set_vertex_buffer(0, buffer.slice(..));
@@ -601,7 +685,9 @@ fn pipelines_for(made: &[(PipelineKey, Pipelines)], key: PipelineKey) -> Option<
 /// How many pixels a body spans on screen at most (its bounding box's sphere,
 /// [`capsule::span_px`]); infinite without a bound.
 fn body_span_px(draw: &SkinnedDraw, camera: &Camera, height_px: f32) -> f32 {
-    draw.world_bounds().map_or(f32::INFINITY, |(lo, hi)| capsule::span_px(&crate::Capsule { a: lo, b: hi, radius: 0.0, color: [0; 4] }, camera, height_px))
+    draw.world_bounds().map_or(f32::INFINITY, |(lo, hi)| {
+        capsule::span_px(&crate::Capsule { a: lo, b: hi, radius: 0.0, color: [0; 4] }, camera, height_px)
+    })
 }
 
 /// The box around every finite caster (ends `a`, `b` grown by the radius), if any.
@@ -708,7 +794,12 @@ impl Pipelines {
         let shadow = pipeline::build(
             device,
             &shadow_pass_layout,
-            &PipelineSpec { label: "mocap shadow casters", fragment_entry: "fs_shadow", depth_fragment: true, ..depth_only },
+            &PipelineSpec {
+                label: "mocap shadow casters",
+                fragment_entry: "fs_shadow",
+                depth_fragment: true,
+                ..depth_only
+            },
         );
         let floor = pipeline::build(
             device,
@@ -754,7 +845,8 @@ impl Pipelines {
         // Impostors: triangles of either winding; alpha is the outline's coverage
         // (samples on a multisampled target, blended on one sample at full
         // quality) and the target keeps its alpha.
-        let coverage = if key.blends_outlines() { wgpu::BlendState::ALPHA_BLENDING.color } else { wgpu::BlendComponent::REPLACE };
+        let coverage =
+            if key.blends_outlines() { wgpu::BlendState::ALPHA_BLENDING.color } else { wgpu::BlendComponent::REPLACE };
         let capsules = pipeline::build(
             device,
             &lit_layout,
@@ -806,7 +898,13 @@ impl Pipelines {
         let morph = pipeline::build(
             device,
             &textured_layout,
-            &PipelineSpec { label: "mocap meshes", shader: &morph_shader, buffers: &morph_buffers, cull_back: false, ..base },
+            &PipelineSpec {
+                label: "mocap meshes",
+                shader: &morph_shader,
+                buffers: &morph_buffers,
+                cull_back: false,
+                ..base
+            },
         );
         let morph_shadow = pipeline::build(
             device,
@@ -821,14 +919,38 @@ impl Pipelines {
             // faces, so they are not drawn (about a third of a body frame's
             // time on lavapipe). The shadow pass draws both: culling either
             // side there moves shadow edges.
-            &PipelineSpec { label: "mocap skinned", shader: &skinned_shader, buffers: &skinned_buffers, cull_back: true, ..base },
+            &PipelineSpec {
+                label: "mocap skinned",
+                shader: &skinned_shader,
+                buffers: &skinned_buffers,
+                cull_back: true,
+                ..base
+            },
         );
         let skinned_shadow = pipeline::build(
             device,
             &skinned_shadow_layout,
-            &PipelineSpec { label: "mocap skinned shadows", shader: &skinned_shader, buffers: &skinned_buffers, ..depth_only },
+            &PipelineSpec {
+                label: "mocap skinned shadows",
+                shader: &skinned_shader,
+                buffers: &skinned_buffers,
+                ..depth_only
+            },
         );
-        Pipelines { shadow, floor, floor_depth, floor_shadow, capsules, spheres, lines, overlay_lines, morph, morph_shadow, skinned, skinned_shadow }
+        Pipelines {
+            shadow,
+            floor,
+            floor_depth,
+            floor_shadow,
+            capsules,
+            spheres,
+            lines,
+            overlay_lines,
+            morph,
+            morph_shadow,
+            skinned,
+            skinned_shadow,
+        }
     }
 }
 
@@ -842,7 +964,12 @@ mod tests {
         let z = |p: &Vec3| camera.view.transform_point3(*p).z;
         // Depths along the view: z = 2 is nearest the eye at z = 5; a NaN
         // sorts to one end without breaking the order of the rest.
-        let mut points = vec![Vec3::new(0.0, 0.0, 2.0), Vec3::new(1.0, 0.0, -3.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(-1.0, 0.0, -1.0)];
+        let mut points = vec![
+            Vec3::new(0.0, 0.0, 2.0),
+            Vec3::new(1.0, 0.0, -3.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(-1.0, 0.0, -1.0),
+        ];
         sort_farthest_first(&mut points, z);
         let zs: Vec<f32> = points.iter().map(|p| p.z).collect();
         assert_eq!(zs, [-3.0, -1.0, 0.0, 2.0]);

@@ -40,7 +40,12 @@ pub fn key_light_direction() -> Vec3 {
 
 /// The layout the lit pipelines sample a [`ShadowMap`] through.
 pub(crate) fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    crate::pipeline::texture_layout(device, "mocap shadow", wgpu::TextureSampleType::Depth, wgpu::SamplerBindingType::Comparison)
+    crate::pipeline::texture_layout(
+        device,
+        "mocap shadow",
+        wgpu::TextureSampleType::Depth,
+        wgpu::SamplerBindingType::Comparison,
+    )
 }
 
 /// The shadow map texture and the bind group (of [`layout`]) the lit pipelines
@@ -244,7 +249,9 @@ impl ScreenPixel {
     /// the eye is inside the box).
     fn nearest_in(self, min: Vec3, max: Vec3) -> f32 {
         match self {
-            ScreenPixel::Perspective { eye, per_distance } => (min - eye).max(eye - max).max(Vec3::ZERO).length() * per_distance,
+            ScreenPixel::Perspective { eye, per_distance } => {
+                (min - eye).max(eye - max).max(Vec3::ZERO).length() * per_distance
+            }
             ScreenPixel::Orthographic(size) => size,
         }
     }
@@ -261,7 +268,13 @@ impl ScreenPixel {
 /// quantised (in steps of 25%), and the view is centred on the casters on
 /// whole texels, so that shadows do not shimmer as the figures move. `None`
 /// for an empty or non-finite box.
-pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32, pixel: Option<ScreenPixel>) -> Option<LightView> {
+pub(crate) fn fit_light(
+    min: Vec3,
+    max: Vec3,
+    floor_y: Option<f32>,
+    size: u32,
+    pixel: Option<ScreenPixel>,
+) -> Option<LightView> {
     let floor_y = floor_y.filter(|y| y.is_finite()).unwrap_or(min.y);
     let lo = Vec3::new(min.x, min.y.min(floor_y), min.z);
     if !(lo.is_finite() && max.is_finite() && (max - lo).min_element() >= 0.0) {
@@ -276,9 +289,16 @@ pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32, p
     let shadows = shadows_on_floor(min, max, floor_y);
     let floor_rect = floor_rect(shadows);
     let [x0, z0, x1, z1] = floor_rect;
-    let floor = [Vec3::new(x0, floor_y, z0), Vec3::new(x1, floor_y, z0), Vec3::new(x0, floor_y, z1), Vec3::new(x1, floor_y, z1)];
+    let floor = [
+        Vec3::new(x0, floor_y, z0),
+        Vec3::new(x1, floor_y, z0),
+        Vec3::new(x0, floor_y, z1),
+        Vec3::new(x1, floor_y, z1),
+    ];
     let bounds = |points: &mut dyn Iterator<Item = Vec3>| {
-        points.map(|p| view.transform_point3(p)).fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(a, b), c| (a.min(c), b.max(c)))
+        points
+            .map(|p| view.transform_point3(p))
+            .fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(a, b), c| (a.min(c), b.max(c)))
     };
     let (a, b) = bounds(&mut corners(lo, max).into_iter().chain(floor));
     // Square extent, grown to the next step of 1.25^k, with a margin for the filter.
@@ -297,7 +317,8 @@ pub(crate) fn fit_light(min: Vec3, max: Vec3, floor_y: Option<f32>, size: u32, p
     let center = Vec2::new(snap((ca.x + cb.x) * 0.5), snap((ca.y + cb.y) * 0.5));
     // Texels from the centre to the far side of the casters, and a border.
     let reach = |lo: f32, hi: f32, c: f32| ((hi - c).max(c - lo) / texel + BORDER).ceil();
-    let texels = [reach(ca.x, cb.x, center.x), reach(ca.y, cb.y, center.y)].map(|r| if r.is_finite() { (2.0 * r).min(size as f32) as u32 } else { size });
+    let texels = [reach(ca.x, cb.x, center.x), reach(ca.y, cb.y, center.y)]
+        .map(|r| if r.is_finite() { (2.0 * r).min(size as f32) as u32 } else { size });
     // View space looks down -Z: depths are -z.
     let depth = b.z - a.z;
     let (near, far) = (-b.z - depth * 0.05 - 1e-3, -a.z + depth * 0.05 + 1e-3);
@@ -321,7 +342,10 @@ mod tests {
         for p in corners(min, max) {
             let c = m.project_point3(p);
             let inside = |v: f32, texels: u32| v.abs() <= 1.0 - 2.0 * BORDER / texels as f32 + 1e-4;
-            assert!(inside(c.x, view.texels[0]) && inside(c.y, view.texels[1]) && (0.0..=1.0).contains(&c.z), "{p} -> {c}");
+            assert!(
+                inside(c.x, view.texels[0]) && inside(c.y, view.texels[1]) && (0.0..=1.0).contains(&c.z),
+                "{p} -> {c}"
+            );
         }
         // The fast map has texels twice as large.
         let fast = fit_light(min, max, Some(-0.1), FAST_SIZE, None).unwrap();
@@ -345,10 +369,16 @@ mod tests {
     #[test]
     fn the_floors_shadow_is_drawn_wherever_a_lookup_can_find_a_caster() {
         // A crowd on a floor a little below its feet, and a small box high up.
-        for (min, max, floor_y) in [(Vec3::new(-10.6, 0.0, -8.3), Vec3::new(10.9, 1.6, 8.0), -0.05), (Vec3::new(0.2, 2.0, -0.3), Vec3::new(0.5, 2.2, 0.1), 0.0)] {
+        for (min, max, floor_y) in [
+            (Vec3::new(-10.6, 0.0, -8.3), Vec3::new(10.9, 1.6, 8.0), -0.05),
+            (Vec3::new(0.2, 2.0, -0.3), Vec3::new(0.5, 2.2, 0.1), 0.0),
+        ] {
             let view = fit_light(min, max, Some(floor_y), SIZE, None).unwrap();
             let (texel, drawn, fitted) = (view.texel, view.floor_shadow, view.floor_rect);
-            assert!(drawn[0] >= fitted[0] && drawn[1] >= fitted[1] && drawn[2] <= fitted[2] && drawn[3] <= fitted[3], "{drawn:?} in {fitted:?}");
+            assert!(
+                drawn[0] >= fitted[0] && drawn[1] >= fitted[1] && drawn[2] <= fitted[2] && drawn[3] <= fitted[3],
+                "{drawn:?} in {fitted:?}"
+            );
             // Smaller than the fitted rectangle, which has a margin of a twentieth.
             let area = |r: [f32; 4]| (r[2] - r[0]) * (r[3] - r[1]);
             assert!(area(drawn) < area(fitted) * 0.9, "{drawn:?} vs {fitted:?}");
@@ -369,7 +399,10 @@ mod tests {
                     // texel out and their bilinear texel.
                     if distance_to_polygon(q, &hull) <= 1.75 * texel {
                         reached += 1;
-                        assert!(x >= drawn[0] && x <= drawn[2] && z >= drawn[1] && z <= drawn[3], "({x}, {z}) reaches a caster outside {drawn:?}");
+                        assert!(
+                            x >= drawn[0] && x <= drawn[2] && z >= drawn[1] && z <= drawn[3],
+                            "({x}, {z}) reaches a caster outside {drawn:?}"
+                        );
                     }
                 }
             }
@@ -443,15 +476,28 @@ mod tests {
         assert!(x1 > 0.0 && nearest < eye.distance(Vec3::new(0.0, 1.6, max.z)) + 1e-3);
         let expected = 2.0 * nearest * (22.5f32.to_radians()).tan() / 720.0;
         let ScreenPixel::Perspective { per_distance, .. } = pixel else { panic!("{pixel:?}") };
-        assert!((per_distance * nearest - expected).abs() < expected * 1e-3, "{} vs {expected}", per_distance * nearest);
+        assert!(
+            (per_distance * nearest - expected).abs() < expected * 1e-3,
+            "{} vs {expected}",
+            per_distance * nearest
+        );
         let far = fit_light(min, max, Some(0.0), SIZE, Some(pixel)).unwrap();
-        assert!(far.texel >= expected * 0.999 && far.texel < expected * 1.25 * 1.001, "{} for pixels of {expected}", far.texel);
+        assert!(
+            far.texel >= expected * 0.999 && far.texel < expected * 1.25 * 1.001,
+            "{} for pixels of {expected}",
+            far.texel
+        );
         assert!(far.texel > alone.texel * 1.5, "{} vs {}", far.texel, alone.texel);
         // On the same lattice of steps: the square of `SIZE` texels is 1.25^k.
         let k = (far.texel * SIZE as f32 * 0.5).log(1.25);
         assert!((k - k.round()).abs() < 1e-3, "{k}");
         // Fewer texels to clear and fill, with the casters still inside.
-        assert!(far.texels.iter().zip(alone.texels).all(|(&f, a)| f * 3 < a * 2), "{:?} vs {:?}", far.texels, alone.texels);
+        assert!(
+            far.texels.iter().zip(alone.texels).all(|(&f, a)| f * 3 < a * 2),
+            "{:?} vs {:?}",
+            far.texels,
+            alone.texels
+        );
         let m = far.on_map(far.texels).view_proj;
         assert!(corners(min, max).iter().all(|&p| m.project_point3(p).truncate().abs().max_element() < 1.0));
         // Up close (or with the eye among the casters) the pixels are finer

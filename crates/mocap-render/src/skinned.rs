@@ -68,7 +68,8 @@ impl SkinnedMeshData {
         if indices.len() % 3 != 0 || indices.iter().any(|&i| i as usize >= n) {
             return Err("triangle indices out of range".into());
         }
-        if joints.iter().zip(weights).any(|(j, w)| j.iter().zip(w).any(|(j, w)| *w > 0.0 && *j as usize >= joint_count)) {
+        if joints.iter().zip(weights).any(|(j, w)| j.iter().zip(w).any(|(j, w)| *w > 0.0 && *j as usize >= joint_count))
+        {
             return Err("a vertex is weighted to a joint past the skeleton".into());
         }
         let joint_count_u32 = u32::try_from(joint_count).map_err(|_| "too many joints")?;
@@ -148,11 +149,20 @@ const INSTANCE_SIZE: u64 = std::mem::size_of::<Instance>() as u64;
 
 /// Vertex buffer layouts of the skinned pipeline: the mesh, then the instance.
 pub(crate) fn buffer_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
-    const VERTEX: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32x4, 3 => Float32x4];
+    const VERTEX: [wgpu::VertexAttribute; 4] =
+        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32x4, 3 => Float32x4];
     const INSTANCE: [wgpu::VertexAttribute; 2] = wgpu::vertex_attr_array![4 => Uint32x4, 5 => Float32x4];
     [
-        Some(wgpu::VertexBufferLayout { array_stride: std::mem::size_of::<SkinnedVertex>() as u64, step_mode: wgpu::VertexStepMode::Vertex, attributes: &VERTEX }),
-        Some(wgpu::VertexBufferLayout { array_stride: INSTANCE_SIZE, step_mode: wgpu::VertexStepMode::Instance, attributes: &INSTANCE }),
+        Some(wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<SkinnedVertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &VERTEX,
+        }),
+        Some(wgpu::VertexBufferLayout {
+            array_stride: INSTANCE_SIZE,
+            step_mode: wgpu::VertexStepMode::Instance,
+            attributes: &INSTANCE,
+        }),
     ]
 }
 
@@ -203,7 +213,13 @@ impl SkinnedCache {
     /// Uploads new meshes, forgets dropped ones, and writes this frame's matrices
     /// and instances. A draw for which `coarse` says so is drawn with its
     /// coarse mesh, where it has one.
-    pub fn prepare(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, draws: &[SkinnedDraw], coarse: impl Fn(&SkinnedDraw) -> bool) {
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        draws: &[SkinnedDraw],
+        coarse: impl Fn(&SkinnedDraw) -> bool,
+    ) {
         self.meshes.retain(|_, m| m.owner.strong_count() > 0);
         self.scratch.clear();
         self.texels.clear();
@@ -219,11 +235,17 @@ impl SkinnedCache {
                 if bytes.len() as u64 > device.limits().max_buffer_size || data.indices.is_empty() {
                     continue;
                 }
-                let buffer = |label, contents: &[u8], usage| device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage });
+                let buffer = |label, contents: &[u8], usage| {
+                    device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
+                };
                 let mesh = GpuMesh {
                     owner: Arc::downgrade(data),
                     vertices: buffer("mocap skinned vertices", bytes, wgpu::BufferUsages::VERTEX),
-                    indices: buffer("mocap skinned indices", bytemuck::cast_slice(&data.indices), wgpu::BufferUsages::INDEX),
+                    indices: buffer(
+                        "mocap skinned indices",
+                        bytemuck::cast_slice(&data.indices),
+                        wgpu::BufferUsages::INDEX,
+                    ),
                     index_count: data.indices.len() as u32,
                 };
                 self.meshes.insert(key, mesh);
@@ -235,7 +257,10 @@ impl SkinnedCache {
             }
             let [r, g, b, _] = crate::srgb_to_linear(draw.tint);
             self.draws.push((key, self.scratch.len() as u32));
-            self.scratch.push(Instance { base: [base, 0, 0, 0], tint_mode: [r, g, b, if draw.weights_view { 1.0 } else { 0.0 }] });
+            self.scratch.push(Instance {
+                base: [base, 0, 0, 0],
+                tint_mode: [r, g, b, if draw.weights_view { 1.0 } else { 0.0 }],
+            });
         }
         self.instances.upload(device, queue, &self.scratch);
         self.upload_matrices(device, queue);
@@ -278,9 +303,18 @@ impl SkinnedCache {
         let row_texels = (MATRICES_PER_ROW * TEXELS_PER_MATRIX) as usize;
         self.texels.resize(rows as usize * row_texels, [0.0; 4]);
         queue.write_texture(
-            wgpu::TexelCopyTextureInfo { texture, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+            wgpu::TexelCopyTextureInfo {
+                texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
             bytemuck::cast_slice(&self.texels),
-            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(MATRICES_PER_ROW * TEXELS_PER_MATRIX * 16), rows_per_image: Some(rows) },
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(MATRICES_PER_ROW * TEXELS_PER_MATRIX * 16),
+                rows_per_image: Some(rows),
+            },
             wgpu::Extent3d { width: MATRICES_PER_ROW * TEXELS_PER_MATRIX, height: rows, depth_or_array_layers: 1 },
         );
     }

@@ -42,14 +42,22 @@ impl RenderTarget {
             "mocap color",
             format,
             1,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
         );
         let msaa = (sample_count > 1).then(|| {
             let msaa = texture("mocap msaa", format, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT | copy_dst);
             let view = msaa.create_view(&Default::default());
             (msaa, view)
         });
-        let depth = texture("mocap depth", crate::DEPTH_FORMAT, sample_count, wgpu::TextureUsages::RENDER_ATTACHMENT | copy_dst);
+        let depth = texture(
+            "mocap depth",
+            crate::DEPTH_FORMAT,
+            sample_count,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | copy_dst,
+        );
         RenderTarget {
             color_view: color.create_view(&Default::default()),
             color,

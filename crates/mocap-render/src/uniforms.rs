@@ -72,7 +72,14 @@ pub(crate) enum OutlineRule {
 impl FrameUniforms {
     /// The block for one frame into a target of `size` pixels and `format`,
     /// with impostor outlines drawn by `outline`.
-    pub fn new(camera: &Camera, size: [u32; 2], outline: OutlineRule, format: wgpu::TextureFormat, grid: Option<&Grid>, light: Option<&LightFit>) -> FrameUniforms {
+    pub fn new(
+        camera: &Camera,
+        size: [u32; 2],
+        outline: OutlineRule,
+        format: wgpu::TextureFormat,
+        grid: Option<&Grid>,
+        light: Option<&LightFit>,
+    ) -> FrameUniforms {
         let eye = camera.eye().extend(0.0);
         let view_proj = camera.projection * camera.view;
         let (light_view_proj, texel, strength, shadow_rect) = match light {

@@ -20,7 +20,9 @@ fn setup(samples: u32) -> Option<(wgpu::Device, wgpu::Queue, SceneRenderer, Rend
             eprintln!("no wgpu adapter here; skipped (MOCAP_SKIP_GPU_TESTS=1)");
             return None;
         }
-        panic!("no wgpu adapter: install Mesa's lavapipe (apt-get install mesa-vulkan-drivers; `cargo xtask test` does) or opt out with MOCAP_SKIP_GPU_TESTS=1");
+        panic!(
+            "no wgpu adapter: install Mesa's lavapipe (apt-get install mesa-vulkan-drivers; `cargo xtask test` does) or opt out with MOCAP_SKIP_GPU_TESTS=1"
+        );
     };
     let renderer = SceneRenderer::new(&device, FORMAT, samples);
     let target = RenderTarget::new(&device, FORMAT, samples, [SIZE, SIZE]);
@@ -45,10 +47,19 @@ fn read_pixels_of(device: &wgpu::Device, queue: &wgpu::Queue, target: &RenderTar
     });
     let mut encoder = device.create_command_encoder(&Default::default());
     encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo { texture: &target.color, mip_level: 0, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+        wgpu::TexelCopyTextureInfo {
+            texture: &target.color,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(height) },
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
         },
         wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
     );
@@ -71,7 +82,12 @@ fn draws_lines_spheres_and_grid_offscreen() {
     assert!(empty.chunks(4).all(|p| p == background), "an empty scene is just the background");
 
     scene.grid = Some(Grid::floor(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, 1.0), 0.5, 0.5));
-    scene.lines.push(Line { a: Vec3::new(0.0, 0.5, 0.0), b: Vec3::new(0.0, 1.5, 0.0), color: [255, 0, 0, 255], width_px: 3.0 });
+    scene.lines.push(Line {
+        a: Vec3::new(0.0, 0.5, 0.0),
+        b: Vec3::new(0.0, 1.5, 0.0),
+        color: [255, 0, 0, 255],
+        width_px: 3.0,
+    });
     scene.spheres.push(Sphere { center: Vec3::new(0.0, 1.5, 0.0), radius: 0.1, color: [0, 255, 0, 255] });
     renderer.render(&device, &queue, &target, &scene, &camera);
     let pixels = read_pixels(&device, &queue, &target);
@@ -79,7 +95,8 @@ fn draws_lines_spheres_and_grid_offscreen() {
     assert!(count(&|p| p[0] > 200 && p[1] < 60) > 10, "the red bone is drawn");
     assert!(count(&|p| p[1] > 100 && p[0] < 60) > 4, "the green joint is drawn");
     // Y up: the sphere (y = 1.5, eye height 1) lands in the upper half of the image.
-    let green_rows: Vec<usize> = pixels.chunks(4).enumerate().filter(|(_, p)| p[1] > 100 && p[0] < 60).map(|(i, _)| i / SIZE as usize).collect();
+    let green_rows: Vec<usize> =
+        pixels.chunks(4).enumerate().filter(|(_, p)| p[1] > 100 && p[0] < 60).map(|(i, _)| i / SIZE as usize).collect();
     assert!(green_rows.iter().all(|&r| r < SIZE as usize / 2), "sphere above the centre: rows {green_rows:?}");
 }
 
@@ -88,10 +105,16 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
     let Some((device, queue, mut renderer, target)) = setup(4) else { return };
     // Looking straight down at a floor with a pole standing at its centre.
     let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
-    let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    let mut scene =
+        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
     renderer.render(&device, &queue, &target, &scene, &camera);
     let bare = read_pixels(&device, &queue, &target);
-    scene.capsules.push(Capsule { a: Vec3::new(0.0, 0.0, 0.0), b: Vec3::new(0.0, 2.5, 0.0), radius: 0.15, color: [200, 60, 60, 255] });
+    scene.capsules.push(Capsule {
+        a: Vec3::new(0.0, 0.0, 0.0),
+        b: Vec3::new(0.0, 2.5, 0.0),
+        radius: 0.15,
+        color: [200, 60, 60, 255],
+    });
     renderer.render(&device, &queue, &target, &scene, &camera);
     assert_eq!(renderer.draw_calls(), 4, "shadow map, floor, floor shadow, capsules");
     let lit = read_pixels(&device, &queue, &target);
@@ -108,13 +131,18 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
     let fast = read_pixels(&device, &queue, &target);
     renderer.fast_look = false;
     let fast_red = fast.chunks(4).filter(|p| p[0] > 100 && p[0] as u32 > 2 * p[1] as u32).count();
-    assert!(fast_red.abs_diff(red) * 10 <= red, "fast look: the capsule covers about the same pixels ({fast_red} against {red})");
-    let fast_darker = bare.chunks(4).zip(fast.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
+    assert!(
+        fast_red.abs_diff(red) * 10 <= red,
+        "fast look: the capsule covers about the same pixels ({fast_red} against {red})"
+    );
+    let fast_darker =
+        bare.chunks(4).zip(fast.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
     assert!(fast_darker > 20, "fast look: a shadow darkens the floor: {fast_darker} pixels");
     scene.shadows = false;
     renderer.render(&device, &queue, &target, &scene, &camera);
     let unshadowed = read_pixels(&device, &queue, &target);
-    let darker = bare.chunks(4).zip(unshadowed.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
+    let darker =
+        bare.chunks(4).zip(unshadowed.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
     assert_eq!(darker, 0, "no shadow when shadows are off");
     // Shadows on again (their own pipelines, made before): the first picture.
     scene.shadows = true;
@@ -124,7 +152,8 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
 
     // A line inside the pole's top is hidden; as an overlay line it shows.
     let green = |pixels: &[u8]| pixels.chunks(4).filter(|p| p[1] > 150 && p[0] < 100).count();
-    let inside = Line { a: Vec3::new(-0.1, 2.5, 0.0), b: Vec3::new(0.1, 2.5, 0.0), color: [0, 255, 0, 255], width_px: 3.0 };
+    let inside =
+        Line { a: Vec3::new(-0.1, 2.5, 0.0), b: Vec3::new(0.1, 2.5, 0.0), color: [0, 255, 0, 255], width_px: 3.0 };
     scene.lines.push(inside);
     renderer.render(&device, &queue, &target, &scene, &camera);
     assert_eq!(green(&read_pixels(&device, &queue, &target)), 0, "a line inside a capsule is hidden");
@@ -138,7 +167,8 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
 fn a_shadow_falls_where_the_key_light_projects_its_caster() {
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     let camera = Camera::look_at(Vec3::new(0.0, 8.0, 0.01), Vec3::ZERO, 0.8, 1.0);
-    let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    let mut scene =
+        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
     // A ball in the air, and a small one off to a side so that the fitted shadow
     // map is not symmetric about the ball (a mirrored lookup would then miss it).
     let ball = Vec3::new(0.0, 1.5, 0.0);
@@ -212,7 +242,10 @@ fn a_shadow_keeps_its_shape_on_a_map_longer_one_way() {
     }
     let with_row = extent(&scene);
     for k in 0..2 {
-        assert!((with_row[k] - alone[k]).abs() <= 1.0, "the shadow keeps its size: {with_row:?} with the row, {alone:?} alone");
+        assert!(
+            (with_row[k] - alone[k]).abs() <= 1.0,
+            "the shadow keeps its size: {with_row:?} with the row, {alone:?} alone"
+        );
     }
 }
 
@@ -220,20 +253,30 @@ fn a_shadow_keeps_its_shape_on_a_map_longer_one_way() {
 /// texture whose left half is red and right half blue.
 fn quad_mesh(xs: &[f32], skin: bool) -> std::sync::Arc<mocap_render::MorphMeshData> {
     use mocap_render::{MorphMeshData, MorphVertex, SkinImage};
-    let corners = [(-0.3f32, 0.7f32, 0.0f32, 0.0f32), (0.3, 0.7, 1.0, 0.0), (0.3, 1.3, 1.0, 1.0), (-0.3, 1.3, 0.0, 1.0)];
+    let corners =
+        [(-0.3f32, 0.7f32, 0.0f32, 0.0f32), (0.3, 0.7, 1.0, 0.0), (0.3, 1.3, 1.0, 1.0), (-0.3, 1.3, 0.0, 1.0)];
     let vertices = xs
         .iter()
-        .flat_map(|x| corners.iter().map(move |&(cx, cy, _, _)| MorphVertex { position: [x + cx, cy, 0.0], normal: [0.0, 0.0, 1.0] }))
+        .flat_map(|x| {
+            corners
+                .iter()
+                .map(move |&(cx, cy, _, _)| MorphVertex { position: [x + cx, cy, 0.0], normal: [0.0, 0.0, 1.0] })
+        })
         .collect();
     let uvs = corners.iter().map(|&(_, _, u, v)| [u, v]).collect();
     let half = |c: [u8; 4]| std::iter::repeat_n(c, 8).flatten();
-    let skin = skin.then(|| SkinImage { width: 16, height: 1, pixels: half([230, 20, 20, 255]).chain(half([20, 20, 230, 255])).collect() });
+    let skin = skin.then(|| SkinImage {
+        width: 16,
+        height: 1,
+        pixels: half([230, 20, 20, 255]).chain(half([20, 20, 230, 255])).collect(),
+    });
     std::sync::Arc::new(MorphMeshData::new(4, vertices, uvs, vec![0, 1, 2, 0, 2, 3], skin).expect("a valid mesh"))
 }
 
 /// Columns of the image where pixels pass `f`.
 fn columns(pixels: &[u8], f: impl Fn(&[u8]) -> bool) -> Vec<usize> {
-    let mut cols: Vec<usize> = pixels.chunks(4).enumerate().filter(|(_, p)| f(p)).map(|(i, _)| i % SIZE as usize).collect();
+    let mut cols: Vec<usize> =
+        pixels.chunks(4).enumerate().filter(|(_, p)| f(p)).map(|(i, _)| i % SIZE as usize).collect();
     cols.sort_unstable();
     cols.dedup();
     cols
@@ -247,7 +290,13 @@ fn meshes_blend_two_frames_on_the_gpu_and_show_their_skin() {
     let background = [10, 20, 30, 255];
     let camera = Camera::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.0);
     let mesh = quad_mesh(&[-1.0, 1.0], true);
-    let draw = |frames: [u32; 2], blend: f32| MeshDraw { mesh: mesh.clone(), frames, blend, transform: Mat4::IDENTITY, tint: [255; 4] };
+    let draw = |frames: [u32; 2], blend: f32| MeshDraw {
+        mesh: mesh.clone(),
+        frames,
+        blend,
+        transform: Mat4::IDENTITY,
+        tint: [255; 4],
+    };
     let mut scene = Scene { background, shadows: false, ..Scene::default() };
     let mut centre = |frames, blend, scene: &mut Scene| {
         scene.meshes = vec![draw(frames, blend)];
@@ -257,7 +306,8 @@ fn meshes_blend_two_frames_on_the_gpu_and_show_their_skin() {
         assert!(!cols.is_empty(), "frames {frames:?} at {blend}: the mesh is drawn");
         (cols[0] + cols[cols.len() - 1]) as f32 / 2.0 / SIZE as f32
     };
-    let (a, b, half) = (centre([0, 0], 0.0, &mut scene), centre([1, 1], 0.0, &mut scene), centre([0, 1], 0.5, &mut scene));
+    let (a, b, half) =
+        (centre([0, 0], 0.0, &mut scene), centre([1, 1], 0.0, &mut scene), centre([0, 1], 0.5, &mut scene));
     assert!(a < 0.4 && b > 0.6, "frame 0 on the left ({a}), frame 1 on the right ({b})");
     assert!((half - 0.5).abs() < 0.03, "halfway between the frames is the middle ({half})");
     let quarter = centre([0, 1], 0.25, &mut scene);
@@ -270,7 +320,13 @@ fn meshes_blend_two_frames_on_the_gpu_and_show_their_skin() {
     let blue = columns(&px, |p| p[2] > 120 && p[0] < 80);
     assert!(red.len() > 5 && blue.len() > 5 && red[red.len() - 1] < blue[0], "red left of blue: {red:?} {blue:?}");
     // Without a skin: the neutral tint, grey.
-    scene.meshes = vec![MeshDraw { mesh: quad_mesh(&[0.0], false), frames: [0, 0], blend: 0.0, transform: Mat4::IDENTITY, tint: NEUTRAL_TINT }];
+    scene.meshes = vec![MeshDraw {
+        mesh: quad_mesh(&[0.0], false),
+        frames: [0, 0],
+        blend: 0.0,
+        transform: Mat4::IDENTITY,
+        tint: NEUTRAL_TINT,
+    }];
     renderer.render(&device, &queue, &target, &scene, &camera);
     let px = read_pixels(&device, &queue, &target);
     let drawn: Vec<&[u8]> = px.chunks(4).filter(|p| *p != background).collect();
@@ -280,13 +336,15 @@ fn meshes_blend_two_frames_on_the_gpu_and_show_their_skin() {
 
 #[test]
 fn a_mesh_casts_a_shadow_on_the_floor() {
-    use mocap_render::glam::Mat4;
     use mocap_render::MeshDraw;
+    use mocap_render::glam::Mat4;
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     let camera = Camera::look_at(Vec3::new(0.0, 3.0, 4.0), Vec3::new(0.0, 0.5, 0.0), 0.8, 1.0);
     let mesh = quad_mesh(&[0.0], false);
     // Turn the square to lie flat above the floor, so it shades a patch of it.
-    let flat = Mat4::from_translation(Vec3::new(0.0, 0.3, 0.0)) * Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2) * Mat4::from_translation(Vec3::new(0.0, -1.0, 0.0));
+    let flat = Mat4::from_translation(Vec3::new(0.0, 0.3, 0.0))
+        * Mat4::from_rotation_x(-std::f32::consts::FRAC_PI_2)
+        * Mat4::from_translation(Vec3::new(0.0, -1.0, 0.0));
     let mut scene = Scene { background: [10, 20, 30, 255], ..Scene::default() };
     scene.grid = Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::new(2.0, 0.0, 2.0), 1.0, 0.5));
     scene.meshes = vec![MeshDraw { mesh, frames: [0, 0], blend: 0.0, transform: flat, tint: [255; 4] }];
@@ -296,7 +354,14 @@ fn a_mesh_casts_a_shadow_on_the_floor() {
         read_pixels(&device, &queue, &target)
     };
     let (lit, shadowed) = (shot(false), shot(true));
-    let darker = lit.chunks(4).zip(shadowed.chunks(4)).filter(|(a, b)| u32::from(a[0]) + u32::from(a[1]) + u32::from(a[2]) > u32::from(b[0]) + u32::from(b[1]) + u32::from(b[2]) + 20).count();
+    let darker = lit
+        .chunks(4)
+        .zip(shadowed.chunks(4))
+        .filter(|(a, b)| {
+            u32::from(a[0]) + u32::from(a[1]) + u32::from(a[2])
+                > u32::from(b[0]) + u32::from(b[1]) + u32::from(b[2]) + 20
+        })
+        .count();
     assert!(darker > 50, "the floor under the mesh is darker with shadows ({darker} pixels)");
 }
 
@@ -309,7 +374,8 @@ fn gpu_skinning_matches_the_cpu_blend() {
     use mocap_render::{MeshDraw, MorphMeshData, MorphVertex, SkinnedDraw, SkinnedMeshData};
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     // A strip along +Y from 0 to 2 facing +Z, 9 rows; weights move from joint 0 to joint 1 along it.
-    let (mut positions, mut normals, mut joints, mut weights, mut uvs) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut positions, mut normals, mut joints, mut weights, mut uvs) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for row in 0..9 {
         let y = row as f32 * 0.25;
         let w1 = (y - 0.5).clamp(0.0, 1.0);
@@ -326,14 +392,18 @@ fn gpu_skinning_matches_the_cpu_blend() {
         let (a, b) = (row * 2, row * 2 + 2);
         indices.extend([a, a + 1, b + 1, a, b + 1, b]);
     }
-    let mesh = std::sync::Arc::new(SkinnedMeshData::new(&positions, &normals, &joints, &weights, indices.clone(), 2).unwrap());
+    let mesh =
+        std::sync::Arc::new(SkinnedMeshData::new(&positions, &normals, &joints, &weights, indices.clone(), 2).unwrap());
     // Joint 1 at y = 1 turns 60° about Z: its matrix is T(1)·R·T(-1) (bind → posed).
-    let bend = Mat4::from_translation(Vec3::Y) * Mat4::from_quat(Quat::from_rotation_z(1.0)) * Mat4::from_translation(-Vec3::Y);
+    let bend = Mat4::from_translation(Vec3::Y)
+        * Mat4::from_quat(Quat::from_rotation_z(1.0))
+        * Mat4::from_translation(-Vec3::Y);
     let matrices = vec![Mat4::IDENTITY, bend];
     let camera = Camera::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.0);
     let tint = [200, 180, 160, 255];
     let mut scene = Scene { shadows: false, ..Scene::default() };
-    scene.skinned = vec![SkinnedDraw { mesh: mesh.clone(), coarse: None, matrices: matrices.clone(), tint, weights_view: false }];
+    scene.skinned =
+        vec![SkinnedDraw { mesh: mesh.clone(), coarse: None, matrices: matrices.clone(), tint, weights_view: false }];
     renderer.render(&device, &queue, &target, &scene, &camera);
     let gpu = read_pixels(&device, &queue, &target);
     // The CPU blend: Σ wᵢ·Mᵢ applied to each vertex.
@@ -343,7 +413,10 @@ fn gpu_skinning_matches_the_cpu_blend() {
         .zip(&weights)
         .map(|((p, n), w)| {
             let m = matrices[0] * w[0] + matrices[1] * w[1];
-            MorphVertex { position: m.transform_point3(*p).to_array(), normal: m.transform_vector3(*n).normalize().to_array() }
+            MorphVertex {
+                position: m.transform_point3(*p).to_array(),
+                normal: m.transform_vector3(*n).normalize().to_array(),
+            }
         })
         .collect();
     let cpu_mesh = std::sync::Arc::new(MorphMeshData::new(positions.len(), vertices, uvs, indices, None).unwrap());
@@ -353,12 +426,21 @@ fn gpu_skinning_matches_the_cpu_blend() {
     let cpu = read_pixels(&device, &queue, &target);
     let background = Scene::default().background;
     let drawn = gpu.chunks(4).filter(|p| *p != background).count();
-    let differ = gpu.chunks(4).zip(cpu.chunks(4)).filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 8)).count();
+    let differ = gpu
+        .chunks(4)
+        .zip(cpu.chunks(4))
+        .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 8))
+        .count();
     assert!(drawn > 300, "the skinned strip is drawn ({drawn} pixels)");
     assert!(differ * 100 < drawn, "GPU and CPU skinning agree: {differ} of {drawn} pixels differ");
     // The bend is real: the top of the strip moved left of the bottom.
     let columns_of = |rows: std::ops::Range<usize>| {
-        let cols: Vec<usize> = gpu.chunks(4).enumerate().filter(|(i, p)| *p != background && rows.contains(&(i / SIZE as usize))).map(|(i, _)| i % SIZE as usize).collect();
+        let cols: Vec<usize> = gpu
+            .chunks(4)
+            .enumerate()
+            .filter(|(i, p)| *p != background && rows.contains(&(i / SIZE as usize)))
+            .map(|(i, _)| i % SIZE as usize)
+            .collect();
         cols.iter().sum::<usize>() as f32 / cols.len().max(1) as f32
     };
     assert!(columns_of(10..40) + 10.0 < columns_of(80..110), "bent toward -X at the top");
@@ -367,7 +449,11 @@ fn gpu_skinning_matches_the_cpu_blend() {
     scene.skinned = vec![SkinnedDraw { mesh, coarse: None, matrices, tint, weights_view: true }];
     renderer.render(&device, &queue, &target, &scene, &camera);
     let weights_view = read_pixels(&device, &queue, &target);
-    let changed = gpu.chunks(4).zip(weights_view.chunks(4)).filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 30)).count();
+    let changed = gpu
+        .chunks(4)
+        .zip(weights_view.chunks(4))
+        .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| x.abs_diff(*y) > 30))
+        .count();
     assert!(changed * 2 > drawn, "the weights view recolours the body ({changed} of {drawn})");
 }
 
@@ -376,14 +462,19 @@ fn a_multisampled_renderer_also_draws_into_a_single_sample_target_and_blit_copie
     let Some((device, queue, mut renderer, target)) = setup(4) else { return };
     let single = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
     let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
-    let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    let mut scene =
+        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
     scene.capsules.push(Capsule { a: Vec3::ZERO, b: Vec3::new(0.0, 2.5, 0.0), radius: 0.3, color: [200, 60, 60, 255] });
     // The same scene into both: the images differ only along edges.
     renderer.render(&device, &queue, &target, &scene, &camera);
     let smooth = read_pixels(&device, &queue, &target);
     renderer.render(&device, &queue, &single, &scene, &camera);
     let fast = read_pixels(&device, &queue, &single);
-    let close = smooth.chunks(4).zip(fast.chunks(4)).filter(|(a, b)| a.iter().zip(b.iter()).all(|(x, y)| x.abs_diff(*y) <= 8)).count();
+    let close = smooth
+        .chunks(4)
+        .zip(fast.chunks(4))
+        .filter(|(a, b)| a.iter().zip(b.iter()).all(|(x, y)| x.abs_diff(*y) <= 8))
+        .count();
     assert!(close as f32 > 0.9 * (SIZE * SIZE) as f32, "{close} of {} pixels alike", SIZE * SIZE);
     let red = |p: &[u8]| p.chunks(4).filter(|p| p[0] > 100 && p[0] as u32 > 2 * p[1] as u32).count();
     assert!(red(&fast) > 100, "the capsule is drawn with one sample");
@@ -420,7 +511,14 @@ fn a_multisampled_renderer_also_draws_into_a_single_sample_target_and_blit_copie
 
 /// Renders `scene` into a new single-sampled `format` target and reads it back,
 /// in the fast look or not.
-fn render_in(device: &wgpu::Device, queue: &wgpu::Queue, format: wgpu::TextureFormat, scene: &Scene, camera: &Camera, fast_look: bool) -> Vec<u8> {
+fn render_in(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    format: wgpu::TextureFormat,
+    scene: &Scene,
+    camera: &Camera,
+    fast_look: bool,
+) -> Vec<u8> {
     let mut renderer = SceneRenderer::new(device, format, 1);
     renderer.fast_look = fast_look;
     let target = RenderTarget::new(device, format, 1, [SIZE, SIZE]);
@@ -450,13 +548,17 @@ fn the_floor_has_its_colours_on_srgb_and_plain_targets() {
         assert!(close, "{format:?}: the floor's middle is {pixel:?}, its colour {:?}", grid.floor_color);
     }
     // With lines: a line crossing the middle is lighter than the floor on both.
-    let lined = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::new(2.0, 0.0, 2.0), 0.0, 0.5)), ..scene };
+    let lined =
+        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::new(2.0, 0.0, 2.0), 0.0, 0.5)), ..scene };
     let camera = Camera::look_at(Vec3::new(0.0, 3.0, 0.001), Vec3::new(0.0, 0.0, 0.0), 0.8, 1.0);
     for format in [wgpu::TextureFormat::Rgba8UnormSrgb, wgpu::TextureFormat::Rgba8Unorm] {
         let pixels = render_in(&device, &queue, format, &lined, &camera, false);
         let row = &pixels[((SIZE / 2) * SIZE * 4) as usize..((SIZE / 2 + 1) * SIZE * 4) as usize];
         let brightest = row.chunks(4).map(|p| p[1]).max().unwrap_or(0);
-        assert!(brightest > grid.floor_color[1] + 20, "{format:?}: no line across the middle row (brightest green {brightest})");
+        assert!(
+            brightest > grid.floor_color[1] + 20,
+            "{format:?}: no line across the middle row (brightest green {brightest})"
+        );
     }
 }
 
@@ -549,7 +651,12 @@ fn capsule_impostors_cover_exactly_what_their_rays_meet() {
         ("thin and far", Vec3::new(-0.5, 0.3, -20.0), Vec3::new(0.6, -0.2, -22.0), 0.02),
     ];
     for (what, a, b, r) in cases {
-        let scene = Scene { background, capsules: vec![Capsule { a, b, radius: r, color: [255, 255, 255, 255] }], shadows: false, ..Scene::default() };
+        let scene = Scene {
+            background,
+            capsules: vec![Capsule { a, b, radius: r, color: [255, 255, 255, 255] }],
+            shadows: false,
+            ..Scene::default()
+        };
         renderer.render(&device, &queue, &target, &scene, &camera);
         let pixels = read_pixels(&device, &queue, &target);
         let (mut drawn, mut wrong) = (0, Vec::new());
@@ -567,13 +674,28 @@ fn capsule_impostors_cover_exactly_what_their_rays_meet() {
             }
         }
         assert!(drawn > 0, "{what}: drawn");
-        assert!(wrong.is_empty(), "{what}: {} of {drawn} drawn pixels wrong, e.g. {:?}", wrong.len(), &wrong[..wrong.len().min(5)]);
+        assert!(
+            wrong.is_empty(),
+            "{what}: {} of {drawn} drawn pixels wrong, e.g. {:?}",
+            wrong.len(),
+            &wrong[..wrong.len().min(5)]
+        );
     }
     // Beside and behind the eye, out of view: nothing drawn.
-    for (a, b) in [(Vec3::new(1.0, 0.0, 3.2), Vec3::new(1.5, 0.0, 2.8)), (Vec3::new(0.0, 0.0, 3.5), Vec3::new(0.0, 0.3, 4.0))] {
-        let scene = Scene { background, capsules: vec![Capsule { a, b, radius: 0.2, color: [255, 255, 255, 255] }], shadows: false, ..Scene::default() };
+    for (a, b) in
+        [(Vec3::new(1.0, 0.0, 3.2), Vec3::new(1.5, 0.0, 2.8)), (Vec3::new(0.0, 0.0, 3.5), Vec3::new(0.0, 0.3, 4.0))]
+    {
+        let scene = Scene {
+            background,
+            capsules: vec![Capsule { a, b, radius: 0.2, color: [255, 255, 255, 255] }],
+            shadows: false,
+            ..Scene::default()
+        };
         renderer.render(&device, &queue, &target, &scene, &camera);
-        assert!(read_pixels(&device, &queue, &target).chunks(4).all(|p| p == background), "a capsule out of view at {a}-{b} draws nothing");
+        assert!(
+            read_pixels(&device, &queue, &target).chunks(4).all(|p| p == background),
+            "a capsule out of view at {a}-{b} draws nothing"
+        );
     }
 }
 
@@ -614,7 +736,12 @@ fn capsule_impostors_hide_each_other_by_their_true_depth() {
         }
     }
     assert!(checked > 50, "the capsules overlap on screen: {checked} pixels");
-    assert!(wrong.is_empty(), "{} of {checked} overlapping pixels show the farther capsule, e.g. {:?}", wrong.len(), &wrong[..wrong.len().min(5)]);
+    assert!(
+        wrong.is_empty(),
+        "{} of {checked} overlapping pixels show the farther capsule, e.g. {:?}",
+        wrong.len(),
+        &wrong[..wrong.len().min(5)]
+    );
 }
 
 #[test]
@@ -623,14 +750,22 @@ fn capsule_outlines_are_smoothed_on_a_multisampled_target() {
     let camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 0.8, 1.0);
     let (a, b, r) = (Vec3::new(-1.0, -0.7, 0.0), Vec3::new(1.0, 0.4, 0.0), 0.3);
     let background = [0, 0, 0, 255];
-    let scene = Scene { background, capsules: vec![Capsule { a, b, radius: r, color: [255, 255, 255, 255] }], shadows: false, ..Scene::default() };
+    let scene = Scene {
+        background,
+        capsules: vec![Capsule { a, b, radius: r, color: [255, 255, 255, 255] }],
+        shadows: false,
+        ..Scene::default()
+    };
     renderer.render(&device, &queue, &target, &scene, &camera);
     let pixels = read_pixels(&device, &queue, &target);
     // The same capsule half a pixel fatter on one sample: the colour fringe
     // pixels would have, fully covered.
     let single = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
     let pixel = 2.0 / (camera.projection.y_axis.y * SIZE as f32) * 3.0;
-    let fat = Scene { capsules: vec![Capsule { a, b, radius: r + pixel * 0.6, color: [255, 255, 255, 255] }], ..scene.clone() };
+    let fat = Scene {
+        capsules: vec![Capsule { a, b, radius: r + pixel * 0.6, color: [255, 255, 255, 255] }],
+        ..scene.clone()
+    };
     renderer.render(&device, &queue, &single, &fat, &camera);
     let full = read_pixels(&device, &queue, &single);
     let (mut fringe, mut fringe_blended) = (0, 0);
@@ -645,12 +780,16 @@ fn capsule_outlines_are_smoothed_on_a_multisampled_target() {
             // Centres just outside: one sample would leave them clear; here
             // the samples the outline covers take its colour.
             fringe += 1;
-            let (v, whole) = (p[0].max(p[1]).max(p[2]) as u32, full[i * 4..i * 4 + 3].iter().copied().max().unwrap_or(0) as u32);
+            let (v, whole) =
+                (p[0].max(p[1]).max(p[2]) as u32, full[i * 4..i * 4 + 3].iter().copied().max().unwrap_or(0) as u32);
             fringe_blended += (p != background && v * 10 < whole * 8) as usize;
         }
         assert_eq!(p[3], 255, "the target keeps its alpha");
     }
-    assert!(fringe > 10 && fringe_blended * 2 > fringe, "the outline is smoothed: {fringe_blended} of {fringe} pixels just outside it are blends");
+    assert!(
+        fringe > 10 && fringe_blended * 2 > fringe,
+        "the outline is smoothed: {fringe_blended} of {fringe} pixels just outside it are blends"
+    );
 }
 
 /// Largest difference of any colour channel between two RGBA pixels.
@@ -673,8 +812,18 @@ fn capsule_outlines_are_blended_on_one_sample_as_on_a_multisampled_target() {
     let scene = Scene {
         background: [0, 0, 0, 255],
         capsules: vec![
-            Capsule { a: Vec3::new(-1.0, -0.6, 0.5), b: Vec3::new(0.9, 0.5, 0.5), radius: 0.25, color: [255, 0, 0, 255] },
-            Capsule { a: Vec3::new(0.3, -1.2, -0.5), b: Vec3::new(-0.4, 1.1, -0.5), radius: 0.35, color: [0, 0, 255, 255] },
+            Capsule {
+                a: Vec3::new(-1.0, -0.6, 0.5),
+                b: Vec3::new(0.9, 0.5, 0.5),
+                radius: 0.25,
+                color: [255, 0, 0, 255],
+            },
+            Capsule {
+                a: Vec3::new(0.3, -1.2, -0.5),
+                b: Vec3::new(-0.4, 1.1, -0.5),
+                radius: 0.35,
+                color: [0, 0, 255, 255],
+            },
         ],
         grid: None,
         shadows: false,
@@ -695,15 +844,25 @@ fn capsule_outlines_are_blended_on_one_sample_as_on_a_multisampled_target() {
     // Multisampling turns coverage into whole samples (lavapipe rounds up, a
     // quarter of the contrast at most; other drivers dither, up to about
     // three eighths); a hard outline misses by up to all of it.
-    let count = |pixels: &[u8], limit: u8| pixels.chunks(4).zip(reference.chunks(4)).filter(|(p, q)| channel_diff(p, q) > limit).count();
+    let count = |pixels: &[u8], limit: u8| {
+        pixels.chunks(4).zip(reference.chunks(4)).filter(|(p, q)| channel_diff(p, q) > limit).count()
+    };
     let (blended_off, hard_off) = (count(&blended, 100), count(&hard, 100));
     // A pixel red in one picture and blue in the other.
     let hue = |p: &[u8]| (p[0] as i32 - p[2] as i32).signum() * ((p[0] as i32 - p[2] as i32).abs() > 40) as i32;
-    let swapped = |pixels: &[u8]| pixels.chunks(4).zip(reference.chunks(4)).filter(|(p, q)| hue(p) * hue(q) < 0).count();
-    eprintln!("pixels more than 100 levels from the multisampled picture: blended {blended_off}, fast look {hard_off}; of the other hue {} / {}", swapped(&blended), swapped(&hard));
+    let swapped =
+        |pixels: &[u8]| pixels.chunks(4).zip(reference.chunks(4)).filter(|(p, q)| hue(p) * hue(q) < 0).count();
+    eprintln!(
+        "pixels more than 100 levels from the multisampled picture: blended {blended_off}, fast look {hard_off}; of the other hue {} / {}",
+        swapped(&blended),
+        swapped(&hard)
+    );
     assert!(hard_off > 25, "the fast look's outlines are hard: {hard_off} pixels differ from the multisampled picture");
     // (Where two outlines cross in a pixel, the farther fringe is left out.)
-    assert!(blended_off <= 2, "blended outlines match the multisampled picture: {blended_off} pixels differ (fast look {hard_off})");
+    assert!(
+        blended_off <= 2,
+        "blended outlines match the multisampled picture: {blended_off} pixels differ (fast look {hard_off})"
+    );
     assert_eq!(swapped(&blended), 0, "no pixel takes the other capsule's hue");
     assert!(blended.chunks(4).all(|p| p[3] == 255), "the target keeps its alpha");
     // Lines and spheres are filtered on one sample too; a mesh, drawn with
@@ -716,7 +875,13 @@ fn capsule_outlines_are_blended_on_one_sample_as_on_a_multisampled_target() {
     assert!(sticks.smooth_on_one_sample());
     assert_eq!(renderer.samples_for(&sticks), 1);
     let transform = mocap_render::glam::Mat4::IDENTITY;
-    let mesh = mocap_render::MeshDraw { mesh: quad_mesh(&[0.0], false), frames: [0, 0], blend: 0.0, transform, tint: [255; 4] };
+    let mesh = mocap_render::MeshDraw {
+        mesh: quad_mesh(&[0.0], false),
+        frames: [0, 0],
+        blend: 0.0,
+        transform,
+        tint: [255; 4],
+    };
     let with_mesh = Scene { meshes: vec![mesh], ..sticks };
     assert!(!with_mesh.smooth_on_one_sample());
     assert_eq!(renderer.samples_for(&with_mesh), 4);
@@ -735,11 +900,17 @@ fn line_and_sphere_outlines_are_blended_on_one_sample() {
     let camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 0.8, 1.0);
     let bone = |a: Vec3, b: Vec3| Line { a, b, color: [240, 240, 240, 255], width_px: 3.0 };
     let joint = |center: Vec3, color| Sphere { center, radius: 0.12, color };
-    let (hip, knee, foot, other) = (Vec3::new(-0.6, 0.8, 0.0), Vec3::new(0.1, -0.1, 0.3), Vec3::new(0.7, -0.9, 0.0), Vec3::new(0.2, 0.7, -0.6));
+    let (hip, knee, foot, other) =
+        (Vec3::new(-0.6, 0.8, 0.0), Vec3::new(0.1, -0.1, 0.3), Vec3::new(0.7, -0.9, 0.0), Vec3::new(0.2, 0.7, -0.6));
     let scene = Scene {
         background: [0, 0, 0, 255],
         lines: vec![bone(hip, knee), bone(knee, foot), bone(knee, other)],
-        spheres: vec![joint(knee, [255, 60, 60, 255]), joint(hip, [60, 60, 255, 255]), joint(foot, [60, 255, 60, 255]), joint(other, [60, 200, 255, 255])],
+        spheres: vec![
+            joint(knee, [255, 60, 60, 255]),
+            joint(hip, [60, 60, 255, 255]),
+            joint(foot, [60, 255, 60, 255]),
+            joint(other, [60, 200, 255, 255]),
+        ],
         grid: None,
         shadows: false,
         ..Scene::default()
@@ -761,24 +932,38 @@ fn line_and_sphere_outlines_are_blended_on_one_sample() {
     let reference: Vec<u8> = (0..SIZE * SIZE)
         .flat_map(|i| {
             let (x, y) = (i % SIZE, i / SIZE);
-            let at = move |dx: u32, dy: u32, c: usize| u32::from(fine[(((y * 4 + dy) * SIZE * 4 + x * 4 + dx) * 4) as usize + c]);
+            let at = move |dx: u32, dy: u32, c: usize| {
+                u32::from(fine[(((y * 4 + dy) * SIZE * 4 + x * 4 + dx) * 4) as usize + c])
+            };
             (0..4).map(move |c| ((0..16).map(|k| at(k % 4, k / 4, c)).sum::<u32>() / 16) as u8)
         })
         .collect();
-    let count = |pixels: &[u8], limit: u8| pixels.chunks(4).zip(reference.chunks(4)).filter(|(p, q)| channel_diff(p, q) > limit).count();
+    let count = |pixels: &[u8], limit: u8| {
+        pixels.chunks(4).zip(reference.chunks(4)).filter(|(p, q)| channel_diff(p, q) > limit).count()
+    };
     let edge = reference.chunks(4).filter(|p| p[..3].iter().any(|&c| c > 20 && c < 200)).count();
     let (blended_off, hard_off) = (count(&blended, 64), count(&hard, 64));
-    eprintln!("{edge} partly covered pixels in the reference; more than 64 levels off: blended {blended_off}, fast look {hard_off}");
+    eprintln!(
+        "{edge} partly covered pixels in the reference; more than 64 levels off: blended {blended_off}, fast look {hard_off}"
+    );
     assert!(edge > 150, "the reference has smooth outlines ({edge} partly covered pixels)");
     assert!(hard_off > 60, "the fast look's outlines are hard: {hard_off} pixels differ from the reference");
-    assert!(blended_off * 8 < hard_off, "blended outlines are close to the reference: {blended_off} pixels differ (fast look {hard_off})");
+    assert!(
+        blended_off * 8 < hard_off,
+        "blended outlines are close to the reference: {blended_off} pixels differ (fast look {hard_off})"
+    );
     assert!(blended.chunks(4).all(|p| p[3] == 255), "the target keeps its alpha");
     // On a multisampled target the lines keep their hard quads (the samples
     // smooth them) and no fringe: the one-sample blended picture is no wider.
     renderer.render(&device, &queue, &multisampled, &scene, &camera);
     let msaa = read_pixels(&device, &queue, &multisampled);
     let lit = |pixels: &[u8]| pixels.chunks(4).filter(|p| p[..3] != [0, 0, 0]).count();
-    assert!(lit(&msaa) <= lit(&blended) + lit(&blended) / 10, "multisampled {} against blended {} lit pixels", lit(&msaa), lit(&blended));
+    assert!(
+        lit(&msaa) <= lit(&blended) + lit(&blended) / 10,
+        "multisampled {} against blended {} lit pixels",
+        lit(&msaa),
+        lit(&blended)
+    );
 }
 
 #[test]
@@ -789,14 +974,23 @@ fn pipelines_are_made_for_the_sample_counts_and_looks_drawn_with() {
     assert_eq!(renderer.pipeline_sets(), 0);
     let single = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
     let camera = Camera::look_at(Vec3::new(0.0, 1.0, 3.0), Vec3::ZERO, 0.8, 1.0);
-    let capsules = Scene { capsules: vec![Capsule { a: Vec3::ZERO, b: Vec3::Y, radius: 0.2, color: [200; 4] }], ..Scene::default() };
+    let capsules = Scene {
+        capsules: vec![Capsule { a: Vec3::ZERO, b: Vec3::Y, radius: 0.2, color: [200; 4] }],
+        ..Scene::default()
+    };
     renderer.render(&device, &queue, &single, &capsules, &camera);
     renderer.render(&device, &queue, &single, &capsules, &camera);
     assert_eq!(renderer.pipeline_sets(), 1, "one set for capsules on one sample");
-    let sticks = Scene { spheres: vec![Sphere { center: Vec3::new(0.6, 0.5, 0.0), radius: 0.1, color: [30, 30, 255, 255] }], ..capsules.clone() };
+    let sticks = Scene {
+        spheres: vec![Sphere { center: Vec3::new(0.6, 0.5, 0.0), radius: 0.1, color: [30, 30, 255, 255] }],
+        ..capsules.clone()
+    };
     renderer.render(&device, &queue, &multisampled, &sticks, &camera);
     assert_eq!(renderer.pipeline_sets(), 2, "and one for multisampled frames");
-    assert!(read_pixels(&device, &queue, &multisampled).chunks(4).any(|p| p[2] > 150 && p[0] < 100), "the blue ball is drawn");
+    assert!(
+        read_pixels(&device, &queue, &multisampled).chunks(4).any(|p| p[2] > 150 && p[0] < 100),
+        "the blue ball is drawn"
+    );
 }
 
 #[test]
@@ -821,36 +1015,64 @@ fn a_still_camera_starts_each_frame_from_the_floor_drawn_before_with_the_same_pi
         let grid = Grid::floor(Vec3::new(-1.5, 0.0, -1.5), Vec3::new(1.5, 0.0, 1.5), 0.25, 0.5);
         let mut scene = Scene { background: [20, 30, 40, 255], grid: Some(grid), ..Scene::default() };
         // A pole moving through the floor: the floor's depth hides its lower end.
-        let pole = |k: f32| Capsule { a: Vec3::new(-0.4 + 0.2 * k, -0.6, 0.0), b: Vec3::new(0.3, 1.4, 0.1 * k), radius: 0.2, color: [200, 60, 60, 255] };
+        let pole = |k: f32| Capsule {
+            a: Vec3::new(-0.4 + 0.2 * k, -0.6, 0.0),
+            b: Vec3::new(0.3, 1.4, 0.1 * k),
+            radius: 0.2,
+            color: [200, 60, 60, 255],
+        };
         let still = Camera::look_at(Vec3::new(1.0, 2.0, 4.0), Vec3::new(0.0, 0.4, 0.0), 0.8, 1.0);
         for frame in 0..4 {
             scene.capsules = vec![pole(frame as f32)];
             scene.shadows = frame != 2;
             renderer.render(&device, &queue, &target, &scene, &still);
-            assert_eq!(renderer.floor_copied(), copies && frame > 0, "{samples_label}, frame {frame}: the floor is copied from the second frame of a still camera on");
+            assert_eq!(
+                renderer.floor_copied(),
+                copies && frame > 0,
+                "{samples_label}, frame {frame}: the floor is copied from the second frame of a still camera on"
+            );
             let pixels = read_pixels(&device, &queue, &target);
             let expected = fresh(&scene, &still);
-            assert_eq!(differing(&pixels, &expected), 0, "{samples_label}, frame {frame}: the pixels of drawing the floor");
+            assert_eq!(
+                differing(&pixels, &expected),
+                0,
+                "{samples_label}, frame {frame}: the pixels of drawing the floor"
+            );
             let red = pixels.chunks(4).filter(|p| p[0] > 100 && p[0] as u32 > 2 * p[1] as u32).count();
             let floor = pixels.chunks(4).filter(|p| p[..3] != scene.background[..3]).count();
-            assert!(red > 50 && floor > red + 1000, "{samples_label}, frame {frame}: the pole ({red}) on the floor ({floor})");
+            assert!(
+                red > 50 && floor > red + 1000,
+                "{samples_label}, frame {frame}: the pole ({red}) on the floor ({floor})"
+            );
         }
         // The camera moves: that frame draws its floor, the next reuses the new one.
         let moved = Camera::look_at(Vec3::new(-1.5, 2.5, 3.5), Vec3::new(0.0, 0.4, 0.0), 0.8, 1.0);
         for frame in 0..2 {
             renderer.render(&device, &queue, &target, &scene, &moved);
             assert_eq!(renderer.floor_copied(), copies && frame == 1, "{samples_label}: after a move, frame {frame}");
-            assert_eq!(differing(&read_pixels(&device, &queue, &target), &fresh(&scene, &moved)), 0, "{samples_label}: moved, frame {frame}");
+            assert_eq!(
+                differing(&read_pixels(&device, &queue, &target), &fresh(&scene, &moved)),
+                0,
+                "{samples_label}: moved, frame {frame}"
+            );
         }
         // A frame without a floor, then the floor again: drawn, then copied.
         let bare = Scene { grid: None, ..scene.clone() };
         renderer.render(&device, &queue, &target, &bare, &moved);
         assert!(!renderer.floor_copied());
-        assert_eq!(differing(&read_pixels(&device, &queue, &target), &fresh(&bare, &moved)), 0, "{samples_label}: no floor");
+        assert_eq!(
+            differing(&read_pixels(&device, &queue, &target), &fresh(&bare, &moved)),
+            0,
+            "{samples_label}: no floor"
+        );
         for frame in 0..2 {
             renderer.render(&device, &queue, &target, &scene, &moved);
             assert_eq!(renderer.floor_copied(), copies && frame == 1, "{samples_label}: the floor back, frame {frame}");
-            assert_eq!(differing(&read_pixels(&device, &queue, &target), &fresh(&scene, &moved)), 0, "{samples_label}: the floor back, frame {frame}");
+            assert_eq!(
+                differing(&read_pixels(&device, &queue, &target), &fresh(&scene, &moved)),
+                0,
+                "{samples_label}: the floor back, frame {frame}"
+            );
         }
     }
 }
@@ -865,14 +1087,20 @@ fn the_fast_look_leaves_out_capsules_under_two_pixels() {
     // A ball about 1.6 pixels across, centred on a pixel's centre; a limb.
     let centre = Vec3::new(half_pixel, half_pixel, 0.0);
     let ball = Capsule { a: centre, b: centre, radius: 0.016, color: [0, 255, 0, 255] };
-    let limb = Capsule { a: Vec3::new(-0.8, -0.5, 0.0), b: Vec3::new(-0.2, -0.6, 0.0), radius: 0.05, color: [255, 0, 0, 255] };
+    let limb =
+        Capsule { a: Vec3::new(-0.8, -0.5, 0.0), b: Vec3::new(-0.2, -0.6, 0.0), radius: 0.05, color: [255, 0, 0, 255] };
     let scene = Scene { background: [0, 0, 0, 255], capsules: vec![ball, limb], shadows: false, ..Scene::default() };
     let count = |pixels: &[u8], f: &dyn Fn(&[u8]) -> bool| pixels.chunks(4).filter(|p| f(p)).count();
     let green = |p: &[u8]| p[1] > 60 && p[0] < 30;
     let red = |p: &[u8]| p[0] > 60 && p[1] < 30;
     renderer.render(&device, &queue, &target, &scene, &camera);
     let full = read_pixels(&device, &queue, &target);
-    assert!(count(&full, &green) >= 1 && count(&full, &red) > 20, "full quality draws both ({} green, {} red)", count(&full, &green), count(&full, &red));
+    assert!(
+        count(&full, &green) >= 1 && count(&full, &red) > 20,
+        "full quality draws both ({} green, {} red)",
+        count(&full, &green),
+        count(&full, &red)
+    );
     renderer.fast_look = true;
     renderer.render(&device, &queue, &target, &scene, &camera);
     let fast = read_pixels(&device, &queue, &target);
@@ -880,7 +1108,11 @@ fn the_fast_look_leaves_out_capsules_under_two_pixels() {
     // and keeps the limb: its pixels are red at full quality too, which
     // adds at most its blended fringe.
     let both_red = fast.chunks(4).zip(full.chunks(4)).filter(|(f, g)| red(f) && red(g)).count();
-    assert!(count(&fast, &red) > 20 && both_red == count(&fast, &red), "and keeps the limb ({} red pixels, {both_red} red at full quality)", count(&fast, &red));
+    assert!(
+        count(&fast, &red) > 20 && both_red == count(&fast, &red),
+        "and keeps the limb ({} red pixels, {both_red} red at full quality)",
+        count(&fast, &red)
+    );
     assert!(count(&full, &red) < count(&fast, &red) * 2, "the fringe is about a pixel wide");
     // Nearer, the same ball spans more than two pixels and is drawn.
     let near = Camera::look_at(Vec3::new(0.0, 0.0, 1.0), Vec3::ZERO, 0.8, 1.0);
@@ -890,19 +1122,31 @@ fn the_fast_look_leaves_out_capsules_under_two_pixels() {
 
 #[test]
 fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
-    use mocap_render::glam::Mat4;
     use mocap_render::SkinnedDraw;
+    use mocap_render::glam::Mat4;
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     let mesh = pillar(0.0);
-    let body = SkinnedDraw { mesh, coarse: None, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false };
+    let body = SkinnedDraw {
+        mesh,
+        coarse: None,
+        matrices: vec![Mat4::IDENTITY],
+        tint: [200, 60, 60, 255],
+        weights_view: false,
+    };
     let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
-    let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    let mut scene =
+        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
     renderer.render(&device, &queue, &target, &scene, &camera);
     let bare = read_pixels(&device, &queue, &target);
     let luma = |p: &[u8]| p[0] as u32 + p[1] as u32 + p[2] as u32;
     // The floor pixels (grey, not the red pillar) darker than the bare floor.
     let shadowed = |pixels: &[u8]| -> Vec<usize> {
-        bare.chunks(4).zip(pixels.chunks(4)).enumerate().filter(|(_, (b, l))| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).map(|(i, _)| i).collect()
+        bare.chunks(4)
+            .zip(pixels.chunks(4))
+            .enumerate()
+            .filter(|(_, (b, l))| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b))
+            .map(|(i, _)| i)
+            .collect()
     };
     let shared = |a: &[usize], b: &[usize]| a.iter().filter(|i| b.contains(i)).count();
     let frame = |renderer: &mut SceneRenderer, scene: &Scene| {
@@ -915,17 +1159,28 @@ fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
     assert!(mesh_shadow.len() > 20, "the body's mesh casts a shadow: {} pixels", mesh_shadow.len());
     // A stand-in capsule set well to the side, so its shadow tells which cast:
     // unused at full quality.
-    scene.body_casters.push(Capsule { a: Vec3::new(1.2, 0.0, 1.2), b: Vec3::new(1.2, 2.5, 1.2), radius: 0.15, color: [200, 60, 60, 255] });
+    scene.body_casters.push(Capsule {
+        a: Vec3::new(1.2, 0.0, 1.2),
+        b: Vec3::new(1.2, 2.5, 1.2),
+        radius: 0.15,
+        color: [200, 60, 60, 255],
+    });
     assert!(frame(&mut renderer, &scene) == full, "body casters are unused at full quality");
     // The fast look: the capsule casts instead of the mesh.
     renderer.fast_look = true;
     let capsule_shadow = shadowed(&frame(&mut renderer, &scene));
     assert!(capsule_shadow.len() > 20, "fast look: the stand-in capsule casts: {} pixels", capsule_shadow.len());
-    assert!(shared(&capsule_shadow, &mesh_shadow) * 4 < mesh_shadow.len(), "fast look: the mesh casts no shadow of its own");
+    assert!(
+        shared(&capsule_shadow, &mesh_shadow) * 4 < mesh_shadow.len(),
+        "fast look: the mesh casts no shadow of its own"
+    );
     // Without body casters the mesh casts in the fast look too.
     scene.body_casters.clear();
     let fast_mesh_shadow = shadowed(&frame(&mut renderer, &scene));
-    assert!(shared(&fast_mesh_shadow, &mesh_shadow) * 2 > mesh_shadow.len(), "fast look without body casters: the mesh's shadow");
+    assert!(
+        shared(&fast_mesh_shadow, &mesh_shadow) * 2 > mesh_shadow.len(),
+        "fast look without body casters: the mesh's shadow"
+    );
 }
 
 /// A square pillar 0.3 wide from the floor to y = 2.5 at (`x`, 0), bound to one joint.
@@ -940,21 +1195,42 @@ fn pillar(x: f32) -> std::sync::Arc<mocap_render::SkinnedMeshData> {
     // Counter-clockwise seen from outside, as bodies are (only front faces are drawn).
     let indices: Vec<u32> = (0..4u32).flat_map(|f| [0, 2, 1, 0, 3, 2].map(|i| f * 4 + i)).collect();
     let n = positions.len();
-    std::sync::Arc::new(mocap_render::SkinnedMeshData::new(&positions, &normals, &vec![[0; 4]; n], &vec![[1.0, 0.0, 0.0, 0.0]; n], indices, 1).unwrap())
+    std::sync::Arc::new(
+        mocap_render::SkinnedMeshData::new(
+            &positions,
+            &normals,
+            &vec![[0; 4]; n],
+            &vec![[1.0, 0.0, 0.0, 0.0]; n],
+            indices,
+            1,
+        )
+        .unwrap(),
+    )
 }
 
 #[test]
 fn the_fast_look_draws_a_small_body_with_its_coarse_mesh_and_a_near_one_with_its_own() {
-    use mocap_render::glam::Mat4;
     use mocap_render::SkinnedDraw;
+    use mocap_render::glam::Mat4;
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     // The "coarse" mesh is set apart (at x = 1) so the picture tells which is drawn.
-    let body = SkinnedDraw { mesh: pillar(0.0), coarse: Some(pillar(1.0)), matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false };
+    let body = SkinnedDraw {
+        mesh: pillar(0.0),
+        coarse: Some(pillar(1.0)),
+        matrices: vec![Mat4::IDENTITY],
+        tint: [200, 60, 60, 255],
+        weights_view: false,
+    };
     let scene = Scene { skinned: vec![body], shadows: false, ..Scene::default() };
     let red_columns = |renderer: &mut SceneRenderer, camera: &Camera| {
         renderer.render(&device, &queue, &target, &scene, camera);
         let pixels = read_pixels(&device, &queue, &target);
-        let columns: Vec<usize> = pixels.chunks(4).enumerate().filter(|(_, p)| p[0] > 60 && p[0] as u32 > 2 * p[1] as u32).map(|(i, _)| i % SIZE as usize).collect();
+        let columns: Vec<usize> = pixels
+            .chunks(4)
+            .enumerate()
+            .filter(|(_, p)| p[0] > 60 && p[0] as u32 > 2 * p[1] as u32)
+            .map(|(i, _)| i % SIZE as usize)
+            .collect();
         (columns.len(), columns.iter().sum::<usize>() as f32 / columns.len().max(1) as f32)
     };
     // Far (the body spans about 40 pixels): the fast look draws the coarse mesh, to the right.
@@ -963,13 +1239,19 @@ fn the_fast_look_draws_a_small_body_with_its_coarse_mesh_and_a_near_one_with_its
     renderer.fast_look = true;
     let (fast_count, fast_x) = red_columns(&mut renderer, &far);
     assert!(full_count > 50 && fast_count > 50, "drawn: {full_count}, {fast_count} pixels");
-    assert!(fast_x > full_x + 10.0, "fast look, far: the coarse mesh (x = 1) is drawn, not the mesh: columns {fast_x} vs {full_x}");
+    assert!(
+        fast_x > full_x + 10.0,
+        "fast look, far: the coarse mesh (x = 1) is drawn, not the mesh: columns {fast_x} vs {full_x}"
+    );
     // Near (far more than COARSE_BODY_SPAN_PX): the body's own mesh, in both looks.
     let near = Camera::look_at(Vec3::new(0.0, 1.25, 0.8), Vec3::new(0.0, 1.25, 0.0), 0.8, 1.0);
     let (near_fast, _) = red_columns(&mut renderer, &near);
     renderer.fast_look = false;
     let (near_full, _) = red_columns(&mut renderer, &near);
-    assert!(near_fast * 10 > near_full * 9 && near_full > 1000, "near: the mesh fills the view in both looks ({near_fast} vs {near_full} pixels)");
+    assert!(
+        near_fast * 10 > near_full * 9 && near_full > 1000,
+        "near: the mesh fills the view in both looks ({near_fast} vs {near_full} pixels)"
+    );
 }
 
 #[test]
@@ -977,10 +1259,16 @@ fn bodies_are_drawn_from_outside_and_seen_through_from_inside() {
     // Bodies wind counter-clockwise seen from outside and only their front
     // faces are drawn: from outside the pillar shows; from inside its walls
     // (whose back faces the eye sees) are not drawn, in either look.
-    use mocap_render::glam::Mat4;
     use mocap_render::SkinnedDraw;
+    use mocap_render::glam::Mat4;
     let Some((device, queue, mut renderer, target)) = setup(4) else { return };
-    let body = SkinnedDraw { mesh: pillar(0.0), coarse: None, matrices: vec![Mat4::IDENTITY], tint: [200, 60, 60, 255], weights_view: false };
+    let body = SkinnedDraw {
+        mesh: pillar(0.0),
+        coarse: None,
+        matrices: vec![Mat4::IDENTITY],
+        tint: [200, 60, 60, 255],
+        weights_view: false,
+    };
     let scene = Scene { skinned: vec![body], shadows: false, ..Scene::default() };
     let background = Scene::default().background;
     for fast in [false, true] {
@@ -1004,7 +1292,8 @@ fn capsules_given_as_their_triangle_alone_draw_the_same_pixels() {
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     let eye = Vec3::new(0.4, 2.5, 6.0);
     let camera = Camera::look_at(eye, Vec3::new(0.0, 0.4, 0.0), 0.8, 1.0);
-    let mut scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 0.5, 4.0)), ..Scene::default() };
+    let mut scene =
+        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 0.5, 4.0)), ..Scene::default() };
     // A crowd of small capsules in all directions (one along the view, some
     // balls), a large one near the eye, and shadow-only casters.
     for i in 0..48 {
@@ -1016,10 +1305,30 @@ fn capsules_given_as_their_triangle_alone_draw_the_same_pixels() {
         scene.capsules.push(Capsule { a, b, radius: 0.03 + (i % 3) as f32 * 0.02, color });
     }
     let along = Vec3::new(0.2, 0.8, 0.5);
-    scene.capsules.push(Capsule { a: along, b: along + (along - eye).normalize() * 0.3, radius: 0.05, color: [250, 250, 40, 255] });
-    scene.capsules.push(Capsule { a: Vec3::new(-0.3, 1.6, 4.0), b: Vec3::new(0.3, 1.9, 4.2), radius: 0.25, color: [250, 60, 60, 255] });
-    scene.shadow_casters.push(Capsule { a: Vec3::new(1.0, 1.5, -1.0), b: Vec3::new(1.4, 1.7, -1.0), radius: 0.05, color: [0; 4] });
-    scene.shadow_casters.push(Capsule { a: Vec3::new(-1.0, 1.0, 1.0), b: Vec3::new(-1.0, 2.0, 1.0), radius: 0.4, color: [0; 4] });
+    scene.capsules.push(Capsule {
+        a: along,
+        b: along + (along - eye).normalize() * 0.3,
+        radius: 0.05,
+        color: [250, 250, 40, 255],
+    });
+    scene.capsules.push(Capsule {
+        a: Vec3::new(-0.3, 1.6, 4.0),
+        b: Vec3::new(0.3, 1.9, 4.2),
+        radius: 0.25,
+        color: [250, 60, 60, 255],
+    });
+    scene.shadow_casters.push(Capsule {
+        a: Vec3::new(1.0, 1.5, -1.0),
+        b: Vec3::new(1.4, 1.7, -1.0),
+        radius: 0.05,
+        color: [0; 4],
+    });
+    scene.shadow_casters.push(Capsule {
+        a: Vec3::new(-1.0, 1.0, 1.0),
+        b: Vec3::new(-1.0, 2.0, 1.0),
+        radius: 0.4,
+        color: [0; 4],
+    });
     renderer.render(&device, &queue, &target, &scene, &camera);
     let alone = read_pixels(&device, &queue, &target);
     renderer.give_every_capsule_four_corners();
@@ -1036,7 +1345,11 @@ fn capsules_given_as_their_triangle_alone_draw_the_same_pixels() {
     // whole view): the same pixels too.
     let wide = Camera::look_at(Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 1.0, -1.0), 3.0, 1.0);
     let edge = Vec3::new(-(85f32.to_radians().sin()), 0.0, -(85f32.to_radians().cos())) * 10.0 + Vec3::Y;
-    let scene = Scene { capsules: vec![Capsule { a: edge, b: edge + Vec3::Y * 0.2, radius: 0.1, color: [255, 255, 255, 255] }], shadows: false, ..Scene::default() };
+    let scene = Scene {
+        capsules: vec![Capsule { a: edge, b: edge + Vec3::Y * 0.2, radius: 0.1, color: [255, 255, 255, 255] }],
+        shadows: false,
+        ..Scene::default()
+    };
     let frame = |renderer: &mut SceneRenderer| {
         renderer.render(&device, &queue, &target, &scene, &wide);
         read_pixels(&device, &queue, &target)
@@ -1047,7 +1360,6 @@ fn capsules_given_as_their_triangle_alone_draw_the_same_pixels() {
     assert!(alone == four, "a capsule at the edge of a wide view: the same pixels");
     assert!(alone.chunks(4).any(|p| p[0] > 60), "the capsule at the edge is drawn");
 }
-
 
 #[test]
 fn every_pixel_an_outline_reaches_is_drawn_across_a_wide_view() {
@@ -1070,7 +1382,12 @@ fn every_pixel_an_outline_reaches_is_drawn_across_a_wide_view() {
             let k = (i * 11 + j) as f32;
             let along = Vec3::new((k * 1.3).cos(), (k * 0.7).sin(), (k * 2.1).sin()) * 0.3;
             let b = if (i + j) % 4 == 0 { a } else { a + along };
-            scene.capsules.push(Capsule { a, b, radius: 0.04 + (i + j) as f32 % 3.0 * 0.03, color: [255, 255, 255, 255] });
+            scene.capsules.push(Capsule {
+                a,
+                b,
+                radius: 0.04 + (i + j) as f32 % 3.0 * 0.03,
+                color: [255, 255, 255, 255],
+            });
         }
     }
     renderer.render(&device, &queue, &target, &scene, &camera);
@@ -1078,13 +1395,21 @@ fn every_pixel_an_outline_reaches_is_drawn_across_a_wide_view() {
     // One pixel's size at unit depth.
     let pixel_at_unit = 2.0 * tan / SIZE as f32;
     let coverage = |px: u32, py: u32| -> f32 {
-        let ray = Vec3::new(((px as f32 + 0.5) / SIZE as f32 * 2.0 - 1.0) * tan, (1.0 - (py as f32 + 0.5) / SIZE as f32 * 2.0) * tan, -1.0);
+        let ray = Vec3::new(
+            ((px as f32 + 0.5) / SIZE as f32 * 2.0 - 1.0) * tan,
+            (1.0 - (py as f32 + 0.5) / SIZE as f32 * 2.0) * tan,
+            -1.0,
+        );
         let d = ray.normalize();
         let best = scene.capsules.iter().map(|c| {
             let ab = c.b - c.a;
             let across = c.a - d * c.a.dot(d);
             let slope = ab - d * ab.dot(d);
-            let s = if slope.length_squared() > 1e-12 * ab.length_squared() { (-across.dot(slope) / slope.length_squared()).clamp(0.0, 1.0) } else { 0.0 };
+            let s = if slope.length_squared() > 1e-12 * ab.length_squared() {
+                (-across.dot(slope) / slope.length_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
             let miss = (across + slope * s).length();
             // The ray's point nearest the capsule, and its depth.
             let depth = -(d * (c.a + ab * s).dot(d)).z;
@@ -1109,5 +1434,10 @@ fn every_pixel_an_outline_reaches_is_drawn_across_a_wide_view() {
         }
     }
     assert!(reached > 400, "the capsules cover pixels: {reached}");
-    assert!(missed.is_empty(), "{} of {reached} pixels the outlines reach are not drawn: {:?}", missed.len(), &missed[..missed.len().min(20)]);
+    assert!(
+        missed.is_empty(),
+        "{} of {reached} pixels the outlines reach are not drawn: {:?}",
+        missed.len(),
+        &missed[..missed.len().min(20)]
+    );
 }

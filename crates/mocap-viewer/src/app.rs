@@ -30,12 +30,28 @@ impl ViewerApp {
     /// instead: a clear costs next to nothing, while egui's fill of the panels
     /// (its shader, blending) costs about as much per pixel on a software
     /// rasteriser as the whole 3D view.
-    pub fn new(ctx: &egui::Context, viewer: Rc<RefCell<Viewer>>, on_open_requested: Box<dyn FnMut(OpenMode)>) -> ViewerApp {
+    pub fn new(
+        ctx: &egui::Context,
+        viewer: Rc<RefCell<Viewer>>,
+        on_open_requested: Box<dyn FnMut(OpenMode)>,
+    ) -> ViewerApp {
         crate::fonts::install(ctx);
         ctx.set_theme(egui::ThemePreference::Dark);
         let mut panel_fill = egui::Color32::TRANSPARENT;
-        ctx.style_mut_of(egui::Theme::Dark, |style| panel_fill = std::mem::replace(&mut style.visuals.panel_fill, egui::Color32::TRANSPARENT));
-        ViewerApp { viewer, on_open_requested, on_share_requested: Box::new(|| {}), on_save_requested: Box::new(|| {}), panel_fill, on_render_scale: None, render_scale: 1.0, on_view_change: None, last_view: String::new() }
+        ctx.style_mut_of(egui::Theme::Dark, |style| {
+            panel_fill = std::mem::replace(&mut style.visuals.panel_fill, egui::Color32::TRANSPARENT)
+        });
+        ViewerApp {
+            viewer,
+            on_open_requested,
+            on_share_requested: Box::new(|| {}),
+            on_save_requested: Box::new(|| {}),
+            panel_fill,
+            on_render_scale: None,
+            render_scale: 1.0,
+            on_view_change: None,
+            last_view: String::new(),
+        }
     }
 
     /// Sets how the host draws the whole window at a lower resolution: `f` gets
@@ -104,7 +120,13 @@ impl eframe::App for ViewerApp {
             let Ok(mut viewer) = self.viewer.try_borrow_mut() else { return };
             viewer.ui(ui, frame.wgpu_render_state());
             let view = self.on_view_change.is_some().then(|| viewer.view_fragment());
-            (std::mem::take(&mut viewer.open_requested), std::mem::take(&mut viewer.share_requested), std::mem::take(&mut viewer.save_requested), viewer.viewport.reduced, view)
+            (
+                std::mem::take(&mut viewer.open_requested),
+                std::mem::take(&mut viewer.share_requested),
+                std::mem::take(&mut viewer.save_requested),
+                viewer.viewport.reduced,
+                view,
+            )
         };
         self.update_render_scale(ui.ctx(), reduced);
         self.update_view(view);

@@ -51,7 +51,8 @@ impl Viewer {
         }
         let rig = self.capture_rig.take();
         let choice = rig.as_ref().map_or(RigChoice::Fit(None), RigChoice::Given);
-        let capturer = Capturer::from_mesh(&model.mesh, choice, &Options::default()).map_err(|e| format!("{}: {e}", c.name))?;
+        let capturer =
+            Capturer::from_mesh(&model.mesh, choice, &Options::default()).map_err(|e| format!("{}: {e}", c.name))?;
         self.capture_job = Some(CaptureJob { model: index, name: c.name.clone(), capturer });
         Ok(())
     }

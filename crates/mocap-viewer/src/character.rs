@@ -3,10 +3,10 @@
 //! the figure or mesh the renderer draws, children lists for the joint tree, and
 //! its current pose (joint transforms, or the model's two key frames).
 
+use mocap::glam::Mat4;
 use mocap::morph::MorphSample;
 use mocap::stage::{Actor, PoseScratch};
 use mocap::{Asset, Interpolation, Model, Transform};
-use mocap::glam::Mat4;
 use mocap_render::{FigureJoint, MorphMeshData, SkinImage, SkinnedMeshData};
 use std::sync::Arc;
 
@@ -94,14 +94,24 @@ fn corrected_pose(c: &Character, time: f64, scratch: &mut PoseScratch) -> (mocap
     let frame = c.frame_at(time);
     c.sample_local(time, Interpolation::Step, scratch);
     let mut local = std::mem::take(&mut scratch.local);
-    let correction = c.extra.correction.clone().filter(|k| k.frame == frame).unwrap_or(Correction { frame, ghost: true, ..Correction::default() });
+    let correction = c.extra.correction.clone().filter(|k| k.frame == frame).unwrap_or(Correction {
+        frame,
+        ghost: true,
+        ..Correction::default()
+    });
     correction.apply(&mut local);
     (local, correction)
 }
 
 /// Sets joint `joint`'s local rotation at the frame shown at `time` (a correction,
 /// like a drag: ghosted, keyed by Set key). `None` for a model or an unknown joint.
-pub fn rotate_joint(c: &mut Character, joint: usize, rotation: mocap::glam::Quat, time: f64, scratch: &mut PoseScratch) -> Option<()> {
+pub fn rotate_joint(
+    c: &mut Character,
+    joint: usize,
+    rotation: mocap::glam::Quat,
+    time: f64,
+    scratch: &mut PoseScratch,
+) -> Option<()> {
     let clip = c.clip()?;
     if joint >= clip.skeleton().len() || clip.skeleton().is_end_site(joint) || !rotation.is_finite() {
         return None;
@@ -122,7 +132,13 @@ pub fn drawn_local_rotation(c: &Character, joint: usize) -> Option<mocap::glam::
     let clip = c.clip()?;
     let world = c.extra.pose.get(joint)?.rotation;
     // A root's parent frame is the file's axes turned up (Actor::place).
-    let parent = clip.skeleton().joints().get(joint)?.parent.and_then(|p| c.extra.pose.get(p)).map_or(c.up.rotation(), |t| t.rotation);
+    let parent = clip
+        .skeleton()
+        .joints()
+        .get(joint)?
+        .parent
+        .and_then(|p| c.extra.pose.get(p))
+        .map_or(c.up.rotation(), |t| t.rotation);
     Some((parent.inverse() * world).normalize())
 }
 
@@ -131,7 +147,13 @@ pub fn drawn_local_rotation(c: &Character, joint: usize) -> Option<mocap::glam::
 /// [`mocap::ik::default_chains`], else the two bones above it; a root joint moves
 /// itself), keeping earlier corrections of that frame. Returns the solve, or
 /// `None` for a model, an unknown joint or a non-finite target.
-pub fn drag_joint(c: &mut Character, joint: usize, world: mocap::glam::Vec3, time: f64, scratch: &mut PoseScratch) -> Option<mocap::ik::Solve> {
+pub fn drag_joint(
+    c: &mut Character,
+    joint: usize,
+    world: mocap::glam::Vec3,
+    time: f64,
+    scratch: &mut PoseScratch,
+) -> Option<mocap::ik::Solve> {
     use mocap::ik;
     let clip = c.clip()?;
     let skeleton = clip.skeleton();
@@ -153,7 +175,12 @@ pub fn drag_joint(c: &mut Character, joint: usize, world: mocap::glam::Vec3, tim
         Some(_) => {
             let chain = ik::Chain::for_joint(skeleton, joint).ok()?;
             let length = chain.rest_length(skeleton);
-            let options = ik::Options { angle_unit: clip.motion().angle_unit(), iterations: 64, tolerance: 1e-4 * length.max(1e-6), ..ik::Options::default() };
+            let options = ik::Options {
+                angle_unit: clip.motion().angle_unit(),
+                iterations: 64,
+                tolerance: 1e-4 * length.max(1e-6),
+                ..ik::Options::default()
+            };
             let solve = if chain.joints().len() == 3 {
                 // Bend the way the limb bends now (knees forward, elbows back).
                 let root = ik::model_transform(skeleton, &local, chain.root()).translation;
@@ -195,7 +222,8 @@ pub fn body_skin(clip: &mocap::Clip, extent: f32) -> Option<mocap::skin::Skin> {
 fn body_skin_with(clip: &mocap::Clip, extent: f32, detail: mocap::body::Detail) -> Option<mocap::skin::Skin> {
     let bind = clip.bind_pose();
     let joints = clip.skeleton().joints();
-    let radii = mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
+    let radii =
+        mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
     mocap::body::build_with(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0), detail).ok()
 }
 
@@ -208,7 +236,17 @@ pub fn ensure_body(c: &mut Character) {
     let body = c.clip().and_then(|clip| {
         let skin = body_skin(clip, extent)?;
         let joints = clip.skeleton().len();
-        let mesh_of = |skin: &mocap::skin::Skin| SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), joints).ok();
+        let mesh_of = |skin: &mocap::skin::Skin| {
+            SkinnedMeshData::new(
+                skin.positions(),
+                skin.normals(),
+                skin.joints(),
+                skin.weights(),
+                skin.indices().to_vec(),
+                joints,
+            )
+            .ok()
+        };
         let mesh = mesh_of(&skin)?;
         let coarse = body_skin_with(clip, extent, mocap::body::Detail::COARSE);
         let coarse = coarse.as_ref().and_then(mesh_of).map(Arc::new);
@@ -243,8 +281,14 @@ pub fn new_character(name: &str, asset: Asset, open: &[Character]) -> Character 
 /// The renderer's copy of a model's key frames and skin.
 fn mesh_data(model: &Model) -> Option<Arc<MorphMeshData>> {
     let m = &model.mesh;
-    let skin = model.skin.as_ref().map(|s| SkinImage { width: s.image.width, height: s.image.height, pixels: s.image.pixels.clone() });
-    MorphMeshData::from_frames(m.vertex_count(), m.positions(), m.normals(), m.tex_coords(), m.indices(), skin).ok().map(Arc::new)
+    let skin = model.skin.as_ref().map(|s| SkinImage {
+        width: s.image.width,
+        height: s.image.height,
+        pixels: s.image.pixels.clone(),
+    });
+    MorphMeshData::from_frames(m.vertex_count(), m.positions(), m.normals(), m.tex_coords(), m.indices(), skin)
+        .ok()
+        .map(Arc::new)
 }
 
 /// Poses the character at `time`: interpolated when `smooth`, else the frame shown

@@ -43,7 +43,10 @@ impl ViewGeometry {
             return None;
         }
         let ndc = clip.xy() / clip.w;
-        Some(egui::pos2(self.rect.left() + (ndc.x * 0.5 + 0.5) * self.rect.width(), self.rect.top() + (0.5 - ndc.y * 0.5) * self.rect.height()))
+        Some(egui::pos2(
+            self.rect.left() + (ndc.x * 0.5 + 0.5) * self.rect.width(),
+            self.rect.top() + (0.5 - ndc.y * 0.5) * self.rect.height(),
+        ))
     }
 
     /// The world ray under a screen point: origin and unit direction.
@@ -102,13 +105,21 @@ mod tests {
     #[test]
     fn projecting_and_unprojecting_agree() {
         let camera = Camera::look_at(Vec3::new(0.0, 1.0, 5.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.5);
-        let view = ViewGeometry { rect: egui::Rect::from_min_size(egui::pos2(100.0, 50.0), egui::vec2(600.0, 400.0)), camera };
+        let view =
+            ViewGeometry { rect: egui::Rect::from_min_size(egui::pos2(100.0, 50.0), egui::vec2(600.0, 400.0)), camera };
         let p = Vec3::new(0.4, 1.3, 0.2);
         let s = view.project(p).unwrap();
         let back = view.on_plane(s, p).unwrap();
         assert!(back.distance(p) < 1e-4, "{back} vs {p}");
-        assert_eq!(view.project(Vec3::new(0.0, 1.0, 0.0)).map(|q| (q.x.round(), q.y.round())), Some((400.0, 250.0)), "the target is the centre");
-        let handles = [Handle { character: 0, joint: 3, world: p, ring: None }, Handle { character: 1, joint: 0, world: Vec3::new(-1.0, 0.0, 0.0), ring: None }];
+        assert_eq!(
+            view.project(Vec3::new(0.0, 1.0, 0.0)).map(|q| (q.x.round(), q.y.round())),
+            Some((400.0, 250.0)),
+            "the target is the centre"
+        );
+        let handles = [
+            Handle { character: 0, joint: 3, world: p, ring: None },
+            Handle { character: 1, joint: 0, world: Vec3::new(-1.0, 0.0, 0.0), ring: None },
+        ];
         assert_eq!(pick(&handles, &view, s + egui::vec2(5.0, -5.0)).map(|h| h.joint), Some(3));
         assert_eq!(pick(&handles, &view, s + egui::vec2(40.0, 0.0)), None);
     }
@@ -117,7 +128,13 @@ mod tests {
 /// Points of the three rotation rings around a joint at `center` with world
 /// rotation `rotation` (its local X, Y and Z axes), `radius` across, as handles
 /// (every 10°) and as line segments to draw (with the axis each belongs to).
-pub fn rings(character: usize, joint: usize, center: Vec3, rotation: mocap::glam::Quat, radius: f32) -> (Vec<Handle>, Vec<(Vec3, Vec3, usize)>) {
+pub fn rings(
+    character: usize,
+    joint: usize,
+    center: Vec3,
+    rotation: mocap::glam::Quat,
+    radius: f32,
+) -> (Vec<Handle>, Vec<(Vec3, Vec3, usize)>) {
     let mut handles = Vec::new();
     let mut segments = Vec::new();
     for k in 0..3 {

@@ -46,7 +46,11 @@ pub fn read_actions(ctx: &egui::Context, out: &mut Vec<Action>) {
     ctx.input(|input| {
         for event in &input.events {
             if let egui::Event::Key { key, pressed: true, modifiers, .. } = event {
-                let action = if modifiers.command { command_action(*key, modifiers.shift) } else { action_for(*key, modifiers.shift) };
+                let action = if modifiers.command {
+                    command_action(*key, modifiers.shift)
+                } else {
+                    action_for(*key, modifiers.shift)
+                };
                 if let Some(action) = action {
                     out.push(action);
                 }

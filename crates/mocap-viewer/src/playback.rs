@@ -52,7 +52,8 @@ impl Playback {
         }
         let (a, b) = self.frame_range(timing);
         let (start, end) = (timing.time_of(a), timing.time_of(b));
-        self.time = self.time.max(start) + dt.max(0.0) * f64::from(self.speed.clamp(*SPEED_RANGE.start(), *SPEED_RANGE.end()));
+        self.time =
+            self.time.max(start) + dt.max(0.0) * f64::from(self.speed.clamp(*SPEED_RANGE.start(), *SPEED_RANGE.end()));
         if self.time > end {
             let span = end - start;
             if self.looping && span > 0.0 {

@@ -8,7 +8,10 @@ use crate::settings::ViewSettings;
 use crate::stage::Stage;
 use mocap::Transform;
 use mocap::glam::Vec3;
-use mocap_render::{DrawMode, FigureStyle, Grid, HIGHLIGHT_COLOR, JOINT_COLOR, Line, MeshDraw, NEUTRAL_TINT, Scene, SkinnedDraw, push_figure};
+use mocap_render::{
+    DrawMode, FigureStyle, Grid, HIGHLIGHT_COLOR, JOINT_COLOR, Line, MeshDraw, NEUTRAL_TINT, Scene, SkinnedDraw,
+    push_figure,
+};
 
 const AXES: [[u8; 4]; 3] = [[235, 60, 60, 255], [60, 210, 80, 255], [70, 120, 255, 255]];
 
@@ -63,7 +66,13 @@ pub fn character_primitives(
     if let Some(body) = body {
         let mut matrices = Vec::with_capacity(body.inverse_bind.len());
         mocap::skin::skinning_matrices(transforms, &body.inverse_bind, &mut matrices);
-        scene.skinned.push(SkinnedDraw { mesh: body.mesh.clone(), coarse: body.coarse.clone(), matrices, tint: color, weights_view: settings.show_weights });
+        scene.skinned.push(SkinnedDraw {
+            mesh: body.mesh.clone(),
+            coarse: body.coarse.clone(),
+            matrices,
+            tint: color,
+            weights_view: settings.show_weights,
+        });
     }
     let style = FigureStyle {
         mode,
@@ -89,14 +98,24 @@ fn push_ghost(c: &Character, scene: &mut Scene) {
     let ghost = &c.extra.ghost;
     for (joint, t) in c.extra.figure.iter().zip(ghost) {
         if let Some(p) = joint.parent.and_then(|p| ghost.get(p)) {
-            scene.overlay_lines.push(Line { a: p.translation, b: t.translation, color: [255, 255, 255, 110], width_px: 2.0 });
+            scene.overlay_lines.push(Line {
+                a: p.translation,
+                b: t.translation,
+                color: [255, 255, 255, 110],
+                width_px: 2.0,
+            });
         }
     }
 }
 
 fn push_axes(t: &Transform, length: f32, scene: &mut Scene) {
     for (axis, color) in [Vec3::X, Vec3::Y, Vec3::Z].into_iter().zip(AXES) {
-        scene.overlay_lines.push(Line { a: t.translation, b: t.translation + t.rotation * axis * length, color, width_px: 2.0 });
+        scene.overlay_lines.push(Line {
+            a: t.translation,
+            b: t.translation + t.rotation * axis * length,
+            color,
+            width_px: 2.0,
+        });
     }
 }
 

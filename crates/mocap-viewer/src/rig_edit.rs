@@ -44,7 +44,16 @@ pub struct RigEdit {
 
 /// A bone's colour for the binding view.
 fn bone_color(bone: usize) -> [u8; 4] {
-    const PALETTE: [[u8; 3]; 8] = [[230, 80, 80], [80, 200, 90], [90, 140, 255], [240, 200, 60], [200, 100, 230], [60, 210, 210], [250, 140, 60], [170, 170, 170]];
+    const PALETTE: [[u8; 3]; 8] = [
+        [230, 80, 80],
+        [80, 200, 90],
+        [90, 140, 255],
+        [240, 200, 60],
+        [200, 100, 230],
+        [60, 210, 210],
+        [250, 140, 60],
+        [170, 170, 170],
+    ];
     let [r, g, b] = PALETTE[bone % PALETTE.len()];
     [r, g, b, 255]
 }
@@ -83,10 +92,31 @@ impl Viewer {
     pub fn rig_handles(&self) -> Vec<Handle> {
         let (Some(e), Some(m)) = (&self.rig_edit, self.rig_matrix()) else { return Vec::new() };
         if e.painting {
-            return e.setup.iter().enumerate().map(|(v, p)| Handle { character: RIG_PAINT, joint: v, world: m.transform_point3(*p), ring: None }).collect();
+            return e
+                .setup
+                .iter()
+                .enumerate()
+                .map(|(v, p)| Handle { character: RIG_PAINT, joint: v, world: m.transform_point3(*p), ring: None })
+                .collect();
         }
-        let mut out: Vec<Handle> = e.rig.joints.iter().enumerate().map(|(j, x)| Handle { character: RIG_JOINT, joint: j, world: m.transform_point3(Vec3::from_array(x.position)), ring: None }).collect();
-        out.extend(spins(&e.rig).into_iter().map(|(j, _, p)| Handle { character: RIG_SPIN, joint: j, world: m.transform_point3(p), ring: None }));
+        let mut out: Vec<Handle> = e
+            .rig
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(j, x)| Handle {
+                character: RIG_JOINT,
+                joint: j,
+                world: m.transform_point3(Vec3::from_array(x.position)),
+                ring: None,
+            })
+            .collect();
+        out.extend(spins(&e.rig).into_iter().map(|(j, _, p)| Handle {
+            character: RIG_SPIN,
+            joint: j,
+            world: m.transform_point3(p),
+            ring: None,
+        }));
         out
     }
 
@@ -106,7 +136,8 @@ impl Viewer {
             RIG_SPIN => {
                 let children = e.rig.children();
                 let Some(&[c]) = children.get(handle.joint).map(Vec::as_slice) else { return };
-                let (a, b) = (Vec3::from_array(e.rig.joints[handle.joint].position), Vec3::from_array(e.rig.joints[c].position));
+                let (a, b) =
+                    (Vec3::from_array(e.rig.joints[handle.joint].position), Vec3::from_array(e.rig.joints[c].position));
                 let axis = (b - a).normalize_or_zero();
                 let out = local - (a + b) * 0.5;
                 let across = (out - axis * out.dot(axis)).normalize_or_zero();
@@ -116,7 +147,11 @@ impl Viewer {
                 e.selected = Some(handle.joint);
             }
             RIG_PAINT => {
-                let (Some(bone), Some(view)) = (e.selected.filter(|&j| e.rig.joints.get(j).is_some_and(|x| x.parent.is_some())), view) else { return };
+                let (Some(bone), Some(view)) =
+                    (e.selected.filter(|&j| e.rig.joints.get(j).is_some_and(|x| x.parent.is_some())), view)
+                else {
+                    return;
+                };
                 for (v, p) in e.setup.iter().enumerate() {
                     let near = view.project(m.transform_point3(*p)).is_some_and(|s| s.distance(pointer) <= BRUSH);
                     if let (true, Some(slot)) = (near, e.rig.binding.get_mut(v)) {
@@ -152,7 +187,12 @@ impl Viewer {
         for (j, joint) in e.rig.joints.iter().enumerate() {
             let p = at(Vec3::from_array(joint.position));
             if let Some(parent) = joint.parent.and_then(|q| e.rig.joints.get(q)) {
-                lines.push(mocap_render::Line { a: at(Vec3::from_array(parent.position)), b: p, color: [255, 210, 60, 255], width_px: 3.0 });
+                lines.push(mocap_render::Line {
+                    a: at(Vec3::from_array(parent.position)),
+                    b: p,
+                    color: [255, 210, 60, 255],
+                    width_px: 3.0,
+                });
             }
             let color = if e.selected == Some(j) { [255, 255, 255, 255] } else { [255, 120, 40, 255] };
             for d in [Vec3::X, Vec3::Y, Vec3::Z] {

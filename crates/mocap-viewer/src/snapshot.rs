@@ -64,7 +64,11 @@ impl ClipSummary {
             corrected: c.extra.correction.is_some(),
             edited: false,
             keys: Vec::new(),
-            foot_contacts: c.extra.foot_lock.as_ref().map_or(Vec::new(), |l| l.contacts().map(|k| k.iter().filter(|x| **x).count()).collect()),
+            foot_contacts: c
+                .extra
+                .foot_lock
+                .as_ref()
+                .map_or(Vec::new(), |l| l.contacts().map(|k| k.iter().filter(|x| **x).count()).collect()),
             up: c.up.name(),
         }
     }
@@ -151,7 +155,17 @@ impl Snapshot {
     /// The state of `v`, with what only the viewer's private parts know passed in.
     pub fn of(v: &Viewer, tree_labels: Vec<String>, frames_rendered: u64, backend: Option<String>) -> Snapshot {
         Snapshot {
-            clips: v.stage.actors.iter().enumerate().map(|(i, c)| ClipSummary { edited: v.history.edited(i), keys: v.history.keys(i), ..ClipSummary::of(c) }).collect(),
+            clips: v
+                .stage
+                .actors
+                .iter()
+                .enumerate()
+                .map(|(i, c)| ClipSummary {
+                    edited: v.history.edited(i),
+                    keys: v.history.keys(i),
+                    ..ClipSummary::of(c)
+                })
+                .collect(),
             frame: v.frame(),
             time: v.playback.time,
             playing: v.playback.playing,

@@ -80,7 +80,15 @@ impl Tentacle {
     /// The skin for the current softness, as the renderer draws it.
     pub fn body(&self, clip: &mocap::Clip) -> Option<Body> {
         let skin = mocap::demo::tentacle_skin(clip, self.soft).ok()?;
-        let mesh = SkinnedMeshData::new(skin.positions(), skin.normals(), skin.joints(), skin.weights(), skin.indices().to_vec(), clip.skeleton().len()).ok()?;
+        let mesh = SkinnedMeshData::new(
+            skin.positions(),
+            skin.normals(),
+            skin.joints(),
+            skin.weights(),
+            skin.indices().to_vec(),
+            clip.skeleton().len(),
+        )
+        .ok()?;
         Some(Body { mesh: Arc::new(mesh), coarse: None, inverse_bind: skin.inverse_bind().to_vec() })
     }
 

@@ -128,7 +128,14 @@ impl ViewState {
             parts.push(if number == 1 { format!("sel={name}") } else { format!("sel={number}:{name}") });
         }
         parts.push(format!("layout={}", viewer.stage.layout.name()));
-        let hidden: Vec<String> = viewer.stage.actors.iter().enumerate().filter(|(_, c)| !c.visible).map(|(i, _)| (i + 1).to_string()).collect();
+        let hidden: Vec<String> = viewer
+            .stage
+            .actors
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| !c.visible)
+            .map(|(i, _)| (i + 1).to_string())
+            .collect();
         if !hidden.is_empty() {
             parts.push(format!("hide={}", hidden.join(",")));
         }
@@ -153,7 +160,8 @@ impl ViewState {
         parts.push(format!("mode={}", st.mode.name()));
         parts.push(format!("shadows={}", u8::from(st.shadows)));
         parts.push(format!("quality={}", st.quality.name()));
-        let draw = [st.show_joints, st.show_axes, st.follow_root, st.interpolate, st.show_weights, st.pose_mode, st.foot_lock];
+        let draw =
+            [st.show_joints, st.show_axes, st.follow_root, st.interpolate, st.show_weights, st.pose_mode, st.foot_lock];
         parts.push(format!("draw={}", join_flags(draw, DRAW_NAMES)));
         let panels = [viewer.panels.hierarchy, viewer.panels.inspector];
         parts.push(format!("panels={}", join_flags(panels, PANEL_NAMES)));
@@ -191,7 +199,8 @@ impl ViewState {
             }
         }
         if let Some(speed) = self.speed {
-            viewer.playback.speed = speed.clamp(*crate::playback::SPEED_RANGE.start(), *crate::playback::SPEED_RANGE.end());
+            viewer.playback.speed =
+                speed.clamp(*crate::playback::SPEED_RANGE.start(), *crate::playback::SPEED_RANGE.end());
         }
         if let Some(looping) = self.looping {
             viewer.playback.looping = looping;

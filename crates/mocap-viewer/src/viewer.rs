@@ -5,11 +5,11 @@ use crate::camera::OrbitCamera;
 use crate::character::{self, Character};
 use crate::keys::{self, Action};
 use crate::layout::Layout;
+use crate::notice::Notice;
 use crate::panels::Panels;
 use crate::playback::{Playback, Timing};
 use crate::selection::Selection;
 use crate::settings::{DrawMode, ViewSettings};
-use crate::notice::Notice;
 use crate::snapshot::Snapshot;
 use crate::stage::Stage;
 use crate::viewport::Viewport;
@@ -136,7 +136,8 @@ impl Viewer {
     pub fn open_files(&mut self, files: &[(&str, &[u8])], mode: OpenMode) -> Vec<String> {
         let mut errors = Vec::new();
         // A capture rig (JSON) is kept for the next capture, not opened.
-        let (rigs, files): (Vec<_>, Vec<_>) = files.iter().partition(|(name, _)| name.to_ascii_lowercase().ends_with(".json"));
+        let (rigs, files): (Vec<_>, Vec<_>) =
+            files.iter().partition(|(name, _)| name.to_ascii_lowercase().ends_with(".json"));
         for (name, bytes) in rigs {
             if let Err(e) = self.use_rig(name, &String::from_utf8_lossy(bytes)) {
                 errors.push(e);
@@ -162,7 +163,11 @@ impl Viewer {
     /// Opens BVH clips read elsewhere (a host reading files as they arrive, see
     /// `mocap::bvh::Stream`), named, or the errors reading them gave, as
     /// [`Viewer::open_files`] opens files: the same messages, the same rules.
-    pub fn open_clips(&mut self, clips: Vec<(String, Result<mocap::Clip, mocap::ParseError>)>, mode: OpenMode) -> Vec<String> {
+    pub fn open_clips(
+        &mut self,
+        clips: Vec<(String, Result<mocap::Clip, mocap::ParseError>)>,
+        mode: OpenMode,
+    ) -> Vec<String> {
         let mut assets = Vec::new();
         let mut errors = Vec::new();
         for (file, result) in clips {
@@ -272,14 +277,18 @@ impl Viewer {
             std::cmp::Ordering::Greater => Some(model - 1),
             std::cmp::Ordering::Less => Some(model),
         };
-        self.rig_edit = self.rig_edit.take().and_then(|mut e| shift(e.model).map(|m| {
-            e.model = m;
-            e
-        }));
-        self.capture_job = self.capture_job.take().and_then(|mut j| shift(j.model).map(|m| {
-            j.model = m;
-            j
-        }));
+        self.rig_edit = self.rig_edit.take().and_then(|mut e| {
+            shift(e.model).map(|m| {
+                e.model = m;
+                e
+            })
+        });
+        self.capture_job = self.capture_job.take().and_then(|mut j| {
+            shift(j.model).map(|m| {
+                j.model = m;
+                j
+            })
+        });
         true
     }
 
@@ -341,13 +350,19 @@ impl Viewer {
 
     /// Selects joint `joint` of character `character`, or nothing when either is out of range.
     pub fn select_in(&mut self, character: usize, joint: Option<usize>) {
-        let valid = |j: &usize| self.stage.actors.get(character).and_then(|c| c.clip()).is_some_and(|c| *j < c.skeleton().joints().len());
+        let valid = |j: &usize| {
+            self.stage.actors.get(character).and_then(|c| c.clip()).is_some_and(|c| *j < c.skeleton().joints().len())
+        };
         self.selected = joint.filter(valid).map(|joint| Selection { character, joint });
     }
 
     /// Selects the first joint called `name` in character `character`; returns whether one exists.
     pub fn select_named(&mut self, character: usize, name: &str) -> bool {
-        let joint = self.stage.actors.get(character).and_then(|c| c.clip()?.skeleton().joints().iter().position(|j| j.name == name));
+        let joint = self
+            .stage
+            .actors
+            .get(character)
+            .and_then(|c| c.clip()?.skeleton().joints().iter().position(|j| j.name == name));
         self.select_in(character, joint);
         joint.is_some()
     }
@@ -428,7 +443,15 @@ impl Viewer {
         let handles = self.handles();
         let mut joint_drag = None;
         egui::CentralPanel::no_frame().show(ui, |ui| {
-            let (_, dragged) = self.viewport.show(ui, render_state, &mut self.camera, &self.scene, &handles, self.settings.quality, self.playback.playing && !self.stage.actors.is_empty());
+            let (_, dragged) = self.viewport.show(
+                ui,
+                render_state,
+                &mut self.camera,
+                &self.scene,
+                &handles,
+                self.settings.quality,
+                self.playback.playing && !self.stage.actors.is_empty(),
+            );
             joint_drag = dragged;
             ui::overlay::show(ui, &mut self.error, !self.stage.actors.is_empty());
         });
@@ -438,13 +461,17 @@ impl Viewer {
             self.finish_new_bone();
         }
         if let Some(d) = joint_drag {
-            if let Some(grow) = self.grow.as_mut().filter(|g| g.character == d.handle.character && g.parent == d.handle.joint) {
+            if let Some(grow) =
+                self.grow.as_mut().filter(|g| g.character == d.handle.character && g.parent == d.handle.joint)
+            {
                 // Growing a new bone: its end follows the pointer until release.
                 grow.end = Some(d.target);
             } else if let Some(axis) = d.handle.ring {
                 self.set_playing(false);
                 self.drag_ring(d, axis);
-            } else if [crate::rig_edit::RIG_JOINT, crate::rig_edit::RIG_SPIN, crate::rig_edit::RIG_PAINT].contains(&d.handle.character) {
+            } else if [crate::rig_edit::RIG_JOINT, crate::rig_edit::RIG_SPIN, crate::rig_edit::RIG_PAINT]
+                .contains(&d.handle.character)
+            {
                 self.drag_rig(d.handle, d.target, d.pointer);
             } else if d.handle.character == crate::drag::TARGET {
                 if let Some(t) = &mut self.tentacle {
@@ -564,7 +591,12 @@ impl Viewer {
         pose_scene::build_scene(&self.stage, &self.settings, self.selected, &mut self.scene);
         if let Some(Grow { character, parent, end: Some(end), .. }) = &self.grow {
             if let Some(from) = self.stage.actors.get(*character).and_then(|c| c.extra.pose.get(*parent)) {
-                self.scene.overlay_lines.push(mocap_render::Line { a: from.translation, b: *end, color: [255, 200, 40, 255], width_px: 4.0 });
+                self.scene.overlay_lines.push(mocap_render::Line {
+                    a: from.translation,
+                    b: *end,
+                    color: [255, 200, 40, 255],
+                    width_px: 4.0,
+                });
             }
         }
         if let Some((_, segments)) = self.rings() {
@@ -575,7 +607,11 @@ impl Viewer {
         }
         self.rig_overlay();
         if let Some(demo) = &mut self.tentacle {
-            self.scene.spheres.push(mocap_render::Sphere { center: demo.target, radius: 0.07, color: [235, 70, 60, 255] });
+            self.scene.spheres.push(mocap_render::Sphere {
+                center: demo.target,
+                radius: 0.07,
+                color: [235, 70, 60, 255],
+            });
             if let Some(tip) = self.stage.actors.first().and_then(|c| c.extra.pose.last()) {
                 demo.tip = tip.translation;
             }
@@ -598,7 +634,12 @@ impl Viewer {
             return out;
         }
         for (character, c) in self.stage.visible().filter(|(_, c)| c.clip().is_some()) {
-            out.extend(c.extra.pose.iter().enumerate().map(|(joint, t)| crate::drag::Handle { character, joint, world: t.translation, ring: None }));
+            out.extend(c.extra.pose.iter().enumerate().map(|(joint, t)| crate::drag::Handle {
+                character,
+                joint,
+                world: t.translation,
+                ring: None,
+            }));
         }
         if let Some((handles, _)) = self.rings() {
             out.extend(handles);
@@ -633,7 +674,8 @@ impl Viewer {
         self.camera.pitch = 0.15;
         self.camera.yaw = 0.3;
         let length = self.tentacle.as_ref().map_or(1.0, |t| t.bones as f32 * mocap::demo::BONE_LENGTH);
-        self.camera.target = mocap::glam::Vec3::new(0.0, length * 0.5, 0.0) + self.stage.actors.first().map_or(mocap::glam::Vec3::ZERO, |c| c.placement());
+        self.camera.target = mocap::glam::Vec3::new(0.0, length * 0.5, 0.0)
+            + self.stage.actors.first().map_or(mocap::glam::Vec3::ZERO, |c| c.placement());
         self.camera.distance = length * 2.6;
     }
 
@@ -642,7 +684,12 @@ impl Viewer {
     /// the pointer lets go. Returns false without a selected clip joint.
     pub fn grow_bone(&mut self, name: &str) -> bool {
         let Some(s) = self.selected else { return false };
-        let ok = self.stage.actors.get(s.character).and_then(|c| c.clip()).is_some_and(|clip| !clip.skeleton().is_end_site(s.joint));
+        let ok = self
+            .stage
+            .actors
+            .get(s.character)
+            .and_then(|c| c.clip())
+            .is_some_and(|clip| !clip.skeleton().is_end_site(s.joint));
         if ok {
             self.settings.pose_mode = true;
             self.grow = Some(Grow { character: s.character, parent: s.joint, name: name.trim().to_owned(), end: None });
@@ -727,7 +774,10 @@ impl Viewer {
             return Err(format!("no key at frame {frame}"));
         }
         let (base, mut edits) = self.history.effective(character).ok_or_else(|| format!("no key at frame {frame}"))?;
-        let at = edits.iter().rposition(|e| e.key_frame() == Some(frame)).ok_or_else(|| format!("the key at frame {frame} was made before a layer: it cannot be changed now"))?;
+        let at = edits
+            .iter()
+            .rposition(|e| e.key_frame() == Some(frame))
+            .ok_or_else(|| format!("the key at frame {frame} was made before a layer: it cannot be changed now"))?;
         let removed = edits.remove(at);
         let moved = to.and_then(|to| removed.at_frame(to));
         // Keys interpolated between keys follow the one deleted or moved.
@@ -756,7 +806,8 @@ impl Viewer {
     pub fn step_key(&mut self, forward: bool) -> Option<usize> {
         let keys = self.history.keys(self.current());
         let now = self.frame();
-        let next = if forward { keys.into_iter().find(|&k| k > now) } else { keys.into_iter().rev().find(|&k| k < now) }?;
+        let next =
+            if forward { keys.into_iter().find(|&k| k > now) } else { keys.into_iter().rev().find(|&k| k < now) }?;
         self.set_playing(false);
         self.seek(next);
         Some(next)
@@ -765,8 +816,14 @@ impl Viewer {
     /// Layers character `source`'s clip on the subtree of `layer.subtree` in
     /// character `character` ([`mocap::layer::apply`]), as one undoable step.
     pub fn add_layer(&mut self, character: usize, source: usize, layer: &mocap::layer::Layer) -> Result<(), String> {
-        let base = self.stage.actors.get(character).and_then(|c| c.clip()).ok_or_else(|| format!("no clip {}", character + 1))?;
-        let other = self.stage.actors.get(source).and_then(|c| c.clip()).ok_or_else(|| format!("no clip {}", source + 1))?;
+        let base = self
+            .stage
+            .actors
+            .get(character)
+            .and_then(|c| c.clip())
+            .ok_or_else(|| format!("no clip {}", character + 1))?;
+        let other =
+            self.stage.actors.get(source).and_then(|c| c.clip()).ok_or_else(|| format!("no clip {}", source + 1))?;
         let name = self.stage.actors.get(source).map_or(String::new(), |c| c.name.clone());
         let out = mocap::layer::apply(base, other, layer).map_err(|e| e.to_string())?;
         self.commit(character, out, &format!("Layer {name} on {}", layer.subtree), None, false, None, None);
@@ -775,10 +832,28 @@ impl Viewer {
 
     /// Records and shows an edited clip of character `character`.
     #[allow(clippy::too_many_arguments)]
-    fn commit(&mut self, character: usize, edited: mocap::Clip, label: &str, key: Option<usize>, retimes: bool, edit: Option<mocap::edit::Edit>, unkey: Option<usize>) {
+    fn commit(
+        &mut self,
+        character: usize,
+        edited: mocap::Clip,
+        label: &str,
+        key: Option<usize>,
+        retimes: bool,
+        edit: Option<mocap::edit::Edit>,
+        unkey: Option<usize>,
+    ) {
         let Some(before) = self.stage.actors.get(character).map(|c| c.asset.clone()) else { return };
         let after = mocap::Asset::Clip(edited);
-        self.history.push(crate::history::Change { character, label: label.to_owned(), before, after: after.clone(), key, retimes, unkey, edit });
+        self.history.push(crate::history::Change {
+            character,
+            label: label.to_owned(),
+            before,
+            after: after.clone(),
+            key,
+            retimes,
+            unkey,
+            edit,
+        });
         self.replace_asset(character, after);
     }
 
@@ -846,25 +921,29 @@ impl Viewer {
             self.pending_close = None;
             return;
         };
-        egui::Window::new("Unsaved edits").collapsible(false).resizable(false).anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0)).show(ctx, |ui| {
-            ui.label(format!("{name} has edits that are not saved."));
-            ui.horizontal(|ui| {
-                if ui.button("Save as BVH").clicked() {
-                    // Saving saves the current character: make it this one.
-                    if self.current() != index {
-                        self.selected = Some(Selection { character: index, joint: 0 });
+        egui::Window::new("Unsaved edits")
+            .collapsible(false)
+            .resizable(false)
+            .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
+            .show(ctx, |ui| {
+                ui.label(format!("{name} has edits that are not saved."));
+                ui.horizontal(|ui| {
+                    if ui.button("Save as BVH").clicked() {
+                        // Saving saves the current character: make it this one.
+                        if self.current() != index {
+                            self.selected = Some(Selection { character: index, joint: 0 });
+                        }
+                        self.save_requested = true;
                     }
-                    self.save_requested = true;
-                }
-                if ui.button("Close without saving").clicked() {
-                    self.pending_close = None;
-                    self.remove(index);
-                }
-                if ui.button("Keep it open").clicked() {
-                    self.pending_close = None;
-                }
+                    if ui.button("Close without saving").clicked() {
+                        self.pending_close = None;
+                        self.remove(index);
+                    }
+                    if ui.button("Keep it open").clicked() {
+                        self.pending_close = None;
+                    }
+                });
             });
-        });
     }
 
     /// Turns the pose corrections made by dragging into keys: each character's
@@ -919,18 +998,32 @@ impl Viewer {
         let Some(view) = self.viewport.geometry else { return };
         let Some(c) = self.stage.actors.get(d.handle.character) else { return };
         let Some(t) = c.extra.pose.get(d.handle.joint).copied() else { return };
-        let fresh = self.ring_drag.is_none_or(|r| r.joint != d.handle.joint || r.character != d.handle.character || r.axis != axis);
+        let fresh = self
+            .ring_drag
+            .is_none_or(|r| r.joint != d.handle.joint || r.character != d.handle.character || r.axis != axis);
         if fresh {
             let from = d.handle.world - t.translation;
             // From the press, not from where the drag was first noticed.
             let Some(start) = crate::drag::ring_angle(&view, d.press, t.translation, axis, from) else { return };
-            self.ring_drag = Some(RingDrag { character: d.handle.character, joint: d.handle.joint, axis, center: t.translation, from, start, world: t.rotation });
+            self.ring_drag = Some(RingDrag {
+                character: d.handle.character,
+                joint: d.handle.joint,
+                axis,
+                center: t.translation,
+                from,
+                start,
+                world: t.rotation,
+            });
         }
         let Some(r) = self.ring_drag else { return };
         let Some(angle) = crate::drag::ring_angle(&view, d.pointer, r.center, r.axis, r.from) else { return };
         let turned = mocap::glam::Quat::from_axis_angle(r.axis, angle - r.start) * r.world;
         // A root's parent frame is the file's axes turned up (Actor::place).
-        let parent = c.clip().and_then(|clip| clip.skeleton().joints().get(r.joint)?.parent).and_then(|p| c.extra.pose.get(p)).map_or(c.up.rotation(), |p| p.rotation);
+        let parent = c
+            .clip()
+            .and_then(|clip| clip.skeleton().joints().get(r.joint)?.parent)
+            .and_then(|p| c.extra.pose.get(p))
+            .map_or(c.up.rotation(), |p| p.rotation);
         self.rotate_joint(r.character, r.joint, (parent.inverse() * turned).normalize());
     }
 

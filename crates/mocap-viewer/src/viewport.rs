@@ -40,7 +40,12 @@ struct ShowFrame {
 }
 
 impl egui_wgpu::CallbackTrait for ShowFrame {
-    fn paint(&self, _info: egui::PaintCallbackInfo, pass: &mut wgpu::RenderPass<'static>, resources: &egui_wgpu::CallbackResources) {
+    fn paint(
+        &self,
+        _info: egui::PaintCallbackInfo,
+        pass: &mut wgpu::RenderPass<'static>,
+        resources: &egui_wgpu::CallbackResources,
+    ) {
         if let Some(copy) = resources.get::<FrameCopy>() {
             let source = if self.single { copy.single.as_ref() } else { Some(&copy.full) };
             if let Some(source) = source {
@@ -102,7 +107,13 @@ impl Viewport {
         let aspect = (rect.width() / rect.height().max(1.0)).max(1e-3);
         self.geometry = Some(ViewGeometry { rect, camera: camera.to_camera(aspect) });
         let Some(rs) = render_state else {
-            ui.painter().text(rect.center(), egui::Align2::CENTER_CENTER, "No GPU renderer", egui::FontId::proportional(16.0), egui::Color32::GRAY);
+            ui.painter().text(
+                rect.center(),
+                egui::Align2::CENTER_CENTER,
+                "No GPU renderer",
+                egui::FontId::proportional(16.0),
+                egui::Color32::GRAY,
+            );
             return (response, joint_drag);
         };
         let ppp = ui.ctx().pixels_per_point();

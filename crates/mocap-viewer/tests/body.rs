@@ -2,9 +2,9 @@
 //! matrices follow the pose, the weights view and the mode live in the fragment,
 //! `m` cycles the three modes, and a skeleton too big for a body keeps capsules.
 
-use mocap_viewer::keys::Action;
-use mocap_viewer::Viewer;
 use mocap_render::DrawMode;
+use mocap_viewer::Viewer;
+use mocap_viewer::keys::Action;
 
 const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
 
@@ -95,15 +95,25 @@ fn the_bodys_bounds_hold_the_posed_body_where_it_is_drawn() {
         mocap::skin::skin_vertices(&skin, &draw.matrices, &mut positions, &mut normals);
         let (mut vlo, mut vhi) = (mocap::glam::Vec3::INFINITY, mocap::glam::Vec3::NEG_INFINITY);
         for p in &positions {
-            assert!(p.cmpge(lo - 1e-4).all() && p.cmple(hi + 1e-4).all(), "frame {frame}: vertex {p} outside {lo}..{hi}");
+            assert!(
+                p.cmpge(lo - 1e-4).all() && p.cmple(hi + 1e-4).all(),
+                "frame {frame}: vertex {p} outside {lo}..{hi}"
+            );
             (vlo, vhi) = (vlo.min(*p), vhi.max(*p));
         }
         for t in v.stage.actors[0].extra.pose.iter() {
-            assert!(t.translation.cmpge(lo).all() && t.translation.cmple(hi).all(), "frame {frame}: joint {} outside", t.translation);
+            assert!(
+                t.translation.cmpge(lo).all() && t.translation.cmple(hi).all(),
+                "frame {frame}: joint {} outside",
+                t.translation
+            );
         }
         // And no looser than a fifth of the body's height on any side (each
         // joint's box is turned with it, and the box around that is larger).
         let slack = (vhi.y - vlo.y) * 0.2;
-        assert!((vlo - lo).max_element() < slack && (hi - vhi).max_element() < slack, "frame {frame}: {lo}..{hi} around {vlo}..{vhi}");
+        assert!(
+            (vlo - lo).max_element() < slack && (hi - vhi).max_element() < slack,
+            "frame {frame}: {lo}..{hi} around {vlo}..{vhi}"
+        );
     }
 }

@@ -78,9 +78,20 @@ fn ctrl_z_and_ctrl_shift_z_undo_and_redo() {
     let original = clip(&v);
     v.edit(0, &Edit::Reverse, "Reverse").unwrap();
     let reversed = clip(&v);
-    let key = |key, shift| egui::Event::Key { key, physical_key: None, pressed: true, repeat: false, modifiers: egui::Modifiers { ctrl: true, command: true, shift, ..Default::default() } };
+    let key = |key, shift| egui::Event::Key {
+        key,
+        physical_key: None,
+        pressed: true,
+        repeat: false,
+        modifiers: egui::Modifiers { ctrl: true, command: true, shift, ..Default::default() },
+    };
     let run = |v: &mut Viewer, t: f64, events: Vec<egui::Event>| {
-        let input = egui::RawInput { time: Some(t), screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))), events, ..Default::default() };
+        let input = egui::RawInput {
+            time: Some(t),
+            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))),
+            events,
+            ..Default::default()
+        };
         let mut out = ctx.run_ui(input, |ui| v.ui(ui, None));
         out.textures_delta.clear();
     };
@@ -103,7 +114,11 @@ fn closing_an_edited_character_asks_first() {
     v.add("again.bvh", WALK).unwrap();
     v.edit(1, &Edit::Reverse, "Reverse").unwrap();
     let run = |v: &mut Viewer, t: f64| {
-        let input = egui::RawInput { time: Some(t), screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))), ..Default::default() };
+        let input = egui::RawInput {
+            time: Some(t),
+            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))),
+            ..Default::default()
+        };
         let mut out = ctx.run_ui(input, |ui| v.ui(ui, None));
         out.textures_delta.clear();
     };
@@ -138,8 +153,18 @@ fn the_creator_makes_a_character_that_poses_keys_and_saves() {
     let mut v = Viewer::default();
     v.new_character();
     assert!(v.settings.pose_mode && v.selected_name() == Some("Hips"));
-    v.edit(0, &Edit::AddJoint { parent: "Hips".into(), name: "Arm".into(), offset: Vec3::new(0.0, 0.4, 0.0) }, "Add Arm").unwrap();
-    v.edit(0, &Edit::AddJoint { parent: "Arm".into(), name: "Hand".into(), offset: Vec3::new(0.0, 0.4, 0.0) }, "Add Hand").unwrap();
+    v.edit(
+        0,
+        &Edit::AddJoint { parent: "Hips".into(), name: "Arm".into(), offset: Vec3::new(0.0, 0.4, 0.0) },
+        "Add Arm",
+    )
+    .unwrap();
+    v.edit(
+        0,
+        &Edit::AddJoint { parent: "Arm".into(), name: "Hand".into(), offset: Vec3::new(0.0, 0.4, 0.0) },
+        "Add Hand",
+    )
+    .unwrap();
     let names: Vec<String> = v.snapshot().clips[0].joint_names.clone();
     assert_eq!(names, ["Hips", "Arm", "Hand", "Hand_End"]);
     // Pose the hand at frame 30 by dragging, key it, play it back.
@@ -186,10 +211,19 @@ fn the_creator_makes_a_character_that_poses_keys_and_saves() {
         v.pose();
         v.stage.actors[0].extra.pose[hand].translation
     };
-    assert!(hand_at(&mut v, 30).distance(target) < 2e-3 && hand_at(&mut v, 50).distance(second) < 2e-3, "each key holds its pose");
+    assert!(
+        hand_at(&mut v, 30).distance(target) < 2e-3 && hand_at(&mut v, 50).distance(second) < 2e-3,
+        "each key holds its pose"
+    );
     let mid = hand_at(&mut v, 40);
-    assert!(mid.x < target.x - 0.1 && mid.x > second.x + 0.1, "halfway, the hand is between the keys: {mid} ({target} → {second})");
-    assert!(hand_at(&mut v, 10).distance(target) < 2e-3 && hand_at(&mut v, 59).distance(second) < 2e-3, "held before the first key and after the last");
+    assert!(
+        mid.x < target.x - 0.1 && mid.x > second.x + 0.1,
+        "halfway, the hand is between the keys: {mid} ({target} → {second})"
+    );
+    assert!(
+        hand_at(&mut v, 10).distance(target) < 2e-3 && hand_at(&mut v, 59).distance(second) < 2e-3,
+        "held before the first key and after the last"
+    );
     // Deleting the first key: the second one, alone, holds everywhere.
     v.delete_key(30).unwrap();
     assert_eq!(v.snapshot().clips[0].keys, [50]);
@@ -202,7 +236,10 @@ fn the_edit_menu_draws_for_clips_models_and_nothing() {
     let ctx = egui::Context::default();
     let mut v = Viewer::default();
     let draw = |v: &mut Viewer| {
-        let input = egui::RawInput { screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(800.0, 1400.0))), ..Default::default() };
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(800.0, 1400.0))),
+            ..Default::default()
+        };
         let mut out = ctx.run_ui(input, |ui| {
             egui::CentralPanel::default().show(ui, |ui| mocap_viewer::ui::edit_menu::show(ui, v));
         });
@@ -233,7 +270,12 @@ fn keys_can_be_deleted_and_moved_under_later_edits() {
         original.local_pose_into(f, &mut p);
         p.rotation[arm]
     };
-    let key = |frame: usize, q: Quat| Edit::Correct { frame, rotations: vec![("LeftArm".into(), q)], translations: vec![], window: 2 };
+    let key = |frame: usize, q: Quat| Edit::Correct {
+        frame,
+        rotations: vec![("LeftArm".into(), q)],
+        translations: vec![],
+        window: 2,
+    };
     let (q10, q40) = (at(10) * Quat::from_rotation_z(0.7), at(40) * Quat::from_rotation_x(0.5));
     v.edit(0, &key(10, q10), "Key at frame 10").unwrap();
     v.edit(0, &key(40, q40), "Key at frame 40").unwrap();

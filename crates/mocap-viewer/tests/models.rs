@@ -18,7 +18,10 @@ fn corpus_dir() -> Option<PathBuf> {
     if std::env::var("MOCAP_SKIP_CORPUS").is_ok_and(|v| v == "1") {
         return None;
     }
-    panic!("{}: corpus not found (put ../shared beside the repository, or opt out with MOCAP_SKIP_CORPUS=1)", dir.display());
+    panic!(
+        "{}: corpus not found (put ../shared beside the repository, or opt out with MOCAP_SKIP_CORPUS=1)",
+        dir.display()
+    );
 }
 
 /// A viewer with the faerie and its BMP skin open (dropped together), paused at 0.
@@ -108,7 +111,12 @@ fn a_model_and_a_bvh_stand_side_by_side_at_one_scale() {
     let floor = v.scene().grid.as_ref().expect("a floor").center.y;
     assert!((floor - stage.floor_height()).abs() < 1e-5);
     for a in &stage.actors {
-        assert!((a.world_ground() - floor).abs() < 1e-3, "{} stands at {} over a floor at {floor}", a.name, a.world_ground());
+        assert!(
+            (a.world_ground() - floor).abs() < 1e-3,
+            "{} stands at {} over a floor at {floor}",
+            a.name,
+            a.world_ground()
+        );
     }
     assert!(model.min.y < floor - 0.05, "the faerie's death frames sink below the floor ({} vs {floor})", model.min.y);
 }
@@ -215,7 +223,11 @@ fn a_rig_is_set_up_by_hand_and_used_by_the_capture() {
     assert!(v.rig_edit.is_none());
     v.start_capture(0).unwrap();
     v.finish_capture_now();
-    assert_eq!(v.capture_result.as_ref().unwrap().rig.joints[hand].position, after.to_array(), "the capture used the rig set up");
+    assert_eq!(
+        v.capture_result.as_ref().unwrap().rig.joints[hand].position,
+        after.to_array(),
+        "the capture used the rig set up"
+    );
     assert!(v.start_rig_edit(1, None).unwrap_err().contains("on a model"));
 }
 

@@ -198,9 +198,11 @@ fn more_than_eight_characters_wrap_into_rows_and_colours_cycle() {
     for i in 0..9 {
         v.add(&format!("c{i}.bvh"), &clip).unwrap();
     }
-    let zs: std::collections::BTreeSet<i64> = v.stage.actors.iter().map(|c| (c.placement().z * 1000.0).round() as i64).collect();
+    let zs: std::collections::BTreeSet<i64> =
+        v.stage.actors.iter().map(|c| (c.placement().z * 1000.0).round() as i64).collect();
     assert_eq!(zs.len(), 3, "three rows of three: {zs:?}");
-    let xs: std::collections::BTreeSet<i64> = v.stage.actors.iter().map(|c| (c.placement().x * 1000.0).round() as i64).collect();
+    let xs: std::collections::BTreeSet<i64> =
+        v.stage.actors.iter().map(|c| (c.placement().x * 1000.0).round() as i64).collect();
     assert_eq!(xs.len(), 3, "three lanes per row: {xs:?}");
     let palette = mocap_viewer::character::PALETTE;
     assert_eq!(v.stage.actors[6].extra.color, palette[0], "colours cycle after {}", palette.len());

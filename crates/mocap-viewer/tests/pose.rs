@@ -130,7 +130,8 @@ fn foot_locking_finds_contacts_and_keeps_a_planted_foot_still() {
     // Inside a contact run of a foot, the locked foot does not move between frames.
     let lock = v.stage.actors[0].extra.foot_lock.clone().unwrap();
     let leg = &lock.legs[0];
-    let run = (1..leg.contact.len()).find(|&f| leg.contact[f] && leg.contact[f - 1]).expect("a run of two contact frames");
+    let run =
+        (1..leg.contact.len()).find(|&f| leg.contact[f] && leg.contact[f - 1]).expect("a run of two contact frames");
     let foot = leg.chain.effector();
     let mut at_frame = |f: usize| {
         v.seek(f);
@@ -153,7 +154,11 @@ fn a_dragged_pose_becomes_a_key_that_fades_and_saves() {
     assert!(!v.has_corrections(), "the correction is now part of the clip");
     assert_eq!(v.snapshot().undo.as_deref(), Some("Key at frame 12"));
     v.pose();
-    assert!(at(&v, hand).distance(target) < 2e-3, "keyed: the hand is at the target at frame 12 ({})", at(&v, hand).distance(target));
+    assert!(
+        at(&v, hand).distance(target) < 2e-3,
+        "keyed: the hand is at the target at frame 12 ({})",
+        at(&v, hand).distance(target)
+    );
     // It fades: frame 14 moved less than frame 13, frame 15 (past the window) not at all.
     let clip = v.stage.actors[0].clip().unwrap().clone();
     let original = mocap::bvh::parse(WALK).unwrap();
@@ -216,7 +221,10 @@ fn dragging_a_ring_turns_the_selected_joint_about_its_axis() {
     assert!(now.translation.distance(start.translation) < 1e-4, "the joint turns in place");
     let turn = now.rotation * start.rotation.inverse();
     let (turn_axis, angle) = turn.to_axis_angle();
-    assert!((angle - 0.5).abs() < 0.03 && turn_axis.dot(axis) > 0.99, "a half-radian turn about the ring's axis: {angle} about {turn_axis}");
+    assert!(
+        (angle - 0.5).abs() < 0.03 && turn_axis.dot(axis) > 0.99,
+        "a half-radian turn about the ring's axis: {angle} about {turn_axis}"
+    );
     assert!(v.has_corrections());
 }
 

@@ -3,8 +3,8 @@
 //! or rigid, and dragging the red sphere in the view moves the target.
 
 use mocap::glam::Vec3;
-use mocap_viewer::tentacle::Solver;
 use mocap_viewer::Viewer;
+use mocap_viewer::tentacle::Solver;
 
 fn demo(bones: usize) -> Viewer {
     let mut v = Viewer::default();
@@ -38,7 +38,10 @@ fn the_tip_follows_the_target_with_every_solver() {
         v.pose();
         let reach = tip(&v) - base;
         assert!((reach.normalize() - Vec3::X).length() < 1e-3 && (reach.length() - bones as f32 * 0.5).abs() < 1e-3);
-        assert!(v.scene().spheres.iter().any(|s| s.center == base + Vec3::new(10.0, 0.0, 0.0)), "the target sphere is drawn");
+        assert!(
+            v.scene().spheres.iter().any(|s| s.center == base + Vec3::new(10.0, 0.0, 0.0)),
+            "the target sphere is drawn"
+        );
     }
 }
 
@@ -92,7 +95,12 @@ fn dragging_the_red_sphere_moves_the_target_and_the_tip_follows() {
     let target = v.tentacle.as_ref().unwrap().target;
     let start = v.screen_position(target).expect("the target is on screen");
     let end = start + egui::vec2(-60.0, 20.0);
-    let press = |pos, pressed| egui::Event::PointerButton { pos, button: egui::PointerButton::Primary, pressed, modifiers: egui::Modifiers::NONE };
+    let press = |pos, pressed| egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: egui::Modifiers::NONE,
+    };
     run(&mut v, 0.1, vec![egui::Event::PointerMoved(start), press(start, true)]);
     for k in 1..=5 {
         run(&mut v, 0.1 + 0.05 * k as f64, vec![egui::Event::PointerMoved(start + (end - start) * (k as f32 / 5.0))]);

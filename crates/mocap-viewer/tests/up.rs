@@ -8,9 +8,13 @@ use mocap_viewer::Viewer;
 /// A 2 m figure standing along +Z (legs down to z = 0, arms along X), walking
 /// along +Y over 10 frames.
 fn z_up_bvh() -> String {
-    let mut s = String::from("HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 1\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n");
+    let mut s = String::from(
+        "HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 1\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n",
+    );
     s.push_str("JOINT Chest\n{\nOFFSET 0 0 0.5\nCHANNELS 3 Zrotation Xrotation Yrotation\n");
-    s.push_str("JOINT Head\n{\nOFFSET 0 0 0.3\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 0.2\n}\n}\n");
+    s.push_str(
+        "JOINT Head\n{\nOFFSET 0 0 0.3\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 0 0.2\n}\n}\n",
+    );
     for (name, x) in [("LeftArm", 0.2), ("RightArm", -0.2)] {
         s.push_str(&format!("JOINT {name}\n{{\nOFFSET {x} 0 0.3\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT {name}Fore\n{{\nOFFSET {} 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{{\nOFFSET {} 0 0\n}}\n}}\n}}\n", x * 1.5, x * 1.5));
     }
@@ -69,7 +73,11 @@ fn joints_are_dragged_and_read_in_the_turned_axes() {
     let target = before + Vec3::new(-0.1, 0.15, 0.1);
     let solve = v.drag_joint(0, hand, target).unwrap();
     assert!(solve.reached, "{solve:?}");
-    assert!(v.stage.actors[0].extra.pose[hand].translation.distance(target) < 1e-3, "{} vs {target}", v.stage.actors[0].extra.pose[hand].translation);
+    assert!(
+        v.stage.actors[0].extra.pose[hand].translation.distance(target) < 1e-3,
+        "{} vs {target}",
+        v.stage.actors[0].extra.pose[hand].translation
+    );
 }
 
 #[test]

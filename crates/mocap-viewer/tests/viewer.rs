@@ -132,7 +132,10 @@ fn view_fragment_round_trips_exactly() {
     v.settings.show_axes = true;
     v.settings.show_joints = false;
     v.panels.inspector = false;
-    let joint = v.current_character().and_then(|d| d.clip()?.skeleton().joints().iter().position(|j| j.name == "LeftHand")).or(Some(3));
+    let joint = v
+        .current_character()
+        .and_then(|d| d.clip()?.skeleton().joints().iter().position(|j| j.name == "LeftHand"))
+        .or(Some(3));
     v.select(joint);
     let fragment = v.view_fragment();
 
@@ -150,8 +153,15 @@ fn view_fragment_round_trips_exactly() {
 #[test]
 fn view_fragment_accepts_frames_names_and_junk() {
     let mut v = loaded();
-    let name = v.current_character().and_then(|d| d.clip()?.skeleton().joints().get(2)).map(|j| j.name.clone()).unwrap_or_default();
-    v.apply_fragment(&format!("f=9999&play=0&sel={}&speed=abc&cam=nan,1,1,1,1,1&panels=none", mocap_viewer::view_state::percent_encode(&name)));
+    let name = v
+        .current_character()
+        .and_then(|d| d.clip()?.skeleton().joints().get(2))
+        .map(|j| j.name.clone())
+        .unwrap_or_default();
+    v.apply_fragment(&format!(
+        "f=9999&play=0&sel={}&speed=abc&cam=nan,1,1,1,1,1&panels=none",
+        mocap_viewer::view_state::percent_encode(&name)
+    ));
     let last = v.current_character().map_or(0, |d| d.asset.frame_count() - 1);
     assert_eq!(v.frame(), last);
     assert!(!v.playback.playing);

@@ -47,7 +47,12 @@ impl MotionClip {
     /// Parent index of each joint; -1 for a root.
     #[wasm_bindgen(getter)]
     pub fn parents(&self) -> Vec<i32> {
-        self.clip.skeleton().joints().iter().map(|j| j.parent.and_then(|p| i32::try_from(p).ok()).unwrap_or(-1)).collect()
+        self.clip
+            .skeleton()
+            .joints()
+            .iter()
+            .map(|j| j.parent.and_then(|p| i32::try_from(p).ok()).unwrap_or(-1))
+            .collect()
     }
 
     /// Whether each joint is an End Site.
@@ -129,7 +134,10 @@ impl MotionClip {
     fn body(&mut self) -> Option<&mocap::skin::Skin> {
         if self.body.is_none() {
             let extent = self.clip.pose_extent();
-            self.body = Some(mocap_viewer::character::body_skin(&self.clip, if extent > 0.0 && extent.is_finite() { extent } else { 1.0 }));
+            self.body = Some(mocap_viewer::character::body_skin(
+                &self.clip,
+                if extent > 0.0 && extent.is_finite() { extent } else { 1.0 },
+            ));
         }
         self.body.as_ref().and_then(Option::as_ref)
     }

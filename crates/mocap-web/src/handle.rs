@@ -67,7 +67,8 @@ impl MocapViewer {
         let opened = match set.take() {
             Ok(crate::file_set::Taken::Clips(clips)) => self.with_viewer(|v| v.open_clips(clips, mode)),
             Ok(crate::file_set::Taken::Files(files)) => {
-                let files: Vec<(&str, &[u8])> = files.iter().map(|(name, bytes)| (name.as_str(), bytes.as_slice())).collect();
+                let files: Vec<(&str, &[u8])> =
+                    files.iter().map(|(name, bytes)| (name.as_str(), bytes.as_slice())).collect();
                 self.with_viewer(|v| v.open_files(&files, mode))
             }
             Err(message) => {
@@ -150,7 +151,13 @@ impl MocapViewer {
     /// it, the solver (`'two-bone'`, `'ccd'`, `'fabrik'`) and soft or rigid skin.
     /// Returns false when the demo is not open or the solver is unknown.
     #[wasm_bindgen(js_name = setDemo)]
-    pub fn set_demo(&self, target: Option<Vec<f32>>, follow: Option<bool>, solver: Option<String>, soft: Option<bool>) -> bool {
+    pub fn set_demo(
+        &self,
+        target: Option<Vec<f32>>,
+        follow: Option<bool>,
+        solver: Option<String>,
+        soft: Option<bool>,
+    ) -> bool {
         self.with_viewer(|v| {
             let Some(t) = &mut v.tentacle else { return false };
             if let Some([x, y, z]) = target.as_deref().and_then(|p| <[f32; 3]>::try_from(p).ok()) {
@@ -236,7 +243,12 @@ impl MocapViewer {
         let v = self.viewer.try_borrow().ok()?;
         let e = v.rig_edit.as_ref()?;
         let j = e.rig.joints.iter().position(|j| j.name == name)?;
-        let world = v.stage.actors.get(e.model)?.world_matrix().transform_point3(mocap::glam::Vec3::from_array(e.rig.joints[j].position));
+        let world = v
+            .stage
+            .actors
+            .get(e.model)?
+            .world_matrix()
+            .transform_point3(mocap::glam::Vec3::from_array(e.rig.joints[j].position));
         let p = v.screen_position(world)?;
         Some(vec![p.x, p.y])
     }
@@ -307,10 +319,18 @@ impl MocapViewer {
             ["scale", _] => number(parts.get(1)).map(|f| Edit::Scale { factor: f as f32 }),
             ["rename", from, to] => Some(Edit::Rename { from: (*from).to_owned(), to: (*to).to_owned() }),
             ["remove", joint] => Some(Edit::RemoveJoint { name: (*joint).to_owned(), fold: true }),
-            ["add", parent, name, xyz] => vec3(xyz).map(|offset| Edit::AddJoint { parent: (*parent).to_owned(), name: (*name).to_owned(), offset }),
+            ["add", parent, name, xyz] => vec3(xyz).map(|offset| Edit::AddJoint {
+                parent: (*parent).to_owned(),
+                name: (*name).to_owned(),
+                offset,
+            }),
             ["offset", name, xyz] => vec3(xyz).map(|offset| Edit::SetOffset { name: (*name).to_owned(), offset }),
-            ["channels", name, order] => Some(Edit::SetChannels { name: (*name).to_owned(), position: false, order: (*order).to_owned() }),
-            ["channels", name, order, "position"] => Some(Edit::SetChannels { name: (*name).to_owned(), position: true, order: (*order).to_owned() }),
+            ["channels", name, order] => {
+                Some(Edit::SetChannels { name: (*name).to_owned(), position: false, order: (*order).to_owned() })
+            }
+            ["channels", name, order, "position"] => {
+                Some(Edit::SetChannels { name: (*name).to_owned(), position: true, order: (*order).to_owned() })
+            }
             ["drop", joint] => Some(Edit::RemoveJoint { name: (*joint).to_owned(), fold: false }),
             _ => None,
         };
@@ -324,14 +344,28 @@ impl MocapViewer {
     /// matches as `"Base=Layer,Base2=Layer2"` (an empty layer name leaves that
     /// base joint out); other joints are matched by name.
     #[wasm_bindgen(js_name = addLayer)]
-    pub fn add_layer(&self, index: u32, source: u32, subtree: &str, weight: Option<f32>, additive: Option<bool>, map: Option<String>) -> Option<String> {
-        let blend = if additive.unwrap_or(false) { mocap::layer::Blend::Additive } else { mocap::layer::Blend::Override };
+    pub fn add_layer(
+        &self,
+        index: u32,
+        source: u32,
+        subtree: &str,
+        weight: Option<f32>,
+        additive: Option<bool>,
+        map: Option<String>,
+    ) -> Option<String> {
+        let blend =
+            if additive.unwrap_or(false) { mocap::layer::Blend::Additive } else { mocap::layer::Blend::Override };
         let mut pairs = Vec::new();
         for item in map.as_deref().unwrap_or("").split(',').filter(|s| !s.trim().is_empty()) {
             let Some((b, l)) = item.split_once('=') else { return Some(format!("{item}: a map entry is Base=Layer")) };
             pairs.push((b.trim().to_owned(), l.trim().to_owned()));
         }
-        let layer = mocap::layer::Layer { weight: weight.unwrap_or(1.0), blend, map: pairs, ..mocap::layer::Layer::on(subtree) };
+        let layer = mocap::layer::Layer {
+            weight: weight.unwrap_or(1.0),
+            blend,
+            map: pairs,
+            ..mocap::layer::Layer::on(subtree)
+        };
         self.with_viewer(|v| v.add_layer(index as usize, source as usize, &layer).err()).flatten()
     }
 
@@ -494,7 +528,9 @@ impl MocapViewer {
     /// was open is still open.
     #[wasm_bindgen(js_name = showError)]
     pub fn show_error(&self, message: &str, opened: Option<bool>) {
-        self.with_viewer(|v| v.error = Some(mocap_viewer::Notice::open_failed(message.to_owned(), opened.unwrap_or(false))));
+        self.with_viewer(|v| {
+            v.error = Some(mocap_viewer::Notice::open_failed(message.to_owned(), opened.unwrap_or(false)))
+        });
     }
 
     /// Switches the embed layout (3D view and a minimal timeline) on or off.

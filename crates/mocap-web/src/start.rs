@@ -96,7 +96,11 @@ async fn start_on(
                 if cc.wgpu_render_state.is_none() {
                     return Err("no wgpu renderer".into());
                 }
-                let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker)).on_share(Box::new(share_event)).on_save(Box::new(save_event)).on_render_scale(Box::new(eframe::web::set_render_scale)).on_view_change(Box::new(view_event));
+                let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker))
+                    .on_share(Box::new(share_event))
+                    .on_save(Box::new(save_event))
+                    .on_render_scale(Box::new(eframe::web::set_render_scale))
+                    .on_view_change(Box::new(view_event));
                 Ok(Box::new(app))
             }),
         )

@@ -134,7 +134,8 @@ fn main() {
     // Each piece's buffer on its own cache lines: a `Vec`'s length is written
     // at every push, and two threads writing one line slow each other down
     // (that made this line read below one thread's floor).
-    let bufs: Vec<Padded<std::sync::Mutex<Vec<f32>>>> = parts.iter().map(|p| Padded(std::sync::Mutex::new(Vec::with_capacity(p.len() / 4)))).collect();
+    let bufs: Vec<Padded<std::sync::Mutex<Vec<f32>>>> =
+        parts.iter().map(|p| Padded(std::sync::Mutex::new(Vec::with_capacity(p.len() / 4)))).collect();
     let floor_at_once = || {
         let next = std::sync::atomic::AtomicUsize::new(0);
         let work = || {
@@ -157,8 +158,16 @@ fn main() {
         floor = floor.min(best(1, || bare_floor(&input[rows_at..], &mut buf)));
         together = together.min(best(1, floor_at_once));
     }
-    println!("mocap::bvh::parse       {:>8.1} ms  {:>7.0} MB/s  ({threads} threads available)", ours.as_secs_f64() * 1e3, mb / ours.as_secs_f64());
-    println!("bare split+parse floor  {:>8.1} ms  {:>7.0} MB/s  (1 thread)", floor.as_secs_f64() * 1e3, mb / floor.as_secs_f64());
+    println!(
+        "mocap::bvh::parse       {:>8.1} ms  {:>7.0} MB/s  ({threads} threads available)",
+        ours.as_secs_f64() * 1e3,
+        mb / ours.as_secs_f64()
+    );
+    println!(
+        "bare split+parse floor  {:>8.1} ms  {:>7.0} MB/s  (1 thread)",
+        floor.as_secs_f64() * 1e3,
+        mb / floor.as_secs_f64()
+    );
     println!(
         "  parse / (threads × floor) = {:.2} (aim >= 0.9)",
         (mb / ours.as_secs_f64()) / (threads as f64 * mb / floor.as_secs_f64())
@@ -181,7 +190,8 @@ fn main() {
     let clip = mocap::bvh::parse(&input).expect("parse");
     let peak = PEAK.load(Ordering::Relaxed) - base;
     let matrix = clip.motion().data().len() * 4;
-    let skeleton: usize = clip.skeleton().joints().iter().map(|j| std::mem::size_of_val(j) + j.name.len() + j.channels.len()).sum();
+    let skeleton: usize =
+        clip.skeleton().joints().iter().map(|j| std::mem::size_of_val(j) + j.name.len() + j.channels.len()).sum();
     println!(
         "peak memory of parse    {:>8.1} MB  = {:.2} × (matrix {:.1} MB + skeleton {:.1} KB)",
         peak as f64 / 1e6,
@@ -199,14 +209,24 @@ fn main() {
         world.len()
     });
     let transforms = (clip.frame_count() * clip.skeleton().len()) as f64;
-    println!("FK world transforms     {:>8.1} ms  {:>7.1} M joint transforms/s ({} joints × {} frames, 1 thread)", fk.as_secs_f64() * 1e3, transforms / fk.as_secs_f64() / 1e6, clip.skeleton().len(), clip.frame_count());
+    println!(
+        "FK world transforms     {:>8.1} ms  {:>7.1} M joint transforms/s ({} joints × {} frames, 1 thread)",
+        fk.as_secs_f64() * 1e3,
+        transforms / fk.as_secs_f64() / 1e6,
+        clip.skeleton().len(),
+        clip.frame_count()
+    );
 
     let batch = best(5, || {
         let mut sum = 0.0f32;
         clip.for_each_frame_positions(|_, p| sum += p[p.len() - 1].x);
         sum
     });
-    println!("FK batched (8 frames)   {:>8.1} ms  {:>7.1} M joint transforms/s (1 thread)", batch.as_secs_f64() * 1e3, transforms / batch.as_secs_f64() / 1e6);
+    println!(
+        "FK batched (8 frames)   {:>8.1} ms  {:>7.1} M joint transforms/s (1 thread)",
+        batch.as_secs_f64() * 1e3,
+        transforms / batch.as_secs_f64() / 1e6
+    );
     threaded_fk("FK batched, threaded", &clip, transforms);
 
     // What `mocap info` does: parse, then FK over every frame for the bounding box.
@@ -219,7 +239,8 @@ fn main() {
 /// AMC parse throughput and FK on the Acclaim path (CMU 01_06 for 01.asf).
 fn acclaim() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus/asf_amc/cmu");
-    let (Ok(asf_bytes), Ok(amc_bytes)) = (std::fs::read(dir.join("01.asf")), std::fs::read(dir.join("01_06.amc"))) else {
+    let (Ok(asf_bytes), Ok(amc_bytes)) = (std::fs::read(dir.join("01.asf")), std::fs::read(dir.join("01_06.amc")))
+    else {
         println!("skipping Acclaim: {} not found (the corpus lives in ../shared)", dir.join("01_06.amc").display());
         return;
     };
@@ -233,9 +254,20 @@ fn acclaim() {
         amc = amc.min(best(1, || skeleton.motion_clip(&amc_bytes).expect("01_06.amc")));
         floor = floor.min(best(1, || bare_floor(&amc_bytes, &mut buf)));
     }
-    println!("acclaim motion_clip     {:>8.1} ms  {:>7.0} MB/s  (01_06.amc, {mb:.1} MB, skeleton from 01.asf parsed once; {threads} threads available)", amc.as_secs_f64() * 1e3, mb / amc.as_secs_f64());
-    println!("bare split+parse floor  {:>8.1} ms  {:>7.0} MB/s  (1 thread, the same bytes: bone names fail to parse)", floor.as_secs_f64() * 1e3, mb / floor.as_secs_f64());
-    println!("  motion_clip / (threads × floor) = {:.2} (aim >= 0.9)", floor.as_secs_f64() / (threads as f64 * amc.as_secs_f64()));
+    println!(
+        "acclaim motion_clip     {:>8.1} ms  {:>7.0} MB/s  (01_06.amc, {mb:.1} MB, skeleton from 01.asf parsed once; {threads} threads available)",
+        amc.as_secs_f64() * 1e3,
+        mb / amc.as_secs_f64()
+    );
+    println!(
+        "bare split+parse floor  {:>8.1} ms  {:>7.0} MB/s  (1 thread, the same bytes: bone names fail to parse)",
+        floor.as_secs_f64() * 1e3,
+        mb / floor.as_secs_f64()
+    );
+    println!(
+        "  motion_clip / (threads × floor) = {:.2} (aim >= 0.9)",
+        floor.as_secs_f64() / (threads as f64 * amc.as_secs_f64())
+    );
 
     let clip = skeleton.motion_clip(&amc_bytes).expect("01_06.amc");
     let transforms = (clip.frame_count() * clip.skeleton().len()) as f64;
@@ -246,14 +278,24 @@ fn acclaim() {
         }
         world.len()
     });
-    println!("acclaim FK transforms   {:>8.1} ms  {:>7.1} M joint transforms/s ({} joints × {} frames, 1 thread)", fk.as_secs_f64() * 1e3, transforms / fk.as_secs_f64() / 1e6, clip.skeleton().len(), clip.frame_count());
+    println!(
+        "acclaim FK transforms   {:>8.1} ms  {:>7.1} M joint transforms/s ({} joints × {} frames, 1 thread)",
+        fk.as_secs_f64() * 1e3,
+        transforms / fk.as_secs_f64() / 1e6,
+        clip.skeleton().len(),
+        clip.frame_count()
+    );
 
     let batch = best(5, || {
         let mut sum = 0.0f32;
         clip.for_each_frame_positions(|_, p| sum += p[p.len() - 1].x);
         sum
     });
-    println!("acclaim FK batched      {:>8.1} ms  {:>7.1} M joint transforms/s (1 thread)", batch.as_secs_f64() * 1e3, transforms / batch.as_secs_f64() / 1e6);
+    println!(
+        "acclaim FK batched      {:>8.1} ms  {:>7.1} M joint transforms/s (1 thread)",
+        batch.as_secs_f64() * 1e3,
+        transforms / batch.as_secs_f64() / 1e6
+    );
     threaded_fk("acclaim FK threaded", &clip, transforms);
 }
 
@@ -262,9 +304,18 @@ fn acclaim() {
 fn threaded_fk(label: &str, clip: &mocap::Clip, transforms: f64) {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(8);
     let t = best(5, || {
-        let runs = mocap::batch::fold_frame_positions(clip.skeleton(), clip.motion(), || 0.0f32, |sum, _, p| *sum += p[p.len() - 1].x);
+        let runs = mocap::batch::fold_frame_positions(
+            clip.skeleton(),
+            clip.motion(),
+            || 0.0f32,
+            |sum, _, p| *sum += p[p.len() - 1].x,
+        );
         runs.iter().sum::<f32>()
     });
     let rate = transforms / t.as_secs_f64() / 1e6;
-    println!("{label:<23} {:>8.1} ms  {:>7.1} M joint transforms/s ({threads} threads; aim >= 100)", t.as_secs_f64() * 1e3, rate);
+    println!(
+        "{label:<23} {:>8.1} ms  {:>7.1} M joint transforms/s ({threads} threads; aim >= 100)",
+        t.as_secs_f64() * 1e3,
+        rate
+    );
 }

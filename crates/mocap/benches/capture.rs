@@ -9,7 +9,9 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 fn main() {
-    let dir = std::env::var_os("MOCAP_CORPUS").map(PathBuf::from).unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus"));
+    let dir = std::env::var_os("MOCAP_CORPUS")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/corpus"));
     let path = dir.join("md2/irrlicht_faerie/faerie.md2");
     let Ok(bytes) = std::fs::read(&path) else {
         eprintln!("{}: not found (the corpus is needed for this benchmark)", path.display());
@@ -41,6 +43,11 @@ fn main() {
     println!("capture of faerie.md2 ({} vertices, {frames} frames, {joints} joints), best of 5:", md2.vertex_count);
     println!("  fit and bind        {:8.2} ms", fit * 1e3);
     println!("  choose vertices     {:8.2} ms", choose * 1e3);
-    println!("  solve every frame   {:8.2} ms  ({:.0} frames/s, {:.0} joint solves/s)", solve * 1e3, frames as f64 / solve, (frames * joints) as f64 / solve);
+    println!(
+        "  solve every frame   {:8.2} ms  ({:.0} frames/s, {:.0} joint solves/s)",
+        solve * 1e3,
+        frames as f64 / solve,
+        (frames * joints) as f64 / solve
+    );
     println!("  total               {:8.2} ms", (fit + choose + solve) * 1e3);
 }

@@ -3,9 +3,9 @@
 //! solve from the same starting pose toward targets moving around a sphere inside
 //! the chain's reach. The two-bone solver runs on two bones.
 
+use mocap::LocalPose;
 use mocap::glam::Vec3;
 use mocap::ik::{self, Chain, Options};
-use mocap::LocalPose;
 use std::time::Instant;
 
 fn chain_clip(n: usize) -> mocap::Clip {
@@ -35,7 +35,9 @@ fn main() {
         let targets: Vec<Vec3> = (0..256)
             .map(|i| {
                 let a = i as f32 * 0.37;
-                Vec3::new(a.sin() * (a * 0.3).cos(), (a * 0.7).cos(), a.cos() * (a * 0.3).sin()).normalize_or_zero() * bones as f32 * 0.7
+                Vec3::new(a.sin() * (a * 0.3).cos(), (a * 0.7).cos(), a.cos() * (a * 0.3).sin()).normalize_or_zero()
+                    * bones as f32
+                    * 0.7
             })
             .collect();
         let mut solvers: Vec<(&str, Box<dyn Fn(&mut LocalPose, Vec3) -> ik::Solve>)> = vec![
@@ -43,7 +45,15 @@ fn main() {
             ("fabrik", Box::new(|p: &mut LocalPose, t: Vec3| ik::fabrik(skeleton, p, &chain, t, &options))),
         ];
         if bones == 2 {
-            solvers.insert(0, ("two_bone", Box::new(|p: &mut LocalPose, t: Vec3| ik::two_bone(skeleton, p, &chain, t, Vec3::Z * 5.0, &options))));
+            solvers.insert(
+                0,
+                (
+                    "two_bone",
+                    Box::new(|p: &mut LocalPose, t: Vec3| {
+                        ik::two_bone(skeleton, p, &chain, t, Vec3::Z * 5.0, &options)
+                    }),
+                ),
+            );
         }
         for (name, solve) in solvers {
             let mut pose = start_pose.clone();

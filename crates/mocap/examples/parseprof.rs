@@ -2,7 +2,8 @@
 //! parser (`ours`), or the bare split+parse floor (`floor`).
 fn main() {
     let mode = std::env::args().nth(1).unwrap_or_default();
-    let src = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/corpus/bvh/assimp_cmu/01_01.bvh")).expect("corpus");
+    let src = std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/corpus/bvh/assimp_cmu/01_01.bvh"))
+        .expect("corpus");
     let text = String::from_utf8(src).expect("utf8");
     let at = text.find("Frame Time").expect("ft");
     let rows_at = at + text[at..].find('\n').expect("nl") + 1;

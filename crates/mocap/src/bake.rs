@@ -8,7 +8,7 @@ use crate::channel::{AngleUnit, Channel, ChannelKind};
 use crate::clip::Clip;
 use crate::error::Warning;
 use crate::motion::Motion;
-use crate::pose::{from_row, LocalPose};
+use crate::pose::{LocalPose, from_row};
 use crate::skeleton::{EulerConvention, Joint, Skeleton};
 use glam::{EulerRot, Quat, Vec3};
 
@@ -32,7 +32,8 @@ fn plan(skeleton: &Skeleton) -> Vec<Plan> {
     joints
         .iter()
         .map(|j| {
-            let parent_stretches = j.parent.and_then(|p| joints.get(p)).is_some_and(|p| p.channels.contains(&Channel::Length));
+            let parent_stretches =
+                j.parent.and_then(|p| joints.get(p)).is_some_and(|p| p.channels.contains(&Channel::Length));
             let has = |kind| j.channels.iter().any(|c| c.kind() == kind);
             // An End Site under a stretching bone becomes a joint with position
             // channels (BVH cannot animate an End Site's offset).
@@ -60,7 +61,8 @@ pub fn to_bvh(clip: &Clip) -> (Clip, Vec<Warning>) {
     if scaled {
         warnings.push(Warning {
             line: None,
-            message: "BVH has no scale channels: scale was dropped (End Sites keep the first frame's scaled length)".into(),
+            message: "BVH has no scale channels: scale was dropped (End Sites keep the first frame's scaled length)"
+                .into(),
         });
     }
     let joints: Vec<Joint> = skeleton
@@ -129,8 +131,13 @@ mod tests {
     #[test]
     fn baking_keeps_model_positions() {
         // A root with a rest rotation and extrinsic radians, a child that stretches its bone.
-        let root = Joint::new("r", None, Vec3::new(1.0, 2.0, 3.0), vec![Channel::Xposition, Channel::Xrotation, Channel::Yrotation, Channel::Zrotation])
-            .with_rest_rotation(axis_rotation(2, 30.0, AngleUnit::Degrees));
+        let root = Joint::new(
+            "r",
+            None,
+            Vec3::new(1.0, 2.0, 3.0),
+            vec![Channel::Xposition, Channel::Xrotation, Channel::Yrotation, Channel::Zrotation],
+        )
+        .with_rest_rotation(axis_rotation(2, 30.0, AngleUnit::Degrees));
         let child = Joint::new("c", Some(0), Vec3::new(0.0, 2.0, 0.0), vec![Channel::Zrotation, Channel::Length])
             .with_rest_rotation(axis_rotation(0, -45.0, AngleUnit::Degrees));
         let end = Joint::end_site("e", Some(1), Vec3::new(0.5, 1.0, 0.0));

@@ -6,9 +6,9 @@
 //! frame by frame; a test checks both agree.
 
 use crate::fastmath::sin_cos;
-use crate::fk::{local_to_model, Transform};
+use crate::fk::{Transform, local_to_model};
 use crate::motion::Motion;
-use crate::pose::{from_row, LocalPose};
+use crate::pose::{LocalPose, from_row};
 use crate::skeleton::{EulerConvention, Skeleton};
 use glam::Vec3;
 
@@ -129,7 +129,12 @@ fn fk_block_dispatch(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, wor
 /// skeletons are extrinsic).
 #[cfg(all(target_arch = "x86_64", not(target_feature = "avx2")))]
 #[target_feature(enable = "avx2")]
-fn fk_block_avx2<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
+fn fk_block_avx2<const EXTRINSIC: bool>(
+    skeleton: &Skeleton,
+    rows: &[&[f32]; LANES],
+    half: f32,
+    world: &mut [JointLanes],
+) {
     fk_block_with::<EXTRINSIC>(skeleton, rows, half, world);
 }
 
@@ -144,7 +149,12 @@ fn fk_block_avx2<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LAN
 /// product with the identity; a joint left without rotation (an End Site, or
 /// every rotation at zero, and no rest rotation) takes its parent's as it is.
 #[inline(always)]
-fn fk_block_with<const EXTRINSIC: bool>(skeleton: &Skeleton, rows: &[&[f32]; LANES], half: f32, world: &mut [JointLanes]) {
+fn fk_block_with<const EXTRINSIC: bool>(
+    skeleton: &Skeleton,
+    rows: &[&[f32]; LANES],
+    half: f32,
+    world: &mut [JointLanes],
+) {
     for (j, joint) in skeleton.joints().iter().enumerate() {
         let [rx, ry, rz, rw] = joint.rest_rotation.to_array();
         let mut local = JointLanes {
@@ -211,7 +221,12 @@ const PER_THREAD_MIN: usize = 1 << 16;
 /// in turn, so faster cores take more; each run starts from `init()` and visits
 /// its frames in order with `visit(&mut accumulator, frame, positions)`. Returns
 /// the accumulators in frame order, for the caller to combine.
-pub fn fold_frame_positions<A: Send>(skeleton: &Skeleton, motion: &Motion, init: impl Fn() -> A + Sync, visit: impl Fn(&mut A, usize, &[Vec3]) + Sync) -> Vec<A> {
+pub fn fold_frame_positions<A: Send>(
+    skeleton: &Skeleton,
+    motion: &Motion,
+    init: impl Fn() -> A + Sync,
+    visit: impl Fn(&mut A, usize, &[Vec3]) + Sync,
+) -> Vec<A> {
     let frames = motion.frame_count();
     let work = frames.saturating_mul(skeleton.len().max(1)) / PER_THREAD_MIN;
     let threads = crate::parallel::max_threads();
@@ -228,11 +243,19 @@ pub fn fold_frame_positions<A: Send>(skeleton: &Skeleton, motion: &Motion, init:
         return vec![init()];
     }
     // A run only fails by a panic in `visit`: pass it on.
-    crate::parallel::map(ranges, run).into_iter().map(|r| r.unwrap_or_else(|| panic!("a frame-visiting thread panicked"))).collect()
+    crate::parallel::map(ranges, run)
+        .into_iter()
+        .map(|r| r.unwrap_or_else(|| panic!("a frame-visiting thread panicked")))
+        .collect()
 }
 
 /// [`for_each_frame_positions`] for the frames in `range` (clamped to the clip).
-pub fn for_each_frame_positions_in(skeleton: &Skeleton, motion: &Motion, range: std::ops::Range<usize>, mut visit: impl FnMut(usize, &[Vec3])) {
+pub fn for_each_frame_positions_in(
+    skeleton: &Skeleton,
+    motion: &Motion,
+    range: std::ops::Range<usize>,
+    mut visit: impl FnMut(usize, &[Vec3]),
+) {
     let frames = range.end.min(motion.frame_count());
     let first = range.start.min(frames);
     let joints = skeleton.len();
@@ -299,9 +322,15 @@ mod tests {
         for r in 0..(super::PER_THREAD_MIN * 3 / joints / frames + 1) * frames {
             data.extend_from_slice(clip.motion().row(r % frames));
         }
-        let motion = Motion::new(0.1, clip.motion().channel_count(), data.len() / clip.motion().channel_count(), data).unwrap();
+        let motion =
+            Motion::new(0.1, clip.motion().channel_count(), data.len() / clip.motion().channel_count(), data).unwrap();
         let big = Clip::new(clip.skeleton().clone(), motion).unwrap();
-        let runs = super::fold_frame_positions(big.skeleton(), big.motion(), Vec::new, |acc: &mut Vec<(usize, Vec3)>, f, p| acc.push((f, p[joints - 1])));
+        let runs = super::fold_frame_positions(
+            big.skeleton(),
+            big.motion(),
+            Vec::new,
+            |acc: &mut Vec<(usize, Vec3)>, f, p| acc.push((f, p[joints - 1])),
+        );
         let all: Vec<(usize, Vec3)> = runs.into_iter().flatten().collect();
         assert_eq!(all.len(), big.frame_count());
         for (i, (f, p)) in all.iter().enumerate() {
@@ -342,7 +371,11 @@ mod tests {
 
     fn general_clip(euler: EulerConvention, channels: Vec<Channel>) -> Clip {
         let width = channels.len();
-        let root = Joint::new("r", None, Vec3::new(1.0, 0.0, 0.0), channels).with_rest_rotation(axis_rotation(2, 35.0, AngleUnit::Degrees));
+        let root = Joint::new("r", None, Vec3::new(1.0, 0.0, 0.0), channels).with_rest_rotation(axis_rotation(
+            2,
+            35.0,
+            AngleUnit::Degrees,
+        ));
         let child = Joint::new("c", Some(0), Vec3::new(0.0, 2.0, 0.0), vec![Channel::Xrotation, Channel::Zrotation])
             .with_rest_rotation(axis_rotation(1, -60.0, AngleUnit::Degrees));
         let end = Joint::end_site("e", Some(1), Vec3::new(0.3, 1.0, 0.0));
@@ -356,10 +389,19 @@ mod tests {
     #[test]
     fn rest_rotations_radians_and_the_general_channels_agree_with_scalar_fk() {
         // Batch lanes (intrinsic, translation and rotation channels).
-        agrees_with_scalar(&general_clip(EulerConvention::Intrinsic, vec![Channel::Yposition, Channel::Yrotation, Channel::Xrotation]));
+        agrees_with_scalar(&general_clip(
+            EulerConvention::Intrinsic,
+            vec![Channel::Yposition, Channel::Yrotation, Channel::Xrotation],
+        ));
         // Batch lanes, extrinsic (Acclaim) with a translation among the rotations.
-        agrees_with_scalar(&general_clip(EulerConvention::Extrinsic, vec![Channel::Zrotation, Channel::Xposition, Channel::Xrotation]));
+        agrees_with_scalar(&general_clip(
+            EulerConvention::Extrinsic,
+            vec![Channel::Zrotation, Channel::Xposition, Channel::Xrotation],
+        ));
         // Scalar fallback (scale and length channels).
-        agrees_with_scalar(&general_clip(EulerConvention::Extrinsic, vec![Channel::Yrotation, Channel::Xscale, Channel::Length]));
+        agrees_with_scalar(&general_clip(
+            EulerConvention::Extrinsic,
+            vec![Channel::Yrotation, Channel::Xscale, Channel::Length],
+        ));
     }
 }

@@ -17,7 +17,7 @@
 
 use crate::fk::Transform;
 use crate::skeleton::Skeleton;
-use crate::skin::{Skin, SkinError, MAX_INFLUENCES};
+use crate::skin::{MAX_INFLUENCES, Skin, SkinError};
 use glam::Vec3;
 use std::f32::consts::{FRAC_PI_2, TAU};
 
@@ -186,7 +186,12 @@ pub fn build(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(usize, f32
 }
 
 /// [`build`] with tubes cut as `detail` says.
-pub fn build_with(skeleton: &Skeleton, bind: &[Transform], radius: impl Fn(usize, f32) -> f32, detail: Detail) -> Result<Skin, BodyError> {
+pub fn build_with(
+    skeleton: &Skeleton,
+    bind: &[Transform],
+    radius: impl Fn(usize, f32) -> f32,
+    detail: Detail,
+) -> Result<Skin, BodyError> {
     let joints = skeleton.joints();
     if bind.len() != joints.len() || bind.iter().any(|t| !t.translation.is_finite()) {
         return Err(BodyError::BindPose { given: bind.len(), joints: joints.len() });
@@ -276,7 +281,9 @@ pub(crate) mod tests {
         let last = b.weights.len() - 1;
         assert_eq!((b.joints[last], b.weights[last]), ([1, 2, 0, 1], [0.5, 0.5, 0.0, 0.0]));
         assert_eq!((b.joints[0], b.weights[0]), ([1, 2, 0, 1], [0.5, 0.0, 0.5, 0.0]));
-        let middle = (0..b.positions.len()).min_by(|&i, &j| (b.positions[i].y - 1.0).abs().total_cmp(&(b.positions[j].y - 1.0).abs())).unwrap();
+        let middle = (0..b.positions.len())
+            .min_by(|&i, &j| (b.positions[i].y - 1.0).abs().total_cmp(&(b.positions[j].y - 1.0).abs()))
+            .unwrap();
         assert_eq!(b.weights[middle], [1.0, 0.0, 0.0, 0.0]);
         // Outward normals: from the axis.
         for (p, n) in b.positions.iter().zip(&b.normals) {

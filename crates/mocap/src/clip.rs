@@ -4,10 +4,10 @@
 use std::cell::RefCell;
 
 use crate::error::Warning;
-use crate::fk::{local_to_model, model_from_row, rest_positions, Transform};
+use crate::fk::{Transform, local_to_model, model_from_row, rest_positions};
 use crate::motion::Motion;
 use crate::pose::{self, LocalPose};
-use crate::sample::{sample, Interpolation, SampleScratch};
+use crate::sample::{Interpolation, SampleScratch, sample};
 use crate::skeleton::Skeleton;
 use crate::time::Timeline;
 use crate::up::UpAxis;
@@ -224,7 +224,13 @@ impl Clip {
     }
 
     /// The local pose at a time in seconds, interpolated or nearest, into `out`.
-    pub fn sample_local_into(&self, time: f64, interpolation: Interpolation, scratch: &mut SampleScratch, out: &mut LocalPose) {
+    pub fn sample_local_into(
+        &self,
+        time: f64,
+        interpolation: Interpolation,
+        scratch: &mut SampleScratch,
+        out: &mut LocalPose,
+    ) {
         sample(&self.skeleton, &self.motion, time, interpolation, scratch, out);
     }
 
@@ -299,7 +305,12 @@ impl Clip {
             rest_positions(&self.skeleton).into_iter().for_each(|p| bounds.include(p));
             return bounds;
         }
-        let runs = crate::batch::fold_frame_positions(&self.skeleton, &self.motion, || Aabb::EMPTY, |b, _, positions| positions.iter().for_each(|&p| b.include(p)));
+        let runs = crate::batch::fold_frame_positions(
+            &self.skeleton,
+            &self.motion,
+            || Aabb::EMPTY,
+            |b, _, positions| positions.iter().for_each(|&p| b.include(p)),
+        );
         runs.iter().fold(bounds, |a, b| a.union(b))
     }
 
@@ -361,7 +372,10 @@ mod tests {
     #[test]
     fn boxes_scale_move_and_join_and_empty_ones_stay_empty() {
         let a = Aabb { min: Vec3::new(-1.0, 0.0, -1.0), max: Vec3::new(1.0, 2.0, 1.0) };
-        assert_eq!(a.scaled(0.5).translated(Vec3::X), Aabb { min: Vec3::new(0.5, 0.0, -0.5), max: Vec3::new(1.5, 1.0, 0.5) });
+        assert_eq!(
+            a.scaled(0.5).translated(Vec3::X),
+            Aabb { min: Vec3::new(0.5, 0.0, -0.5), max: Vec3::new(1.5, 1.0, 0.5) }
+        );
         let b = Aabb { min: Vec3::splat(3.0), max: Vec3::splat(4.0) };
         assert_eq!(a.union(&b), Aabb { min: a.min, max: Vec3::splat(4.0) });
         assert_eq!(a.union(&Aabb::EMPTY), a);

@@ -95,16 +95,24 @@ impl FootLock {
         let options = ik::Options { angle_unit: clip.motion().angle_unit(), ..ik::Options::default() };
         for leg in &self.legs {
             let at = |v: &[f32], f: usize| v.get(f).copied().unwrap_or(0.0);
-            let w = at(&leg.weight, position.frame0) * (1.0 - position.alpha) + at(&leg.weight, position.frame1) * position.alpha;
+            let w = at(&leg.weight, position.frame0) * (1.0 - position.alpha)
+                + at(&leg.weight, position.frame1) * position.alpha;
             if w <= 0.0 {
                 continue;
             }
             let anchor = leg.anchor.get(position.frame0).copied().unwrap_or(Vec3::ZERO);
-            let anchor = if position.alpha > 0.0 { anchor.lerp(leg.anchor.get(position.frame1).copied().unwrap_or(anchor), position.alpha) } else { anchor };
+            let anchor = if position.alpha > 0.0 {
+                anchor.lerp(leg.anchor.get(position.frame1).copied().unwrap_or(anchor), position.alpha)
+            } else {
+                anchor
+            };
             let foot = ik::model_transform(skeleton, local, leg.chain.effector()).translation;
             let target = foot.lerp(anchor, w.min(1.0));
             let joints = leg.chain.joints();
-            let (hip, knee) = (ik::model_transform(skeleton, local, leg.chain.root()).translation, ik::model_transform(skeleton, local, joints[1]).translation);
+            let (hip, knee) = (
+                ik::model_transform(skeleton, local, leg.chain.root()).translation,
+                ik::model_transform(skeleton, local, joints[1]).translation,
+            );
             ik::two_bone(skeleton, local, &leg.chain, target, knee + (knee - hip), &options);
         }
     }
@@ -125,7 +133,8 @@ fn leg(chain: Chain, track: &[Vec3], up: UpAxis, size: f32, dt: f32) -> Leg {
         let span = ((f + 1).min(n - 1) - f.saturating_sub(1)).max(1) as f32 * dt.max(1e-6);
         Vec3::new(b.x - a.x, 0.0, b.z - a.z).length() / span
     };
-    let contact: Vec<bool> = (0..n).map(|f| upright[f].y <= floor + HEIGHT_SHARE * size && speed(f) <= SPEED_SHARE * size).collect();
+    let contact: Vec<bool> =
+        (0..n).map(|f| upright[f].y <= floor + HEIGHT_SHARE * size && speed(f) <= SPEED_SHARE * size).collect();
     let mut weight = vec![0.0f32; n];
     let mut anchor = track.to_vec();
     let mut f = 0;

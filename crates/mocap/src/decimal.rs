@@ -76,7 +76,11 @@ fn parse_short_with(s: &[u8], words: bool) -> Option<(f32, usize)> {
     if s.get(i) == Some(&b'.') {
         i += 1;
         let fraction_start = i;
-        let word = if words { s.get(i..i + 8).and_then(|w| <[u8; 8]>::try_from(w).ok()).map(u64::from_le_bytes) } else { None };
+        let word = if words {
+            s.get(i..i + 8).and_then(|w| <[u8; 8]>::try_from(w).ok()).map(u64::from_le_bytes)
+        } else {
+            None
+        };
         let run = word.map_or(8, digit_run);
         if let (Some(word), true) = (word, run < 8) {
             mantissa = mantissa.wrapping_mul(POW10_INT[run]).wrapping_add(digits_value(word, run));
@@ -134,7 +138,10 @@ impl Decimals {
             .filter(|t| t.first().is_some_and(|&b| b.is_ascii_digit() || matches!(b, b'-' | b'+' | b'.')));
         let (mut count, mut changes, mut last) = (0usize, 0usize, None);
         for token in numbers {
-            let decimals = token.iter().position(|&b| b == b'.').map_or(0, |p| token.iter().skip(p + 1).take_while(|b| b.is_ascii_digit()).count());
+            let decimals = token
+                .iter()
+                .position(|&b| b == b'.')
+                .map_or(0, |p| token.iter().skip(p + 1).take_while(|b| b.is_ascii_digit()).count());
             changes += usize::from(last.is_some_and(|l| l != decimals));
             last = Some(decimals);
             count += 1;
@@ -152,7 +159,7 @@ impl Decimals {
 
 #[cfg(test)]
 mod tests {
-    use super::{parse_short_with, Decimals};
+    use super::{Decimals, parse_short_with};
 
     /// A short decimal read byte by byte (the default way).
     fn parse_short(s: &[u8]) -> Option<(f32, usize)> {
@@ -161,7 +168,23 @@ mod tests {
 
     #[test]
     fn short_decimals_match_the_general_parser_bit_for_bit() {
-        let cases = ["0", "-0", "+1.5", "17.8693", "-17.3198", ".0083333", "5.", "-0.000000", "9999999", "0.1234567", "123.4567", "-.5", "16777215", "1.6777215", "0.0000000001"];
+        let cases = [
+            "0",
+            "-0",
+            "+1.5",
+            "17.8693",
+            "-17.3198",
+            ".0083333",
+            "5.",
+            "-0.000000",
+            "9999999",
+            "0.1234567",
+            "123.4567",
+            "-.5",
+            "16777215",
+            "1.6777215",
+            "0.0000000001",
+        ];
         for c in cases {
             let (v, used) = parse_short(c.as_bytes()).unwrap_or_else(|| panic!("{c}"));
             let expected: f32 = c.parse().unwrap();
@@ -201,7 +224,19 @@ mod tests {
 
     #[test]
     fn long_or_exponent_forms_fall_back() {
-        for c in ["1e5", "123456789", "1.23456789", "16777216", ".", "-", "1.2.3", "nan", "1x", "0.00000000001", "00000000000000000000001"] {
+        for c in [
+            "1e5",
+            "123456789",
+            "1.23456789",
+            "16777216",
+            ".",
+            "-",
+            "1.2.3",
+            "nan",
+            "1x",
+            "0.00000000001",
+            "00000000000000000000001",
+        ] {
             assert!(parse_short(c.as_bytes()).is_none(), "{c}");
         }
     }
@@ -213,7 +248,8 @@ mod tests {
         for tail in ["", " 1.5 -2.25 0.125", "\n7", "\t0.0000001 9"] {
             let padded = format!("{text}{tail}");
             for words in [false, true] {
-                let (v, used) = parse_short_with(padded.as_bytes(), words).unwrap_or_else(|| panic!("{text:?} words {words}"));
+                let (v, used) =
+                    parse_short_with(padded.as_bytes(), words).unwrap_or_else(|| panic!("{text:?} words {words}"));
                 assert_eq!((v.to_bits(), used), (expected.to_bits(), text.len()), "{text:?} words {words}");
             }
         }
@@ -221,7 +257,22 @@ mod tests {
 
     #[test]
     fn fraction_words_read_like_the_loop() {
-        for c in ["0", "-0", "+1.5", "17.8693", "-17.3198", ".0083333", "5.", "-0.000000", "0.1234567", "123.4567", "-.5", "1.6777215", "0.0000000001", "1677721.5"] {
+        for c in [
+            "0",
+            "-0",
+            "+1.5",
+            "17.8693",
+            "-17.3198",
+            ".0083333",
+            "5.",
+            "-0.000000",
+            "0.1234567",
+            "123.4567",
+            "-.5",
+            "1.6777215",
+            "0.0000000001",
+            "1677721.5",
+        ] {
             both_ways_match_std(c);
         }
         for n in 0..10_000u32 {
@@ -232,7 +283,9 @@ mod tests {
         }
         // Eight or more decimals go to the loop; a non-digit ends the run.
         for words in [false, true] {
-            assert!(parse_short_with(b"0.12345678 1 2 3", words).is_some_and(|(v, used)| v == 0.123_456_78 && used == 10));
+            assert!(
+                parse_short_with(b"0.12345678 1 2 3", words).is_some_and(|(v, used)| v == 0.123_456_78 && used == 10)
+            );
             assert!(parse_short_with(b"1.25x 1 2 3 4 5", words).is_none());
             assert!(parse_short_with(b"1.5e3 1 2 3 4 5", words).is_none());
         }

@@ -25,9 +25,12 @@ pub const TIP: &str = "tip";
 /// The tentacle's skeleton with `bones` bones (clamped to [`BONES`]), at rest.
 pub fn tentacle(bones: usize) -> Clip {
     let bones = bones.clamp(*BONES.start(), *BONES.end());
-    let mut text = String::from("HIERARCHY\nROOT bone0\n{\n  OFFSET 0 0 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n");
+    let mut text =
+        String::from("HIERARCHY\nROOT bone0\n{\n  OFFSET 0 0 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n");
     for b in 1..bones {
-        text.push_str(&format!("JOINT bone{b}\n{{\n  OFFSET 0 {BONE_LENGTH} 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n"));
+        text.push_str(&format!(
+            "JOINT bone{b}\n{{\n  OFFSET 0 {BONE_LENGTH} 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n"
+        ));
     }
     text.push_str(&format!("End Site {TIP}\n{{\n  OFFSET 0 {BONE_LENGTH} 0\n}}\n"));
     text.push_str(&"}\n".repeat(bones));

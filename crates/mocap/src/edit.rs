@@ -13,8 +13,8 @@ use crate::bake;
 use crate::channel::{AngleUnit, Channel, ChannelKind};
 use crate::clip::Clip;
 use crate::motion::Motion;
-use crate::pose::{from_row, LocalPose};
-use crate::sample::{sample, Interpolation, SampleScratch};
+use crate::pose::{LocalPose, from_row};
+use crate::sample::{Interpolation, SampleScratch, sample};
 use crate::skeleton::{EulerConvention, Joint, Skeleton};
 use crate::time::Timeline;
 use glam::{EulerRot, Quat, Vec3};
@@ -201,7 +201,9 @@ pub fn apply(clip: &Clip, edit: &Edit) -> Result<Clip, EditError> {
         Edit::Scale { factor } => scale(&clip, *factor),
         Edit::Rename { from, to } => rename(&clip, from, to),
         Edit::RemoveJoint { name, fold } => remove_joint(&clip, name, *fold),
-        Edit::Correct { frame, rotations, translations, window } => correct(&clip, *frame, rotations, translations, *window),
+        Edit::Correct { frame, rotations, translations, window } => {
+            correct(&clip, *frame, rotations, translations, *window)
+        }
         Edit::Key { frame, rotations, translations, keys } => {
             let keyed = correct(&clip, *frame, rotations, translations, 0)?;
             tween(&keyed, keys.iter().copied().chain([*frame]).collect())
@@ -230,8 +232,10 @@ fn rows(clip: &Clip, order: Vec<usize>) -> Result<Clip, EditError> {
 
 fn rebuild(clip: &Clip, skeleton: Skeleton, frame_time: f64, frames: usize, data: Vec<f32>) -> Result<Clip, EditError> {
     let width = skeleton.channel_count();
-    let motion = Motion::new(frame_time, width, frames, data).ok_or_else(|| EditError("the edit made no valid motion".into()))?;
-    let mut out = Clip::new(skeleton, motion.with_angle_unit(clip.motion().angle_unit())).map_err(|e| EditError(e.to_string()))?;
+    let motion = Motion::new(frame_time, width, frames, data)
+        .ok_or_else(|| EditError("the edit made no valid motion".into()))?;
+    let mut out = Clip::new(skeleton, motion.with_angle_unit(clip.motion().angle_unit()))
+        .map_err(|e| EditError(e.to_string()))?;
     out.metadata = clip.metadata.clone();
     Ok(out)
 }
@@ -308,7 +312,8 @@ pub fn clip_from_poses(skeleton: Skeleton, frame_time: f64, poses: &[LocalPose])
         row_of(&skeleton, p, AngleUnit::Degrees, &mut data);
     }
     let width = skeleton.channel_count();
-    let motion = Motion::new(frame_time, width, poses.len(), data).ok_or_else(|| EditError("no valid motion from these poses".into()))?;
+    let motion = Motion::new(frame_time, width, poses.len(), data)
+        .ok_or_else(|| EditError("no valid motion from these poses".into()))?;
     Clip::new(skeleton, motion).map_err(|e| EditError(e.to_string()))
 }
 
@@ -423,7 +428,8 @@ fn up_axis(clip: &Clip, from: usize, negative: bool) -> Result<Clip, EditError> 
             if j.parent.is_some() {
                 return j.clone();
             }
-            let mut channels: Vec<Channel> = j.channels.iter().filter(|c| c.kind() == ChannelKind::Translation).copied().collect();
+            let mut channels: Vec<Channel> =
+                j.channels.iter().filter(|c| c.kind() == ChannelKind::Translation).copied().collect();
             if channels.is_empty() && j.offset != Vec3::ZERO {
                 channels.extend([Channel::Xposition, Channel::Yposition, Channel::Zposition]);
             } else if !channels.is_empty() {
@@ -464,7 +470,13 @@ fn scale(clip: &Clip, factor: f32) -> Result<Clip, EditError> {
         .skeleton()
         .joints()
         .iter()
-        .flat_map(|j| j.channels.iter().enumerate().filter(|(_, c)| c.kind() == ChannelKind::Translation).map(move |(k, _)| j.first_channel() + k))
+        .flat_map(|j| {
+            j.channels
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| c.kind() == ChannelKind::Translation)
+                .map(move |(k, _)| j.first_channel() + k)
+        })
         .collect();
     for row in data.chunks_mut(width) {
         for &c in &translation_columns {
@@ -513,7 +525,16 @@ fn remove_joint(clip: &Clip, name: &str, fold: bool) -> Result<Clip, EditError> 
     }
     let poses = locals(clip);
     // New indices: every joint but the removed one, in order.
-    let map: Vec<Option<usize>> = (0..old.len()).scan(0usize, |next, i| Some(if i == gone { None } else { *next += 1; Some(*next - 1) })).collect();
+    let map: Vec<Option<usize>> = (0..old.len())
+        .scan(0usize, |next, i| {
+            Some(if i == gone {
+                None
+            } else {
+                *next += 1;
+                Some(*next - 1)
+            })
+        })
+        .collect();
     let children: Vec<usize> = (0..old.len()).filter(|&i| old[i].parent == Some(gone)).collect();
     // Children of the removed joint hang from its parent, at its offset plus
     // theirs. Folding gives a joint child position channels and all three
@@ -575,22 +596,31 @@ fn key_weight(f: usize, key: usize, window: usize) -> f32 {
     t * t * (3.0 - 2.0 * t)
 }
 
-fn correct(clip: &Clip, frame: usize, rotations: &[(String, Quat)], translations: &[(String, Vec3)], window: usize) -> Result<Clip, EditError> {
+fn correct(
+    clip: &Clip,
+    frame: usize,
+    rotations: &[(String, Quat)],
+    translations: &[(String, Vec3)],
+    window: usize,
+) -> Result<Clip, EditError> {
     let n = clip.frame_count();
     if frame >= n {
         return err(format!("key at frame {frame}: the clip has frames 0 to {}", n.saturating_sub(1)));
     }
     let skeleton = clip.skeleton();
     let find = |name: &str| skeleton.find(name).ok_or_else(|| EditError(format!("key: no joint named `{name}`")));
-    let rotations: Vec<(usize, Quat)> = rotations.iter().map(|(name, q)| Ok((find(name)?, *q))).collect::<Result<_, EditError>>()?;
-    let translations: Vec<(usize, Vec3)> = translations.iter().map(|(name, t)| Ok((find(name)?, *t))).collect::<Result<_, EditError>>()?;
+    let rotations: Vec<(usize, Quat)> =
+        rotations.iter().map(|(name, q)| Ok((find(name)?, *q))).collect::<Result<_, EditError>>()?;
+    let translations: Vec<(usize, Vec3)> =
+        translations.iter().map(|(name, t)| Ok((find(name)?, *t))).collect::<Result<_, EditError>>()?;
     if rotations.iter().any(|(_, q)| !q.is_finite()) || translations.iter().any(|(_, t)| !t.is_finite()) {
         return err("key: a value is not finite");
     }
     let mut poses = locals(clip);
     let at_key = poses[frame].clone();
     // The change at the key, in each joint's own frame, spread over the window.
-    let deltas: Vec<(usize, Quat)> = rotations.iter().map(|&(j, q)| (j, (at_key.rotation[j].inverse() * q).normalize())).collect();
+    let deltas: Vec<(usize, Quat)> =
+        rotations.iter().map(|&(j, q)| (j, (at_key.rotation[j].inverse() * q).normalize())).collect();
     let moves: Vec<(usize, Vec3)> = translations.iter().map(|&(j, t)| (j, t - at_key.translation[j])).collect();
     for (f, pose) in poses.iter_mut().enumerate() {
         let w = key_weight(f, frame, window);
@@ -663,7 +693,14 @@ pub fn new_character(frames: usize, fps: f64) -> Clip {
         "Hips",
         None,
         Vec3::new(0.0, 1.0, 0.0),
-        vec![Channel::Xposition, Channel::Yposition, Channel::Zposition, Channel::Zrotation, Channel::Xrotation, Channel::Yrotation],
+        vec![
+            Channel::Xposition,
+            Channel::Yposition,
+            Channel::Zposition,
+            Channel::Zrotation,
+            Channel::Xrotation,
+            Channel::Yrotation,
+        ],
     );
     let end = Joint::end_site("Hips_End", Some(0), Vec3::new(0.0, 0.1, 0.0));
     let skeleton = Skeleton::new(vec![root, end], EulerConvention::Intrinsic).unwrap_or_default();
@@ -713,7 +750,13 @@ fn restructured(clip: &Clip, joints: Vec<Joint>, sources: &[Option<usize>]) -> R
     // Plain joints again (columns are assigned by the skeleton).
     let joints: Vec<Joint> = joints
         .into_iter()
-        .map(|j| if j.is_end_site() { Joint::end_site(j.name.clone(), j.parent, j.offset) } else { Joint::new(j.name.clone(), j.parent, j.offset, j.channels.clone()) })
+        .map(|j| {
+            if j.is_end_site() {
+                Joint::end_site(j.name.clone(), j.parent, j.offset)
+            } else {
+                Joint::new(j.name.clone(), j.parent, j.offset, j.channels.clone())
+            }
+        })
         .collect();
     let skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| EditError(e.to_string()))?;
     let rest = LocalPose::rest(&skeleton);
@@ -774,7 +817,15 @@ fn add_joint(clip: &Clip, parent: &str, name: &str, offset: Vec3) -> Result<Clip
     }
     let parent_position = position[p].ok_or_else(|| EditError("the parent vanished".into()))?;
     let new_index = joints.len();
-    joints.push((Joint::new(name, Some(parent_position), offset, vec![Channel::Zrotation, Channel::Xrotation, Channel::Yrotation]), None));
+    joints.push((
+        Joint::new(
+            name,
+            Some(parent_position),
+            offset,
+            vec![Channel::Zrotation, Channel::Xrotation, Channel::Yrotation],
+        ),
+        None,
+    ));
     let tip = if offset.length() > 0.0 { offset * 0.25 } else { Vec3::new(0.0, 0.05, 0.0) };
     joints.push((Joint::end_site(format!("{name}_End"), Some(new_index), tip), None));
     let (joints, sources) = depth_first(joints);
@@ -825,7 +876,8 @@ fn set_channels(clip: &Clip, name: &str, position: bool, order: &str) -> Result<
     if seen.len() != axes.len() || axes.len() != 3 {
         return err(format!("rotation order `{order}`: name each of X, Y and Z once"));
     }
-    let mut channels = if position { vec![Channel::Xposition, Channel::Yposition, Channel::Zposition] } else { Vec::new() };
+    let mut channels =
+        if position { vec![Channel::Xposition, Channel::Yposition, Channel::Zposition] } else { Vec::new() };
     channels.extend(axes);
     with_joint_changed(clip, j, |joint| joint.channels = channels)
 }

@@ -58,7 +58,9 @@ pub enum LoadError {
         error: ParseError,
     },
     /// Neither the extension nor the content matches a format we read.
-    #[error("{file}: not a motion file or model this viewer reads (BVH, BVA, an Acclaim .asf skeleton with .amc motions, or a Quake 2 .md2 model with its PCX, BMP, PNG or JPEG skin)")]
+    #[error(
+        "{file}: not a motion file or model this viewer reads (BVH, BVA, an Acclaim .asf skeleton with .amc motions, or a Quake 2 .md2 model with its PCX, BMP, PNG or JPEG skin)"
+    )]
     UnknownFormat {
         /// The file name as given by the caller.
         file: String,

@@ -18,8 +18,8 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
     let r = ((x - k * PIO2_1) - k * PIO2_2) - k * PIO2_3;
     let r2 = r * r;
     let s = r + r * r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362_880.0))));
-    let c = 1.0
-        + r2 * (-0.5 + r2 * (1.0 / 24.0 + r2 * (-1.0 / 720.0 + r2 * (1.0 / 40_320.0 + r2 * (-1.0 / 3_628_800.0)))));
+    let c =
+        1.0 + r2 * (-0.5 + r2 * (1.0 / 24.0 + r2 * (-1.0 / 720.0 + r2 * (1.0 / 40_320.0 + r2 * (-1.0 / 3_628_800.0)))));
     // Quadrant q = k mod 4: odd quadrants swap sin and cos, then signs flip.
     // k sits in the low mantissa bits of `shifted`; its two lowest are k mod 4
     // (no float-to-int conversion, which would not vectorise).

@@ -4,7 +4,7 @@
 //! a test checks the two agree.
 
 use crate::channel::AngleUnit;
-use crate::pose::{plain_joint_local, LocalPose};
+use crate::pose::{LocalPose, plain_joint_local};
 use crate::skeleton::{Joint, Skeleton};
 use glam::{Quat, Vec3};
 
@@ -73,9 +73,20 @@ fn quat_rotate(q: [f32; 4], v: [f32; 3]) -> [f32; 3] {
 
 /// `parent ∘ child` on arrays: rotation, translation, scale.
 #[inline(always)]
-fn compose_arrays(pr: [f32; 4], pt: [f32; 3], ps: [f32; 3], cr: [f32; 4], ct: [f32; 3], cs: [f32; 3]) -> ([f32; 4], [f32; 3], [f32; 3]) {
+fn compose_arrays(
+    pr: [f32; 4],
+    pt: [f32; 3],
+    ps: [f32; 3],
+    cr: [f32; 4],
+    ct: [f32; 3],
+    cs: [f32; 3],
+) -> ([f32; 4], [f32; 3], [f32; 3]) {
     let moved = quat_rotate(pr, [ps[0] * ct[0], ps[1] * ct[1], ps[2] * ct[2]]);
-    (quat_mul(pr, cr), [pt[0] + moved[0], pt[1] + moved[1], pt[2] + moved[2]], [ps[0] * cs[0], ps[1] * cs[1], ps[2] * cs[2]])
+    (
+        quat_mul(pr, cr),
+        [pt[0] + moved[0], pt[1] + moved[1], pt[2] + moved[2]],
+        [ps[0] * cs[0], ps[1] * cs[1], ps[2] * cs[2]],
+    )
 }
 
 /// Local to model: `out[i] = out[parent(i)] ∘ local[i]`, roots as they are.
@@ -107,7 +118,13 @@ pub fn local_to_model(skeleton: &Skeleton, local: &LocalPose, out: &mut Vec<Tran
 /// (that store and reload costs a fifth of the time). Other skeletons go through
 /// `scratch`: `from_row` then [`local_to_model`]. Either way the result equals
 /// `from_row` followed by `local_to_model` (a test checks it bit for bit).
-pub fn model_from_row(skeleton: &Skeleton, row: &[f32], unit: AngleUnit, scratch: &mut LocalPose, out: &mut Vec<Transform>) {
+pub fn model_from_row(
+    skeleton: &Skeleton,
+    row: &[f32],
+    unit: AngleUnit,
+    scratch: &mut LocalPose,
+    out: &mut Vec<Transform>,
+) {
     if skeleton.is_plain() {
         let half = unit.radians_per_unit() * 0.5;
         let entry = |_: usize, joint: &Joint| {
@@ -124,14 +141,21 @@ pub fn model_from_row(skeleton: &Skeleton, row: &[f32], unit: AngleUnit, scratch
 /// The one local-to-model loop: joint `i`'s local (translation, rotation, scale)
 /// comes from `local(i, joint)`, its model transform is its parent's composed with it.
 #[inline(always)]
-fn compose_each<const SCALED: bool>(skeleton: &Skeleton, n: usize, local: impl Fn(usize, &Joint) -> ([f32; 3], [f32; 4], [f32; 3]), out: &mut Vec<Transform>) {
+fn compose_each<const SCALED: bool>(
+    skeleton: &Skeleton,
+    n: usize,
+    local: impl Fn(usize, &Joint) -> ([f32; 3], [f32; 4], [f32; 3]),
+    out: &mut Vec<Transform>,
+) {
     out.clear();
     out.reserve(n);
     for (i, joint) in skeleton.joints().iter().enumerate().take(n) {
         let (t, r, s) = local(i, joint);
         let s = if SCALED { s } else { [1.0; 3] };
         let (r, t, s) = match joint.parent.and_then(|p| out.get(p)) {
-            Some(p) if SCALED => compose_arrays(p.rotation.to_array(), p.translation.to_array(), p.scale.to_array(), r, t, s),
+            Some(p) if SCALED => {
+                compose_arrays(p.rotation.to_array(), p.translation.to_array(), p.scale.to_array(), r, t, s)
+            }
             Some(p) => {
                 let (pr, pt) = (p.rotation.to_array(), p.translation.to_array());
                 let moved = quat_rotate(pr, t);
@@ -139,7 +163,11 @@ fn compose_each<const SCALED: bool>(skeleton: &Skeleton, n: usize, local: impl F
             }
             None => (r, t, s),
         };
-        out.push(Transform { rotation: Quat::from_array(r), translation: Vec3::from_array(t), scale: Vec3::from_array(s) });
+        out.push(Transform {
+            rotation: Quat::from_array(r),
+            translation: Vec3::from_array(t),
+            scale: Vec3::from_array(s),
+        });
     }
 }
 
@@ -164,7 +192,14 @@ mod tests {
         crate::pose::from_row(clip.skeleton(), clip.channel_values(0), AngleUnit::Degrees, &mut local);
         local_to_model(clip.skeleton(), &local, &mut a);
         model_from_row(clip.skeleton(), clip.channel_values(0), AngleUnit::Degrees, &mut local, &mut b);
-        let bits = |v: &[Transform]| v.iter().flat_map(|t| t.rotation.to_array().into_iter().chain(t.translation.to_array()).chain(t.scale.to_array())).map(f32::to_bits).collect::<Vec<_>>();
+        let bits = |v: &[Transform]| {
+            v.iter()
+                .flat_map(|t| {
+                    t.rotation.to_array().into_iter().chain(t.translation.to_array()).chain(t.scale.to_array())
+                })
+                .map(f32::to_bits)
+                .collect::<Vec<_>>()
+        };
         assert_eq!(bits(&a), bits(&b));
     }
 }

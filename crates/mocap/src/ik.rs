@@ -331,7 +331,14 @@ fn unreachable_target() -> Solve {
 /// in model space, e.g. in front of the knee), then `b` turns so that `c` reaches
 /// the target. A target out of reach (or too near) stretches the chain straight
 /// toward it. Limits, when on, are applied after (the effector may then stop short).
-pub fn two_bone(skeleton: &Skeleton, pose: &mut LocalPose, chain: &Chain, target: Vec3, pole: Vec3, options: &Options) -> Solve {
+pub fn two_bone(
+    skeleton: &Skeleton,
+    pose: &mut LocalPose,
+    chain: &Chain,
+    target: Vec3,
+    pole: Vec3,
+    options: &Options,
+) -> Solve {
     if chain.joints.len() != 3 {
         return ccd(skeleton, pose, chain, target, options);
     }

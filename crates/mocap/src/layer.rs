@@ -13,8 +13,8 @@
 
 use crate::bake;
 use crate::clip::Clip;
-use crate::pose::{from_row, LocalPose};
-use crate::sample::{sample, Interpolation, SampleScratch};
+use crate::pose::{LocalPose, from_row};
+use crate::sample::{Interpolation, SampleScratch, sample};
 use glam::Quat;
 
 /// How the layer combines with the base.
@@ -48,7 +48,14 @@ pub struct Layer {
 impl Layer {
     /// A full-weight override layer on `subtree`, no fades, names matched.
     pub fn on(subtree: &str) -> Layer {
-        Layer { subtree: subtree.to_owned(), weight: 1.0, fade_in: 0.0, fade_out: 0.0, blend: Blend::Override, map: Vec::new() }
+        Layer {
+            subtree: subtree.to_owned(),
+            weight: 1.0,
+            fade_in: 0.0,
+            fade_out: 0.0,
+            blend: Blend::Override,
+            map: Vec::new(),
+        }
     }
 }
 
@@ -80,9 +87,17 @@ pub fn canonical_name(name: &str) -> String {
         ("left", compact.trim_end_matches('l').to_owned())
     } else if suffix_side("r") {
         ("right", compact.trim_end_matches('r').to_owned())
-    } else if compact.starts_with('l') && compact.len() > 2 && s.chars().nth(1).is_some_and(|c| c == '_' || c.is_ascii_uppercase() || name.chars().nth(1).is_some_and(|n| n.is_ascii_uppercase())) {
+    } else if compact.starts_with('l')
+        && compact.len() > 2
+        && s.chars().nth(1).is_some_and(|c| {
+            c == '_' || c.is_ascii_uppercase() || name.chars().nth(1).is_some_and(|n| n.is_ascii_uppercase())
+        })
+    {
         ("left", compact[1..].to_owned())
-    } else if compact.starts_with('r') && compact.len() > 2 && (s.chars().nth(1) == Some('_') || name.chars().nth(1).is_some_and(|n| n.is_ascii_uppercase())) {
+    } else if compact.starts_with('r')
+        && compact.len() > 2
+        && (s.chars().nth(1) == Some('_') || name.chars().nth(1).is_some_and(|n| n.is_ascii_uppercase()))
+    {
         ("right", compact[1..].to_owned())
     } else {
         ("", compact.clone())
@@ -110,7 +125,12 @@ pub fn canonical_name(name: &str) -> String {
 /// explicit pairs first (a pair with an empty layer name leaves that joint out),
 /// then equal names, then equal [`canonical_name`]s.
 /// Returns (base joint, layer joint) pairs.
-pub fn match_joints(base: &crate::Skeleton, layer: &crate::Skeleton, root: usize, map: &[(String, String)]) -> Vec<(usize, usize)> {
+pub fn match_joints(
+    base: &crate::Skeleton,
+    layer: &crate::Skeleton,
+    root: usize,
+    map: &[(String, String)],
+) -> Vec<(usize, usize)> {
     let joints = base.joints();
     let mut inside = vec![false; joints.len()];
     for (i, j) in joints.iter().enumerate() {
@@ -139,10 +159,15 @@ pub fn match_joints(base: &crate::Skeleton, layer: &crate::Skeleton, root: usize
 pub fn apply(base: &Clip, layer_clip: &Clip, layer: &Layer) -> Result<Clip, LayerError> {
     let (base, _) = bake::to_bvh(base);
     let skeleton = base.skeleton();
-    let root = skeleton.find(&layer.subtree).ok_or_else(|| LayerError(format!("no joint named `{}` in the base", layer.subtree)))?;
+    let root = skeleton
+        .find(&layer.subtree)
+        .ok_or_else(|| LayerError(format!("no joint named `{}` in the base", layer.subtree)))?;
     let pairs = match_joints(skeleton, layer_clip.skeleton(), root, &layer.map);
     if pairs.is_empty() {
-        return Err(LayerError(format!("no joint of the layer matches the subtree of `{}` (map them by name)", layer.subtree)));
+        return Err(LayerError(format!(
+            "no joint of the layer matches the subtree of `{}` (map them by name)",
+            layer.subtree
+        )));
     }
     if !(layer.weight.is_finite() && (0.0..=1.0).contains(&layer.weight)) {
         return Err(LayerError(format!("weight {}: expected 0 to 1", layer.weight)));
@@ -175,7 +200,9 @@ pub fn apply(base: &Clip, layer_clip: &Clip, layer: &Layer) -> Result<Clip, Laye
         for &(b, l) in &pairs {
             let target = match layer.blend {
                 Blend::Override => layer_pose.rotation[l],
-                Blend::Additive => (base_pose.rotation[b] * first_layer.rotation[l].inverse() * layer_pose.rotation[l]).normalize(),
+                Blend::Additive => {
+                    (base_pose.rotation[b] * first_layer.rotation[l].inverse() * layer_pose.rotation[l]).normalize()
+                }
             };
             let q: Quat = base_pose.rotation[b].slerp(target, w).normalize();
             let joint = &skeleton.joints()[b];
@@ -192,7 +219,9 @@ pub fn apply(base: &Clip, layer_clip: &Clip, layer: &Layer) -> Result<Clip, Laye
         }
         data.extend_from_slice(&changed);
     }
-    let motion = crate::Motion::new(base.frame_time(), width, frames, data).ok_or_else(|| LayerError("the layer made no valid motion".into()))?.with_angle_unit(unit);
+    let motion = crate::Motion::new(base.frame_time(), width, frames, data)
+        .ok_or_else(|| LayerError("the layer made no valid motion".into()))?
+        .with_angle_unit(unit);
     let mut out = Clip::new(skeleton.clone(), motion).map_err(|e| LayerError(e.to_string()))?;
     out.metadata = base.metadata.clone();
     Ok(out)

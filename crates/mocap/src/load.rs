@@ -151,14 +151,19 @@ impl Loader {
     /// with no model are an error each ([`LoadError::LoneImage`]).
     pub fn load(&mut self, files: &[Input<'_>]) -> Vec<Result<Loaded, LoadError>> {
         let kinds: Vec<Kind> = files.iter().map(Kind::detect).collect();
-        let formats: Vec<Option<Format>> = kinds.iter().map(|k| if let Kind::Asset(f) = k { Some(*f) } else { None }).collect();
+        let formats: Vec<Option<Format>> =
+            kinds.iter().map(|k| if let Kind::Asset(f) = k { Some(*f) } else { None }).collect();
         let mut skins = Skins::new(files, &kinds);
         skins.decode_all(files);
         // Models are read first so that images a model names are not handed to another.
         let mut models: Vec<Option<Result<MorphMesh, LoadError>>> = files
             .iter()
             .zip(&formats)
-            .map(|(file, format)| (*format == Some(Format::Md2)).then(|| crate::md2::parse(file.bytes).map(|m| MorphMesh::from_md2(&m)).map_err(|e| parse_error(file, e))))
+            .map(|(file, format)| {
+                (*format == Some(Format::Md2)).then(|| {
+                    crate::md2::parse(file.bytes).map(|m| MorphMesh::from_md2(&m)).map_err(|e| parse_error(file, e))
+                })
+            })
             .collect();
         for (file, model) in files.iter().zip(&models) {
             if let Some(Ok(mesh)) = model {
@@ -183,7 +188,10 @@ impl Loader {
                     _ => Err(LoadError::UnknownFormat { file: file.name.to_owned() }),
                 },
                 Some(Format::Bvh) => crate::bvh::parse(file.bytes).map(Asset::from).map_err(|e| parse_error(file, e)),
-                Some(Format::Bva) => crate::bva::parse(file.bytes).and_then(|b| crate::bva::to_clip(&b)).map(Asset::from).map_err(|e| parse_error(file, e)),
+                Some(Format::Bva) => crate::bva::parse(file.bytes)
+                    .and_then(|b| crate::bva::to_clip(&b))
+                    .map(Asset::from)
+                    .map_err(|e| parse_error(file, e)),
                 Some(Format::Md2) => match models.get_mut(i).and_then(Option::take) {
                     Some(mesh) => mesh.map(|mesh| skins.model(file.name, mesh)),
                     None => continue,
@@ -197,9 +205,16 @@ impl Loader {
                         }
                     }
                     match chosen.skeleton {
-                        Some(Ok(skeleton)) => skeleton.motion_clip(file.bytes).map(Asset::from).map_err(|e| parse_error(file, e)),
-                        Some(Err(e)) => Err(LoadError::SkeletonFailed { file: file.name.to_owned(), skeleton: Box::new(e) }),
-                        None => Err(LoadError::MissingSkeleton { file: file.name.to_owned(), named: named_skeleton(file.bytes) }),
+                        Some(Ok(skeleton)) => {
+                            skeleton.motion_clip(file.bytes).map(Asset::from).map_err(|e| parse_error(file, e))
+                        }
+                        Some(Err(e)) => {
+                            Err(LoadError::SkeletonFailed { file: file.name.to_owned(), skeleton: Box::new(e) })
+                        }
+                        None => Err(LoadError::MissingSkeleton {
+                            file: file.name.to_owned(),
+                            named: named_skeleton(file.bytes),
+                        }),
                     }
                 }
             };
@@ -221,7 +236,12 @@ impl Loader {
     }
 
     /// The skeleton an AMC named `name` uses (see [`Loader::load`]).
-    fn skeleton_for<'s>(&'s self, name: &str, files: &[Input<'_>], skeletons: &'s [(usize, Result<AcclaimSkeleton, LoadError>)]) -> Chosen<'s> {
+    fn skeleton_for<'s>(
+        &'s self,
+        name: &str,
+        files: &[Input<'_>],
+        skeletons: &'s [(usize, Result<AcclaimSkeleton, LoadError>)],
+    ) -> Chosen<'s> {
         let motion = stem(name).to_ascii_lowercase();
         let by_name = skeletons
             .iter()
@@ -248,7 +268,13 @@ struct Skins<'f> {
 
 impl<'f> Skins<'f> {
     fn new(files: &[Input<'f>], kinds: &[Kind]) -> Skins<'f> {
-        let images: Vec<_> = files.iter().zip(kinds).enumerate().filter(|(_, (_, k))| matches!(k, Kind::Image(_))).map(|(i, (f, _))| (i, f.name, None)).collect();
+        let images: Vec<_> = files
+            .iter()
+            .zip(kinds)
+            .enumerate()
+            .filter(|(_, (_, k))| matches!(k, Kind::Image(_)))
+            .map(|(i, (f, _))| (i, f.name, None))
+            .collect();
         let has_model = kinds.contains(&Kind::Asset(Format::Md2));
         let used = vec![false; images.len()];
         let claimed = used.clone();
@@ -293,7 +319,11 @@ impl<'f> Skins<'f> {
         for (i, name, image) in &mut self.images {
             if image.is_none() {
                 let bytes = files.get(*i).map_or(&[][..], |f| f.bytes);
-                *image = Some(image::decode_any(name, bytes).map(Arc::new).map_err(|error| LoadError::Parse { file: (*name).to_owned(), error }));
+                *image = Some(
+                    image::decode_any(name, bytes)
+                        .map(Arc::new)
+                        .map_err(|error| LoadError::Parse { file: (*name).to_owned(), error }),
+                );
             }
         }
     }

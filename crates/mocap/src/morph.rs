@@ -83,7 +83,9 @@ impl MorphMesh {
         let (w, h) = (model.skin_width.max(1) as f32, model.skin_height.max(1) as f32);
         let tex_coords = sources
             .iter()
-            .map(|&(_, t)| model.tex_coords.get(usize::from(t)).map_or([0.0; 2], |st| [f32::from(st[0]) / w, f32::from(st[1]) / h]))
+            .map(|&(_, t)| {
+                model.tex_coords.get(usize::from(t)).map_or([0.0; 2], |st| [f32::from(st[0]) / w, f32::from(st[1]) / h])
+            })
             .collect();
         let mut positions = Vec::with_capacity(sources.len() * model.frames.len());
         let mut normals = Vec::with_capacity(sources.len() * model.frames.len());
@@ -91,7 +93,8 @@ impl MorphMesh {
             for &(v, _) in &sources {
                 let Some(packed) = frame.vertices.get(usize::from(v)) else { continue };
                 positions.push(md2::to_y_up(frame.quake_position(usize::from(v))));
-                normals.push(md2::to_y_up(md2::NORMALS.get(usize::from(packed[3])).copied().unwrap_or([0.0, 0.0, 1.0])));
+                normals
+                    .push(md2::to_y_up(md2::NORMALS.get(usize::from(packed[3])).copied().unwrap_or([0.0, 0.0, 1.0])));
             }
         }
         let mut mesh = MorphMesh {
@@ -105,7 +108,11 @@ impl MorphMesh {
             animations: model.animations.clone(),
             skins: model.skins.clone(),
             skin_size: [model.skin_width, model.skin_height],
-            source_counts: SourceCounts { vertices: model.vertex_count, triangles: model.triangles.len(), tex_coords: model.tex_coords.len() },
+            source_counts: SourceCounts {
+                vertices: model.vertex_count,
+                triangles: model.triangles.len(),
+                tex_coords: model.tex_coords.len(),
+            },
             bounds: Aabb::EMPTY,
             first_bounds: Aabb::EMPTY,
         };
@@ -311,7 +318,8 @@ impl Model {
         // One lap of the loop: the n frames and the way back to the first.
         let lap = Timeline::new(FRAME_TIME, n + 1);
         let period = lap.duration();
-        let time = if time > self.timeline().duration() && n > 1 && time.is_finite() { time.rem_euclid(period) } else { time };
+        let time =
+            if time > self.timeline().duration() && n > 1 && time.is_finite() { time.rem_euclid(period) } else { time };
         let wrap = |f: usize| f % n;
         let FramePosition { frame0, frame1, alpha } = lap.position(time);
         let (frame0, frame1, blend) = match interpolation {

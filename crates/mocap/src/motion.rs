@@ -64,9 +64,7 @@ impl Motion {
     /// One frame's row; empty when `frame` is out of range.
     pub fn row(&self, frame: usize) -> &[f32] {
         let start = frame.saturating_mul(self.channel_count);
-        self.data
-            .get(start..start.saturating_add(self.channel_count))
-            .unwrap_or(&[])
+        self.data.get(start..start.saturating_add(self.channel_count)).unwrap_or(&[])
     }
 
     /// One value; 0 when out of range.
@@ -81,18 +79,19 @@ impl Motion {
     pub fn column(&self, channel: usize) -> impl Iterator<Item = f32> + '_ {
         let width = self.channel_count.max(1);
         let ok = channel < self.channel_count;
-        self.data
-            .iter()
-            .skip(channel)
-            .step_by(width)
-            .copied()
-            .filter(move |_| ok)
+        self.data.iter().skip(channel).step_by(width).copied().filter(move |_| ok)
     }
 }
 
 impl Default for Motion {
     /// No frames, no channels, 30 fps.
     fn default() -> Motion {
-        Motion { frame_time: 1.0 / 30.0, angle_unit: AngleUnit::Degrees, channel_count: 0, frame_count: 0, data: Vec::new() }
+        Motion {
+            frame_time: 1.0 / 30.0,
+            angle_unit: AngleUnit::Degrees,
+            channel_count: 0,
+            frame_count: 0,
+            data: Vec::new(),
+        }
     }
 }

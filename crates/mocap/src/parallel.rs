@@ -35,9 +35,9 @@ pub(crate) fn piece_count(len: usize, per_thread: usize) -> usize {
 /// or one thread, all on the calling thread.
 #[cfg(not(target_family = "wasm"))]
 pub(crate) fn map<I: Send, T: Send>(items: Vec<I>, f: impl Fn(I) -> T + Sync) -> Vec<Option<T>> {
-    use std::panic::{catch_unwind, AssertUnwindSafe};
-    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::panic::{AssertUnwindSafe, catch_unwind};
     use std::sync::Mutex;
+    use std::sync::atomic::{AtomicUsize, Ordering};
     let threads = max_threads().min(items.len());
     if threads <= 1 {
         return items.into_iter().map(|i| catch_unwind(AssertUnwindSafe(|| f(i))).ok()).collect();
@@ -69,7 +69,7 @@ pub(crate) fn map<I: Send, T: Send>(items: Vec<I>, f: impl Fn(I) -> T + Sync) ->
 /// (or [`Slot::Failed`] when `f` panics).
 #[cfg(not(target_family = "wasm"))]
 fn run_slot<I, T>(slot: &std::sync::Mutex<Slot<I, T>>, f: impl Fn(I) -> T) {
-    use std::panic::{catch_unwind, AssertUnwindSafe};
+    use std::panic::{AssertUnwindSafe, catch_unwind};
     let item = match slot.lock().map(|mut s| std::mem::replace(&mut *s, Slot::Failed)) {
         Ok(Slot::Item(item)) => item,
         _ => return,

@@ -218,7 +218,9 @@ fn fill<const EXTRINSIC: bool, const STRETCH: bool>(skeleton: &Skeleton, row: &[
 pub fn blend(a: &LocalPose, b: &LocalPose, alpha: f32, out: &mut LocalPose) {
     out.clear(a.len());
     for i in 0..a.len() {
-        let (Some(&ta), Some(&ra), Some(&sa)) = (a.translation.get(i), a.rotation.get(i), a.scale.get(i)) else { break };
+        let (Some(&ta), Some(&ra), Some(&sa)) = (a.translation.get(i), a.rotation.get(i), a.scale.get(i)) else {
+            break;
+        };
         let (t, r, s) = match (b.translation.get(i), b.rotation.get(i), b.scale.get(i)) {
             (Some(&tb), Some(&rb), Some(&sb)) => (ta.lerp(tb, alpha), ra.slerp(rb, alpha), sa.lerp(sb, alpha)),
             _ => (ta, ra, sa),

@@ -3,7 +3,7 @@
 //! [`crate::time`].
 
 use crate::motion::Motion;
-use crate::pose::{blend, from_row, LocalPose};
+use crate::pose::{LocalPose, blend, from_row};
 use crate::skeleton::Skeleton;
 
 /// How to get a pose between two frames.
@@ -31,7 +31,14 @@ pub struct SampleScratch {
 /// Inputs: the skeleton, its motion, a time, the interpolation, and reusable
 /// scratch. Output: `out`, one entry per joint. A motion with no frames gives the
 /// rest pose.
-pub fn sample(skeleton: &Skeleton, motion: &Motion, time: f64, interpolation: Interpolation, scratch: &mut SampleScratch, out: &mut LocalPose) {
+pub fn sample(
+    skeleton: &Skeleton,
+    motion: &Motion,
+    time: f64,
+    interpolation: Interpolation,
+    scratch: &mut SampleScratch,
+    out: &mut LocalPose,
+) {
     let timeline = motion.timeline();
     let p = timeline.position(time);
     let unit = motion.angle_unit();

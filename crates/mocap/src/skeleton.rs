@@ -55,7 +55,16 @@ pub struct Joint {
 impl Joint {
     /// A joint with these channels, no rest rotation and no limits.
     pub fn new(name: impl Into<String>, parent: Option<usize>, offset: Vec3, channels: Vec<Channel>) -> Joint {
-        Joint { name: name.into(), parent, offset, rest_rotation: Quat::IDENTITY, channels, limits: Vec::new(), first_channel: 0, end_site: false }
+        Joint {
+            name: name.into(),
+            parent,
+            offset,
+            rest_rotation: Quat::IDENTITY,
+            channels,
+            limits: Vec::new(),
+            first_channel: 0,
+            end_site: false,
+        }
     }
 
     /// An End Site: a point that only marks where its parent's bone ends.
@@ -141,8 +150,10 @@ impl Skeleton {
             next += joint.channels.len();
         }
         let has_length = joints.iter().any(|j| j.channels.contains(&Channel::Length));
-        let has_scale = joints.iter().any(|j| j.channels.iter().any(|c| c.kind() == crate::channel::ChannelKind::Scale));
-        let plain = euler == EulerConvention::Intrinsic && joints.iter().all(|j| j.rest_rotation == Quat::IDENTITY && j.channels.iter().all(|c| c.is_bvh()));
+        let has_scale =
+            joints.iter().any(|j| j.channels.iter().any(|c| c.kind() == crate::channel::ChannelKind::Scale));
+        let plain = euler == EulerConvention::Intrinsic
+            && joints.iter().all(|j| j.rest_rotation == Quat::IDENTITY && j.channels.iter().all(|c| c.is_bvh()));
         Ok(Skeleton { joints, euler, channel_count: next, has_length, has_scale, plain })
     }
 

@@ -94,7 +94,11 @@ impl Skin {
     ) -> Result<Skin, SkinError> {
         let n = positions.len();
         if normals.len() != n || joints.len() != n || weights.len() != n {
-            return Err(SkinError::Lengths { positions: n, normals: normals.len(), influences: joints.len().min(weights.len()) });
+            return Err(SkinError::Lengths {
+                positions: n,
+                normals: normals.len(),
+                influences: joints.len().min(weights.len()),
+            });
         }
         if indices.len() % 3 != 0 {
             return Err(SkinError::Triangles(indices.len()));
@@ -161,7 +165,9 @@ impl Skin {
 /// (identity past the end of either), into `out` (cleared first).
 pub fn skinning_matrices(model: &[Transform], inverse_bind: &[Mat4], out: &mut Vec<Mat4>) {
     out.clear();
-    out.extend(inverse_bind.iter().enumerate().map(|(j, inv)| model.get(j).map_or(Mat4::IDENTITY, |t| matrix(t) * *inv)));
+    out.extend(
+        inverse_bind.iter().enumerate().map(|(j, inv)| model.get(j).map_or(Mat4::IDENTITY, |t| matrix(t) * *inv)),
+    );
 }
 
 /// Linear-blend skinning on the CPU (the reference the GPU path is tested

@@ -6,8 +6,8 @@
 use crate::arrange::spread;
 use crate::asset::Asset;
 use crate::clip::{Aabb, Clip, Units};
+use crate::fk::{Transform, local_to_model};
 use crate::morph::{Model, MorphSample};
-use crate::fk::{local_to_model, Transform};
 use crate::pose::LocalPose;
 use crate::sample::{Interpolation, SampleScratch};
 use crate::time::Timeline;
@@ -197,7 +197,13 @@ impl<E> Actor<E> {
     /// Model transforms at `time` in metres, placed: interpolated, or the frame
     /// shown ([`Interpolation::Step`]). Past its end a clip holds its last pose. A
     /// model has no joints: `out` is left empty.
-    pub fn pose_at(&self, time: f64, interpolation: Interpolation, scratch: &mut PoseScratch, out: &mut Vec<Transform>) {
+    pub fn pose_at(
+        &self,
+        time: f64,
+        interpolation: Interpolation,
+        scratch: &mut PoseScratch,
+        out: &mut Vec<Transform>,
+    ) {
         if !self.sample_local(time, interpolation, scratch) {
             out.clear();
             return;
@@ -399,7 +405,9 @@ mod tests {
     use super::*;
 
     fn clip(frames: usize, frame_time: f64, height: f32) -> Clip {
-        let mut text = format!("HIERARCHY\nROOT a\n{{\nOFFSET 0 0 0\nCHANNELS 1 Xposition\nJOINT b\n{{\nOFFSET 0 0 0\nEnd Site\n{{\nOFFSET 0 {height} 0\n}}\n}}\n}}\nMOTION\nFrames: {frames}\nFrame Time: {frame_time}\n");
+        let mut text = format!(
+            "HIERARCHY\nROOT a\n{{\nOFFSET 0 0 0\nCHANNELS 1 Xposition\nJOINT b\n{{\nOFFSET 0 0 0\nEnd Site\n{{\nOFFSET 0 {height} 0\n}}\n}}\n}}\nMOTION\nFrames: {frames}\nFrame Time: {frame_time}\n"
+        );
         for f in 0..frames {
             text.push_str(&format!("{f}\n"));
         }
@@ -440,17 +448,26 @@ mod tests {
 
     #[test]
     fn one_timeline_spans_the_longest_clip_in_the_reference_frame_time() {
-        let stage = Stage::new(vec![Actor::new("a", clip(11, 0.1, 1.7), ()), Actor::new("b", clip(121, 1.0 / 120.0, 1.7), ())], Layout::Spread);
+        let stage = Stage::new(
+            vec![Actor::new("a", clip(11, 0.1, 1.7), ()), Actor::new("b", clip(121, 1.0 / 120.0, 1.7), ())],
+            Layout::Spread,
+        );
         assert_eq!(stage.timeline(0).unwrap().frames(), 11);
         assert_eq!(stage.timeline(1).unwrap().frames(), 121);
-        let long = Stage::new(vec![Actor::new("a", clip(3, 0.1, 1.7), ()), Actor::new("b", clip(31, 0.0333333, 1.7), ())], Layout::Spread);
+        let long = Stage::new(
+            vec![Actor::new("a", clip(3, 0.1, 1.7), ()), Actor::new("b", clip(31, 0.0333333, 1.7), ())],
+            Layout::Spread,
+        );
         assert_eq!(long.timeline(0).unwrap().frames(), 11, "1 s in 0.1 s frames, within the snap of 0.999999 s");
         assert!(Stage::<()>::default().timeline(0).is_none());
     }
 
     #[test]
     fn spread_places_actors_apart_and_overlay_together() {
-        let mut stage = Stage::new(vec![Actor::new("a", clip(2, 0.1, 1.7), ()), Actor::new("b", clip(2, 0.1, 170.0), ())], Layout::Spread);
+        let mut stage = Stage::new(
+            vec![Actor::new("a", clip(2, 0.1, 1.7), ()), Actor::new("b", clip(2, 0.1, 170.0), ())],
+            Layout::Spread,
+        );
         assert_eq!(stage.actors[1].units, Units::Centimeters);
         assert!((stage.actors[1].world_extent() - 1.7).abs() < 1e-4);
         assert!(stage.actors[0].placement().x < stage.actors[1].placement().x);

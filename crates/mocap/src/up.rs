@@ -142,11 +142,7 @@ impl UpAxis {
         ratios.sort_by(f32::total_cmp);
         let median = ratios.get(ratios.len() / 2).copied().unwrap_or(0.0);
         let root_travel = if root_z.0 <= root_z.1 { root_z.1 - root_z.0 } else { 0.0 };
-        if median > Z_OVER_Y && root_travel < 0.5 * tallest {
-            UpAxis::Z
-        } else {
-            UpAxis::Y
-        }
+        if median > Z_OVER_Y && root_travel < 0.5 * tallest { UpAxis::Z } else { UpAxis::Y }
     }
 }
 
@@ -193,14 +189,25 @@ mod tests {
             let p = if up == UpAxis::Y { Vec3::new(x, h, 0.0) } else { Vec3::new(x, 0.0, h) };
             format!("OFFSET {} {} {}\n", p.x, p.y, p.z)
         };
-        let mut s = format!("HIERARCHY\nROOT Hips\n{{\n{}CHANNELS 6 Xposition Yposition Zposition Xrotation Yrotation Zrotation\n", at(0.0, 1.0));
+        let mut s = format!(
+            "HIERARCHY\nROOT Hips\n{{\n{}CHANNELS 6 Xposition Yposition Zposition Xrotation Yrotation Zrotation\n",
+            at(0.0, 1.0)
+        );
         s.push_str(&format!("JOINT Spine\n{{\n{}CHANNELS 3 Xrotation Yrotation Zrotation\nJOINT Head\n{{\n{}CHANNELS 3 Xrotation Yrotation Zrotation\nEnd Site\n{{\n{}}}\n}}\n", at(0.0, 0.5), at(0.0, 0.3), at(0.0, 0.2)));
         for x in [0.3f32, -0.3] {
-            s.push_str(&format!("JOINT Arm{x}\n{{\n{}CHANNELS 3 Xrotation Yrotation Zrotation\nEnd Site\n{{\n{}}}\n}}\n", at(x, 0.3), at(0.0, -0.6)));
+            s.push_str(&format!(
+                "JOINT Arm{x}\n{{\n{}CHANNELS 3 Xrotation Yrotation Zrotation\nEnd Site\n{{\n{}}}\n}}\n",
+                at(x, 0.3),
+                at(0.0, -0.6)
+            ));
         }
         s.push_str("}\n");
         for x in [0.1f32, -0.1] {
-            s.push_str(&format!("JOINT Leg{x}\n{{\n{}CHANNELS 3 Xrotation Yrotation Zrotation\nEnd Site\n{{\n{}}}\n}}\n", at(x, 0.0), at(0.0, -1.0)));
+            s.push_str(&format!(
+                "JOINT Leg{x}\n{{\n{}CHANNELS 3 Xrotation Yrotation Zrotation\nEnd Site\n{{\n{}}}\n}}\n",
+                at(x, 0.0),
+                at(0.0, -1.0)
+            ));
         }
         s.push_str("}\nMOTION\nFrames: 8\nFrame Time: 0.1\n");
         let turn = if lying { if up == UpAxis::Y { -90.0 } else { 90.0 } } else { 0.0 };

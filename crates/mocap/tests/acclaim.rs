@@ -5,7 +5,7 @@
 mod common;
 
 use mocap::glam::{Quat, Vec3};
-use mocap::{load, Input, LoadError, Loader};
+use mocap::{Input, LoadError, Loader, load};
 
 fn loaded(files: &[(&str, &[u8])]) -> Vec<Result<mocap::Loaded, LoadError>> {
     let inputs: Vec<Input> = files.iter().map(|(name, bytes)| Input { name, bytes }).collect();
@@ -81,7 +81,11 @@ fn a_motion_needs_its_skeleton_and_a_loader_remembers_the_last_one() {
     let err = loaded(&[("t.amc", amc)]).pop().unwrap().unwrap_err();
     assert!(matches!(err, LoadError::MissingSkeleton { .. }));
     assert!(err.to_string().contains("t.amc") && err.to_string().contains(".asf"), "{err}");
-    let named = loaded(&[("x.amc", b"#!OML:ASF H:\\Terrain\\JustinFriday.ASF\n:FULLY-SPECIFIED\n1\nroot 0 0 0 0 0 0\n")]).pop().unwrap().unwrap_err();
+    let named =
+        loaded(&[("x.amc", b"#!OML:ASF H:\\Terrain\\JustinFriday.ASF\n:FULLY-SPECIFIED\n1\nroot 0 0 0 0 0 0\n")])
+            .pop()
+            .unwrap()
+            .unwrap_err();
     assert!(named.to_string().ends_with("(the motion names JustinFriday.ASF)"), "{named}");
     let mut loader = Loader::default();
     let asf = two_bones([0.0; 3]);
@@ -95,28 +99,61 @@ fn a_motion_needs_its_skeleton_and_a_loader_remembers_the_last_one() {
 #[test]
 fn amc_errors_name_the_file_line_and_column() {
     let asf = two_bones([0.0; 3]);
-    let err = loaded(&[("t.asf", asf.as_bytes()), ("t.amc", b"1\nroot 0 0 0 0 0 0\nzz 1 2 3\n")]).pop().unwrap().unwrap_err();
+    let err =
+        loaded(&[("t.asf", asf.as_bytes()), ("t.amc", b"1\nroot 0 0 0 0 0 0\nzz 1 2 3\n")]).pop().unwrap().unwrap_err();
     assert!(err.to_string().starts_with("t.amc:3:1:"), "{err}");
-    let err = loaded(&[("t.asf", asf.as_bytes()), ("t.amc", b"1\nroot 0 0 0 0 0 0\nb 1 2\n")]).pop().unwrap().unwrap_err();
+    let err =
+        loaded(&[("t.asf", asf.as_bytes()), ("t.amc", b"1\nroot 0 0 0 0 0 0\nb 1 2\n")]).pop().unwrap().unwrap_err();
     assert!(err.to_string().starts_with("t.amc:3:"), "{err}");
 }
 
 #[test]
 fn a_windows_media_file_named_asf_is_refused_clearly() {
-    let mut bytes = vec![0x30, 0x26, 0xB2, 0x75, 0x8E, 0x66, 0xCF, 0x11, 0xA6, 0xD9, 0x00, 0xAA, 0x00, 0x62, 0xCE, 0x6C];
+    let mut bytes =
+        vec![0x30, 0x26, 0xB2, 0x75, 0x8E, 0x66, 0xCF, 0x11, 0xA6, 0xD9, 0x00, 0xAA, 0x00, 0x62, 0xCE, 0x6C];
     bytes.extend((0..500u32).map(|i| (i * 37 % 251) as u8));
     let err = loaded(&[("movie.asf", &bytes)]).pop().unwrap().unwrap_err();
     let text = err.to_string();
-    assert!(text.starts_with("movie.asf:1:1:") && text.contains("not an Acclaim skeleton") && text.contains("Windows Media"), "{text}");
+    assert!(
+        text.starts_with("movie.asf:1:1:")
+            && text.contains("not an Acclaim skeleton")
+            && text.contains("Windows Media"),
+        "{text}"
+    );
 }
 
 /// CMU bone names and their joints in the cgspeed BVH conversion.
 const CMU_BVH: [(&str, &str); 30] = [
-    ("lhipjoint", "LHipJoint"), ("lfemur", "LeftUpLeg"), ("ltibia", "LeftLeg"), ("lfoot", "LeftFoot"), ("ltoes", "LeftToeBase"),
-    ("rhipjoint", "RHipJoint"), ("rfemur", "RightUpLeg"), ("rtibia", "RightLeg"), ("rfoot", "RightFoot"), ("rtoes", "RightToeBase"),
-    ("lowerback", "LowerBack"), ("upperback", "Spine"), ("thorax", "Spine1"), ("lowerneck", "Neck"), ("upperneck", "Neck1"), ("head", "Head"),
-    ("lclavicle", "LeftShoulder"), ("lhumerus", "LeftArm"), ("lradius", "LeftForeArm"), ("lwrist", "LeftHand"), ("lhand", "LeftFingerBase"), ("lfingers", "LFingers"), ("lthumb", "LThumb"),
-    ("rclavicle", "RightShoulder"), ("rhumerus", "RightArm"), ("rradius", "RightForeArm"), ("rwrist", "RightHand"), ("rhand", "RightFingerBase"), ("rfingers", "RFingers"), ("rthumb", "RThumb"),
+    ("lhipjoint", "LHipJoint"),
+    ("lfemur", "LeftUpLeg"),
+    ("ltibia", "LeftLeg"),
+    ("lfoot", "LeftFoot"),
+    ("ltoes", "LeftToeBase"),
+    ("rhipjoint", "RHipJoint"),
+    ("rfemur", "RightUpLeg"),
+    ("rtibia", "RightLeg"),
+    ("rfoot", "RightFoot"),
+    ("rtoes", "RightToeBase"),
+    ("lowerback", "LowerBack"),
+    ("upperback", "Spine"),
+    ("thorax", "Spine1"),
+    ("lowerneck", "Neck"),
+    ("upperneck", "Neck1"),
+    ("head", "Head"),
+    ("lclavicle", "LeftShoulder"),
+    ("lhumerus", "LeftArm"),
+    ("lradius", "LeftForeArm"),
+    ("lwrist", "LeftHand"),
+    ("lhand", "LeftFingerBase"),
+    ("lfingers", "LFingers"),
+    ("lthumb", "LThumb"),
+    ("rclavicle", "RightShoulder"),
+    ("rhumerus", "RightArm"),
+    ("rradius", "RightForeArm"),
+    ("rwrist", "RightHand"),
+    ("rhand", "RightFingerBase"),
+    ("rfingers", "RFingers"),
+    ("rthumb", "RThumb"),
 ];
 
 /// The direction of the bone that starts at joint `j` (towards its first child).
@@ -184,7 +221,9 @@ fn asf_amc_to_bvh_keeps_every_position() {
 fn every_corpus_acclaim_file_loads() {
     let Some(dir) = common::corpus_dir() else { return };
     let cmu = dir.join("asf_amc/cmu");
-    for (asf, amcs, frames) in [("01.asf", vec!["01_01.amc", "01_06.amc"], vec![2751, 5133]), ("02.asf", vec!["02_01.amc"], vec![343])] {
+    for (asf, amcs, frames) in
+        [("01.asf", vec!["01_01.amc", "01_06.amc"], vec![2751, 5133]), ("02.asf", vec!["02_01.amc"], vec![343])]
+    {
         let skeleton = std::fs::read(cmu.join(asf)).unwrap();
         let motions: Vec<Vec<u8>> = amcs.iter().map(|m| std::fs::read(cmu.join(m)).unwrap()).collect();
         let mut files = vec![(asf, skeleton.as_slice())];
@@ -196,7 +235,12 @@ fn every_corpus_acclaim_file_loads() {
             assert_eq!(&l.name, name);
             assert_eq!(l.clip().unwrap().frame_count(), n);
             assert_eq!(l.clip().unwrap().skeleton().joint_count(), 31);
-            assert_eq!(l.clip().unwrap().units(), mocap::Units::CmuInches, "{name}: {}", l.clip().unwrap().pose_height());
+            assert_eq!(
+                l.clip().unwrap().units(),
+                mocap::Units::CmuInches,
+                "{name}: {}",
+                l.clip().unwrap().pose_height()
+            );
             let b = l.clip().unwrap().bounds();
             assert!(b.min.is_finite() && b.max.is_finite());
         }

@@ -12,7 +12,7 @@ mod common;
 
 use mocap::capture::{self, Options, Rig};
 use mocap::glam::Vec3;
-use mocap::{skin, Clip};
+use mocap::{Clip, skin};
 
 fn walk() -> Clip {
     mocap::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap()
@@ -22,7 +22,8 @@ fn walk() -> Clip {
 fn baked_walk(clip: &Clip) -> Vec<u8> {
     let bind = clip.bind_pose();
     let extent = clip.pose_extent();
-    let body = mocap::body::build(clip.skeleton(), &bind, |_, l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8).unwrap();
+    let body = mocap::body::build(clip.skeleton(), &bind, |_, l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8)
+        .unwrap();
     let triangles: Vec<[u32; 3]> = body.indices().chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
     let (mut model, mut m, mut p, mut n) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let frames: Vec<(String, Vec<Vec3>)> = (0..clip.frame_count())
@@ -76,11 +77,19 @@ fn a_baked_walk_is_captured_back_close_to_the_truth() {
     rig.bind(setup);
     let cap = capture::capture(&md2, &rig, &Options::default()).unwrap();
     println!("{}", cap.report.text());
-    assert!(cap.report.joints.iter().all(|j| j.tracked.is_ok() && j.failures.is_empty()), "every joint tracked and converging");
+    assert!(
+        cap.report.joints.iter().all(|j| j.tracked.is_ok() && j.failures.is_empty()),
+        "every joint tracked and converging"
+    );
     let (positions, directions) = errors(&clip, &cap);
     let (p50, p95, max) = (percentile(&positions, 0.5), percentile(&positions, 0.95), percentile(&positions, 1.0));
     let (d50, d95, dmax) = (percentile(&directions, 0.5), percentile(&directions, 0.95), percentile(&directions, 1.0));
-    println!("joint error, share of the height: median {:.3} %, 95th percentile {:.3} %, worst {:.3} %", p50 * 100.0, p95 * 100.0, max * 100.0);
+    println!(
+        "joint error, share of the height: median {:.3} %, 95th percentile {:.3} %, worst {:.3} %",
+        p50 * 100.0,
+        p95 * 100.0,
+        max * 100.0
+    );
     println!("long-bone direction error: median {d50:.2}°, 95th percentile {d95:.2}°, worst {dmax:.2}°");
     // One 8-bit step of this figure is 0.4 % of its height. The figures:
     // every joint on every frame within 0.5 % of the height, every long bone
@@ -122,10 +131,25 @@ fn without_quantisation_the_capture_is_exact() {
     rig.bind(&frames[0]);
     let tris: Vec<[usize; 3]> = md2.triangles.iter().map(|t| t.vertices.map(usize::from)).collect();
     let options = Options { rigid_tolerance: 1e-5, ..Options::default() };
-    let cap = capture::Capturer::from_frames(frames, md2.frames.iter().map(|f| f.name.clone()).collect(), md2.animations.clone(), &tris, &rig, &options).unwrap().finish().unwrap();
+    let cap = capture::Capturer::from_frames(
+        frames,
+        md2.frames.iter().map(|f| f.name.clone()).collect(),
+        md2.animations.clone(),
+        &tris,
+        &rig,
+        &options,
+    )
+    .unwrap()
+    .finish()
+    .unwrap();
     let height = clip.pose_extent();
     let tracked: Vec<usize> = (0..clip.skeleton().len()).filter(|&j| cap.report.joints[j].tracked.is_ok()).collect();
-    assert!(tracked.len() + 4 >= clip.skeleton().len(), "{} of {} joints tracked", tracked.len(), clip.skeleton().len());
+    assert!(
+        tracked.len() + 4 >= clip.skeleton().len(),
+        "{} of {} joints tracked",
+        tracked.len(),
+        clip.skeleton().len()
+    );
     for f in 0..clip.frame_count() {
         let truth = clip.world_positions(f);
         for &j in &tracked {
@@ -168,7 +192,10 @@ fn corpus_characters_are_captured_by_the_automatic_fit() {
         let mut inside = 0usize;
         let mut all = 0usize;
         for (f, joints) in cap.positions.iter().enumerate() {
-            let (lo, hi) = frames[f].iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+            let (lo, hi) =
+                frames[f].iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| {
+                    (lo.min(*p), hi.max(*p))
+                });
             let margin = (hi - lo) * 0.02;
             for (j, p) in joints.iter().enumerate() {
                 all += 1;
@@ -184,7 +211,10 @@ fn corpus_characters_are_captured_by_the_automatic_fit() {
         assert!(share > 0.97, "{path}: {:.1} % inside", share * 100.0);
         let again = mocap::bvh::parse(mocap::bvh::write(&cap.clip).as_bytes()).unwrap();
         assert_eq!(again.frame_count(), md2.frames.len());
-        assert!(cap.animation_clip("run").is_some_and(|c| c.frame_count() == 6), "{path}: the run animation has its 6 frames");
+        assert!(
+            cap.animation_clip("run").is_some_and(|c| c.frame_count() == 6),
+            "{path}: the run animation has its 6 frames"
+        );
         // The viewer captures from the drawing mesh (vertices split per texture
         // coordinate, welded back): the same motion, in metres.
         let mesh = mocap::MorphMesh::from_md2(&md2);
@@ -198,7 +228,8 @@ fn corpus_characters_are_captured_by_the_automatic_fit() {
 fn float_frames(clip: &Clip) -> Vec<Vec<Vec3>> {
     let bind = clip.bind_pose();
     let extent = clip.pose_extent();
-    let body = mocap::body::build(clip.skeleton(), &bind, |_, l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8).unwrap();
+    let body = mocap::body::build(clip.skeleton(), &bind, |_, l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8)
+        .unwrap();
     let (mut model, mut m, mut p, mut n) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     (0..clip.frame_count())
         .map(|f| {

@@ -48,7 +48,11 @@ fn corpus_bvh_files_parse_as_the_manifest_says() {
             assert!(text.starts_with(&format!("{}:", e.path)) && text.matches(':').count() >= 3, "{text}");
             continue;
         }
-        let clip = result.unwrap_or_else(|err| panic!("{err}")).clip().cloned().unwrap_or_else(|| panic!("{}: not a clip", e.path));
+        let clip = result
+            .unwrap_or_else(|err| panic!("{err}"))
+            .clip()
+            .cloned()
+            .unwrap_or_else(|| panic!("{}: not a clip", e.path));
         // Frames: "N", "" (no motion) or "N declared / M rows".
         let expected_frames: usize = match e.frames.split_once(" declared / ") {
             Some((_, rows)) => rows.trim_end_matches(" rows").parse().unwrap(),
@@ -67,7 +71,8 @@ fn corpus_bvh_files_parse_as_the_manifest_says() {
             assert!(pos.iter().all(|p| p.is_finite()), "{} frame {f}", e.path);
         }
         // Round trip: same hierarchy, bit-identical values.
-        let again = mocap::bvh::parse(mocap::bvh::write(&clip).as_bytes()).unwrap_or_else(|err| panic!("{}: rewritten: {err}", e.path));
+        let again = mocap::bvh::parse(mocap::bvh::write(&clip).as_bytes())
+            .unwrap_or_else(|err| panic!("{}: rewritten: {err}", e.path));
         assert_same(&clip, &again, &e.path);
     }
 }
@@ -131,7 +136,11 @@ pub fn assert_same(a: &mocap::Clip, b: &mocap::Clip, what: &str) {
         if !ja.is_end_site() {
             assert_eq!(ja.name.trim(), jb.name, "{what}");
         }
-        assert_eq!((ja.parent, ja.is_end_site(), &ja.channels, ja.first_channel()), (jb.parent, jb.is_end_site(), &jb.channels, jb.first_channel()), "{what}");
+        assert_eq!(
+            (ja.parent, ja.is_end_site(), &ja.channels, ja.first_channel()),
+            (jb.parent, jb.is_end_site(), &jb.channels, jb.first_channel()),
+            "{what}"
+        );
         assert_eq!(ja.offset.to_array().map(f32::to_bits), jb.offset.to_array().map(f32::to_bits), "{what}");
     }
     assert_eq!(a.frame_count(), b.frame_count(), "{what}");
@@ -159,7 +168,9 @@ fn corpus_bvh_files_read_as_they_arrive_as_parse_reads_them() {
                 (Ok(a), Ok(b)) => {
                     assert_same(a, &b, &what);
                     assert_eq!(a.frame_time().to_bits(), b.frame_time().to_bits(), "{what}");
-                    let warnings = |c: &mocap::Clip| c.warnings.iter().map(|w| format!("{:?} {}", w.line, w.message)).collect::<Vec<_>>();
+                    let warnings = |c: &mocap::Clip| {
+                        c.warnings.iter().map(|w| format!("{:?} {}", w.line, w.message)).collect::<Vec<_>>()
+                    };
                     assert_eq!(warnings(a), warnings(&b), "{what}");
                 }
                 (Err(a), Err(b)) => assert_eq!(a.to_string(), b.to_string(), "{what}"),

@@ -1,9 +1,9 @@
 //! Clip edits on the generated walk: each edit's exact effect, and every result
 //! saves as BVH and reads back the same.
 
-use mocap::edit::{apply, apply_all, Edit};
-use mocap::glam::Vec3;
 use mocap::Clip;
+use mocap::edit::{Edit, apply, apply_all};
+use mocap::glam::Vec3;
 
 fn walk() -> Clip {
     mocap::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap()
@@ -32,7 +32,9 @@ fn trim_reverse_and_ping_pong_move_whole_rows() {
     assert_eq!(t.frame_count(), 20);
     assert_eq!(t.motion().row(0), w.motion().row(10));
     assert_eq!(t.motion().row(19), w.motion().row(29));
-    assert!(apply(&w, &Edit::Trim { first: 5, last: n }).is_err() && apply(&w, &Edit::Trim { first: 9, last: 3 }).is_err());
+    assert!(
+        apply(&w, &Edit::Trim { first: 5, last: n }).is_err() && apply(&w, &Edit::Trim { first: 9, last: 3 }).is_err()
+    );
     let r = apply(&w, &Edit::Reverse).unwrap();
     assert_eq!(r.motion().row(0), w.motion().row(n - 1));
     assert_eq!(apply(&r, &Edit::Reverse).unwrap(), w, "reverse twice is the identity");
@@ -58,7 +60,11 @@ fn resampling_at_an_integer_factor_keeps_the_original_frames() {
     // In between: the clip's own interpolation.
     let mid = {
         let mut out = Vec::new();
-        w.sample_world_positions_into(w.timeline().time_of(10) + w.frame_time() / 2.0, mocap::Interpolation::Linear, &mut out);
+        w.sample_world_positions_into(
+            w.timeline().time_of(10) + w.frame_time() / 2.0,
+            mocap::Interpolation::Linear,
+            &mut out,
+        );
         out
     };
     assert!(positions(&double, 21).iter().zip(&mid).all(|(a, b)| a.distance(*b) < 1e-3));
@@ -79,7 +85,10 @@ fn in_place_keeps_height_and_rotations() {
     let mut lp = mocap::LocalPose::default();
     for f in 0..w.frame_count() {
         let (a, b) = (positions(&w, f)[root], positions(&p, f)[root]);
-        assert!((a.y - b.y).abs() < 1e-4 && (b.x - start.x).abs() < 1e-4 && (b.z - start.z).abs() < 1e-4, "frame {f}: {a} → {b}");
+        assert!(
+            (a.y - b.y).abs() < 1e-4 && (b.x - start.x).abs() < 1e-4 && (b.z - start.z).abs() < 1e-4,
+            "frame {f}: {a} → {b}"
+        );
         w.local_pose_into(f, &mut lw);
         p.local_pose_into(f, &mut lp);
         for (q1, q2) in lw.rotation.iter().zip(&lp.rotation) {
@@ -153,8 +162,14 @@ fn removing_a_joint_folds_or_drops_its_motion() {
     }
     let dropped = apply(&w, &Edit::RemoveJoint { name: name.into(), fold: false }).unwrap();
     let hand = dropped.skeleton().find("LeftHand").unwrap();
-    assert!(positions(&dropped, 17)[hand].distance(positions(&w, 17)[w.skeleton().find("LeftHand").unwrap()]) > 1e-3, "dropping loses the forearm's turn");
-    assert!(apply(&w, &Edit::RemoveJoint { name: "Hips".into(), fold: true }).is_err(), "a root with several children stays");
+    assert!(
+        positions(&dropped, 17)[hand].distance(positions(&w, 17)[w.skeleton().find("LeftHand").unwrap()]) > 1e-3,
+        "dropping loses the forearm's turn"
+    );
+    assert!(
+        apply(&w, &Edit::RemoveJoint { name: "Hips".into(), fold: true }).is_err(),
+        "a root with several children stays"
+    );
     round_trips(&folded);
     // Edits chain in order.
     let chained = apply_all(&w, &[Edit::Trim { first: 0, last: 9 }, Edit::Reverse]).unwrap();
@@ -168,7 +183,13 @@ fn a_keyed_correction_fades_over_its_window() {
     let mut at = mocap::LocalPose::default();
     w.local_pose_into(20, &mut at);
     let turned = at.rotation[arm] * mocap::glam::Quat::from_rotation_z(0.8);
-    let key = |window| apply(&w, &Edit::Correct { frame: 20, rotations: vec![("LeftArm".into(), turned)], translations: vec![], window }).unwrap();
+    let key = |window| {
+        apply(
+            &w,
+            &Edit::Correct { frame: 20, rotations: vec![("LeftArm".into(), turned)], translations: vec![], window },
+        )
+        .unwrap()
+    };
     let k = key(3);
     let rotation = |c: &Clip, f: usize| {
         let mut p = mocap::LocalPose::default();
@@ -177,12 +198,25 @@ fn a_keyed_correction_fades_over_its_window() {
     };
     assert!(rotation(&k, 20).dot(turned).abs() > 0.99999, "the key holds at its frame");
     let change = |f: usize| rotation(&k, f).angle_between(rotation(&w, f));
-    assert!(change(21) > change(22) && change(22) > change(23) && change(23) > 0.0 && change(24) < 1e-5, "it fades: {} {} {} {}", change(21), change(22), change(23), change(24));
+    assert!(
+        change(21) > change(22) && change(22) > change(23) && change(23) > 0.0 && change(24) < 1e-5,
+        "it fades: {} {} {} {}",
+        change(21),
+        change(22),
+        change(23),
+        change(24)
+    );
     assert!((change(19) - change(21)).abs() < 0.05, "both sides alike");
     let sharp = key(0);
     assert!(rotation(&sharp, 21).angle_between(rotation(&w, 21)) < 1e-5, "window 0 keys one frame");
     assert!(apply(&w, &Edit::Correct { frame: 99, rotations: vec![], translations: vec![], window: 1 }).is_err());
-    assert!(apply(&w, &Edit::Correct { frame: 1, rotations: vec![("Tail".into(), turned)], translations: vec![], window: 1 }).is_err());
+    assert!(
+        apply(
+            &w,
+            &Edit::Correct { frame: 1, rotations: vec![("Tail".into(), turned)], translations: vec![], window: 1 }
+        )
+        .is_err()
+    );
     round_trips(&k);
 }
 
@@ -204,12 +238,20 @@ fn the_creator_builds_a_character_that_saves_and_reads_back() {
         c = apply(&c, e).unwrap_or_else(|m| panic!("{e:?}: {m}"));
     }
     let names: Vec<&str> = c.skeleton().joints().iter().map(|j| j.name.as_str()).collect();
-    assert_eq!(names, ["Hips", "Spine", "Head", "Head_End", "LeftArm", "LeftWrist", "LeftWrist_End"], "depth-first, End Sites only at the leaves");
+    assert_eq!(
+        names,
+        ["Hips", "Spine", "Head", "Head_End", "LeftArm", "LeftWrist", "LeftWrist_End"],
+        "depth-first, End Sites only at the leaves"
+    );
     let wrist = c.skeleton().find("LeftWrist").unwrap();
     assert!((c.world_positions(0)[wrist] - Vec3::new(0.65, 1.6, 0.0)).length() < 1e-5);
     // Animate it: a key on the arm at frame 10.
     let turned = mocap::glam::Quat::from_rotation_z(-1.2);
-    c = apply(&c, &Edit::Correct { frame: 10, rotations: vec![("LeftArm".into(), turned)], translations: vec![], window: 5 }).unwrap();
+    c = apply(
+        &c,
+        &Edit::Correct { frame: 10, rotations: vec![("LeftArm".into(), turned)], translations: vec![], window: 5 },
+    )
+    .unwrap();
     assert!(c.world_positions(10)[wrist].y < 1.6 - 0.3, "the arm swings down at the key");
     // Save, read back: the same skeleton and motion.
     round_trips(&c);
@@ -233,9 +275,19 @@ fn the_creator_builds_a_character_that_saves_and_reads_back() {
 fn keys_interpolate_from_key_to_key_and_hold_outside() {
     use mocap::glam::Quat;
     let mut c = mocap::edit::new_character(60, 30.0);
-    c = apply(&c, &Edit::AddJoint { parent: "Hips".into(), name: "Arm".into(), offset: Vec3::new(0.0, 0.5, 0.0) }).unwrap();
+    c = apply(&c, &Edit::AddJoint { parent: "Hips".into(), name: "Arm".into(), offset: Vec3::new(0.0, 0.5, 0.0) })
+        .unwrap();
     let turn = |deg: f32| vec![("Arm".to_owned(), Quat::from_rotation_z(deg.to_radians()))];
-    let a = apply(&c, &Edit::Key { frame: 10, rotations: turn(80.0), translations: vec![("Hips".into(), Vec3::new(0.0, 1.0, 0.0))], keys: vec![] }).unwrap();
+    let a = apply(
+        &c,
+        &Edit::Key {
+            frame: 10,
+            rotations: turn(80.0),
+            translations: vec![("Hips".into(), Vec3::new(0.0, 1.0, 0.0))],
+            keys: vec![],
+        },
+    )
+    .unwrap();
     let arm = a.skeleton().find("Arm").unwrap();
     let angle = |clip: &Clip, f: usize| {
         let mut p = mocap::LocalPose::default();
@@ -246,12 +298,27 @@ fn keys_interpolate_from_key_to_key_and_hold_outside() {
     for f in [0, 10, 35, 59] {
         assert!((angle(&a, f) - 80.0).abs() < 1e-3, "one key holds everywhere: frame {f} at {}", angle(&a, f));
     }
-    let b = apply(&a, &Edit::Key { frame: 40, rotations: turn(-40.0), translations: vec![("Hips".into(), Vec3::new(3.0, 1.0, 0.0))], keys: vec![10] }).unwrap();
+    let b = apply(
+        &a,
+        &Edit::Key {
+            frame: 40,
+            rotations: turn(-40.0),
+            translations: vec![("Hips".into(), Vec3::new(3.0, 1.0, 0.0))],
+            keys: vec![10],
+        },
+    )
+    .unwrap();
     for (f, want) in [(0, 80.0), (10, 80.0), (20, 40.0), (25, 20.0), (30, 0.0), (40, -40.0), (59, -40.0)] {
         assert!((angle(&b, f) - want).abs() < 1e-2, "frame {f}: {} not {want}", angle(&b, f));
     }
     let hips_x = |f: usize| positions(&b, f)[0].x;
-    assert!((hips_x(25) - hips_x(10) - (hips_x(40) - hips_x(10)) * 0.5).abs() < 1e-4, "the root moves linearly between keys");
+    assert!(
+        (hips_x(25) - hips_x(10) - (hips_x(40) - hips_x(10)) * 0.5).abs() < 1e-4,
+        "the root moves linearly between keys"
+    );
     round_trips(&b);
-    assert!(apply(&a, &Edit::Key { frame: 40, rotations: turn(0.0), translations: vec![], keys: vec![99] }).is_err(), "a key past the end is refused");
+    assert!(
+        apply(&a, &Edit::Key { frame: 40, rotations: turn(0.0), translations: vec![], keys: vec![99] }).is_err(),
+        "a key past the end is refused"
+    );
 }

@@ -1,8 +1,8 @@
 //! Forward kinematics and sampling semantics.
 
+use mocap::Timeline;
 use mocap::bvh::parse;
 use mocap::glam::{EulerRot, Mat3, Quat, Vec3};
-use mocap::Timeline;
 use mocap::{Channel, Interpolation};
 
 fn approx(a: Vec3, b: Vec3) -> bool {
@@ -12,7 +12,9 @@ fn approx(a: Vec3, b: Vec3) -> bool {
 /// Root with `channels`, one child at (0,1,0) with its own 3 rotations, and an End
 /// Site at (1,0,0) under the child.
 fn chain(channels: &str, row: &str) -> mocap::Clip {
-    let src = format!("HIERARCHY\nROOT R\n{{\nOFFSET 0 0 0\n{channels}\nJOINT C\n{{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{{\nOFFSET 1 0 0\n}}\n}}\n}}\nMOTION\nFrames: 1\nFrame Time: 0.1\n{row}\n");
+    let src = format!(
+        "HIERARCHY\nROOT R\n{{\nOFFSET 0 0 0\n{channels}\nJOINT C\n{{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{{\nOFFSET 1 0 0\n}}\n}}\n}}\nMOTION\nFrames: 1\nFrame Time: 0.1\n{row}\n"
+    );
     parse(src.as_bytes()).unwrap()
 }
 

@@ -13,15 +13,29 @@ fn check(name: &str, data: &[u8]) {
         let mut stream = mocap::bvh::Stream::with_capacity(data.len());
         data.chunks(piece).for_each(|c| stream.push(c));
         let streamed = stream.finish();
-        let outcome = |r: &Result<mocap::Clip, mocap::ParseError>| r.as_ref().map(|c| (c.frame_count(), c.skeleton().len(), c.motion().data().iter().map(|v| v.to_bits()).collect::<Vec<_>>())).map_err(|e| e.to_string());
-        assert!(outcome(&whole) == outcome(&streamed), "{name}: streamed in pieces of {piece} bytes differs from parse");
+        let outcome = |r: &Result<mocap::Clip, mocap::ParseError>| {
+            r.as_ref()
+                .map(|c| {
+                    (
+                        c.frame_count(),
+                        c.skeleton().len(),
+                        c.motion().data().iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                    )
+                })
+                .map_err(|e| e.to_string())
+        };
+        assert!(
+            outcome(&whole) == outcome(&streamed),
+            "{name}: streamed in pieces of {piece} bytes differs from parse"
+        );
     }
     if let Ok(clip) = whole {
         let _ = clip.bounds();
         let _ = clip.units();
         let mut out = Vec::new();
         clip.sample_world_positions_into(clip.duration() * 0.37, mocap::Interpolation::Linear, &mut out);
-        let again = mocap::bvh::parse(mocap::bvh::write(&clip).as_bytes()).unwrap_or_else(|e| panic!("{name}: rewritten clip fails: {e}"));
+        let again = mocap::bvh::parse(mocap::bvh::write(&clip).as_bytes())
+            .unwrap_or_else(|e| panic!("{name}: rewritten clip fails: {e}"));
         assert_eq!(again.frame_count(), clip.frame_count(), "{name}");
         assert_eq!(again.skeleton().len(), clip.skeleton().len(), "{name}");
     }
@@ -40,7 +54,8 @@ fn saved_fuzz_inputs() {
 
 #[test]
 fn hand_made_hostile_inputs() {
-    let deep: String = "HIERARCHY\nROOT A\n{\n".to_string() + &"JOINT B\n{\nOFFSET 0 1 0\n".repeat(50_000) + &"}\n".repeat(50_001);
+    let deep: String =
+        "HIERARCHY\nROOT A\n{\n".to_string() + &"JOINT B\n{\nOFFSET 0 1 0\n".repeat(50_000) + &"}\n".repeat(50_001);
     let inputs: Vec<(&str, Vec<u8>)> = vec![
         ("deep nesting", deep.into_bytes()),
         ("nul bytes", vec![0; 1000]),

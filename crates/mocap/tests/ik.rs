@@ -12,7 +12,9 @@ use mocap::{LocalPose, Skeleton};
 /// A chain of `n` joints along +Y, bones of `length`, each with three rotation
 /// channels, ending in an End Site; the first frame bends every joint a little.
 fn chain_clip(n: usize, length: f32) -> mocap::Clip {
-    let mut text = String::from("HIERARCHY\nROOT j0\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n");
+    let mut text = String::from(
+        "HIERARCHY\nROOT j0\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n",
+    );
     for i in 1..n {
         text.push_str(&format!("JOINT j{i}\n{{\nOFFSET 0 {length} 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n"));
     }
@@ -94,7 +96,12 @@ fn unreachable_targets_give_a_straight_chain_toward_them() {
             ("fabrik", Box::new(|p: &mut LocalPose| ik::fabrik(skeleton, p, &chain, target, &Options::default()))),
         ];
         if bones == 2 {
-            solvers.push(("two_bone", Box::new(|p: &mut LocalPose| ik::two_bone(skeleton, p, &chain, target, Vec3::Z * 5.0, &Options::default()))));
+            solvers.push((
+                "two_bone",
+                Box::new(|p: &mut LocalPose| {
+                    ik::two_bone(skeleton, p, &chain, target, Vec3::Z * 5.0, &Options::default())
+                }),
+            ));
         }
         for (name, solve) in solvers {
             let mut pose = pose_of(&clip);
@@ -104,7 +111,10 @@ fn unreachable_targets_give_a_straight_chain_toward_them() {
             for &j in chain.joints() {
                 let along = p[j] - root;
                 let off_line = (along - dir * along.dot(dir)).length();
-                assert!(off_line < 2e-3 && along.dot(dir) >= -1e-4, "{name}: joint {j} is {off_line} off the line to the target");
+                assert!(
+                    off_line < 2e-3 && along.dot(dir) >= -1e-4,
+                    "{name}: joint {j} is {off_line} off the line to the target"
+                );
             }
             let reach = p[effector].distance(root);
             assert!((reach - bones as f32).abs() < 1e-3, "{name}: the chain keeps its length ({reach})");
@@ -161,7 +171,11 @@ fn degenerate_input_gives_no_nan() {
     let c = Chain::up_from(s, s.len() - 1, 3).unwrap();
     for solver in 0..2 {
         let mut pose = pose_of(&flat);
-        let _ = if solver == 0 { ik::ccd(s, &mut pose, &c, Vec3::ONE, &Options::default()) } else { ik::fabrik(s, &mut pose, &c, Vec3::ONE, &Options::default()) };
+        let _ = if solver == 0 {
+            ik::ccd(s, &mut pose, &c, Vec3::ONE, &Options::default())
+        } else {
+            ik::fabrik(s, &mut pose, &c, Vec3::ONE, &Options::default())
+        };
         assert!(all_finite(&pose));
     }
     let c2 = Chain::up_from(s, s.len() - 1, 2).unwrap();
@@ -208,18 +222,31 @@ fn joint_limits_are_never_exceeded() {
             let knee = skeleton.joints()[shin].rest_rotation.inverse() * pose.rotation[shin];
             let (x, y, z) = knee.to_euler(mocap::glam::EulerRot::XYZ);
             let (x, y, z) = (x.to_degrees(), y.to_degrees(), z.to_degrees());
-            assert!((-0.01..=120.01).contains(&x) && y.abs() < 0.01 && z.abs() < 0.01, "solver {solver}, target {target}: knee {x} {y} {z}");
+            assert!(
+                (-0.01..=120.01).contains(&x) && y.abs() < 0.01 && z.abs() < 0.01,
+                "solver {solver}, target {target}: knee {x} {y} {z}"
+            );
             // The hip: extrinsic rx ry rz = Rz·Ry·Rx, limits on each.
             let hip = skeleton.joints()[thigh].rest_rotation.inverse() * pose.rotation[thigh];
             let (rz, ry, rx) = hip.to_euler(mocap::glam::EulerRot::ZYX);
             let (rx, ry, rz) = (rx.to_degrees(), ry.to_degrees(), rz.to_degrees());
-            assert!((-90.01..=45.01).contains(&rx) && ry.abs() <= 30.01 && rz.abs() <= 40.01, "solver {solver}: hip {rx} {ry} {rz}");
+            assert!(
+                (-90.01..=45.01).contains(&rx) && ry.abs() <= 30.01 && rz.abs() <= 40.01,
+                "solver {solver}: hip {rx} {ry} {rz}"
+            );
         }
     }
     // Without limits the knee bends backward freely when asked.
     let mut pose = rest.clone();
     let target = Vec3::new(0.0, -1.0, -1.0);
-    ik::two_bone(skeleton, &mut pose, &chain, target, Vec3::new(0.0, -1.0, -5.0), &Options { limits: false, ..Options::default() });
+    ik::two_bone(
+        skeleton,
+        &mut pose,
+        &chain,
+        target,
+        Vec3::new(0.0, -1.0, -5.0),
+        &Options { limits: false, ..Options::default() },
+    );
     assert!(positions(skeleton, &pose)[foot].distance(target) < 1e-3);
 }
 
@@ -248,11 +275,12 @@ fn default_chains_are_the_arms_and_legs_of_real_skeletons() {
     }
 }
 
-
 /// A figure whose hips drift along X while its left foot stays on the floor for
 /// frames 0–14 (skating with it), then lifts for 15–29.
 fn skating_clip() -> mocap::Clip {
-    let mut text = String::from("HIERARCHY\nROOT Hips\n{\nOFFSET 0 90 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n");
+    let mut text = String::from(
+        "HIERARCHY\nROOT Hips\n{\nOFFSET 0 90 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n",
+    );
     for (side, x) in [("Left", 10.0), ("Right", -10.0)] {
         text.push_str(&format!("JOINT {side}UpLeg\n{{\nOFFSET {x} 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT {side}Leg\n{{\nOFFSET 0 -42 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT {side}Foot\n{{\nOFFSET 0 -42 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{{\nOFFSET 0 -4 12\n}}\n}}\n}}\n}}\n"));
     }
@@ -280,7 +308,8 @@ fn foot_locking_pins_a_skating_foot_and_lets_it_go() {
     let lock = FootLock::new(&clip);
     assert_eq!(lock.legs.len(), 2, "two legs found");
     let skeleton = clip.skeleton();
-    let left = lock.legs.iter().find(|l| skeleton.joints()[l.chain.effector()].name == "LeftFoot").expect("the left leg");
+    let left =
+        lock.legs.iter().find(|l| skeleton.joints()[l.chain.effector()].name == "LeftFoot").expect("the left leg");
     assert!(left.contact[..14].iter().all(|c| *c), "stance frames are contacts: {:?}", left.contact);
     assert!(left.contact[16..].iter().all(|c| !*c), "the lifted foot is not: {:?}", left.contact);
     let foot = left.chain.effector();

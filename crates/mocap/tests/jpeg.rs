@@ -2,9 +2,9 @@
 //! `image` crate's encoder: colour and grey pictures come back as RGBA8 close to
 //! what was encoded, and damaged or oversized files are errors, never panics.
 
-use image::codecs::jpeg::JpegEncoder;
 use image::ExtendedColorType;
-use mocap::image::{decode_any, Rgba, MAX_SIDE};
+use image::codecs::jpeg::JpegEncoder;
+use mocap::image::{MAX_SIDE, Rgba, decode_any};
 
 /// A `width × height` picture with red across, green down and blue from both.
 fn gradient(width: u32, height: u32) -> Vec<u8> {
@@ -26,7 +26,13 @@ fn encode(pixels: &[u8], width: u32, height: u32, color: ExtendedColorType) -> V
 
 /// The largest difference of any channel between `decoded` and `expected` (RGB).
 fn worst_difference(decoded: &Rgba, expected: &[u8]) -> u8 {
-    decoded.pixels.chunks_exact(4).zip(expected.chunks_exact(3)).flat_map(|(d, e)| (0..3).map(move |c| d[c].abs_diff(e[c]))).max().unwrap_or(u8::MAX)
+    decoded
+        .pixels
+        .chunks_exact(4)
+        .zip(expected.chunks_exact(3))
+        .flat_map(|(d, e)| (0..3).map(move |c| d[c].abs_diff(e[c])))
+        .max()
+        .unwrap_or(u8::MAX)
 }
 
 #[test]
@@ -68,7 +74,11 @@ fn a_damaged_jpeg_is_an_error_or_a_picture_never_a_panic() {
     }
     let cut = decode_any("skin.jpg", &file[..file.len() / 3]).map(|_| String::new()).unwrap_or_else(|e| e.to_string());
     let header_only = decode_any("skin.jpg", &file[..40]).expect_err("no frame header yet");
-    assert_eq!(header_only.to_string(), "byte 0: cannot decode this JPEG image: the file ends before the image does", "(a third of it: {cut})");
+    assert_eq!(
+        header_only.to_string(),
+        "byte 0: cannot decode this JPEG image: the file ends before the image does",
+        "(a third of it: {cut})"
+    );
     // Flipped bytes throughout the entropy-coded data and the tables.
     for at in (2..file.len()).step_by(5) {
         let mut bad = file.clone();
@@ -91,7 +101,9 @@ fn a_jpeg_claiming_a_huge_size_is_refused_from_its_header() {
     let error = decode_any("huge.jpg", &huge).expect_err("past MAX_SIDE");
     assert_eq!(
         error.to_string(),
-        format!("byte 0: cannot decode this JPEG image: it is {side} × {side} pixels; images over {MAX_SIDE} pixels on a side are not read")
+        format!(
+            "byte 0: cannot decode this JPEG image: it is {side} × {side} pixels; images over {MAX_SIDE} pixels on a side are not read"
+        )
     );
     // At the limit itself the header is accepted (the missing rows decode as
     // blank: the decoder is lenient, as for any truncated file).

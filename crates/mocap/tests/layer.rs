@@ -2,7 +2,7 @@
 //! puts every joint inside it on the layer, matches joints named by other
 //! conventions, blends by weight and fades, and saves as BVH.
 
-use mocap::edit::{apply as edit, Edit};
+use mocap::edit::{Edit, apply as edit};
 use mocap::layer::{self, Blend, Layer};
 use mocap::{Clip, LocalPose};
 
@@ -37,7 +37,12 @@ fn a_layer_drives_its_subtree_and_nothing_else() {
         for (j, joint) in base.skeleton().joints().iter().enumerate() {
             let cols = joint.columns();
             if !inside[j] {
-                assert_eq!(&out.motion().row(f)[cols.clone()], &base.motion().row(f)[cols], "frame {f}: {} untouched", joint.name);
+                assert_eq!(
+                    &out.motion().row(f)[cols.clone()],
+                    &base.motion().row(f)[cols],
+                    "frame {f}: {} untouched",
+                    joint.name
+                );
             }
         }
         let (o, w) = (local(&out, f), local(&wave, f));
@@ -52,7 +57,9 @@ fn a_layer_drives_its_subtree_and_nothing_else() {
 fn joints_named_by_another_convention_match() {
     let base = walk();
     let mut wave = edit(&base, &Edit::Reverse).unwrap();
-    for (from, to) in [("RightShoulder", "rCollar"), ("RightArm", "rShldr"), ("RightForeArm", "rForeArm"), ("RightHand", "rHand")] {
+    for (from, to) in
+        [("RightShoulder", "rCollar"), ("RightArm", "rShldr"), ("RightForeArm", "rForeArm"), ("RightHand", "rHand")]
+    {
         wave = edit(&wave, &Edit::Rename { from: from.into(), to: to.into() }).unwrap();
     }
     let root = base.skeleton().find("RightShoulder").unwrap();
@@ -64,7 +71,12 @@ fn joints_named_by_another_convention_match() {
     assert!(o.rotation[hand].dot(w.rotation[wave.skeleton().find("rForeArm").unwrap()]).abs() > 0.9999);
     // Nothing to match: a clear error.
     let other = mocap::bvh::parse(b"HIERARCHY\nROOT Tail\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 1 0\n}\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0\n").unwrap();
-    assert!(layer::apply(&base, &other, &Layer::on("RightShoulder")).unwrap_err().to_string().contains("no joint of the layer matches"));
+    assert!(
+        layer::apply(&base, &other, &Layer::on("RightShoulder"))
+            .unwrap_err()
+            .to_string()
+            .contains("no joint of the layer matches")
+    );
     assert!(layer::apply(&base, &wave, &Layer::on("Wing")).is_err());
 }
 

@@ -42,24 +42,7 @@ mod md2 {
     fn tiny() -> Vec<u8> {
         let mut b = Vec::new();
         b.extend(b"IDP2");
-        let header = [
-            8,
-            32,
-            16,
-            FRAME_SIZE,
-            1,
-            3,
-            3,
-            1,
-            3,
-            2,
-            AT_SKINS,
-            AT_ST,
-            AT_TRIS,
-            AT_FRAMES,
-            AT_GLCMDS,
-            LEN,
-        ];
+        let header = [8, 32, 16, FRAME_SIZE, 1, 3, 3, 1, 3, 2, AT_SKINS, AT_ST, AT_TRIS, AT_FRAMES, AT_GLCMDS, LEN];
         for v in header {
             b.extend((v as i32).to_le_bytes());
         }
@@ -98,7 +81,8 @@ mod md2 {
             Ok(_) => panic!("parsed a malformed file"),
             Err(e) => {
                 assert_eq!((e.line, e.column), (0, 0), "binary errors carry the offset in the message");
-                let offset: Option<u32> = e.message.strip_prefix("byte ").and_then(|m| m.split(':').next()).and_then(|n| n.parse().ok());
+                let offset: Option<u32> =
+                    e.message.strip_prefix("byte ").and_then(|m| m.split(':').next()).and_then(|n| n.parse().ok());
                 assert!(offset.is_some(), "{e}");
                 e.message
             }
@@ -189,7 +173,11 @@ mod md2 {
             for ofs in [LEN as i32 - 1, 9999, i32::MAX] {
                 let mut b = tiny();
                 set_i32(&mut b, field, ofs);
-                assert_err(&b, &format!("byte {field}: {name} {ofs} + "), &["runs past the end of the file (272 bytes)"]);
+                assert_err(
+                    &b,
+                    &format!("byte {field}: {name} {ofs} + "),
+                    &["runs past the end of the file (272 bytes)"],
+                );
             }
             let mut b = tiny();
             set_i32(&mut b, field, -4);
@@ -241,7 +229,9 @@ mod md2 {
         b.resize(10_000, 0);
         set_i32(&mut b, OFS_END, 10_000);
         let start = Instant::now();
-        for (field, value) in [(NUM_FRAMES, 1_000_000), (NUM_FRAMES, i32::MAX), (NUM_SKINS, i32::MAX), (NUM_ST, i32::MAX)] {
+        for (field, value) in
+            [(NUM_FRAMES, 1_000_000), (NUM_FRAMES, i32::MAX), (NUM_SKINS, i32::MAX), (NUM_ST, i32::MAX)]
+        {
             let mut b = b.clone();
             set_i32(&mut b, field, value);
             assert_err(&b, "byte ", &["runs past the end of the file (10000 bytes)"]);
@@ -265,7 +255,10 @@ mod md2 {
         b[AT_TRIS + 10..AT_TRIS + 12].copy_from_slice(&u16::MAX.to_le_bytes());
         assert_err(
             &b,
-            &format!("byte {}: triangle 0 uses texture coordinate 65535 but the model has 3 texture coordinates", AT_TRIS + 10),
+            &format!(
+                "byte {}: triangle 0 uses texture coordinate 65535 but the model has 3 texture coordinates",
+                AT_TRIS + 10
+            ),
             &[],
         );
     }
@@ -477,7 +470,8 @@ fn quake_pcx_skins_decode_to_the_known_pixels() {
 /// Loads corpus files (under `md2/`) as one dropped set.
 fn load_set(paths: &[&str]) -> Option<Vec<Result<mocap::Loaded, mocap::LoadError>>> {
     let dir = common::corpus_dir()?.join("md2");
-    let bytes: Vec<(String, Vec<u8>)> = paths.iter().map(|p| (p.to_string(), std::fs::read(dir.join(p)).unwrap())).collect();
+    let bytes: Vec<(String, Vec<u8>)> =
+        paths.iter().map(|p| (p.to_string(), std::fs::read(dir.join(p)).unwrap())).collect();
     let inputs: Vec<mocap::Input> = bytes.iter().map(|(name, b)| mocap::Input { name, bytes: b }).collect();
     Some(mocap::load(&inputs))
 }
@@ -490,13 +484,18 @@ fn model(result: &Result<mocap::Loaded, mocap::LoadError>) -> &mocap::Model {
 fn a_dropped_folder_pairs_models_with_their_skins() {
     // The weapon names players/waste/weapon.pcx (the file is WEAPON.PCX in upper
     // case); the player names none and takes the other image, even listed after.
-    let Some(set) = load_set(&["waste/weapon.PCX", "waste/waste.pcx", "waste/tris.md2", "waste/weapon.md2"]) else { return };
+    let Some(set) = load_set(&["waste/weapon.PCX", "waste/waste.pcx", "waste/tris.md2", "waste/weapon.md2"]) else {
+        return;
+    };
     assert_eq!(set.len(), 2, "two models; images are not characters");
     let (player, weapon) = (model(&set[0]), model(&set[1]));
     assert_eq!(player.skin.as_ref().map(|s| s.name.as_str()), Some("waste/waste.pcx"));
     assert_eq!(weapon.skin.as_ref().map(|s| s.name.as_str()), Some("waste/weapon.PCX"));
     assert_eq!(player.mesh.frame_count(), 198);
-    assert_eq!(player.mesh.source_counts, mocap::morph::SourceCounts { vertices: 312, triangles: 596, tex_coords: 435 });
+    assert_eq!(
+        player.mesh.source_counts,
+        mocap::morph::SourceCounts { vertices: 312, triangles: 596, tex_coords: 435 }
+    );
     // Every MD2 model is in Quake units, read as inches: the player is about 1.4 m.
     let height = player.mesh.height() * player.mesh.units().meters_per_unit();
     assert!((1.2..1.6).contains(&height), "{height} m");
@@ -505,7 +504,11 @@ fn a_dropped_folder_pairs_models_with_their_skins() {
 
 #[test]
 fn embedded_skin_names_match_any_folder_and_bmp_skins_decode() {
-    let Some(set) = load_set(&["telias_dolphin/dolphin.md2", "irrlicht_faerie/faerie2.bmp", "telias_dolphin/dolphin_f.bmp"]) else { return };
+    let Some(set) =
+        load_set(&["telias_dolphin/dolphin.md2", "irrlicht_faerie/faerie2.bmp", "telias_dolphin/dolphin_f.bmp"])
+    else {
+        return;
+    };
     let dolphin = model(&set[0]);
     let skin = dolphin.skin.as_ref().expect("dolphin_f.bmp, named settings/elias1/desktop/frames/dolphin_f.bmp");
     assert_eq!(skin.name, "telias_dolphin/dolphin_f.bmp");
@@ -528,7 +531,10 @@ fn images_without_a_model_and_broken_images_are_errors() {
     assert!(e.starts_with("waste/waste.pcx: an image is used as a model's skin"), "{e}");
     let Some(dir) = common::corpus_dir() else { return };
     let model_bytes = std::fs::read(dir.join("md2/waste/weapon.md2")).unwrap();
-    let set = mocap::load(&[mocap::Input { name: "weapon.md2", bytes: &model_bytes }, mocap::Input { name: "weapon.pcx", bytes: b"\x0a\x05\x01\x08" }]);
+    let set = mocap::load(&[
+        mocap::Input { name: "weapon.md2", bytes: &model_bytes },
+        mocap::Input { name: "weapon.pcx", bytes: b"\x0a\x05\x01\x08" },
+    ]);
     assert_eq!(set.len(), 2);
     assert!(model(&set[0]).skin.is_none(), "an image that cannot be decoded gives the neutral material");
     let e = set[1].as_ref().unwrap_err().to_string();
@@ -544,6 +550,9 @@ fn images_without_a_model_and_broken_images_are_errors() {
         b[28] = 24;
         b
     };
-    let set = mocap::load(&[mocap::Input { name: "weapon.md2", bytes: &model_bytes }, mocap::Input { name: "huge.bmp", bytes: &big_bmp }]);
+    let set = mocap::load(&[
+        mocap::Input { name: "weapon.md2", bytes: &model_bytes },
+        mocap::Input { name: "huge.bmp", bytes: &big_bmp },
+    ]);
     assert!(set[1].as_ref().is_err_and(|e| e.to_string().starts_with("huge.bmp:")), "{:?}", set[1].as_ref().err());
 }

@@ -1,12 +1,14 @@
 //! BVH reader behaviour on small inline fixtures: robustness cases and error positions.
 
+use mocap::Channel;
 use mocap::bvh::parse;
 use mocap::glam::Vec3;
-use mocap::Channel;
 
 /// A one-joint file with the given channel line and rows.
 fn one_joint(channels: &str, rows: &str, frames: usize) -> String {
-    format!("HIERARCHY\nROOT Hips\n{{\n\tOFFSET 0 0 0\n\t{channels}\n\tEnd Site\n\t{{\n\t\tOFFSET 0 1 0\n\t}}\n}}\nMOTION\nFrames: {frames}\nFrame Time: 0.5\n{rows}")
+    format!(
+        "HIERARCHY\nROOT Hips\n{{\n\tOFFSET 0 0 0\n\t{channels}\n\tEnd Site\n\t{{\n\t\tOFFSET 0 1 0\n\t}}\n}}\nMOTION\nFrames: {frames}\nFrame Time: 0.5\n{rows}"
+    )
 }
 
 fn err(src: &str) -> mocap::ParseError {
@@ -52,7 +54,11 @@ fn error_lines_are_right_with_crlf_and_lone_cr() {
 
 #[test]
 fn number_forms() {
-    let src = one_joint("CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation", "+1.5 -0 1e2 2.5E-1 .5 -7.\n", 1);
+    let src = one_joint(
+        "CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation",
+        "+1.5 -0 1e2 2.5E-1 .5 -7.\n",
+        1,
+    );
     let clip = parse(src.as_bytes()).unwrap();
     let row = clip.channel_values(0);
     assert_eq!(row, &[1.5, -0.0, 100.0, 0.25, 0.5, -7.0]);
@@ -92,7 +98,11 @@ fn frames_count_disagreeing_with_rows_uses_rows_and_warns() {
     let src = one_joint("CHANNELS 1 Xposition", "1\n2\n", 4_000_000_000);
     let clip = parse(src.as_bytes()).unwrap();
     assert_eq!(clip.frame_count(), 2);
-    assert!(clip.warnings.iter().any(|w| w.message.contains("4000000000") && w.line == Some(12)), "{:?}", clip.warnings);
+    assert!(
+        clip.warnings.iter().any(|w| w.message.contains("4000000000") && w.line == Some(12)),
+        "{:?}",
+        clip.warnings
+    );
 }
 
 #[test]
@@ -108,7 +118,8 @@ fn frame_time_missing_or_zero_defaults_with_warning() {
 
 #[test]
 fn header_forms_glued_and_spaced() {
-    let src = one_joint("CHANNELS 1 Xposition", "7\n", 1).replace("Frames: 1\nFrame Time: 0.5", "FRAMES:1\nFrame time : 0.25");
+    let src = one_joint("CHANNELS 1 Xposition", "7\n", 1)
+        .replace("Frames: 1\nFrame Time: 0.5", "FRAMES:1\nFrame time : 0.25");
     let clip = parse(src.as_bytes()).unwrap();
     assert_eq!((clip.frame_count(), clip.frame_time()), (1, 0.25));
 }
@@ -124,16 +135,24 @@ fn no_motion_section_is_a_rest_pose_with_warning() {
 #[test]
 fn huge_declared_frames_do_not_allocate() {
     // Parsing must be instant and small even though the header claims billions.
-    let src = one_joint("CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation", "0 0 0 0 0 0\n0 0 0 0 0 0\n", 4_000_000_000);
+    let src = one_joint(
+        "CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation",
+        "0 0 0 0 0 0\n0 0 0 0 0 0\n",
+        4_000_000_000,
+    );
     let clip = parse(src.as_bytes()).unwrap();
     assert_eq!(clip.motion().data().len(), 12);
 }
 
 #[test]
 fn many_blank_lines_with_wide_rows_do_not_allocate() {
-    let mut src = "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n".to_string();
+    let mut src =
+        "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
+            .to_string();
     for i in 0..200 {
-        src.push_str(&format!("JOINT J{i}\n{{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n}}\n"));
+        src.push_str(&format!(
+            "JOINT J{i}\n{{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n}}\n"
+        ));
     }
     src.push_str("}\nMOTION\nFrames: 1\nFrame Time: 0.1\n");
     src.push_str(&"x\n".repeat(100_000));
@@ -155,10 +174,20 @@ fn error_cases_have_line_and_column() {
         ("HIERARCHY\nROOT A\nOFFSET 0 0 0\n", 3, 1, "expected `{`"),
         ("HIERARCHY\nROOT\n{\n}\n", 2, 1, "joint name"),
         ("HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nEnd Sight\n{\n}\n}\n", 5, 5, "`Site`"),
-        ("HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nEnd Site\n{\nCHANNELS 1 Xrotation\n}\n}\n", 7, 1, "End Site has no CHANNELS"),
+        (
+            "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nEnd Site\n{\nCHANNELS 1 Xrotation\n}\n}\n",
+            7,
+            1,
+            "End Site has no CHANNELS",
+        ),
         ("HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\n}\nHIERARCHY\n", 6, 1, "second HIERARCHY"),
         ("HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\n}\nMOTION\nFrames: lots\n", 7, 9, "whole number"),
-        ("HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\n}\nMOTION\nFrames: 1\nFrame Time: soon\n", 8, 13, "number after Frame Time"),
+        (
+            "HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\n}\nMOTION\nFrames: 1\nFrame Time: soon\n",
+            8,
+            13,
+            "number after Frame Time",
+        ),
     ];
     for &(src, line, column, needle) in cases {
         let e = err(src);
@@ -184,11 +213,19 @@ fn row_errors_partial_too_long_and_garbage() {
 
 #[test]
 fn msvc_nan_and_decimal_commas_are_read_with_warnings() {
-    let clip = parse(one_joint("CHANNELS 3 Xposition Yposition Zposition", "1.#QNAN0 -1.#IND00 1.#INF00\n0,5 -2,25 3\n", 2).as_bytes()).unwrap();
+    let clip = parse(
+        one_joint("CHANNELS 3 Xposition Yposition Zposition", "1.#QNAN0 -1.#IND00 1.#INF00\n0,5 -2,25 3\n", 2)
+            .as_bytes(),
+    )
+    .unwrap();
     let row0 = clip.channel_values(0);
     assert!(row0[0].is_nan() && row0[1].is_nan() && row0[2] == f32::INFINITY);
     assert_eq!(clip.channel_values(1), &[0.5, -2.25, 3.0]);
-    assert!(clip.warnings.iter().any(|w| w.message.contains("decimal comma") && w.line == Some(15)), "{:?}", clip.warnings);
+    assert!(
+        clip.warnings.iter().any(|w| w.message.contains("decimal comma") && w.line == Some(15)),
+        "{:?}",
+        clip.warnings
+    );
     assert!(clip.warnings.iter().any(|w| w.message.contains("NaN") && w.line == Some(14)));
     // Other junk is still an error.
     assert!(parse(one_joint("CHANNELS 1 Xposition", "1.#WAT\n", 1).as_bytes()).is_err());
@@ -216,7 +253,11 @@ fn end_site_with_a_glued_suffix_is_a_named_end_site() {
     let clip = parse(src.as_bytes()).unwrap();
     assert!(clip.skeleton().is_end_site(1));
     assert_eq!(clip.skeleton().joints()[1].name, "Site4");
-    assert!(err("HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nEnd Sight\n{\nOFFSET 0 1 0\n}\n}\n").message.contains("expected `Site` after `End`"));
+    assert!(
+        err("HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nEnd Sight\n{\nOFFSET 0 1 0\n}\n}\n")
+            .message
+            .contains("expected `Site` after `End`")
+    );
 }
 
 #[test]
@@ -233,10 +274,16 @@ fn load_dispatch_and_error_display() {
     assert!(matches!(mocap::load_one("x.exe", b"MZ\x90\0"), Err(mocap::LoadError::UnknownFormat { .. })));
     assert!(mocap::load_one("noext", one_joint("CHANNELS 0", "", 0).as_bytes()).is_ok());
     // The content decides, not the extension.
-    assert_eq!(mocap::load_one("walk.txt", one_joint("CHANNELS 1 Xposition", "1\n", 1).as_bytes()).unwrap().frame_count(), 1);
+    assert_eq!(
+        mocap::load_one("walk.txt", one_joint("CHANNELS 1 Xposition", "1\n", 1).as_bytes()).unwrap().frame_count(),
+        1
+    );
     assert_eq!(mocap::Format::detect("x.bvh", b"Segment: a\n"), Some(mocap::Format::Bva));
     assert_eq!(mocap::Format::detect("x.bvh", b":version 1.10\n"), Some(mocap::Format::Asf));
-    assert_eq!(mocap::Format::detect("take.bvh", b"# c\n:FULLY-SPECIFIED\n:DEGREES\n1\nroot 0\n"), Some(mocap::Format::Amc));
+    assert_eq!(
+        mocap::Format::detect("take.bvh", b"# c\n:FULLY-SPECIFIED\n:DEGREES\n1\nroot 0\n"),
+        Some(mocap::Format::Amc)
+    );
     assert_eq!(mocap::Format::detect("x.amc", b"HIERARCHY\n"), Some(mocap::Format::Bvh));
 }
 

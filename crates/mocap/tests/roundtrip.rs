@@ -18,11 +18,20 @@ fn skeleton_strategy() -> impl Strategy<Value = Skeleton> {
         for (i, (pick, offset, channels, end, name)) in specs.into_iter().enumerate() {
             // Parent: any earlier non-End-Site joint, or a new root.
             let candidates: Vec<usize> = (0..i).filter(|&p| !joints[p].is_end_site()).collect();
-            let parent = if candidates.is_empty() || pick % 9 == 0 { None } else { Some(candidates[pick as usize % candidates.len()]) };
+            let parent = if candidates.is_empty() || pick % 9 == 0 {
+                None
+            } else {
+                Some(candidates[pick as usize % candidates.len()])
+            };
             let end_site = end && parent.is_some() && pick % 3 == 0;
-            let channels: Vec<Channel> = if end_site { vec![] } else { channels.into_iter().map(|c| Channel::BVH[c]).collect() };
+            let channels: Vec<Channel> =
+                if end_site { vec![] } else { channels.into_iter().map(|c| Channel::BVH[c]).collect() };
             let name = format!("{name}{i}");
-            joints.push(if end_site { Joint::end_site(name, parent, Vec3::from(offset)) } else { Joint::new(name, parent, Vec3::from(offset), channels) });
+            joints.push(if end_site {
+                Joint::end_site(name, parent, Vec3::from(offset))
+            } else {
+                Joint::new(name, parent, Vec3::from(offset), channels)
+            });
         }
         // Reorder into pre-order so that the writer and the reader agree on columns.
         let mut order = Vec::new();
@@ -46,7 +55,13 @@ fn skeleton_strategy() -> impl Strategy<Value = Skeleton> {
 /// The same random trees, with random rest rotations, extrinsic or intrinsic
 /// rotations, bone-length channels and radians: what BVH cannot hold as it is.
 fn general_clip_strategy() -> impl Strategy<Value = Clip> {
-    (skeleton_strategy(), prop::collection::vec(prop::array::uniform4(-1.0f32..1.0), 25), any::<bool>(), any::<bool>(), 1usize..4)
+    (
+        skeleton_strategy(),
+        prop::collection::vec(prop::array::uniform4(-1.0f32..1.0), 25),
+        any::<bool>(),
+        any::<bool>(),
+        1usize..4,
+    )
         .prop_flat_map(|(skeleton, rests, extrinsic, radians, frames)| {
             let joints: Vec<Joint> = skeleton
                 .joints()

@@ -5,9 +5,9 @@
 
 mod common;
 
+use mocap::Transform;
 use mocap::glam::{Quat, Vec3};
 use mocap::skin::{self, Skin, SkinError};
-use mocap::Transform;
 use std::collections::HashMap;
 
 fn t(translation: Vec3, rotation: Quat) -> Transform {
@@ -51,7 +51,9 @@ fn bind_pose_rigid_and_half_and_half() {
 #[test]
 fn invalid_skins_are_refused_with_a_reason() {
     let bind = vec![Transform::IDENTITY];
-    let one = |joints: [u32; 4], weights: [f32; 4], indices: Vec<u32>| Skin::new(vec![Vec3::ZERO], vec![Vec3::Y], indices, vec![joints], vec![weights], &bind);
+    let one = |joints: [u32; 4], weights: [f32; 4], indices: Vec<u32>| {
+        Skin::new(vec![Vec3::ZERO], vec![Vec3::Y], indices, vec![joints], vec![weights], &bind)
+    };
     assert!(matches!(one([3, 0, 0, 0], [1.0, 0.0, 0.0, 0.0], vec![]), Err(SkinError::Joint { joint: 3, .. })));
     assert!(matches!(one([0, 0, 0, 0], [0.0; 4], vec![]), Err(SkinError::Weights { .. })));
     assert!(matches!(one([0, 0, 0, 0], [f32::NAN, 1.0, 0.0, 0.0], vec![]), Err(SkinError::Weights { .. })));
@@ -59,7 +61,10 @@ fn invalid_skins_are_refused_with_a_reason() {
     assert!(matches!(one([0, 0, 0, 0], [1.0, 0.0, 0.0, 0.0], vec![0, 0, 1]), Err(SkinError::Index { vertex: 1, .. })));
     assert!(matches!(one([0, 0, 0, 0], [1.0, 0.0, 0.0, 0.0], vec![0, 0]), Err(SkinError::Triangles(2))));
     let flat = [Transform { scale: Vec3::ZERO, ..Transform::IDENTITY }];
-    assert!(matches!(Skin::new(vec![Vec3::ZERO], vec![Vec3::Y], vec![], vec![[0; 4]], vec![[1.0, 0.0, 0.0, 0.0]], &flat), Err(SkinError::Bind(0))));
+    assert!(matches!(
+        Skin::new(vec![Vec3::ZERO], vec![Vec3::Y], vec![], vec![[0; 4]], vec![[1.0, 0.0, 0.0, 0.0]], &flat),
+        Err(SkinError::Bind(0))
+    ));
     let e = one([3, 0, 0, 0], [1.0, 0.0, 0.0, 0.0], vec![]).unwrap_err().to_string();
     assert!(e.contains("vertex 0") && e.contains("joint 3"), "{e}");
 }
@@ -77,7 +82,9 @@ fn closed(indices: &[u32]) -> bool {
 /// The capsule mode's radius rule (mocap-render's `bone_radius`), here so the core
 /// tests need no renderer.
 fn radius(size: f32) -> impl Fn(usize, f32) -> f32 {
-    move |_, length: f32| if length > size * 0.75 { size * 0.004 } else { (length * 0.2).clamp(size * 0.008, size * 0.04) }
+    move |_, length: f32| {
+        if length > size * 0.75 { size * 0.004 } else { (length * 0.2).clamp(size * 0.008, size * 0.04) }
+    }
 }
 
 #[test]
@@ -98,14 +105,22 @@ fn every_corpus_skeleton_gets_a_closed_body_with_whole_weights() {
         } else {
             mocap::local_to_model(clip.skeleton(), &mocap::LocalPose::rest(clip.skeleton()), &mut bind);
         }
-        let body = mocap::body::build(clip.skeleton(), &bind, radius(clip.pose_extent())).unwrap_or_else(|e| panic!("{path}: {e}"));
+        let body = mocap::body::build(clip.skeleton(), &bind, radius(clip.pose_extent()))
+            .unwrap_or_else(|e| panic!("{path}: {e}"));
         assert!(!body.indices().is_empty(), "{path}");
         assert!(closed(body.indices()), "{path}: every edge is shared by two triangles");
         for (v, w) in body.weights().iter().enumerate() {
             let sum: f32 = w.iter().sum();
-            assert!((sum - 1.0).abs() < 1e-5 && w.iter().all(|x| (0.0..=1.0).contains(x)), "{path}: vertex {v} weights {w:?}");
+            assert!(
+                (sum - 1.0).abs() < 1e-5 && w.iter().all(|x| (0.0..=1.0).contains(x)),
+                "{path}: vertex {v} weights {w:?}"
+            );
         }
-        assert!(body.positions().iter().all(|p| p.is_finite()) && body.normals().iter().all(|n| (n.length() - 1.0).abs() < 1e-3), "{path}");
+        assert!(
+            body.positions().iter().all(|p| p.is_finite())
+                && body.normals().iter().all(|n| (n.length() - 1.0).abs() < 1e-3),
+            "{path}"
+        );
         // Skinned by its own bind pose it stays where it was built.
         let (mut m, mut p, mut n) = (Vec::new(), Vec::new(), Vec::new());
         skin::skinning_matrices(&bind, body.inverse_bind(), &mut m);
@@ -136,7 +151,9 @@ fn a_bent_elbow_leaves_no_gap() {
     // Tubes: s→e (vertices 0..V), e→w (V..2V). Near the elbow, the first tube's
     // far cap and the second tube's near cap: the same sphere blend, so they match.
     let v = mocap::body::TUBE_VERTICES as usize;
-    let near_elbow = |range: std::ops::Range<usize>| p[range].iter().filter(|q| q.distance(elbow) < 0.101).copied().collect::<Vec<_>>();
+    let near_elbow = |range: std::ops::Range<usize>| {
+        p[range].iter().filter(|q| q.distance(elbow) < 0.101).copied().collect::<Vec<_>>()
+    };
     let (upper, lower) = (near_elbow(0..v), near_elbow(v..2 * v));
     assert!(upper.len() >= 12 && lower.len() >= 12);
     // Linear blending loses some volume at a 90° bend (cos 45° at the 50/50 ring),

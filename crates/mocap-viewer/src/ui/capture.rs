@@ -26,10 +26,17 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
             viewer.refuse(e);
         }
     }
-    ui.label(egui::RichText::new(rig_note.unwrap_or_else(|| "automatic fit (drop a rig .json to use yours)".to_owned())).weak());
+    ui.label(
+        egui::RichText::new(rig_note.unwrap_or_else(|| "automatic fit (drop a rig .json to use yours)".to_owned()))
+            .weak(),
+    );
     let Some(result) = &viewer.capture_result else { return };
     last_capture(ui, result);
-    if ui.button("Save rig").on_hover_text("Download the rig used (JSON); drop it back with the model to capture with it").clicked() {
+    if ui
+        .button("Save rig")
+        .on_hover_text("Download the rig used (JSON); drop it back with the model to capture with it")
+        .clicked()
+    {
         viewer.download = viewer.rig_download();
         viewer.save_requested = true;
     }
@@ -40,7 +47,14 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
 fn rig_setup(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
     let editing = viewer.rig_edit.as_ref().is_some_and(|e| e.model == index);
     if !editing {
-        let clips: Vec<(usize, String)> = viewer.stage.actors.iter().enumerate().filter(|(_, c)| c.clip().is_some()).map(|(i, c)| (i, c.name.clone())).collect();
+        let clips: Vec<(usize, String)> = viewer
+            .stage
+            .actors
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.clip().is_some())
+            .map(|(i, c)| (i, c.name.clone()))
+            .collect();
         ui.horizontal(|ui| {
             let hint = "Place a skeleton in the model's first frame to adjust by hand: drag its joints and spin handles, bind, paint";
             if ui.button("Fit skeleton").on_hover_text(hint).clicked() {
@@ -102,7 +116,10 @@ fn last_capture(ui: &mut egui::Ui, result: &crate::capture::CaptureResult) {
         };
         row("Captured", format!("{} → {}", result.model, result.clip));
         row("Joints", format!("{tracked} of {} tracked", joints.len()));
-        row("Residual", format!("≤ {worst:.3} ({:.2} % of the height)", worst / f64::from(result.report.height.max(1e-6)) * 100.0));
+        row(
+            "Residual",
+            format!("≤ {worst:.3} ({:.2} % of the height)", worst / f64::from(result.report.height.max(1e-6)) * 100.0),
+        );
         row("Not converged", format!("{failed} joint-frames"));
     });
     for j in joints.iter().filter(|j| j.tracked.is_err()) {

@@ -6,7 +6,13 @@ use mocap::edit::Edit;
 
 /// Shows the Edit menu's entries (inside the toolbar's menu button).
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
-    if ui.button("New character").on_hover_text("Start a skeleton from one root joint: add joints here, pose them by dragging (Edit mode) and Set key").clicked() {
+    if ui
+        .button("New character")
+        .on_hover_text(
+            "Start a skeleton from one root joint: add joints here, pose them by dragging (Edit mode) and Set key",
+        )
+        .clicked()
+    {
         viewer.new_character();
         ui.close();
         return;
@@ -22,7 +28,11 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
         return;
     };
     let (name, fps, units) = (c.name.clone(), 1.0 / clip.frame_time(), c.units);
-    let selected = viewer.selected.filter(|s| s.character == index).and_then(|s| clip.skeleton().joints().get(s.joint)).map(|j| j.name.clone());
+    let selected = viewer
+        .selected
+        .filter(|s| s.character == index)
+        .and_then(|s| clip.skeleton().joints().get(s.joint))
+        .map(|j| j.name.clone());
     ui.label(egui::RichText::new(format!("Editing {name}")).weak());
     let mut edit: Option<(Edit, String)> = None;
     let mut grow: Option<String> = None;
@@ -31,7 +41,8 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             edit = Some((Edit::Trim { first: a.min(b), last: a.max(b) }, format!("Trim {a}–{b}")));
         }
     } else {
-        ui.add_enabled(false, egui::Button::new("Trim to the loop range")).on_disabled_hover_text("Set a loop range under the timeline first");
+        ui.add_enabled(false, egui::Button::new("Trim to the loop range"))
+            .on_disabled_hover_text("Set a loop range under the timeline first");
     }
     ui.menu_button("Resample", |ui| {
         for target in [24.0, 30.0, 60.0, 120.0] {
@@ -120,7 +131,8 @@ fn layer_menu(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize, joint: &str)
 fn add_child(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>, grow: &mut Option<String>) {
     ui.menu_button(format!("Add a child to {joint}"), |ui| {
         let id = egui::Id::unique("add-child");
-        let (mut name, mut xyz): (String, [f32; 3]) = ui.ctx().data(|d| d.get_temp(id)).unwrap_or_else(|| ("Joint".to_owned(), [0.0, 0.3, 0.0]));
+        let (mut name, mut xyz): (String, [f32; 3]) =
+            ui.ctx().data(|d| d.get_temp(id)).unwrap_or_else(|| ("Joint".to_owned(), [0.0, 0.3, 0.0]));
         ui.horizontal(|ui| {
             ui.label("name");
             ui.add(egui::TextEdit::singleline(&mut name).desired_width(110.0));
@@ -134,9 +146,16 @@ fn add_child(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>, 
         ui.horizontal(|ui| {
             if ui.button("Add").clicked() {
                 let offset = mocap::glam::Vec3::from_array(xyz);
-                *edit = Some((Edit::AddJoint { parent: joint.to_owned(), name: name.trim().to_owned(), offset }, format!("Add {}", name.trim())));
+                *edit = Some((
+                    Edit::AddJoint { parent: joint.to_owned(), name: name.trim().to_owned(), offset },
+                    format!("Add {}", name.trim()),
+                ));
             }
-            if ui.button("Drag it out in the view").on_hover_text("Then drag from the selected joint: the new bone ends where you let go").clicked() {
+            if ui
+                .button("Drag it out in the view")
+                .on_hover_text("Then drag from the selected joint: the new bone ends where you let go")
+                .clicked()
+            {
                 *grow = Some(name.trim().to_owned());
             }
         });
@@ -155,7 +174,10 @@ fn set_offset(ui: &mut egui::Ui, joint: &str, current: mocap::glam::Vec3, edit: 
             }
         });
         if ui.button("Set").clicked() {
-            *edit = Some((Edit::SetOffset { name: joint.to_owned(), offset: mocap::glam::Vec3::from_array(xyz) }, format!("Offset {joint}")));
+            *edit = Some((
+                Edit::SetOffset { name: joint.to_owned(), offset: mocap::glam::Vec3::from_array(xyz) },
+                format!("Offset {joint}"),
+            ));
         }
         ui.ctx().data_mut(|d| d.insert_temp(id, xyz));
     });
@@ -168,7 +190,10 @@ fn channels(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>) {
             for position in [false, true] {
                 let label = if position { format!("position + {order} rotation") } else { format!("{order} rotation") };
                 if ui.button(label).clicked() {
-                    *edit = Some((Edit::SetChannels { name: joint.to_owned(), position, order: order.to_owned() }, format!("Channels of {joint}")));
+                    *edit = Some((
+                        Edit::SetChannels { name: joint.to_owned(), position, order: order.to_owned() },
+                        format!("Channels of {joint}"),
+                    ));
                 }
             }
         }
@@ -184,7 +209,8 @@ fn rename(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>) {
         let field = ui.add(egui::TextEdit::singleline(&mut text).desired_width(120.0));
         let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
         if (ui.button("OK").clicked() || enter) && text.trim() != joint {
-            *edit = Some((Edit::Rename { from: joint.to_owned(), to: text.trim().to_owned() }, format!("Rename {joint}")));
+            *edit =
+                Some((Edit::Rename { from: joint.to_owned(), to: text.trim().to_owned() }, format!("Rename {joint}")));
         }
     });
     ui.ctx().data_mut(|d| d.insert_temp(id, text));

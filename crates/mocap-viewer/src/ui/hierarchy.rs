@@ -119,7 +119,8 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
 
 /// The row of a selected joint, when it is listed.
 fn row_of(rows: &[Row], s: Selection) -> Option<usize> {
-    rows.iter().position(|r| matches!(*r, Row::Joint { character, joint, .. } if character == s.character && joint == s.joint))
+    rows.iter()
+        .position(|r| matches!(*r, Row::Joint { character, joint, .. } if character == s.character && joint == s.joint))
 }
 
 /// Every row shown, in order: per character its header, then (unless folded) its
@@ -168,7 +169,9 @@ fn unfold_to(folded: &mut Folded, characters: &[Character], s: Selection) {
 /// Names of the listed joints, in row order (at most [`MAX_LABELS`]).
 fn record_labels(rows: &[Row], characters: &[Character], labels: &mut Vec<String>) {
     let names = rows.iter().filter_map(|r| match *r {
-        Row::Joint { character, joint, .. } => characters.get(character)?.clip()?.skeleton().joints().get(joint).map(|j| j.name.clone()),
+        Row::Joint { character, joint, .. } => {
+            characters.get(character)?.clip()?.skeleton().joints().get(joint).map(|j| j.name.clone())
+        }
         _ => None,
     });
     labels.extend(names.take(MAX_LABELS));
@@ -248,7 +251,14 @@ fn animation_row(ui: &mut egui::Ui, index: usize, model: &mocap::Model) -> Optio
 }
 
 /// One joint row: indentation, fold toggle (when it has children), selectable name.
-fn joint_row(ui: &mut egui::Ui, c: &Character, here: Selection, depth: usize, selected: &mut Option<Selection>, folded: &mut Folded) {
+fn joint_row(
+    ui: &mut egui::Ui,
+    c: &Character,
+    here: Selection,
+    depth: usize,
+    selected: &mut Option<Selection>,
+    folded: &mut Folded,
+) {
     let Some(joint) = c.clip().and_then(|clip| clip.skeleton().joints().get(here.joint)) else { return };
     let has_children = c.extra.children.get(here.joint).is_some_and(|k| !k.is_empty());
     ui.horizontal(|ui| {
@@ -265,7 +275,11 @@ fn joint_row(ui: &mut egui::Ui, c: &Character, here: Selection, depth: usize, se
         } else {
             ui.add_space(12.0 + ui.spacing().item_spacing.x);
         }
-        let text = if joint.is_end_site() { egui::RichText::new(&joint.name).weak() } else { egui::RichText::new(&joint.name) };
+        let text = if joint.is_end_site() {
+            egui::RichText::new(&joint.name).weak()
+        } else {
+            egui::RichText::new(&joint.name)
+        };
         if ui.selectable_label(*selected == Some(here), text).clicked() {
             *selected = Some(here);
         }

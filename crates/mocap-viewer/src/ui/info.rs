@@ -37,11 +37,17 @@ pub fn show(ui: &mut egui::Ui, doc: Option<&Character>, count: usize) -> Option<
         for (key, value) in clip.metadata.iter().filter(|(k, _)| k != "documentation") {
             row(key, value.clone());
         }
-        ui.label("Up").on_hover_text("Which file axis points up (guessed from the motion: BVH is Y-up, some tools write Z-up)");
+        ui.label("Up")
+            .on_hover_text("Which file axis points up (guessed from the motion: BVH is Y-up, some tools write Z-up)");
         ui.horizontal(|ui| {
             for up in [mocap::UpAxis::Y, mocap::UpAxis::Z] {
                 let label = if up == mocap::UpAxis::Y { "Y" } else { "Z" };
-                if ui.selectable_label(doc.up == up, label).on_hover_text(format!("Stand the character up along the file's {label} axis")).clicked() && doc.up != up {
+                if ui
+                    .selectable_label(doc.up == up, label)
+                    .on_hover_text(format!("Stand the character up along the file's {label} axis"))
+                    .clicked()
+                    && doc.up != up
+                {
                     picked = Some(up);
                 }
             }

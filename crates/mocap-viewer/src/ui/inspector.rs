@@ -63,11 +63,9 @@ pub fn show(ui: &mut egui::Ui, selected: Option<(&Character, usize)>, frame: usi
 fn plot(ui: &mut egui::Ui, clip: &mocap::Clip, joint: &mocap::Joint, time: f64) {
     let frames = clip.frame_count();
     let step = frames.div_ceil(MAX_PLOT_POINTS).max(1);
-    egui_plot::Plot::new("channels")
-        .height(180.0)
-        .legend(egui_plot::Legend::default())
-        .allow_scroll(false)
-        .show(ui, |plot_ui| {
+    egui_plot::Plot::new("channels").height(180.0).legend(egui_plot::Legend::default()).allow_scroll(false).show(
+        ui,
+        |plot_ui| {
             for (k, channel) in joint.channels.iter().enumerate() {
                 let c = joint.first_channel() + k;
                 let points: Vec<[f64; 2]> = (0..frames)
@@ -77,5 +75,6 @@ fn plot(ui: &mut egui::Ui, clip: &mocap::Clip, joint: &mocap::Joint, time: f64) 
                 plot_ui.line(egui_plot::Line::new(channel.to_string(), points));
             }
             plot_ui.vline(egui_plot::VLine::new("playhead", time).color(egui::Color32::YELLOW));
-        });
+        },
+    );
 }

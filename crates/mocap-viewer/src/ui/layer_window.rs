@@ -28,13 +28,28 @@ pub struct LayerDialog {
 impl LayerDialog {
     /// A full-weight override layer on `joint` of `character`, names matched.
     pub fn new(character: usize, joint: &str) -> LayerDialog {
-        LayerDialog { character, joint: joint.to_owned(), source: None, weight: 1.0, fades: (0.0, 0.0), additive: false, map: Vec::new() }
+        LayerDialog {
+            character,
+            joint: joint.to_owned(),
+            source: None,
+            weight: 1.0,
+            fades: (0.0, 0.0),
+            additive: false,
+            map: Vec::new(),
+        }
     }
 
     /// The core layer these settings make.
     pub fn layer(&self) -> Layer {
         let blend = if self.additive { Blend::Additive } else { Blend::Override };
-        Layer { weight: self.weight, fade_in: self.fades.0, fade_out: self.fades.1, blend, map: self.map.clone(), ..Layer::on(&self.joint) }
+        Layer {
+            weight: self.weight,
+            fade_in: self.fades.0,
+            fade_out: self.fades.1,
+            blend,
+            map: self.map.clone(),
+            ..Layer::on(&self.joint)
+        }
     }
 }
 
@@ -47,8 +62,19 @@ struct Row {
 /// Shows the Layer window while it is open.
 pub fn show(ctx: &egui::Context, viewer: &mut Viewer) {
     let Some(mut dialog) = viewer.layer_dialog.take() else { return };
-    let Some(base_name) = viewer.stage.actors.get(dialog.character).filter(|c| c.clip().is_some()).map(|c| c.name.clone()) else { return };
-    let others: Vec<(usize, String)> = viewer.stage.actors.iter().enumerate().filter(|(i, c)| *i != dialog.character && c.clip().is_some()).map(|(i, c)| (i, c.name.clone())).collect();
+    let Some(base_name) =
+        viewer.stage.actors.get(dialog.character).filter(|c| c.clip().is_some()).map(|c| c.name.clone())
+    else {
+        return;
+    };
+    let others: Vec<(usize, String)> = viewer
+        .stage
+        .actors
+        .iter()
+        .enumerate()
+        .filter(|(i, c)| *i != dialog.character && c.clip().is_some())
+        .map(|(i, c)| (i, c.name.clone()))
+        .collect();
     if dialog.source.is_none_or(|s| !others.iter().any(|(i, _)| *i == s)) {
         dialog.source = others.first().map(|(i, _)| *i);
         dialog.map.clear();
@@ -56,39 +82,59 @@ pub fn show(ctx: &egui::Context, viewer: &mut Viewer) {
     let (rows, names) = dialog.source.map_or_else(|| (Vec::new(), Vec::new()), |s| mapping(viewer, &dialog, s));
     let mut open = true;
     let mut apply = false;
-    egui::Window::new(format!("Layer on {}", dialog.joint)).id(egui::Id::unique("layer-window")).open(&mut open).default_pos(egui::pos2(620.0, 90.0)).resizable(false).show(ctx, |ui| {
-        ui.label(egui::RichText::new(format!("{}'s subtree in {base_name}", dialog.joint)).weak());
-        if others.is_empty() {
-            ui.label("Open (Add…) the clip to layer first");
-            return;
-        }
-        let shown = others.iter().find(|(i, _)| Some(*i) == dialog.source).map_or("", |(_, n)| n.as_str());
-        egui::ComboBox::from_label("layer clip").selected_text(shown).show_ui(ui, |ui| {
-            for (i, name) in &others {
-                if ui.selectable_label(dialog.source == Some(*i), name).clicked() && dialog.source != Some(*i) {
-                    dialog.source = Some(*i);
+    egui::Window::new(format!("Layer on {}", dialog.joint))
+        .id(egui::Id::unique("layer-window"))
+        .open(&mut open)
+        .default_pos(egui::pos2(620.0, 90.0))
+        .resizable(false)
+        .show(ctx, |ui| {
+            ui.label(egui::RichText::new(format!("{}'s subtree in {base_name}", dialog.joint)).weak());
+            if others.is_empty() {
+                ui.label("Open (Add…) the clip to layer first");
+                return;
+            }
+            let shown = others.iter().find(|(i, _)| Some(*i) == dialog.source).map_or("", |(_, n)| n.as_str());
+            egui::ComboBox::from_label("layer clip").selected_text(shown).show_ui(ui, |ui| {
+                for (i, name) in &others {
+                    if ui.selectable_label(dialog.source == Some(*i), name).clicked() && dialog.source != Some(*i) {
+                        dialog.source = Some(*i);
+                        dialog.map.clear();
+                    }
+                }
+            });
+            ui.add(egui::Slider::new(&mut dialog.weight, 0.0..=1.0).text("weight"));
+            ui.horizontal(|ui| {
+                ui.add(
+                    egui::DragValue::new(&mut dialog.fades.0)
+                        .range(0.0..=60.0)
+                        .speed(0.05)
+                        .prefix("fade in ")
+                        .suffix(" s"),
+                );
+                ui.add(
+                    egui::DragValue::new(&mut dialog.fades.1)
+                        .range(0.0..=60.0)
+                        .speed(0.05)
+                        .prefix("fade out ")
+                        .suffix(" s"),
+                );
+            });
+            ui.checkbox(&mut dialog.additive, "Additive (add the layer's change from its first frame)");
+            ui.separator();
+            let matched = rows.iter().filter(|r| r.played.is_some()).count();
+            ui.label(format!("Joints: {matched} of {} played by the layer", rows.len()));
+            mapping_grid(ui, &rows, &names, &mut dialog.map);
+            ui.separator();
+            ui.horizontal(|ui| {
+                apply = ui
+                    .add_enabled(matched > 0, egui::Button::new("Layer"))
+                    .on_hover_text("One undoable edit")
+                    .clicked();
+                if ui.button("Proposed names").on_hover_text("Forget the joints chosen by hand").clicked() {
                     dialog.map.clear();
                 }
-            }
+            });
         });
-        ui.add(egui::Slider::new(&mut dialog.weight, 0.0..=1.0).text("weight"));
-        ui.horizontal(|ui| {
-            ui.add(egui::DragValue::new(&mut dialog.fades.0).range(0.0..=60.0).speed(0.05).prefix("fade in ").suffix(" s"));
-            ui.add(egui::DragValue::new(&mut dialog.fades.1).range(0.0..=60.0).speed(0.05).prefix("fade out ").suffix(" s"));
-        });
-        ui.checkbox(&mut dialog.additive, "Additive (add the layer's change from its first frame)");
-        ui.separator();
-        let matched = rows.iter().filter(|r| r.played.is_some()).count();
-        ui.label(format!("Joints: {matched} of {} played by the layer", rows.len()));
-        mapping_grid(ui, &rows, &names, &mut dialog.map);
-        ui.separator();
-        ui.horizontal(|ui| {
-            apply = ui.add_enabled(matched > 0, egui::Button::new("Layer")).on_hover_text("One undoable edit").clicked();
-            if ui.button("Proposed names").on_hover_text("Forget the joints chosen by hand").clicked() {
-                dialog.map.clear();
-            }
-        });
-    });
     if apply {
         if let Some(source) = dialog.source {
             match viewer.add_layer(dialog.character, source, &dialog.layer()) {
@@ -107,7 +153,8 @@ fn mapping(viewer: &Viewer, dialog: &LayerDialog, source: usize) -> (Vec<Row>, V
     let clip = |i: usize| viewer.stage.actors.get(i).and_then(|c| c.clip());
     let (Some(base), Some(other)) = (clip(dialog.character), clip(source)) else { return (Vec::new(), Vec::new()) };
     let (bs, ls) = (base.skeleton(), other.skeleton());
-    let names = ls.joints().iter().enumerate().filter(|(k, _)| !ls.is_end_site(*k)).map(|(_, j)| j.name.clone()).collect();
+    let names =
+        ls.joints().iter().enumerate().filter(|(k, _)| !ls.is_end_site(*k)).map(|(_, j)| j.name.clone()).collect();
     let Some(root) = bs.find(&dialog.joint) else { return (Vec::new(), names) };
     let pairs = layer::match_joints(bs, ls, root, &dialog.map);
     // The subtree's joints: each matched to itself.
@@ -115,7 +162,8 @@ fn mapping(viewer: &Viewer, dialog: &LayerDialog, source: usize) -> (Vec<Row>, V
         .into_iter()
         .filter_map(|(b, _)| {
             let base = bs.joints().get(b)?.name.clone();
-            let played = pairs.iter().find(|(pb, _)| *pb == b).and_then(|&(_, l)| ls.joints().get(l)).map(|j| j.name.clone());
+            let played =
+                pairs.iter().find(|(pb, _)| *pb == b).and_then(|&(_, l)| ls.joints().get(l)).map(|j| j.name.clone());
             Some(Row { base, played })
         })
         .collect();
@@ -130,16 +178,19 @@ fn mapping_grid(ui: &mut egui::Ui, rows: &[Row], names: &[String], map: &mut Vec
             for row in rows {
                 ui.label(&row.base);
                 let mut choice: Option<String> = None;
-                egui::ComboBox::from_id_salt(("layer-map-row", row.base.as_str())).width(150.0).selected_text(row.played.as_deref().unwrap_or(NONE)).show_ui(ui, |ui| {
-                    if ui.selectable_label(row.played.is_none(), NONE).clicked() {
-                        choice = Some(String::new());
-                    }
-                    for n in names {
-                        if ui.selectable_label(row.played.as_deref() == Some(n.as_str()), n).clicked() {
-                            choice = Some(n.clone());
+                egui::ComboBox::from_id_salt(("layer-map-row", row.base.as_str()))
+                    .width(150.0)
+                    .selected_text(row.played.as_deref().unwrap_or(NONE))
+                    .show_ui(ui, |ui| {
+                        if ui.selectable_label(row.played.is_none(), NONE).clicked() {
+                            choice = Some(String::new());
                         }
-                    }
-                });
+                        for n in names {
+                            if ui.selectable_label(row.played.as_deref() == Some(n.as_str()), n).clicked() {
+                                choice = Some(n.clone());
+                            }
+                        }
+                    });
                 if let Some(choice) = choice {
                     map.retain(|(b, _)| *b != row.base);
                     map.push((row.base.clone(), choice));

@@ -36,7 +36,12 @@ pub fn show(ui: &mut egui::Ui, c: &Character, model: &Model) {
         }
         let named = if mesh.skins.is_empty() { "(none named)".to_owned() } else { mesh.skins.join("\n") };
         row("Skins named", named);
-        row("Skin used", model.skin.as_ref().map_or("none (neutral material)".to_owned(), |s| format!("{} ({}×{})", s.name, s.image.width, s.image.height)));
+        row(
+            "Skin used",
+            model.skin.as_ref().map_or("none (neutral material)".to_owned(), |s| {
+                format!("{} ({}×{})", s.name, s.image.width, s.image.height)
+            }),
+        );
     });
     if let Some(skin) = &model.skin {
         thumbnail(ui, skin);

@@ -26,6 +26,12 @@ pub fn show(ui: &mut egui::Ui, notice: &mut Option<Notice>, anything_open: bool)
         *notice = None;
     }
     if !anything_open {
-        ui.painter().text(rect.center(), egui::Align2::CENTER_CENTER, "Drop motion files here (.bvh, .bva, .asf + .amc, .md2 + skin)", egui::FontId::proportional(20.0), egui::Color32::GRAY);
+        ui.painter().text(
+            rect.center(),
+            egui::Align2::CENTER_CENTER,
+            "Drop motion files here (.bvh, .bva, .asf + .amc, .md2 + skin)",
+            egui::FontId::proportional(20.0),
+            egui::Color32::GRAY,
+        );
     }
 }

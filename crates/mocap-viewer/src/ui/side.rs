@@ -42,7 +42,8 @@ fn rotate_row(ui: &mut egui::Ui, viewer: &mut Viewer) {
     let mut degrees = [z.to_degrees(), x.to_degrees(), y.to_degrees()];
     let mut changed = false;
     ui.horizontal(|ui| {
-        ui.label("Rotate").on_hover_text("The selected joint's rotation at this frame (Z, X, Y degrees); Set key keeps it");
+        ui.label("Rotate")
+            .on_hover_text("The selected joint's rotation at this frame (Z, X, Y degrees); Set key keeps it");
         for (v, axis) in degrees.iter_mut().zip(["z ", "x ", "y "]) {
             changed |= ui.add(egui::DragValue::new(v).speed(0.5).max_decimals(1).prefix(axis)).changed();
         }

@@ -10,41 +10,47 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     let Some(mut demo) = viewer.tentacle.clone() else { return };
     let mut open = true;
     let mut rebuild = None;
-    egui::Window::new("Bendy tentacle").open(&mut open).default_pos(egui::pos2(260.0, 60.0)).resizable(false).show(ui.ctx(), |ui| {
-        let mut bones = demo.bones;
-        ui.add(egui::Slider::new(&mut bones, mocap::demo::BONES).text("bones"));
-        if bones != demo.bones {
-            rebuild = Some(bones);
-        }
-        ui.checkbox(&mut demo.follow, "Follow the target (IK)").on_hover_text("Drag the red sphere in the view; the tip follows");
-        ui.horizontal(|ui| {
-            ui.label("solver");
-            for s in Solver::ALL {
-                ui.selectable_value(&mut demo.solver, s, s.name());
+    egui::Window::new("Bendy tentacle").open(&mut open).default_pos(egui::pos2(260.0, 60.0)).resizable(false).show(
+        ui.ctx(),
+        |ui| {
+            let mut bones = demo.bones;
+            ui.add(egui::Slider::new(&mut bones, mocap::demo::BONES).text("bones"));
+            if bones != demo.bones {
+                rebuild = Some(bones);
             }
-        });
-        let soft = demo.soft;
-        ui.horizontal(|ui| {
-            ui.selectable_value(&mut demo.soft, true, "Soft skin").on_hover_text("Vertices blended across each joint: a smooth bend");
-            ui.selectable_value(&mut demo.soft, false, "Rigid skin").on_hover_text("Each vertex on one bone: a crease at each joint");
-            ui.checkbox(&mut viewer.settings.show_weights, "Weights");
-        });
-        if soft != demo.soft {
-            rebuild = rebuild.or(Some(0));
-        }
-        ui.separator();
-        ui.label(if demo.follow { "Bones (the pose IK starts from):" } else { "Bones (forward kinematics):" });
-        egui::Grid::new("tentacle-angles").num_columns(3).show(ui, |ui| {
-            for (b, [bend, swing]) in demo.angles.iter_mut().enumerate() {
-                ui.label(format!("bone {b}"));
-                ui.add(egui::Slider::new(bend, -120.0..=120.0).suffix("°").text("bend"));
-                ui.add(egui::Slider::new(swing, -120.0..=120.0).suffix("°").text("swing"));
-                ui.end_row();
+            ui.checkbox(&mut demo.follow, "Follow the target (IK)")
+                .on_hover_text("Drag the red sphere in the view; the tip follows");
+            ui.horizontal(|ui| {
+                ui.label("solver");
+                for s in Solver::ALL {
+                    ui.selectable_value(&mut demo.solver, s, s.name());
+                }
+            });
+            let soft = demo.soft;
+            ui.horizontal(|ui| {
+                ui.selectable_value(&mut demo.soft, true, "Soft skin")
+                    .on_hover_text("Vertices blended across each joint: a smooth bend");
+                ui.selectable_value(&mut demo.soft, false, "Rigid skin")
+                    .on_hover_text("Each vertex on one bone: a crease at each joint");
+                ui.checkbox(&mut viewer.settings.show_weights, "Weights");
+            });
+            if soft != demo.soft {
+                rebuild = rebuild.or(Some(0));
             }
-        });
-        let reach = demo.tip.distance(demo.target);
-        ui.label(format!("tip to target: {reach:.3} m"));
-    });
+            ui.separator();
+            ui.label(if demo.follow { "Bones (the pose IK starts from):" } else { "Bones (forward kinematics):" });
+            egui::Grid::new("tentacle-angles").num_columns(3).show(ui, |ui| {
+                for (b, [bend, swing]) in demo.angles.iter_mut().enumerate() {
+                    ui.label(format!("bone {b}"));
+                    ui.add(egui::Slider::new(bend, -120.0..=120.0).suffix("°").text("bend"));
+                    ui.add(egui::Slider::new(swing, -120.0..=120.0).suffix("°").text("swing"));
+                    ui.end_row();
+                }
+            });
+            let reach = demo.tip.distance(demo.target);
+            ui.label(format!("tip to target: {reach:.3} m"));
+        },
+    );
     match rebuild {
         Some(0) => {
             viewer.tentacle = Some(demo);

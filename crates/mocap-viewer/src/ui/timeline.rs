@@ -115,7 +115,8 @@ fn contact_marks(ui: &egui::Ui, viewer: &Viewer, slider: &egui::Response, timing
     let Some(c) = viewer.current_character() else { return };
     let (Some(lock), Some(clip)) = (&c.extra.foot_lock, c.clip()) else { return };
     // The slider's rail: its width less the value box.
-    let rail = egui::Rect::from_min_max(slider.rect.left_top(), egui::pos2(slider.rect.right() - 60.0, slider.rect.bottom()));
+    let rail =
+        egui::Rect::from_min_max(slider.rect.left_top(), egui::pos2(slider.rect.right() - 60.0, slider.rect.bottom()));
     let span = timing.duration().max(1e-9);
     let colors = [egui::Color32::from_rgb(90, 200, 255), egui::Color32::from_rgb(255, 150, 80)];
     for (row, contacts) in lock.contacts().enumerate() {
@@ -139,7 +140,8 @@ fn key_marks(ui: &egui::Ui, viewer: &mut Viewer, slider: &egui::Response, timing
         return;
     }
     let Some(timeline) = viewer.current_character().map(|c| c.asset.timeline()) else { return };
-    let rail = egui::Rect::from_min_max(slider.rect.left_top(), egui::pos2(slider.rect.right() - 60.0, slider.rect.bottom()));
+    let rail =
+        egui::Rect::from_min_max(slider.rect.left_top(), egui::pos2(slider.rect.right() - 60.0, slider.rect.bottom()));
     let span = timing.duration().max(1e-9);
     let x_of = |frame: usize| rail.left() + (timeline.time_of(frame) / span) as f32 * rail.width();
     let y = rail.center().y;
@@ -149,7 +151,11 @@ fn key_marks(ui: &egui::Ui, viewer: &mut Viewer, slider: &egui::Response, timing
         if x > rail.right() {
             continue;
         }
-        let hit = ui.interact(egui::Rect::from_center_size(egui::pos2(x, y), egui::vec2(12.0, 14.0)), ui.scope_id().with(("key", k)), egui::Sense::drag());
+        let hit = ui.interact(
+            egui::Rect::from_center_size(egui::pos2(x, y), egui::vec2(12.0, 14.0)),
+            ui.scope_id().with(("key", k)),
+            egui::Sense::drag(),
+        );
         let hover = hit.hovered() || hit.dragged();
         diamond(ui, x, y, if hover { 6.5 } else { 5.0 }, egui::Color32::from_rgb(255, 200, 40));
         let hit = hit.on_hover_text(format!("Key at frame {k}: drag along the bar to move it"));
@@ -157,7 +163,13 @@ fn key_marks(ui: &egui::Ui, viewer: &mut Viewer, slider: &egui::Response, timing
             let time = (((p.x - rail.left()) / rail.width().max(1.0)) as f64 * span).clamp(0.0, timeline.duration());
             let to = timeline.nearest(time).min(timeline.last());
             diamond(ui, x_of(to), y, 5.0, egui::Color32::from_rgba_unmultiplied(255, 230, 120, 150));
-            ui.painter().text(egui::pos2(x_of(to), rail.top() - 2.0), egui::Align2::CENTER_BOTTOM, to.to_string(), egui::FontId::monospace(11.0), ui.visuals().strong_text_color());
+            ui.painter().text(
+                egui::pos2(x_of(to), rail.top() - 2.0),
+                egui::Align2::CENTER_BOTTOM,
+                to.to_string(),
+                egui::FontId::monospace(11.0),
+                ui.visuals().strong_text_color(),
+            );
             if hit.drag_stopped() && to != k {
                 moved = Some((k, to));
             }
@@ -199,9 +211,11 @@ fn minimal(ui: &mut egui::Ui, viewer: &mut Viewer, play: &str, frame: usize, tim
 /// interpolated between keys (key-frame animation).
 fn key_mode(ui: &mut egui::Ui, settings: &mut crate::settings::ViewSettings) {
     ui.selectable_value(&mut settings.key_between, true, "between keys").on_hover_text("Key-frame animation: the pose goes smoothly (slerp) from key to key and holds before the first and after the last");
-    ui.selectable_value(&mut settings.key_between, false, "fade").on_hover_text("A correction of a dense take: it fades in and out over the frames set beside");
+    ui.selectable_value(&mut settings.key_between, false, "fade")
+        .on_hover_text("A correction of a dense take: it fades in and out over the frames set beside");
     if !settings.key_between {
-        ui.add(egui::DragValue::new(&mut settings.key_window).range(0..=60).prefix("± ").suffix(" frames")).on_hover_text("Frames on each side over which the key fades in and out");
+        ui.add(egui::DragValue::new(&mut settings.key_window).range(0..=60).prefix("± ").suffix(" frames"))
+            .on_hover_text("Frames on each side over which the key fades in and out");
     }
 }
 

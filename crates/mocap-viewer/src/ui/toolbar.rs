@@ -82,7 +82,8 @@ fn view_menu(ui: &mut egui::Ui, viewer: &mut Viewer) {
     ui.separator();
     ui.checkbox(&mut viewer.settings.shadows, "Shadows").on_hover_text("Soft shadows from the key light on the floor");
     ui.checkbox(&mut viewer.settings.show_joints, "Joints").on_hover_text("Joint balls in stick mode");
-    ui.checkbox(&mut viewer.settings.show_weights, "Weights").on_hover_text("Colour the body by its bone influences (body mode)");
+    ui.checkbox(&mut viewer.settings.show_weights, "Weights")
+        .on_hover_text("Colour the body by its bone influences (body mode)");
     ui.checkbox(&mut viewer.settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");
     ui.checkbox(&mut viewer.settings.follow_root, "Follow root").on_hover_text("f");
     ui.checkbox(&mut viewer.settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
@@ -103,7 +104,8 @@ fn quality_choice(ui: &mut egui::Ui, quality: &mut crate::quality::Quality) {
 fn layout_choice(ui: &mut egui::Ui, viewer: &mut Viewer) {
     let mut layout = viewer.stage.layout;
     ui.selectable_value(&mut layout, Layout::Spread, "Spread").on_hover_text("Characters side by side");
-    ui.selectable_value(&mut layout, Layout::Overlay, "Overlay").on_hover_text("Characters on top of each other, to compare");
+    ui.selectable_value(&mut layout, Layout::Overlay, "Overlay")
+        .on_hover_text("Characters on top of each other, to compare");
     if layout != viewer.stage.layout {
         viewer.set_layout(layout);
     }

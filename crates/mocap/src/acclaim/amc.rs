@@ -1,8 +1,8 @@
 //! The AMC motion reader: a byte scanner over lines that writes each value straight
 //! into one row-major `f32` matrix.
 
-use super::text::{binary_kind, bom_len, is_blank, is_eol, line_break_len, line_end, parse_i64, show_bytes};
 use super::AngleUnit;
+use super::text::{binary_kind, bom_len, is_blank, is_eol, line_break_len, line_end, parse_i64, show_bytes};
 use crate::error::{ParseError, Warning};
 use std::collections::HashMap;
 
@@ -39,13 +39,15 @@ impl Amc {
 pub fn sniff_amc(bytes: &[u8]) -> bool {
     let head = bytes.get(..4096).unwrap_or(bytes);
     let head = head.get(bom_len(head)..).unwrap_or(&[]);
-    let mut lines = head.split(|&b| is_eol(b)).map(super::text::trim_blanks).filter(|l| !l.is_empty() && !l.starts_with(b"#"));
+    let mut lines =
+        head.split(|&b| is_eol(b)).map(super::text::trim_blanks).filter(|l| !l.is_empty() && !l.starts_with(b"#"));
     let Some(first) = lines.next() else { return false };
     if first.starts_with(b":") {
         let word = first.split(|&b| is_blank(b)).next().unwrap_or(&[]);
         return [&b":FULLY-SPECIFIED"[..], b":DEGREES", b":RADIANS"].iter().any(|k| word.eq_ignore_ascii_case(k));
     }
-    is_frame_number(first) && lines.next().and_then(|l| l.first()).is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_')
+    is_frame_number(first)
+        && lines.next().and_then(|l| l.first()).is_some_and(|b| b.is_ascii_alphabetic() || *b == b'_')
 }
 
 /// An optional sign and one or more ASCII digits.
@@ -316,13 +318,16 @@ fn carry_into(part: &mut Part, before: &Part, columns: &Columns<'_>) {
     if width == 0 {
         return;
     }
-    let Some(last) = before.frame_count.checked_sub(1).and_then(|f| before.amc.data.get(f * width..(f + 1) * width)) else {
+    let Some(last) = before.frame_count.checked_sub(1).and_then(|f| before.amc.data.get(f * width..(f + 1) * width))
+    else {
         return;
     };
     for &bone in &columns.nonzero {
         let given = part.first_given.get(bone).copied().unwrap_or(0);
         let frames = if given == 0 { part.frame_count } else { given - 1 };
-        let (Some(&offset), Some(&(_, count))) = (columns.offsets.get(bone), columns.layout.get(bone)) else { continue };
+        let (Some(&offset), Some(&(_, count))) = (columns.offsets.get(bone), columns.layout.get(bone)) else {
+            continue;
+        };
         let Some(values) = last.get(offset..offset + count) else { continue };
         for row in part.amc.data.chunks_mut(width).take(frames) {
             if let Some(slot) = row.get_mut(offset..offset + count) {
@@ -333,11 +338,7 @@ fn carry_into(part: &mut Part, before: &Part, columns: &Columns<'_>) {
 }
 
 fn plural(n: usize, one: &str, many: &str) -> String {
-    if n == 1 {
-        format!("1 {one}")
-    } else {
-        format!("{n} {many}")
-    }
+    if n == 1 { format!("1 {one}") } else { format!("{n} {many}") }
 }
 
 impl<'a, 'c> Scanner<'a, 'c> {
@@ -439,7 +440,10 @@ impl<'a, 'c> Scanner<'a, 'c> {
         let word = self.src.get(p..e).unwrap_or(&[]);
         let known = [&b":FULLY-SPECIFIED"[..], b":DEGREES", b":RADIANS"].iter().any(|k| word.eq_ignore_ascii_case(k));
         if self.part.frame_count > 0 {
-            self.part.amc.warnings.push(Warning { line: Some(self.line), message: format!("header line `{}` after the first frame ignored", show_bytes(word)) });
+            self.part.amc.warnings.push(Warning {
+                line: Some(self.line),
+                message: format!("header line `{}` after the first frame ignored", show_bytes(word)),
+            });
         } else if word.eq_ignore_ascii_case(b":FULLY-SPECIFIED") {
             self.part.amc.fully_specified = true;
         } else if word.eq_ignore_ascii_case(b":DEGREES") {
@@ -447,12 +451,16 @@ impl<'a, 'c> Scanner<'a, 'c> {
         } else if word.eq_ignore_ascii_case(b":RADIANS") {
             self.part.amc.angle = AngleUnit::Radians;
         } else if !known {
-            self.part.amc.warnings.push(Warning { line: Some(self.line), message: format!("unknown header line `{}` ignored", show_bytes(word)) });
+            self.part.amc.warnings.push(Warning {
+                line: Some(self.line),
+                message: format!("unknown header line `{}` ignored", show_bytes(word)),
+            });
         }
     }
 
     fn new_frame(&mut self, token: &[u8], p: usize) -> Result<(), ParseError> {
-        let number = parse_i64(token).ok_or_else(|| self.error(p, format!("frame number `{}` is out of range", show_bytes(token))))?;
+        let number = parse_i64(token)
+            .ok_or_else(|| self.error(p, format!("frame number `{}` is out of range", show_bytes(token))))?;
         if self.part.frame_count > 0 {
             self.finish_frame();
         }
@@ -515,7 +523,11 @@ impl<'a, 'c> Scanner<'a, 'c> {
         if self.part.frame_count == 0 {
             return Err(self.error(p, format!("values for `{}` before the first frame number: expected a line holding only the frame number (e.g. `1`)", show_bytes(name))));
         }
-        let predicted = if self.last_bone == NONE { self.first_bone } else { self.next_after.get(self.last_bone).copied().unwrap_or(NONE) };
+        let predicted = if self.last_bone == NONE {
+            self.first_bone
+        } else {
+            self.next_after.get(self.last_bone).copied().unwrap_or(NONE)
+        };
         let bone = if self.columns.layout.get(predicted).is_some_and(|&(n, _)| same_bytes(n.as_bytes(), name)) {
             predicted
         } else {
@@ -527,7 +539,14 @@ impl<'a, 'c> Scanner<'a, 'c> {
         let count = self.columns.layout.get(bone).map_or(0, |&(_, c)| c);
         if self.seen.get(bone) == Some(&self.part.frame_count) {
             let first = self.seen_line.get(bone).copied().unwrap_or(0);
-            return Err(self.error(p, format!("bone `{}` appears twice in frame {} (first at line {first})", self.bone_name(bone), self.frame_number)));
+            return Err(self.error(
+                p,
+                format!(
+                    "bone `{}` appears twice in frame {} (first at line {first})",
+                    self.bone_name(bone),
+                    self.frame_number
+                ),
+            ));
         }
         if let (Some(s), Some(l)) = (self.seen.get_mut(bone), self.seen_line.get_mut(bone)) {
             *s = self.part.frame_count;
@@ -588,7 +607,15 @@ impl<'a, 'c> Scanner<'a, 'c> {
         let (v, used) = parse_other_value(self.src.get(q..).unwrap_or(&[]));
         if used == 0 || self.src.get(q + used).is_some_and(|&b| !is_blank(b) && !is_eol(b)) {
             let bad = self.src.get(q..self.token_end(q)).unwrap_or(&[]);
-            return Err(self.error(q, format!("expected value {} of bone `{}` (a number), found `{}`", k + 1, self.bone_name(bone), show_bytes(bad))));
+            return Err(self.error(
+                q,
+                format!(
+                    "expected value {} of bone `{}` (a number), found `{}`",
+                    k + 1,
+                    self.bone_name(bone),
+                    show_bytes(bad)
+                ),
+            ));
         }
         if !v.is_finite() && self.part.non_finite.is_none() {
             self.part.non_finite = Some(self.line);
@@ -628,7 +655,11 @@ impl Part {
         if let Some((line, bone, number)) = self.missing {
             let bones = self.missing_bones.iter().filter(|&&m| m).count();
             let more = if self.missing_frames > 1 || bones > 1 {
-                format!("; {} lack some bone ({} in all)", plural(self.missing_frames, "frame", "frames"), plural(bones, "bone", "bones"))
+                format!(
+                    "; {} lack some bone ({} in all)",
+                    plural(self.missing_frames, "frame", "frames"),
+                    plural(bones, "bone", "bones")
+                )
             } else {
                 String::new()
             };
@@ -644,7 +675,9 @@ impl Part {
             });
         }
         if let Some(line) = self.non_finite {
-            self.amc.warnings.push(Warning { line: Some(line), message: "the motion holds NaN or infinite values".into() });
+            self.amc
+                .warnings
+                .push(Warning { line: Some(line), message: "the motion holds NaN or infinite values".into() });
         }
         self.amc.frame_count = self.frame_count;
         self.amc
@@ -694,12 +727,16 @@ hip\t-7\t-8.5\t-9
         assert_eq!(amc.angle, AngleUnit::Degrees);
         assert_eq!((amc.frame_count, amc.width, amc.first_frame_number), (2, 11, Some(1)));
         assert_eq!(amc.frame(0), Some(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0][..]));
-        assert_eq!(amc.frame(1), Some(&[0.5, -0.25, 2.0, 150.0, -6.75868e-15, 0.0, -7.0, -8.5, -9.0, -1.0, 3.64024e-15][..]));
+        assert_eq!(
+            amc.frame(1),
+            Some(&[0.5, -0.25, 2.0, 150.0, -6.75868e-15, 0.0, -7.0, -8.5, -9.0, -1.0, 3.64024e-15][..])
+        );
         assert_eq!(amc.frame(2), None);
         assert!(amc.warnings.is_empty(), "{:?}", amc.warnings);
         assert!(sniff_amc(TWO_FRAMES.as_bytes()));
         // The same with CRLF, lone CR and a byte-order mark.
-        for text in [TWO_FRAMES.replace('\n', "\r\n"), TWO_FRAMES.replace('\n', "\r"), format!("\u{feff}{TWO_FRAMES}")] {
+        for text in [TWO_FRAMES.replace('\n', "\r\n"), TWO_FRAMES.replace('\n', "\r"), format!("\u{feff}{TWO_FRAMES}")]
+        {
             assert_eq!(parse(&text), amc);
             assert!(sniff_amc(text.as_bytes()));
         }
@@ -707,7 +744,9 @@ hip\t-7\t-8.5\t-9
 
     #[test]
     fn missing_bone_keeps_previous_value_with_one_warning() {
-        let amc = parse("1\nroot 1 2 3 4 5 6\nhip 7 8 9\n2\nroot 0 0 0 0 0 0\n3\nroot 1 1 1 1 1 1\nknee 5 6\n4\nroot 1 1 1 1 1 1\nhip 1 2 3\nknee 7 8\n");
+        let amc = parse(
+            "1\nroot 1 2 3 4 5 6\nhip 7 8 9\n2\nroot 0 0 0 0 0 0\n3\nroot 1 1 1 1 1 1\nknee 5 6\n4\nroot 1 1 1 1 1 1\nhip 1 2 3\nknee 7 8\n",
+        );
         assert_eq!(amc.frame_count, 4);
         assert_eq!(amc.frame(0).map(|f| &f[6..]), Some(&[7.0, 8.0, 9.0, 0.0, 0.0][..]));
         assert_eq!(amc.frame(1).map(|f| &f[6..]), Some(&[7.0, 8.0, 9.0, 0.0, 0.0][..]));
@@ -716,7 +755,11 @@ hip\t-7\t-8.5\t-9
         assert_eq!(amc.warnings.len(), 1, "{:?}", amc.warnings);
         assert_eq!(amc.warnings[0].line, Some(1));
         let message = &amc.warnings[0].message;
-        assert!(message.contains("bone `knee` is missing from frame 1") && message.contains("3 frames lack some bone (2 bones in all)"), "{message}");
+        assert!(
+            message.contains("bone `knee` is missing from frame 1")
+                && message.contains("3 frames lack some bone (2 bones in all)"),
+            "{message}"
+        );
     }
 
     #[test]
@@ -765,7 +808,8 @@ hip\t-7\t-8.5\t-9
         assert_eq!(amc.angle, AngleUnit::Radians);
         assert!(!amc.fully_specified);
         // No header at all; `toe` (no dofs) absent; blank lines and tabs.
-        let amc = parse("\n\t\n7\nroot 1 2 3 4 5 6\n\nhip 1 2 3\nknee 1 2\n8\nroot 1 2 3 4 5 6\nhip 1 2 3\nknee 1 2\ntoe\n");
+        let amc =
+            parse("\n\t\n7\nroot 1 2 3 4 5 6\n\nhip 1 2 3\nknee 1 2\n8\nroot 1 2 3 4 5 6\nhip 1 2 3\nknee 1 2\ntoe\n");
         assert_eq!((amc.frame_count, amc.first_frame_number, amc.angle), (2, Some(7), AngleUnit::Degrees));
         assert!(amc.warnings.is_empty(), "{:?}", amc.warnings);
         assert!(sniff_amc(b"# c\n\n1\nroot 0 0 0\n"));
@@ -778,10 +822,20 @@ hip\t-7\t-8.5\t-9
 
     #[test]
     fn header_warnings_and_frame_number_gaps() {
-        let amc = parse(":FULLY-SPECIFIED\n:SOMETHING else\n1\nroot 1 2 3 4 5 6\nhip 1 2 3\nknee 1 2\n3\n:DEGREES\n4\n9\n");
+        let amc =
+            parse(":FULLY-SPECIFIED\n:SOMETHING else\n1\nroot 1 2 3 4 5 6\nhip 1 2 3\nknee 1 2\n3\n:DEGREES\n4\n9\n");
         assert_eq!(amc.frame_count, 4);
-        let got: Vec<(Option<u32>, bool)> = amc.warnings.iter().map(|w| (w.line, w.message.contains("not consecutive: expected 2, found 3 (2 jumps in all)"))).collect();
-        assert_eq!(got, vec![(Some(2), false), (Some(8), false), (Some(7), false), (Some(7), true)], "{:?}", amc.warnings);
+        let got: Vec<(Option<u32>, bool)> = amc
+            .warnings
+            .iter()
+            .map(|w| (w.line, w.message.contains("not consecutive: expected 2, found 3 (2 jumps in all)")))
+            .collect();
+        assert_eq!(
+            got,
+            vec![(Some(2), false), (Some(8), false), (Some(7), false), (Some(7), true)],
+            "{:?}",
+            amc.warnings
+        );
         assert!(amc.warnings[2].message.contains("bone `root` is missing from frame 3"));
         assert!(amc.warnings[0].message.contains("unknown header line `:SOMETHING`"));
         assert!(amc.warnings[1].message.contains("after the first frame"));
@@ -803,7 +857,27 @@ hip\t-7\t-8.5\t-9
     #[test]
     fn fast_number_path_matches_the_standard_parser() {
         let mut cases: Vec<String> = vec![
-            "0", "-0", "+1", "1.", ".5", "-.5", "16777216", "16777217", "0.1", "0.2", "0.3", "9.37216", "-17.3198", "3.64024e-015", "-7.62852e-016", "1e3", "123456789.123456789", "0.0000001", "00000000000000000001.5", "1e-50", "3.4e38",
+            "0",
+            "-0",
+            "+1",
+            "1.",
+            ".5",
+            "-.5",
+            "16777216",
+            "16777217",
+            "0.1",
+            "0.2",
+            "0.3",
+            "9.37216",
+            "-17.3198",
+            "3.64024e-015",
+            "-7.62852e-016",
+            "1e3",
+            "123456789.123456789",
+            "0.0000001",
+            "00000000000000000001.5",
+            "1e-50",
+            "3.4e38",
         ]
         .into_iter()
         .map(String::from)
@@ -850,7 +924,19 @@ hip\t-7\t-8.5\t-9
         assert_eq!(amc.frame_count, 2000);
         for f in 0..2000u32 {
             let x = f as f32;
-            let want = [x, 1.5, -2.25, 3.64024e-15, (f % 7) as f32 + 0.5, 6.0, (f % 3) as f32 + 0.25, -x, 9.0, x + 0.125, -0.5];
+            let want = [
+                x,
+                1.5,
+                -2.25,
+                3.64024e-15,
+                (f % 7) as f32 + 0.5,
+                6.0,
+                (f % 3) as f32 + 0.25,
+                -x,
+                9.0,
+                x + 0.125,
+                -0.5,
+            ];
             assert_eq!(amc.frame(f as usize), Some(&want[..]), "frame {f}");
         }
     }
@@ -914,7 +1000,11 @@ hip\t-7\t-8.5\t-9
             let whole = parse_in_pieces(src.as_bytes(), &LAYOUT, 1).unwrap_err();
             for pieces in 2..=9 {
                 let joined = parse_in_pieces(src.as_bytes(), &LAYOUT, pieces).unwrap_err();
-                assert_eq!((joined.line, joined.column, &joined.message), (whole.line, whole.column, &whole.message), "{pieces} pieces");
+                assert_eq!(
+                    (joined.line, joined.column, &joined.message),
+                    (whole.line, whole.column, &whole.message),
+                    "{pieces} pieces"
+                );
             }
             assert_eq!(whole.line as usize, at + 1);
         }

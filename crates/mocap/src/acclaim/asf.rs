@@ -1,6 +1,6 @@
 //! The ASF skeleton reader.
 
-use super::text::{binary_kind, decode_name, parse_f32, parse_i64, trim_blanks, Cursor, Token};
+use super::text::{Cursor, Token, binary_kind, decode_name, parse_f32, parse_i64, trim_blanks};
 use super::{AngleUnit, AxisOrder, Dof};
 use crate::error::{ParseError, Warning};
 use std::collections::HashMap;
@@ -92,7 +92,9 @@ impl Asf {
     /// The AMC row layout of this skeleton: `("root", root dofs)` then each bone with
     /// its dof count, in [`Asf::bones`] order. Pass it to [`super::parse_amc`].
     pub fn amc_layout(&self) -> Vec<(&str, usize)> {
-        std::iter::once(("root", self.root.order.len())).chain(self.bones.iter().map(|b| (b.name.as_str(), b.dofs.len()))).collect()
+        std::iter::once(("root", self.root.order.len()))
+            .chain(self.bones.iter().map(|b| (b.name.as_str(), b.dofs.len())))
+            .collect()
     }
 
     /// The number of values in one AMC frame (root dofs plus every bone's dofs).
@@ -225,21 +227,36 @@ impl<'a> Parser<'a> {
             }
             match section {
                 Section::None => {
-                    return Err(error_at(&token, format!("expected a section keyword (:version, :name, :units, :documentation, :root, :bonedata or :hierarchy), found `{}`", token.show())));
+                    return Err(error_at(
+                        &token,
+                        format!(
+                            "expected a section keyword (:version, :name, :units, :documentation, :root, :bonedata or :hierarchy), found `{}`",
+                            token.show()
+                        ),
+                    ));
                 }
                 Section::Unknown => {}
                 Section::Units => self.unit(&token)?,
                 Section::Root => self.root_item(&token)?,
                 Section::Bonedata => {
                     if !token.is("begin") {
-                        return Err(error_at(&token, format!("expected `begin` (a bone) or a section keyword in :bonedata, found `{}`", token.show())));
+                        return Err(error_at(
+                            &token,
+                            format!(
+                                "expected `begin` (a bone) or a section keyword in :bonedata, found `{}`",
+                                token.show()
+                            ),
+                        ));
                     }
                     self.bone(&token)?;
                 }
                 Section::Hierarchy => {
                     if hierarchy_begin.is_none() {
                         if !token.is("begin") {
-                            return Err(error_at(&token, format!("expected `begin` in :hierarchy, found `{}`", token.show())));
+                            return Err(error_at(
+                                &token,
+                                format!("expected `begin` in :hierarchy, found `{}`", token.show()),
+                            ));
                         }
                         hierarchy_begin = Some(token);
                     } else if token.is("end") {
@@ -251,7 +268,10 @@ impl<'a> Parser<'a> {
                             any = true;
                         }
                         if !any {
-                            self.warnings.push(Warning { line: Some(token.line), message: format!("hierarchy line names `{}` with no children", token.show()) });
+                            self.warnings.push(Warning {
+                                line: Some(token.line),
+                                message: format!("hierarchy line names `{}` with no children", token.show()),
+                            });
                         }
                     }
                 }
@@ -290,7 +310,10 @@ impl<'a> Parser<'a> {
             self.has_hierarchy = true;
             Section::Hierarchy
         } else {
-            self.warnings.push(Warning { line: Some(token.line), message: format!("unknown section `{}` skipped", token.show()) });
+            self.warnings.push(Warning {
+                line: Some(token.line),
+                message: format!("unknown section `{}` skipped", token.show()),
+            });
             Section::Unknown
         };
         Ok(section)
@@ -317,17 +340,23 @@ impl<'a> Parser<'a> {
 
     fn unit(&mut self, key: &Token<'a>) -> Result<(), ParseError> {
         if key.is("mass") || key.is("length") {
-            let t = self.cursor.next_on_line(key.line).ok_or_else(|| error_at(key, format!("expected a number after `{}`", key.show())))?;
-            let v = parse_f32(t.text)
-                .filter(|v| v.is_finite())
-                .ok_or_else(|| error_at(&t, format!("expected the {} unit (a finite number), found `{}`", key.show(), t.show())))?;
+            let t = self
+                .cursor
+                .next_on_line(key.line)
+                .ok_or_else(|| error_at(key, format!("expected a number after `{}`", key.show())))?;
+            let v = parse_f32(t.text).filter(|v| v.is_finite()).ok_or_else(|| {
+                error_at(&t, format!("expected the {} unit (a finite number), found `{}`", key.show(), t.show()))
+            })?;
             if key.is("mass") {
                 self.units.mass = Some(v);
             } else {
                 self.units.length = Some(v);
             }
         } else if key.is("angle") {
-            let t = self.cursor.next_on_line(key.line).ok_or_else(|| error_at(key, "expected `deg` or `rad` after `angle`"))?;
+            let t = self
+                .cursor
+                .next_on_line(key.line)
+                .ok_or_else(|| error_at(key, "expected `deg` or `rad` after `angle`"))?;
             self.units.angle = if t.is("deg") || t.is("degree") || t.is("degrees") {
                 AngleUnit::Degrees
             } else if t.is("rad") || t.is("radian") || t.is("radians") {
@@ -341,7 +370,10 @@ impl<'a> Parser<'a> {
         }
         // Anything else on the line is ignored with a warning.
         if let Some(extra) = self.cursor.next_on_line(key.line) {
-            self.warnings.push(Warning { line: Some(extra.line), message: format!("extra `{}` after the `{}` unit ignored", extra.show(), key.show()) });
+            self.warnings.push(Warning {
+                line: Some(extra.line),
+                message: format!("extra `{}` after the `{}` unit ignored", extra.show(), key.show()),
+            });
             while self.cursor.next_on_line(key.line).is_some() {}
         }
         Ok(())
@@ -358,18 +390,30 @@ impl<'a> Parser<'a> {
         if key.is("order") {
             root.order.clear();
             while let Some(t) = self.cursor.next_on_line(key.line) {
-                let dof = Dof::from_name(t.text).ok_or_else(|| error_at(&t, format!("expected a degree of freedom (TX TY TZ RX RY RZ) in the root order, found `{}`", t.show())))?;
+                let dof = Dof::from_name(t.text).ok_or_else(|| {
+                    error_at(
+                        &t,
+                        format!(
+                            "expected a degree of freedom (TX TY TZ RX RY RZ) in the root order, found `{}`",
+                            t.show()
+                        ),
+                    )
+                })?;
                 root.order.push(dof);
             }
         } else if key.is("axis") {
             let t = self.next_or_eof("the root axis order (e.g. XYZ)")?;
-            root.axis = AxisOrder::from_name(t.text).ok_or_else(|| error_at(&t, format!("expected an axis order such as XYZ, found `{}`", t.show())))?;
+            root.axis = AxisOrder::from_name(t.text)
+                .ok_or_else(|| error_at(&t, format!("expected an axis order such as XYZ, found `{}`", t.show())))?;
         } else if key.is("position") {
             root.position = self.vec3("the root position")?;
         } else if key.is("orientation") {
             root.orientation = self.vec3("the root orientation")?;
         } else {
-            return Err(error_at(key, format!("unknown keyword `{}` in :root: expected order, axis, position or orientation", key.show())));
+            return Err(error_at(
+                key,
+                format!("unknown keyword `{}` in :root: expected order, axis, position or orientation", key.show()),
+            ));
         }
         Ok(())
     }
@@ -403,7 +447,10 @@ impl<'a> Parser<'a> {
                 break;
             } else if key.is("id") {
                 let t = self.next_or_eof("the bone id")?;
-                bone.id = Some(parse_i64(t.text).ok_or_else(|| error_at(&t, format!("expected the bone id (an integer), found `{}`", t.show())))?);
+                bone.id =
+                    Some(parse_i64(t.text).ok_or_else(|| {
+                        error_at(&t, format!("expected the bone id (an integer), found `{}`", t.show()))
+                    })?);
             } else if key.is("name") {
                 let t = self.next_or_eof("the bone name")?;
                 bone.name = decode_name(t.text);
@@ -416,14 +463,30 @@ impl<'a> Parser<'a> {
                 bone.axis = self.vec3("axis")?;
                 match self.cursor.next_on_line(key.line) {
                     Some(t) => {
-                        bone.axis_order = AxisOrder::from_name(t.text).ok_or_else(|| error_at(&t, format!("expected an axis order such as XYZ after the axis angles, found `{}`", t.show())))?;
+                        bone.axis_order = AxisOrder::from_name(t.text).ok_or_else(|| {
+                            error_at(
+                                &t,
+                                format!(
+                                    "expected an axis order such as XYZ after the axis angles, found `{}`",
+                                    t.show()
+                                ),
+                            )
+                        })?;
                     }
-                    None => self.warnings.push(Warning { line: Some(key.line), message: "`axis` line without an order (e.g. XYZ): using XYZ".into() }),
+                    None => self.warnings.push(Warning {
+                        line: Some(key.line),
+                        message: "`axis` line without an order (e.g. XYZ): using XYZ".into(),
+                    }),
                 }
             } else if key.is("dof") {
                 bone.dofs.clear();
                 while let Some(t) = self.cursor.next_on_line(key.line) {
-                    let dof = Dof::from_name(t.text).ok_or_else(|| error_at(&t, format!("expected a degree of freedom (tx ty tz rx ry rz l), found `{}`", t.show())))?;
+                    let dof = Dof::from_name(t.text).ok_or_else(|| {
+                        error_at(
+                            &t,
+                            format!("expected a degree of freedom (tx ty tz rx ry rz l), found `{}`", t.show()),
+                        )
+                    })?;
                     bone.dofs.push(dof);
                 }
             } else if key.is("limits") {
@@ -437,7 +500,10 @@ impl<'a> Parser<'a> {
                 let context = name_token.map_or_else(String::new, |t| format!(" of bone `{}`", t.show()));
                 return Err(error_at(
                     &key,
-                    format!("unknown keyword `{}`{context}: expected id, name, direction, length, axis, dof, limits, bodymass, cofmass or end", key.show()),
+                    format!(
+                        "unknown keyword `{}`{context}: expected id, name, direction, length, axis, dof, limits, bodymass, cofmass or end",
+                        key.show()
+                    ),
                 ));
             }
         }
@@ -458,14 +524,26 @@ impl<'a> Parser<'a> {
             }
         }
         if name_token.text.eq_ignore_ascii_case(b"root") {
-            return Err(error_at(&name_token, "a bone cannot be called `root`: that name is the root in :hierarchy and AMC files"));
+            return Err(error_at(
+                &name_token,
+                "a bone cannot be called `root`: that name is the root in :hierarchy and AMC files",
+            ));
         }
         if let Some(&first) = self.names.get(name_token.text) {
             let line = self.bones.get(first).map_or(0, |b| b.line);
-            return Err(error_at(&name_token, format!("duplicate bone name `{}`: a bone of that name begins at line {line}", name_token.show())));
+            return Err(error_at(
+                &name_token,
+                format!("duplicate bone name `{}`: a bone of that name begins at line {line}", name_token.show()),
+            ));
         }
         if bone.direction == [0.0; 3] && bone.length != 0.0 {
-            self.warnings.push(Warning { line: Some(begin.line), message: format!("bone `{}` has length {} but a zero direction vector: it points nowhere", bone.name, bone.length) });
+            self.warnings.push(Warning {
+                line: Some(begin.line),
+                message: format!(
+                    "bone `{}` has length {} but a zero direction vector: it points nowhere",
+                    bone.name, bone.length
+                ),
+            });
         }
         self.names.insert(name_token.text, self.bones.len());
         self.name_tokens.push(name_token);
@@ -481,7 +559,12 @@ impl<'a> Parser<'a> {
                 Some(t) if t.text == b"(" => {
                     self.cursor.next_token();
                 }
-                Some(t) if limits.is_empty() => return Err(error_at(&t, format!("expected `(` to start a (min max) limit pair, found `{}`", t.show()))),
+                Some(t) if limits.is_empty() => {
+                    return Err(error_at(
+                        &t,
+                        format!("expected `(` to start a (min max) limit pair, found `{}`", t.show()),
+                    ));
+                }
                 None if limits.is_empty() => {
                     self.next_or_eof("`(` to start a (min max) limit pair")?;
                 }
@@ -500,7 +583,9 @@ impl<'a> Parser<'a> {
     /// A limit: a number or ±infinity, not NaN.
     fn limit(&mut self, what: &str) -> Result<f32, ParseError> {
         let t = self.next_or_eof(what)?;
-        parse_f32(t.text).filter(|v| !v.is_nan()).ok_or_else(|| error_at(&t, format!("expected {what} (a number, `inf` or `-inf`), found `{}`", t.show())))
+        parse_f32(t.text)
+            .filter(|v| !v.is_nan())
+            .ok_or_else(|| error_at(&t, format!("expected {what} (a number, `inf` or `-inf`), found `{}`", t.show())))
     }
 
     /// Resolves `:hierarchy` into parents and orders the bones parents first.
@@ -520,7 +605,10 @@ impl<'a> Parser<'a> {
             }
             match self.names.get(t.text) {
                 Some(&i) => Ok(Some(i)),
-                None => Err(error_at(t, format!("unknown bone `{}` in :hierarchy: no bone of that name in :bonedata", t.show()))),
+                None => Err(error_at(
+                    t,
+                    format!("unknown bone `{}` in :hierarchy: no bone of that name in :bonedata", t.show()),
+                )),
             }
         };
         for edge in &self.edges {
@@ -530,7 +618,10 @@ impl<'a> Parser<'a> {
             };
             if let Some(p) = p {
                 if p == c {
-                    return Err(error_at(&edge.child, format!("bone `{}` is listed as its own child: a cycle in :hierarchy", edge.child.show())));
+                    return Err(error_at(
+                        &edge.child,
+                        format!("bone `{}` is listed as its own child: a cycle in :hierarchy", edge.child.show()),
+                    ));
                 }
                 if let Some(flag) = has_children.get_mut(p) {
                     *flag = true;
@@ -539,7 +630,13 @@ impl<'a> Parser<'a> {
             if let (Some(Some(_)), Some(Some(first))) = (parent.get(c), parent_token.get(c)) {
                 return Err(error_at(
                     &edge.child,
-                    format!("bone `{}` is given two parents: `{}` (line {}) and `{}`", edge.child.show(), first_parent_name(&self.edges, first), first.line, edge.parent.show()),
+                    format!(
+                        "bone `{}` is given two parents: `{}` (line {}) and `{}`",
+                        edge.child.show(),
+                        first_parent_name(&self.edges, first),
+                        first.line,
+                        edge.parent.show()
+                    ),
                 ));
             }
             if let (Some(slot), Some(tok)) = (parent.get_mut(c), parent_token.get_mut(c)) {
@@ -553,9 +650,16 @@ impl<'a> Parser<'a> {
                 let message = if !self.has_hierarchy {
                     format!("bone `{}` has no parent: the file has no :hierarchy section", t.show())
                 } else if has_children.get(j).copied().unwrap_or(false) {
-                    format!("bone `{}` has children in :hierarchy but no parent: it is not reachable from root", t.show())
+                    format!(
+                        "bone `{}` has children in :hierarchy but no parent: it is not reachable from root",
+                        t.show()
+                    )
                 } else {
-                    format!("bone `{}` is not in :hierarchy: expected a line such as `root {}` naming its parent", t.show(), t.show())
+                    format!(
+                        "bone `{}` is not in :hierarchy: expected a line such as `root {}` naming its parent",
+                        t.show(),
+                        t.show()
+                    )
                 };
                 return Err(error_at(t, message));
             }
@@ -572,10 +676,16 @@ impl<'a> Parser<'a> {
                 match state.get(cur) {
                     Some(2) | None => break,
                     Some(1) => {
-                        let at = parent_token.get(cur).copied().flatten().or_else(|| self.name_tokens.get(cur).copied());
+                        let at =
+                            parent_token.get(cur).copied().flatten().or_else(|| self.name_tokens.get(cur).copied());
                         let name = self.bones.get(cur).map_or("", |b| b.name.as_str());
-                        let message = format!("bone `{name}` is in a cycle in :hierarchy (it is its own ancestor): it is not reachable from root");
-                        return Err(at.map_or_else(|| ParseError::new(1, 1, message.clone()), |t| error_at(&t, message.clone())));
+                        let message = format!(
+                            "bone `{name}` is in a cycle in :hierarchy (it is its own ancestor): it is not reachable from root"
+                        );
+                        return Err(at.map_or_else(
+                            || ParseError::new(1, 1, message.clone()),
+                            |t| error_at(&t, message.clone()),
+                        ));
                     }
                     _ => {}
                 }
@@ -609,19 +719,32 @@ impl<'a> Parser<'a> {
                 bones.push(bone);
             }
         }
-        Ok(Asf { version: self.version, name: self.name, units: self.units, documentation: self.documentation, root, bones, warnings: self.warnings })
+        Ok(Asf {
+            version: self.version,
+            name: self.name,
+            units: self.units,
+            documentation: self.documentation,
+            root,
+            bones,
+            warnings: self.warnings,
+        })
     }
 }
 
 /// The parent named on the hierarchy line of `child_token` (for messages).
 fn first_parent_name(edges: &[Edge], child_token: &Token) -> String {
-    edges.iter().find(|e| e.child.line == child_token.line && e.child.column == child_token.column).map_or_else(String::new, |e| e.parent.show())
+    edges
+        .iter()
+        .find(|e| e.child.line == child_token.line && e.child.column == child_token.column)
+        .map_or_else(String::new, |e| e.parent.show())
 }
 
 fn unterminated(begin: &Token, found: &str) -> ParseError {
-    error_at(begin, format!("`begin` at line {} has no `end`: expected `end` before the next section, {found}", begin.line))
+    error_at(
+        begin,
+        format!("`begin` at line {} has no `end`: expected `end` before the next section, {found}", begin.line),
+    )
 }
-
 
 #[cfg(test)]
 mod tests {
@@ -676,9 +799,25 @@ mod tests {
     fn check_small(asf: &Asf) {
         assert_eq!(asf.version.as_deref(), Some("1.10"));
         assert_eq!(asf.name.as_deref(), Some("TEST"));
-        assert_eq!(asf.units, AsfUnits { mass: Some(1.0), length: Some(0.45), angle: AngleUnit::Degrees, other: vec![("time".into(), "120 fps".into())] });
+        assert_eq!(
+            asf.units,
+            AsfUnits {
+                mass: Some(1.0),
+                length: Some(0.45),
+                angle: AngleUnit::Degrees,
+                other: vec![("time".into(), "120 fps".into())]
+            }
+        );
         assert_eq!(asf.documentation, "Line one.\nLine two.");
-        assert_eq!(asf.root, AsfRoot { order: vec![Dof::Tx, Dof::Ty, Dof::Tz, Dof::Rx, Dof::Ry, Dof::Rz], axis: AxisOrder([0, 1, 2]), position: [0.0, 0.0, 1.0], orientation: [0.0; 3] });
+        assert_eq!(
+            asf.root,
+            AsfRoot {
+                order: vec![Dof::Tx, Dof::Ty, Dof::Tz, Dof::Rx, Dof::Ry, Dof::Rz],
+                axis: AxisOrder([0, 1, 2]),
+                position: [0.0, 0.0, 1.0],
+                orientation: [0.0; 3]
+            }
+        );
         assert_eq!(asf.bones.len(), 2);
         let hip = &asf.bones[0];
         assert_eq!((hip.id, hip.name.as_str(), hip.line, hip.parent), (Some(1), "hip", 18, None));
@@ -867,10 +1006,14 @@ mod tests {
 
     #[test]
     fn windows_media_and_binary_files() {
-        let mut wmv = vec![0x30, 0x26, 0xB2, 0x75, 0x8E, 0x66, 0xCF, 0x11, 0xA6, 0xD9, 0x00, 0xAA, 0x00, 0x62, 0xCE, 0x6C];
+        let mut wmv =
+            vec![0x30, 0x26, 0xB2, 0x75, 0x8E, 0x66, 0xCF, 0x11, 0xA6, 0xD9, 0x00, 0xAA, 0x00, 0x62, 0xCE, 0x6C];
         wmv.extend_from_slice(&[0x84, 0x01, 0, 0, 0, 0, 0, 0]);
         let e = parse_asf(&wmv).unwrap_err();
-        assert_eq!(e, ParseError::new(1, 1, "not an Acclaim skeleton: this looks like a Windows Media (.asf) video file"));
+        assert_eq!(
+            e,
+            ParseError::new(1, 1, "not an Acclaim skeleton: this looks like a Windows Media (.asf) video file")
+        );
         let e = parse_asf(b"\x7fELF\x02\x01\x01\0\0\0").unwrap_err();
         assert_eq!(e, ParseError::new(1, 1, "not an Acclaim skeleton: binary data"));
         assert!(!sniff_asf(&wmv));
@@ -899,7 +1042,13 @@ mod tests {
     #[test]
     fn bones_are_reordered_parents_first() {
         let bone = |n: &str| BONE_A.replace("name a", &format!("name {n}"));
-        let src = format!("{ROOT}:bonedata\n{}{}{}{}:hierarchy\n begin\n  root c\n  c b d\n  b a\n end\n", bone("a"), bone("b"), bone("c"), bone("d"));
+        let src = format!(
+            "{ROOT}:bonedata\n{}{}{}{}:hierarchy\n begin\n  root c\n  c b d\n  b a\n end\n",
+            bone("a"),
+            bone("b"),
+            bone("c"),
+            bone("d")
+        );
         let asf = parse_asf(src.as_bytes()).unwrap();
         let names: Vec<&str> = asf.bones.iter().map(|b| b.name.as_str()).collect();
         assert_eq!(names, ["c", "b", "a", "d"]);
@@ -908,7 +1057,12 @@ mod tests {
         assert_eq!(asf.bones[2].line, 7);
         // Already parents-first: the :bonedata order is kept even if :hierarchy lists
         // children in another order.
-        let src = format!("{ROOT}:bonedata\n{}{}{}:hierarchy\n begin\n  root a\n  a c b\n end\n", bone("a"), bone("b"), bone("c"));
+        let src = format!(
+            "{ROOT}:bonedata\n{}{}{}:hierarchy\n begin\n  root a\n  a c b\n end\n",
+            bone("a"),
+            bone("b"),
+            bone("c")
+        );
         let names: Vec<String> = parse_asf(src.as_bytes()).unwrap().bones.into_iter().map(|b| b.name).collect();
         assert_eq!(names, ["a", "b", "c"]);
     }

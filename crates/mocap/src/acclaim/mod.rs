@@ -25,9 +25,9 @@ mod text;
 
 mod model;
 
-pub use amc::{parse_amc, sniff_amc, Amc};
-pub use model::{axis_frame, skeleton, AcclaimSkeleton, AMC_FRAME_TIME};
-pub use asf::{parse_asf, sniff_asf, Asf, AsfBone, AsfRoot, AsfUnits};
+pub use amc::{Amc, parse_amc, sniff_amc};
+pub use asf::{Asf, AsfBone, AsfRoot, AsfUnits, parse_asf, sniff_asf};
+pub use model::{AMC_FRAME_TIME, AcclaimSkeleton, axis_frame, skeleton};
 
 pub use crate::error::{ParseError, Warning};
 
@@ -141,7 +141,8 @@ mod tests {
         let asf: &[u8] = b"# c\r\n:version 1\n:units\n angle rad\n:documentation\n doc\n:root\n order TX RX\n axis XYZ\n position 0 0 0\n orientation 0 0 0\n\
 :bonedata\n begin\n  id 1\n  name a\n  direction 0 1 0\n  length 1\n  axis 0 0 0 XYZ\n  dof rx l\n  limits (-1 1)\n (-inf inf)\n end\n\
  begin\n  name b\n  dof ry\n end\n:hierarchy\n begin\n  root a\n  a b\n end\n";
-        let amc: &[u8] = b":FULLY-SPECIFIED\r\n:DEGREES\r\n1\r\nroot 1 2\r\na 3 4e-015\r\nb 5\r\n2\r\nb 6\r\nroot 7 8\r\n";
+        let amc: &[u8] =
+            b":FULLY-SPECIFIED\r\n:DEGREES\r\n1\r\nroot 1 2\r\na 3 4e-015\r\nb 5\r\n2\r\nb 6\r\nroot 7 8\r\n";
         let layout = [("root", 2), ("a", 2), ("b", 1)];
         let edits: [&[u8]; 8] = [b"", b" ", b"\n", b"\r", b"(", b")", b":", b"#"];
         let mut buf = Vec::new();
@@ -187,7 +188,10 @@ mod tests {
             let dir = PathBuf::from(dir).join("asf_amc");
             return dir.is_dir().then_some(dir);
         }
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).ancestors().map(|a| a.join("shared/corpus/asf_amc")).find(|d| d.is_dir())
+        PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .ancestors()
+            .map(|a| a.join("shared/corpus/asf_amc"))
+            .find(|d| d.is_dir())
     }
 
     fn read(path: &std::path::Path) -> Vec<u8> {
@@ -200,7 +204,9 @@ mod tests {
             if std::env::var_os("MOCAP_SKIP_CORPUS").is_some_and(|v| v == "1") {
                 return;
             }
-            panic!("corpus folder shared/corpus/asf_amc not found: set MOCAP_CORPUS to the corpus folder, or MOCAP_SKIP_CORPUS=1 to skip");
+            panic!(
+                "corpus folder shared/corpus/asf_amc not found: set MOCAP_CORPUS to the corpus folder, or MOCAP_SKIP_CORPUS=1 to skip"
+            );
         };
         let mut asf_count = 0;
         let mut amc_count = 0;
@@ -219,7 +225,8 @@ mod tests {
                     }
                 } else if name.ends_with(".amc") {
                     let skeleton_name = format!("{}.asf", name.split('_').next().unwrap_or(""));
-                    let asf = parse_asf(&read(&path.with_file_name(&skeleton_name))).unwrap_or_else(|e| panic!("{skeleton_name}:{e}"));
+                    let asf = parse_asf(&read(&path.with_file_name(&skeleton_name)))
+                        .unwrap_or_else(|e| panic!("{skeleton_name}:{e}"));
                     let bytes = read(path);
                     assert!(sniff_amc(&bytes), "{name}");
                     let amc = parse_amc(&bytes, &asf.amc_layout()).unwrap_or_else(|e| panic!("{name}:{e}"));
@@ -241,7 +248,11 @@ mod tests {
                 }
             }
         }
-        assert!(asf_count >= 3 && amc_count >= 3, "found {asf_count} ASF and {amc_count} AMC files in {}", dir.display());
+        assert!(
+            asf_count >= 3 && amc_count >= 3,
+            "found {asf_count} ASF and {amc_count} AMC files in {}",
+            dir.display()
+        );
 
         let one = parse_asf(&read(&dir.join("cmu/01.asf"))).unwrap_or_else(|e| panic!("01.asf:{e}"));
         assert_eq!(one.bones.len(), 30);
@@ -260,12 +271,14 @@ mod tests {
         assert_eq!(lfoot.parent, ltibia);
         // Root (6) plus 62 bone values per frame.
         assert_eq!(one.amc_width(), 62);
-        let amc = parse_amc(&read(&dir.join("cmu/01_01.amc")), &one.amc_layout()).unwrap_or_else(|e| panic!("01_01.amc:{e}"));
+        let amc =
+            parse_amc(&read(&dir.join("cmu/01_01.amc")), &one.amc_layout()).unwrap_or_else(|e| panic!("01_01.amc:{e}"));
         assert_eq!(amc.data.get(..3), Some(&[9.37216, 17.8693, -17.3198][..]));
         let rclavicle = one.amc_layout().iter().take_while(|(n, _)| *n != "rclavicle").map(|(_, w)| w).sum::<usize>();
         assert_eq!(amc.data.get(rclavicle..rclavicle + 2), Some(&[3.64024e-15, -6.75868e-15][..]));
 
-        let simple = parse_asf(&read(&dir.join("handmade/simple_test.asf"))).unwrap_or_else(|e| panic!("simple_test.asf:{e}"));
+        let simple =
+            parse_asf(&read(&dir.join("handmade/simple_test.asf"))).unwrap_or_else(|e| panic!("simple_test.asf:{e}"));
         assert_eq!(simple.bones.len(), 1);
         assert!(simple.bones[0].dofs.is_empty());
         assert!(simple.bones[0].limits.is_empty());

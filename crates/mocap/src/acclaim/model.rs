@@ -85,13 +85,18 @@ pub fn skeleton(asf: &Asf) -> Result<AcclaimSkeleton, ParseError> {
     let mut joint_of_bone = vec![0usize; asf.bones.len()];
     let mut layout = vec![("root".to_owned(), asf.root.order.len())];
     let root_offset = vec3(asf.root.position);
-    joints.push(Joint::new("root", None, root_offset, asf.root.order.iter().map(|&d| channel(d)).collect()).with_rest_rotation(root_frame));
+    joints.push(
+        Joint::new("root", None, root_offset, asf.root.order.iter().map(|&d| channel(d)).collect())
+            .with_rest_rotation(root_frame),
+    );
     let mut column_bias: Vec<f32> = asf.root.order.iter().map(|&d| translation_bias(d, root_offset)).collect();
     for (b, bone) in asf.bones.iter().enumerate() {
         let (parent_joint, parent_frame, offset) = match bone.parent {
             None => (0, root_frame, Vec3::ZERO),
             Some(p) => {
-                let parent = asf.bones.get(p).ok_or_else(|| ParseError::new(bone.line, 1, format!("bone `{}` has no parent bone {p}", bone.name)))?;
+                let parent = asf.bones.get(p).ok_or_else(|| {
+                    ParseError::new(bone.line, 1, format!("bone `{}` has no parent bone {p}", bone.name))
+                })?;
                 let frame = frames.get(p).copied().unwrap_or(Quat::IDENTITY);
                 let joint = joint_of_bone.get(p).copied().unwrap_or(0);
                 (joint, frame, frame.inverse() * (vec3(parent.direction) * parent.length))
@@ -99,9 +104,10 @@ pub fn skeleton(asf: &Asf) -> Result<AcclaimSkeleton, ParseError> {
         };
         let frame = frames.get(b).copied().unwrap_or(Quat::IDENTITY);
         let limits = bone.limits.iter().map(|&(min, max)| Limit { min, max }).collect();
-        let joint = Joint::new(bone.name.clone(), Some(parent_joint), offset, bone.dofs.iter().map(|&d| channel(d)).collect())
-            .with_rest_rotation(parent_frame.inverse() * frame)
-            .with_limits(limits);
+        let joint =
+            Joint::new(bone.name.clone(), Some(parent_joint), offset, bone.dofs.iter().map(|&d| channel(d)).collect())
+                .with_rest_rotation(parent_frame.inverse() * frame)
+                .with_limits(limits);
         if let Some(slot) = joint_of_bone.get_mut(b) {
             *slot = joints.len();
         }
@@ -113,7 +119,8 @@ pub fn skeleton(asf: &Asf) -> Result<AcclaimSkeleton, ParseError> {
             joints.push(Joint::end_site(format!("{}_End", bone.name), Some(joints.len() - 1), end));
         }
     }
-    let skeleton = Skeleton::new(joints, EulerConvention::Extrinsic).map_err(|e| ParseError::new(1, 1, e.to_string()))?;
+    let skeleton =
+        Skeleton::new(joints, EulerConvention::Extrinsic).map_err(|e| ParseError::new(1, 1, e.to_string()))?;
     Ok(AcclaimSkeleton { skeleton, layout, column_bias, metadata: metadata(asf), warnings: asf.warnings.clone() })
 }
 
@@ -178,7 +185,10 @@ impl AcclaimSkeleton {
         let mut clip = Clip::new(self.skeleton.clone(), motion).map_err(|e| ParseError::new(1, 1, e.to_string()))?;
         clip.metadata = self.metadata.clone();
         clip.warnings = amc.warnings;
-        clip.warnings.push(Warning { line: None, message: "AMC files carry no frame rate: playing at 120 fps (the CMU database's rate)".into() });
+        clip.warnings.push(Warning {
+            line: None,
+            message: "AMC files carry no frame rate: playing at 120 fps (the CMU database's rate)".into(),
+        });
         Ok(clip)
     }
 }

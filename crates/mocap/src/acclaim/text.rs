@@ -1,10 +1,11 @@
 //! Shared text helpers for the Acclaim readers: a token cursor with line and column,
 //! number parsing, name decoding and binary-data detection.
 
-pub(crate) use crate::text::{bom_len, decode_name, is_blank, is_eol, line_break_len, line_end, show_bytes, Token};
+pub(crate) use crate::text::{Token, bom_len, decode_name, is_blank, is_eol, line_break_len, line_end, show_bytes};
 
 /// The 16-byte header GUID of a Windows Media (ASF container) file.
-const WINDOWS_MEDIA: [u8; 16] = [0x30, 0x26, 0xB2, 0x75, 0x8E, 0x66, 0xCF, 0x11, 0xA6, 0xD9, 0x00, 0xAA, 0x00, 0x62, 0xCE, 0x6C];
+const WINDOWS_MEDIA: [u8; 16] =
+    [0x30, 0x26, 0xB2, 0x75, 0x8E, 0x66, 0xCF, 0x11, 0xA6, 0xD9, 0x00, 0xAA, 0x00, 0x62, 0xCE, 0x6C];
 
 /// What kind of binary file `bytes` is, when they are not text: looks at the first
 /// KiB only. Text may hold a few bytes that are not UTF-8 (Latin-1 names); NUL
@@ -17,7 +18,10 @@ pub(crate) fn binary_kind(bytes: &[u8]) -> Option<&'static str> {
     if head.contains(&0) {
         return Some("binary data");
     }
-    let control = head.iter().filter(|&&b| (b < 0x20 && !matches!(b, b'\t' | b'\n' | b'\r' | 0x0b | 0x0c | 0x1a)) || b == 0x7f).count();
+    let control = head
+        .iter()
+        .filter(|&&b| (b < 0x20 && !matches!(b, b'\t' | b'\n' | b'\r' | 0x0b | 0x0c | 0x1a)) || b == 0x7f)
+        .count();
     let mut invalid = 0usize;
     let mut rest = head;
     while let Err(e) = std::str::from_utf8(rest) {
@@ -118,7 +122,12 @@ impl<'a> Cursor<'a> {
             }
         }
         self.pos = end;
-        Some(Token { text: self.src.get(start..end).unwrap_or(&[]), start, line: self.line, column: self.column_at(start) })
+        Some(Token {
+            text: self.src.get(start..end).unwrap_or(&[]),
+            start,
+            line: self.line,
+            column: self.column_at(start),
+        })
     }
 
     /// The next token without consuming it.
@@ -187,7 +196,10 @@ mod tests {
             got.push((String::from_utf8_lossy(t.text).into_owned(), t.line, t.column));
         }
         let want: Vec<(String, u32, u32)> =
-            [("a", 1, 1), ("b", 1, 3), ("c", 2, 2), ("(", 3, 1), ("d", 3, 2), (")", 3, 3), ("e", 4, 2)].iter().map(|&(s, l, c)| (s.to_owned(), l, c)).collect();
+            [("a", 1, 1), ("b", 1, 3), ("c", 2, 2), ("(", 3, 1), ("d", 3, 2), (")", 3, 3), ("e", 4, 2)]
+                .iter()
+                .map(|&(s, l, c)| (s.to_owned(), l, c))
+                .collect();
         assert_eq!(got, want);
     }
 

@@ -11,7 +11,7 @@
 //! Y points at its first child, and a uniform scale equal to the distance to that
 //! child, so the segment draws the joint's bone and its position is exact.
 
-use super::{Bva, BvaChannel, Segment, CHANNEL_COUNT};
+use super::{Bva, BvaChannel, CHANNEL_COUNT, Segment};
 use crate::channel::{AngleUnit, Channel};
 use crate::clip::{Clip, Units};
 use crate::error::{ParseError, Warning};
@@ -40,10 +40,16 @@ pub fn to_clip(bva: &Bva) -> Result<Clip, ParseError> {
     let mut joints = Vec::with_capacity(bva.segments.len() * 2);
     for segment in &bva.segments {
         let root = joints.len();
-        joints.push(Joint::new(segment.name.clone(), None, Vec3::ZERO, segment.channels.iter().map(|&c| channel(c)).collect()));
+        joints.push(Joint::new(
+            segment.name.clone(),
+            None,
+            Vec3::ZERO,
+            segment.channels.iter().map(|&c| channel(c)).collect(),
+        ));
         joints.push(Joint::end_site(format!("{}_End", segment.name), Some(root), Vec3::Y));
     }
-    let skeleton = Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| ParseError::new(1, 1, e.to_string()))?;
+    let skeleton =
+        Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| ParseError::new(1, 1, e.to_string()))?;
     let frames = bva.segments.iter().map(|s| s.frame_count).max().unwrap_or(0);
     let all_radians = !bva.segments.is_empty() && bva.segments.iter().all(Segment::angle_in_radians);
     let width = bva.segments.len() * CHANNEL_COUNT;
@@ -97,8 +103,9 @@ pub fn from_clip(clip: &Clip) -> (Bva, Vec<Warning>) {
     let skeleton = clip.skeleton();
     let children = skeleton.children();
     let length = unit_word(clip.units());
-    let units: [String; CHANNEL_COUNT] =
-        std::array::from_fn(|k| if BvaChannel::ALL.get(k).is_some_and(|c| c.is_rotation()) { "DEGREES".to_owned() } else { length.to_owned() });
+    let units: [String; CHANNEL_COUNT] = std::array::from_fn(|k| {
+        if BvaChannel::ALL.get(k).is_some_and(|c| c.is_rotation()) { "DEGREES".to_owned() } else { length.to_owned() }
+    });
     let frames = clip.frame_count().max(1);
     let mut segments: Vec<Segment> = skeleton
         .joints()
@@ -137,7 +144,10 @@ pub fn from_clip(clip: &Clip) -> (Bva, Vec<Warning>) {
             segment.data.extend([p.x, p.y, p.z, x.to_degrees(), y.to_degrees(), z.to_degrees(), scale, scale, scale]);
         }
     }
-    let warnings = vec![Warning { line: None, message: "BVA has no hierarchy: each joint was written as a segment in world space".into() }];
+    let warnings = vec![Warning {
+        line: None,
+        message: "BVA has no hierarchy: each joint was written as a segment in world space".into(),
+    }];
     (Bva { segments, warnings: Vec::new() }, warnings)
 }
 
@@ -162,7 +172,12 @@ mod tests {
                 assert!((a[joint] - b[seg]).length() < 1e-3, "frame {frame} joint {joint}: {} vs {}", a[joint], b[seg]);
             }
             for (seg_end, joint) in [(1, 1), (3, 2), (5, 4)] {
-                assert!((a[joint] - b[seg_end]).length() < 1e-3, "frame {frame} end of {joint}: {} vs {}", a[joint], b[seg_end]);
+                assert!(
+                    (a[joint] - b[seg_end]).length() < 1e-3,
+                    "frame {frame} end of {joint}: {} vs {}",
+                    a[joint],
+                    b[seg_end]
+                );
             }
         }
         // BVA → BVH: each segment a root with six channels, the scale dropped with a warning.

@@ -1,7 +1,7 @@
 //! The BVA reader: one pass over the lines, one segment after another.
 
-use super::lines::{decode, keyword, parse_f32, parse_f64, show_bytes, Line, Lines};
-use super::{Bva, BvaChannel, Segment, CHANNEL_COUNT, DEFAULT_FRAME_TIME};
+use super::lines::{Line, Lines, decode, keyword, parse_f32, parse_f64, show_bytes};
+use super::{Bva, BvaChannel, CHANNEL_COUNT, DEFAULT_FRAME_TIME, Segment};
 use crate::error::{ParseError, Warning};
 
 /// What a header line is.
@@ -78,7 +78,9 @@ impl<'a> Reader<'a> {
             return Err(ParseError::new(head.number, name_column, "expected a segment name after Segment:"));
         }
         let name = decode(name_bytes);
-        let err = |line: u32, column: u32, message: String| ParseError::new(line, column, format!("segment `{name}`: {message}"));
+        let err = |line: u32, column: u32, message: String| {
+            ParseError::new(line, column, format!("segment `{name}`: {message}"))
+        };
 
         // Frames: and Frame Time:, in either order.
         let mut declared_frames: Option<(u64, u32)> = None;
@@ -92,9 +94,14 @@ impl<'a> Reader<'a> {
                     };
                     let digits = word.text.strip_prefix(b"+").unwrap_or(word.text);
                     if digits.is_empty() || !digits.iter().all(u8::is_ascii_digit) {
-                        return Err(err(line.number, word.column, format!("expected a frame count after Frames:, found `{}`", show_bytes(word.text))));
+                        return Err(err(
+                            line.number,
+                            word.column,
+                            format!("expected a frame count after Frames:, found `{}`", show_bytes(word.text)),
+                        ));
                     }
-                    let count = digits.iter().fold(0u64, |n, &d| n.saturating_mul(10).saturating_add(u64::from(d - b'0')));
+                    let count =
+                        digits.iter().fold(0u64, |n, &d| n.saturating_mul(10).saturating_add(u64::from(d - b'0')));
                     declared_frames = Some((count, line.number));
                 }
                 Kind::FrameTime(at) => {
@@ -104,7 +111,11 @@ impl<'a> Reader<'a> {
                         Some(word) => match parse_f64(word.text) {
                             Some(t) => frame_time = Some((t, line.number)),
                             None => {
-                                return Err(err(line.number, word.column, format!("expected a number after Frame Time:, found `{}`", show_bytes(word.text))));
+                                return Err(err(
+                                    line.number,
+                                    word.column,
+                                    format!("expected a number after Frame Time:, found `{}`", show_bytes(word.text)),
+                                ));
                             }
                         },
                     }
@@ -156,12 +167,19 @@ impl<'a> Reader<'a> {
         let frame_time = match frame_time {
             Some((t, _)) if t > 0.0 && t.is_finite() => t,
             Some((t, line)) => {
-                let shown = if t.is_nan() { "is missing".to_owned() } else { format!("{t} is not a positive duration") };
-                self.warnings.push(Warning { line: Some(line), message: format!("segment `{name}`: Frame Time {shown}; using 1/30 s") });
+                let shown =
+                    if t.is_nan() { "is missing".to_owned() } else { format!("{t} is not a positive duration") };
+                self.warnings.push(Warning {
+                    line: Some(line),
+                    message: format!("segment `{name}`: Frame Time {shown}; using 1/30 s"),
+                });
                 DEFAULT_FRAME_TIME
             }
             None => {
-                self.warnings.push(Warning { line: Some(head.number), message: format!("segment `{name}`: no Frame Time: line; using 1/30 s") });
+                self.warnings.push(Warning {
+                    line: Some(head.number),
+                    message: format!("segment `{name}`: no Frame Time: line; using 1/30 s"),
+                });
                 DEFAULT_FRAME_TIME
             }
         };
@@ -170,7 +188,9 @@ impl<'a> Reader<'a> {
 
     /// The channel line: all nine channel names, each once, in any order.
     fn channel_line(&mut self, name: &str) -> Result<[BvaChannel; CHANNEL_COUNT], ParseError> {
-        let err = |line: u32, column: u32, message: String| ParseError::new(line, column, format!("segment `{name}`: {message}"));
+        let err = |line: u32, column: u32, message: String| {
+            ParseError::new(line, column, format!("segment `{name}`: {message}"))
+        };
         let Some(line) = self.peek() else {
             let (l, c) = self.end_of_file();
             return Err(err(l, c, format!("unexpected end of file: expected the channel line ({CHANNEL_LIST})")));
@@ -191,19 +211,32 @@ impl<'a> Reader<'a> {
                 return Err(err(line.number, word.column, format!("channel {} listed twice", channel.name())));
             }
             let Some(slot) = channels.get_mut(count) else {
-                return Err(err(line.number, word.column, format!("more than {CHANNEL_COUNT} channels ({CHANNEL_LIST})")));
+                return Err(err(
+                    line.number,
+                    word.column,
+                    format!("more than {CHANNEL_COUNT} channels ({CHANNEL_LIST})"),
+                ));
             };
             *slot = channel;
             count += 1;
         }
         if count < CHANNEL_COUNT {
-            return Err(err(line.number, line.end_column(), format!("channel line has {count} names, expected all {CHANNEL_COUNT} ({CHANNEL_LIST})")));
+            return Err(err(
+                line.number,
+                line.end_column(),
+                format!("channel line has {count} names, expected all {CHANNEL_COUNT} ({CHANNEL_LIST})"),
+            ));
         }
         Ok(channels)
     }
 
     /// One row of nine numbers.
-    fn row(&mut self, line: &Line, name: &str, channels: &[BvaChannel; CHANNEL_COUNT]) -> Result<[f32; CHANNEL_COUNT], ParseError> {
+    fn row(
+        &mut self,
+        line: &Line,
+        name: &str,
+        channels: &[BvaChannel; CHANNEL_COUNT],
+    ) -> Result<[f32; CHANNEL_COUNT], ParseError> {
         let mut row = [0.0f32; CHANNEL_COUNT];
         let mut count = 0usize;
         let mut extra_column = None;
@@ -251,7 +284,9 @@ fn units_line(line: &Line, name: &str) -> Result<[String; CHANNEL_COUNT], ParseE
             return Err(ParseError::new(
                 line.number,
                 word.column,
-                format!("segment `{name}`: units line has more than {CHANNEL_COUNT} words, expected one per channel (e.g. INCHES or DEGREES)"),
+                format!(
+                    "segment `{name}`: units line has more than {CHANNEL_COUNT} words, expected one per channel (e.g. INCHES or DEGREES)"
+                ),
             ));
         };
         *slot = decode(word.text);
@@ -261,7 +296,9 @@ fn units_line(line: &Line, name: &str) -> Result<[String; CHANNEL_COUNT], ParseE
         return Err(ParseError::new(
             line.number,
             line.end_column(),
-            format!("segment `{name}`: units line has {count} words, expected {CHANNEL_COUNT}, one per channel (e.g. INCHES or DEGREES)"),
+            format!(
+                "segment `{name}`: units line has {count} words, expected {CHANNEL_COUNT}, one per channel (e.g. INCHES or DEGREES)"
+            ),
         ));
     }
     Ok(units)
@@ -294,7 +331,9 @@ pub(super) fn parse(bytes: &[u8]) -> Result<Bva, ParseError> {
         let message = if count == 1 {
             "a segment has no units line; assuming INCHES for translation and scale, DEGREES for rotation".to_owned()
         } else {
-            format!("{count} segments have no units line; assuming INCHES for translation and scale, DEGREES for rotation")
+            format!(
+                "{count} segments have no units line; assuming INCHES for translation and scale, DEGREES for rotation"
+            )
         };
         warnings.push(Warning { line: Some(line), message });
     }

@@ -68,12 +68,18 @@ fn bom_blank_lines_tabs_and_keyword_spellings() {
         xtran\tytran ZTRAN XRot YROT ZROT XSCALE YSCALE ZSCALE \n\n\
         inches inches inches radians radians radians inches inches inches\n\n\
         \t1 2 3 4 5 6 7 8 9\t\n\n\
-        SEGMENT  :  Left Foot\t\nFrames 0\nFrame Time 0.25\n" .to_owned() + CHANNELS + UNITS;
+        SEGMENT  :  Left Foot\t\nFrames 0\nFrame Time 0.25\n"
+        .to_owned()
+        + CHANNELS
+        + UNITS;
     let bva = parse(text.as_bytes()).unwrap();
-    assert_eq!(bva.warnings, vec![Warning {
-        line: Some(14),
-        message: "segments have different frame counts (`Hips`: 1, `Left Foot`: 0)".into()
-    }]);
+    assert_eq!(
+        bva.warnings,
+        vec![Warning {
+            line: Some(14),
+            message: "segments have different frame counts (`Hips`: 1, `Left Foot`: 0)".into()
+        }]
+    );
     let hips = &bva.segments[0];
     assert_eq!((hips.name.as_str(), hips.line, hips.frame_time, hips.frame_count), ("Hips", 3, 0.25, 1));
     assert_eq!(hips.units[3], "radians");
@@ -115,7 +121,10 @@ fn header_errors_with_positions() {
     assert_eq!((at(&e), e.message.as_str()), ((1, 11), "expected a segment name after Segment:"));
 
     let e = err("Segment: Hips\nFrames: many\n");
-    assert_eq!((at(&e), e.message.as_str()), ((2, 9), "segment `Hips`: expected a frame count after Frames:, found `many`"));
+    assert_eq!(
+        (at(&e), e.message.as_str()),
+        ((2, 9), "segment `Hips`: expected a frame count after Frames:, found `many`")
+    );
 
     let e = err("Segment: Hips\nFrames: -2\n");
     assert_eq!(at(&e), (2, 9));
@@ -124,7 +133,10 @@ fn header_errors_with_positions() {
     assert_eq!((at(&e), e.message.as_str()), ((2, 8), "segment `Hips`: expected a frame count after Frames:"));
 
     let e = err("Segment: Hips\nFrames: 1\nFrame Time: soon\n");
-    assert_eq!((at(&e), e.message.as_str()), ((3, 13), "segment `Hips`: expected a number after Frame Time:, found `soon`"));
+    assert_eq!(
+        (at(&e), e.message.as_str()),
+        ((3, 13), "segment `Hips`: expected a number after Frame Time:, found `soon`")
+    );
 }
 
 #[test]
@@ -133,13 +145,19 @@ fn channel_line_errors_with_positions() {
     let e = err(HEAD);
     assert_eq!(
         (at(&e), e.message.as_str()),
-        ((3, 16), "segment `Hips`: unexpected end of file: expected the channel line (XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE)")
+        (
+            (3, 16),
+            "segment `Hips`: unexpected end of file: expected the channel line (XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE)"
+        )
     );
     // Missing: the units line (or anything else) where the channels should be.
     let e = err(&format!("{HEAD}{UNITS}"));
     assert_eq!(
         (at(&e), e.message.as_str()),
-        ((4, 1), "segment `Hips`: expected the channel line (XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE), found `INCHES`")
+        (
+            (4, 1),
+            "segment `Hips`: expected the channel line (XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE), found `INCHES`"
+        )
     );
     let e = err(&format!("{HEAD}Segment: Chest\n"));
     assert_eq!(at(&e), (4, 1));
@@ -147,7 +165,10 @@ fn channel_line_errors_with_positions() {
     let e = err(&format!("{HEAD}XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE WSCALE\n"));
     assert_eq!(
         (at(&e), e.message.as_str()),
-        ((4, 48), "segment `Hips`: unknown channel `WSCALE` (expected one of XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE)")
+        (
+            (4, 48),
+            "segment `Hips`: unknown channel `WSCALE` (expected one of XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE)"
+        )
     );
     // Duplicate.
     let e = err(&format!("{HEAD}XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE XSCALE\n"));
@@ -156,7 +177,10 @@ fn channel_line_errors_with_positions() {
     let e = err(&format!("{HEAD}XTRAN YTRAN  \n"));
     assert_eq!(
         (at(&e), e.message.as_str()),
-        ((4, 12), "segment `Hips`: channel line has 2 names, expected all 9 (XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE)")
+        (
+            (4, 12),
+            "segment `Hips`: channel line has 2 names, expected all 9 (XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE)"
+        )
     );
     // Ten names: the tenth is always a repeat.
     let e = err(&format!("{HEAD}XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE XTRAN\n"));
@@ -201,19 +225,26 @@ fn row_errors_with_positions() {
 
 #[test]
 fn frames_mismatch_warns_and_uses_rows_present() {
-    let text = "Segment: Hips\nFrames: 3\nFrame Time: 0.5\n".to_owned() + CHANNELS + UNITS + "1 2 3 4 5 6 7 8 9\n1 2 3 4 5 6 7 8 9\n";
+    let text = "Segment: Hips\nFrames: 3\nFrame Time: 0.5\n".to_owned()
+        + CHANNELS
+        + UNITS
+        + "1 2 3 4 5 6 7 8 9\n1 2 3 4 5 6 7 8 9\n";
     let bva = parse(text.as_bytes()).unwrap();
     assert_eq!(bva.segments[0].frame_count, 2);
     assert_eq!(bva.segments[0].data.len(), 18);
-    assert_eq!(bva.warnings, vec![Warning {
-        line: Some(2),
-        message: "segment `Hips`: Frames: says 3 but the segment has 2 rows; using 2".into()
-    }]);
+    assert_eq!(
+        bva.warnings,
+        vec![Warning {
+            line: Some(2),
+            message: "segment `Hips`: Frames: says 3 but the segment has 2 rows; using 2".into()
+        }]
+    );
 }
 
 #[test]
 fn huge_frames_number_does_not_allocate_from_it() {
-    let text = "Segment: Hips\nFrames: 4000000000\nFrame Time: 0.5\n".to_owned() + CHANNELS + UNITS + "1 2 3 4 5 6 7 8 9\n";
+    let text =
+        "Segment: Hips\nFrames: 4000000000\nFrame Time: 0.5\n".to_owned() + CHANNELS + UNITS + "1 2 3 4 5 6 7 8 9\n";
     let bva = parse(text.as_bytes()).unwrap();
     let hips = &bva.segments[0];
     assert_eq!(hips.frame_count, 1);
@@ -228,9 +259,21 @@ fn huge_frames_number_does_not_allocate_from_it() {
 fn frame_time_and_frames_fallbacks() {
     let cases = [
         ("Segment: Hips\nFrames: 0\n", 1, "segment `Hips`: no Frame Time: line; using 1/30 s"),
-        ("Segment: Hips\nFrames: 0\nFrame Time: 0\n", 3, "segment `Hips`: Frame Time 0 is not a positive duration; using 1/30 s"),
-        ("Segment: Hips\nFrames: 0\nFrame Time: -0.1\n", 3, "segment `Hips`: Frame Time -0.1 is not a positive duration; using 1/30 s"),
-        ("Segment: Hips\nFrames: 0\nFrame Time: inf\n", 3, "segment `Hips`: Frame Time inf is not a positive duration; using 1/30 s"),
+        (
+            "Segment: Hips\nFrames: 0\nFrame Time: 0\n",
+            3,
+            "segment `Hips`: Frame Time 0 is not a positive duration; using 1/30 s",
+        ),
+        (
+            "Segment: Hips\nFrames: 0\nFrame Time: -0.1\n",
+            3,
+            "segment `Hips`: Frame Time -0.1 is not a positive duration; using 1/30 s",
+        ),
+        (
+            "Segment: Hips\nFrames: 0\nFrame Time: inf\n",
+            3,
+            "segment `Hips`: Frame Time inf is not a positive duration; using 1/30 s",
+        ),
         ("Segment: Hips\nFrames: 0\nFrame Time:\n", 3, "segment `Hips`: Frame Time is missing; using 1/30 s"),
         ("Segment: Hips\nFrame Time: 0.5\n", 1, "segment `Hips`: no Frames: line; using the 0 rows present"),
     ];
@@ -247,7 +290,10 @@ fn missing_units_line_defaults_by_channel_kind() {
     let text = format!("{HEAD}XROT YROT ZROT XTRAN YTRAN ZTRAN XSCALE YSCALE ZSCALE\n-1 2 3 4 5 6 7 8 9\n");
     let bva = parse(text.as_bytes()).unwrap();
     let hips = &bva.segments[0];
-    assert_eq!(hips.units, ["DEGREES", "DEGREES", "DEGREES", "INCHES", "INCHES", "INCHES", "INCHES", "INCHES", "INCHES"]);
+    assert_eq!(
+        hips.units,
+        ["DEGREES", "DEGREES", "DEGREES", "INCHES", "INCHES", "INCHES", "INCHES", "INCHES", "INCHES"]
+    );
     assert_eq!(hips.row(0), &[-1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
     assert_eq!(hips.column(BvaChannel::XTran), Some(3));
     assert_eq!(hips.column(BvaChannel::YRot), Some(1));
@@ -277,10 +323,13 @@ fn non_finite_values_give_one_warning() {
 fn different_frame_times_warn() {
     let text = TWO.replacen("0.033333", "0.01", 1);
     let bva = parse(text.as_bytes()).unwrap();
-    assert_eq!(bva.warnings, vec![Warning {
-        line: Some(8),
-        message: "segments have different frame times (`Hips`: 0.01 s, `Left Upper Arm`: 0.033333 s)".into()
-    }]);
+    assert_eq!(
+        bva.warnings,
+        vec![Warning {
+            line: Some(8),
+            message: "segments have different frame times (`Hips`: 0.01 s, `Left Upper Arm`: 0.033333 s)".into()
+        }]
+    );
 }
 
 #[test]
@@ -346,7 +395,10 @@ fn awkward_floats_round_trip_bit_exact() {
     data.extend(awkward.iter().map(|v| -v));
     data.extend([f32::from_bits(1), 0.0, 1e-45, 123456.79, -7.0e-39, 2.5, 1e38, -1e-38, 0.30000001]);
     let bva = Bva {
-        segments: vec![segment("Hips", 1.0 / 120.0, BvaChannel::ALL, data.clone()), segment("Odd  name", 0.1 + 0.2, reversed, awkward.to_vec())],
+        segments: vec![
+            segment("Hips", 1.0 / 120.0, BvaChannel::ALL, data.clone()),
+            segment("Odd  name", 0.1 + 0.2, reversed, awkward.to_vec()),
+        ],
         warnings: vec![],
     };
     let back = parse(write(&bva).as_bytes()).unwrap();
@@ -359,7 +411,12 @@ fn awkward_floats_round_trip_bit_exact() {
     assert_eq!(back.segments[1].name, "Odd  name");
     assert!(back.segments[0].data[1].is_sign_negative());
     // Non-finite values survive too (as a warning).
-    let special = segment("S", 0.5, BvaChannel::ALL, vec![f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+    let special = segment(
+        "S",
+        0.5,
+        BvaChannel::ALL,
+        vec![f32::NAN, f32::INFINITY, f32::NEG_INFINITY, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    );
     let back = parse(write(&Bva { segments: vec![special], warnings: vec![] }).as_bytes()).unwrap();
     let row = back.segments[0].row(0);
     assert!(row[0].is_nan() && row[1] == f32::INFINITY && row[2] == f32::NEG_INFINITY);

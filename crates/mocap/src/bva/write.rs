@@ -4,7 +4,7 @@
 
 use crate::text::push_f32;
 
-use super::{Bva, Segment, CHANNEL_COUNT};
+use super::{Bva, CHANNEL_COUNT, Segment};
 use std::fmt::Write as _;
 
 /// A name that reads back as itself where possible: line breaks become spaces,

@@ -1,8 +1,7 @@
 //! A byte cursor for the BVH header: whitespace-separated tokens with line and column,
 //! braces as tokens of their own, and "rest of the line" names.
 
-pub(crate) use crate::text::{bom_len, is_blank, line_break_len, show_bytes, Token};
-
+pub(crate) use crate::text::{Token, bom_len, is_blank, line_break_len, show_bytes};
 
 /// Walks the header, keeping line and column.
 #[derive(Clone)]

@@ -54,7 +54,10 @@ pub(crate) fn parse_header(src: &[u8]) -> Result<Header, ParseError> {
     let mut b = Builder { cursor: Cursor::new(src), joints: Vec::new(), stack: Vec::new(), warnings: Vec::new() };
     let first = b.cursor.next_token().ok_or_else(|| ParseError::new(1, 1, "empty file: expected HIERARCHY"))?;
     if !first.is("HIERARCHY") {
-        return Err(error_at(&first, format!("expected HIERARCHY at the start of a BVH file, found `{}`", first.show())));
+        return Err(error_at(
+            &first,
+            format!("expected HIERARCHY at the start of a BVH file, found `{}`", first.show()),
+        ));
     }
     loop {
         let Some(token) = b.cursor.next_token() else {
@@ -65,7 +68,10 @@ pub(crate) fn parse_header(src: &[u8]) -> Result<Header, ParseError> {
             if b.joints.is_empty() {
                 return Err(end_of_file(&b.cursor, "ROOT"));
             }
-            b.warnings.push(Warning { line: None, message: "no MOTION section: showing the skeleton in its rest pose".into() });
+            b.warnings.push(Warning {
+                line: None,
+                message: "no MOTION section: showing the skeleton in its rest pose".into(),
+            });
             return b.finish(None, None, None, false);
         };
         if b.stack.is_empty() {
@@ -77,7 +83,10 @@ pub(crate) fn parse_header(src: &[u8]) -> Result<Header, ParseError> {
                 }
                 return b.motion_header();
             } else if token.is("HIERARCHY") {
-                return Err(error_at(&token, "a second HIERARCHY section: a BVH file has one (several skeletons are several ROOTs in it)"));
+                return Err(error_at(
+                    &token,
+                    "a second HIERARCHY section: a BVH file has one (several skeletons are several ROOTs in it)",
+                ));
             } else {
                 let what = if b.joints.is_empty() { "ROOT" } else { "ROOT or MOTION" };
                 return Err(error_at(&token, format!("expected {what}, found `{}`", token.show())));
@@ -89,7 +98,13 @@ pub(crate) fn parse_header(src: &[u8]) -> Result<Header, ParseError> {
 }
 
 impl<'a> Builder<'a> {
-    fn finish(self, declared_frames: Option<(u64, u32)>, frame_time: Option<(f64, u32)>, data: Option<(usize, u32, u32)>, has_motion: bool) -> Result<Header, ParseError> {
+    fn finish(
+        self,
+        declared_frames: Option<(u64, u32)>,
+        frame_time: Option<(f64, u32)>,
+        data: Option<(usize, u32, u32)>,
+        has_motion: bool,
+    ) -> Result<Header, ParseError> {
         // Joints were pushed parent-first with End Sites channel-free, so this holds;
         // a non-finite OFFSET is the one thing the file can still get wrong.
         let skeleton = Skeleton::new(self.joints, EulerConvention::Intrinsic)
@@ -110,7 +125,14 @@ impl<'a> Builder<'a> {
             for (axis, slot) in v.iter_mut().enumerate() {
                 let t = self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, "an OFFSET value"))?;
                 *slot = parse_f32(&t).ok_or_else(|| {
-                    error_at(&t, format!("expected the {} value of OFFSET (a number), found `{}`", ["x", "y", "z"][axis], t.show()))
+                    error_at(
+                        &t,
+                        format!(
+                            "expected the {} value of OFFSET (a number), found `{}`",
+                            ["x", "y", "z"][axis],
+                            t.show()
+                        ),
+                    )
                 })?;
             }
             if let Some(joint) = self.joints.get_mut(current) {
@@ -157,10 +179,9 @@ impl<'a> Builder<'a> {
 
     fn channels(&mut self, token: &Token<'a>, current: usize) -> Result<(), ParseError> {
         let count_token = self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, "the channel count"))?;
-        let count: u32 = std::str::from_utf8(count_token.text)
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .ok_or_else(|| error_at(&count_token, format!("expected a channel count after CHANNELS, found `{}`", count_token.show())))?;
+        let count: u32 = std::str::from_utf8(count_token.text).ok().and_then(|s| s.parse().ok()).ok_or_else(|| {
+            error_at(&count_token, format!("expected a channel count after CHANNELS, found `{}`", count_token.show()))
+        })?;
         if self.joints.get(current).is_some_and(|j| !j.channels.is_empty()) {
             return Err(error_at(token, "a second CHANNELS line for the same joint"));
         }
@@ -179,7 +200,13 @@ impl<'a> Builder<'a> {
     }
 
     /// Reads a name (rest of the line, or the next token), the `{`, and opens a joint.
-    fn open_joint(&mut self, keyword: &Token<'a>, parent: Option<usize>, end_site: bool, glued_name: Option<String>) -> Result<(), ParseError> {
+    fn open_joint(
+        &mut self,
+        keyword: &Token<'a>,
+        parent: Option<usize>,
+        end_site: bool,
+        glued_name: Option<String>,
+    ) -> Result<(), ParseError> {
         let name_token = self.cursor.rest_of_line();
         let name = match (name_token, end_site) {
             (Some(t), _) => decode_name(t.text),
@@ -194,15 +221,25 @@ impl<'a> Builder<'a> {
                         self.cursor.next_token();
                         decode_name(t.text)
                     }
-                    _ => return Err(error_at(keyword, format!("expected a joint name after {}", String::from_utf8_lossy(keyword.text)))),
+                    _ => {
+                        return Err(error_at(
+                            keyword,
+                            format!("expected a joint name after {}", String::from_utf8_lossy(keyword.text)),
+                        ));
+                    }
                 }
             }
         };
-        let open = self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, &format!("`{{` after `{name}`")))?;
+        let open =
+            self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, &format!("`{{` after `{name}`")))?;
         if open.text != b"{" {
             return Err(error_at(&open, format!("expected `{{` after joint name `{name}`, found `{}`", open.show())));
         }
-        self.joints.push(if end_site { Joint::end_site(name, parent, Vec3::ZERO) } else { Joint::new(name, parent, Vec3::ZERO, Vec::new()) });
+        self.joints.push(if end_site {
+            Joint::end_site(name, parent, Vec3::ZERO)
+        } else {
+            Joint::new(name, parent, Vec3::ZERO, Vec::new())
+        });
         self.stack.push((self.joints.len() - 1, false));
         Ok(())
     }
@@ -210,7 +247,10 @@ impl<'a> Builder<'a> {
     fn close_joint(&mut self, token: &Token) {
         if let Some((joint, false)) = self.stack.pop() {
             let name = self.joints.get(joint).map_or("", |j| j.name.as_str());
-            self.warnings.push(Warning { line: Some(token.line), message: format!("joint `{name}` has no OFFSET; using 0 0 0") });
+            self.warnings.push(Warning {
+                line: Some(token.line),
+                message: format!("joint `{name}` has no OFFSET; using 0 0 0"),
+            });
         }
     }
 
@@ -230,23 +270,30 @@ impl<'a> Builder<'a> {
                 // Too many digits for u64 saturates: only the rows count anyway.
                 let n = std::str::from_utf8(value.text).ok().and_then(|s| {
                     let all_digits = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-                    s.parse::<u64>()
-                        .ok()
-                        .or_else(|| all_digits.then_some(u64::MAX))
-                        .or_else(|| s.parse::<f64>().ok().filter(|f| f.fract() == 0.0 && *f >= 0.0 && *f < 1e19).map(|f| f as u64))
+                    s.parse::<u64>().ok().or_else(|| all_digits.then_some(u64::MAX)).or_else(|| {
+                        s.parse::<f64>().ok().filter(|f| f.fract() == 0.0 && *f >= 0.0 && *f < 1e19).map(|f| f as u64)
+                    })
                 });
-                let n = n.ok_or_else(|| error_at(&value, format!("expected a whole number of frames after Frames:, found `{}`", value.show())))?;
+                let n = n.ok_or_else(|| {
+                    error_at(
+                        &value,
+                        format!("expected a whole number of frames after Frames:, found `{}`", value.show()),
+                    )
+                })?;
                 frames = Some((n, t.line));
             } else if lower == b"frame" {
                 self.cursor.next_token();
-                let time = self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, "`Time:` after `Frame`"))?;
+                let time =
+                    self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, "`Time:` after `Frame`"))?;
                 let lt = time.text.to_ascii_lowercase();
                 if !(lt.starts_with(b"time") && (lt.len() == 4 || lt[4] == b':')) {
                     return Err(error_at(&time, format!("expected `Time:` after `Frame`, found `{}`", time.show())));
                 }
                 let value = self.header_value(&time, &lt[4..], "Frame Time:")?;
                 let v = fast_float2::parse::<f64, _>(value.text).ok();
-                let v = v.ok_or_else(|| error_at(&value, format!("expected a number after Frame Time:, found `{}`", value.show())))?;
+                let v = v.ok_or_else(|| {
+                    error_at(&value, format!("expected a number after Frame Time:, found `{}`", value.show()))
+                })?;
                 frame_time = Some((v, t.line));
             } else {
                 return self.finish(frames, frame_time, Some((t.start, t.line, t.column)), true);
@@ -259,11 +306,18 @@ impl<'a> Builder<'a> {
     fn header_value(&mut self, keyword: &Token<'a>, tail: &[u8], what: &str) -> Result<Token<'a>, ParseError> {
         if tail.len() > 1 {
             let skip = 1 + keyword.text.len() - tail.len();
-            return Ok(Token { text: &keyword.text[skip..], start: keyword.start + skip, line: keyword.line, column: keyword.column + skip as u32 });
+            return Ok(Token {
+                text: &keyword.text[skip..],
+                start: keyword.start + skip,
+                line: keyword.line,
+                column: keyword.column + skip as u32,
+            });
         }
-        let mut value = self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, &format!("a value after {what}")))?;
+        let mut value =
+            self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, &format!("a value after {what}")))?;
         if tail.is_empty() && value.text == b":" {
-            value = self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, &format!("a value after {what}")))?;
+            value =
+                self.cursor.next_token().ok_or_else(|| end_of_file(&self.cursor, &format!("a value after {what}")))?;
         }
         Ok(value)
     }

@@ -51,23 +51,33 @@ fn assemble(header: header::Header, rows: rows::Rows) -> Result<Clip, ParseError
         frame_count = header.declared_frames.map_or(0, |(n, _)| n.min(1) as usize);
     }
     if let Some(line) = rows.notes.decimal_comma {
-        warnings.push(Warning { line: Some(line), message: "numbers written with a decimal comma (0,5): read as decimals".into() });
+        warnings.push(Warning {
+            line: Some(line),
+            message: "numbers written with a decimal comma (0,5): read as decimals".into(),
+        });
     }
     if let Some(line) = rows.notes.non_finite {
-        warnings.push(Warning { line: Some(line), message: "motion holds NaN or infinite values; those joints are not drawn".into() });
+        warnings.push(Warning {
+            line: Some(line),
+            message: "motion holds NaN or infinite values; those joints are not drawn".into(),
+        });
     }
     match header.declared_frames {
         Some((declared, line)) if declared != rows.count as u64 && width > 0 => warnings.push(Warning {
             line: Some(line),
             message: format!("Frames: says {declared} but the file has {} rows; using {}", rows.count, rows.count),
         }),
-        None if header.has_motion => warnings.push(Warning { line: None, message: format!("no Frames: line; using the {} rows present", rows.count) }),
+        None if header.has_motion => warnings
+            .push(Warning { line: None, message: format!("no Frames: line; using the {} rows present", rows.count) }),
         _ => {}
     }
     let frame_time = match header.frame_time {
         Some((t, _)) if t > 0.0 && t.is_finite() => t,
         Some((t, line)) => {
-            warnings.push(Warning { line: Some(line), message: format!("Frame Time {t} is not a positive duration; using 1/30 s") });
+            warnings.push(Warning {
+                line: Some(line),
+                message: format!("Frame Time {t} is not a positive duration; using 1/30 s"),
+            });
             DEFAULT_FRAME_TIME
         }
         None => {

@@ -30,7 +30,10 @@ pub(crate) struct RowNotes {
 
 impl RowNotes {
     fn or(self, other: RowNotes) -> RowNotes {
-        RowNotes { non_finite: self.non_finite.or(other.non_finite), decimal_comma: self.decimal_comma.or(other.decimal_comma) }
+        RowNotes {
+            non_finite: self.non_finite.or(other.non_finite),
+            decimal_comma: self.decimal_comma.or(other.decimal_comma),
+        }
     }
 }
 
@@ -47,7 +50,10 @@ struct Origin {
 pub(crate) fn parse_rows(data: &[u8], first_line: u32, first_column: u32, width: usize) -> Result<Rows, ParseError> {
     let origin = Origin { line: first_line, column_offset: first_column.saturating_sub(1) };
     let chunks = split_at_lines(data, crate::parallel::piece_count(data.len(), 4));
-    let counts: Vec<LineCount> = crate::parallel::map(chunks.clone(), |c| count_lines(c)).into_iter().collect::<Option<_>>().ok_or_else(thread_failed)?;
+    let counts: Vec<LineCount> = crate::parallel::map(chunks.clone(), |c| count_lines(c))
+        .into_iter()
+        .collect::<Option<_>>()
+        .ok_or_else(thread_failed)?;
     let total_rows: usize = counts.iter().map(|c| c.content).sum();
     // A valid row of `width` values takes at least 2·width bytes (value + separator).
     let fits = total_rows.checked_mul(width).is_some_and(|n| n <= data.len());
@@ -56,7 +62,11 @@ pub(crate) fn parse_rows(data: &[u8], first_line: u32, first_column: u32, width:
         let mut row = vec![0.0; width.max(1)];
         parse_chunk(data, origin, width, &mut row, true)?;
         if total_rows > 0 {
-            return Err(ParseError::new(first_line, first_column, format!("{total_rows} motion rows but the skeleton has no channels")));
+            return Err(ParseError::new(
+                first_line,
+                first_column,
+                format!("{total_rows} motion rows but the skeleton has no channels"),
+            ));
         }
         return Ok(Rows { data: Vec::new(), count: 0, notes: RowNotes::default() });
     }
@@ -96,7 +106,11 @@ impl RowBuilder {
     /// `first_column` (as [`parse_rows`] takes them).
     pub(crate) fn new(first_line: u32, first_column: u32, width: usize) -> RowBuilder {
         let origin = Origin { line: first_line, column_offset: first_column.saturating_sub(1) };
-        RowBuilder { width: width.max(1), origin, rows: Rows { data: Vec::new(), count: 0, notes: RowNotes::default() } }
+        RowBuilder {
+            width: width.max(1),
+            origin,
+            rows: Rows { data: Vec::new(), count: 0, notes: RowNotes::default() },
+        }
     }
 
     /// Parses the rows of `piece` (the bytes right after the last piece) and
@@ -147,7 +161,10 @@ type Job<'a, 'b> = (&'a [u8], Origin, &'b mut [f32]);
 type JobResult = Result<(usize, RowNotes), ParseError>;
 
 fn run_jobs(jobs: Vec<Job<'_, '_>>, width: usize) -> Vec<JobResult> {
-    crate::parallel::map(jobs, |(c, o, out)| parse_chunk(c, o, width, out, false)).into_iter().map(|r| r.unwrap_or_else(|| Err(thread_failed()))).collect()
+    crate::parallel::map(jobs, |(c, o, out)| parse_chunk(c, o, width, out, false))
+        .into_iter()
+        .map(|r| r.unwrap_or_else(|| Err(thread_failed())))
+        .collect()
 }
 
 fn thread_failed() -> ParseError {
@@ -282,7 +299,13 @@ fn read_other_number(rest: &[u8], line: u32, column: u32, notes: &mut RowNotes) 
                     (v, end)
                 }
                 Some((v, Quirk::MsvcSpecial)) => (v, end),
-                None => return Err(ParseError::new(line, column, format!("expected a number in motion row, found `{}`", show_bytes(token)))),
+                None => {
+                    return Err(ParseError::new(
+                        line,
+                        column,
+                        format!("expected a number in motion row, found `{}`", show_bytes(token)),
+                    ));
+                }
             }
         }
     };
@@ -327,7 +350,11 @@ fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring
             }
             _ => {
                 if k == width {
-                    return Err(ParseError::new(line, column(i, line_start), format!("motion row has more than {width} values (one per channel)")));
+                    return Err(ParseError::new(
+                        line,
+                        column(i, line_start),
+                        format!("motion row has more than {width} values (one per channel)"),
+                    ));
                 }
                 let rest = chunk.get(i..).unwrap_or(&[]);
                 // Short decimals are finite and end at a separator; anything else
@@ -338,7 +365,13 @@ fn parse_chunk(chunk: &[u8], origin: Origin, width: usize, out: &mut [f32], ring
                 };
                 match out.get_mut(base + k) {
                     Some(slot) => *slot = value,
-                    None => return Err(ParseError::new(line, column(i, line_start), "internal error: row buffer too small")),
+                    None => {
+                        return Err(ParseError::new(
+                            line,
+                            column(i, line_start),
+                            "internal error: row buffer too small",
+                        ));
+                    }
                 }
                 k += 1;
                 i += used;

@@ -141,8 +141,14 @@ impl Stream {
         let width = header.skeleton.channel_count();
         match header.data {
             // The first row's first value is whole (a line feed follows it).
-            Some((start, line, column)) if width > 0 && self.bytes.get(start..).is_some_and(|r| memchr::memchr(b'\n', r).is_some()) => {
-                self.state = State::Rows { header: Box::new(header), builder: RowBuilder::new(line, column, width), next: start };
+            Some((start, line, column))
+                if width > 0 && self.bytes.get(start..).is_some_and(|r| memchr::memchr(b'\n', r).is_some()) =>
+            {
+                self.state = State::Rows {
+                    header: Box::new(header),
+                    builder: RowBuilder::new(line, column, width),
+                    next: start,
+                };
             }
             // Not enough yet (the rows have not begun), or nothing to stream.
             None if self.header_tries < HEADER_TRIES => {}
@@ -162,7 +168,10 @@ impl Stream {
         let Ok(whole) = header::parse_header(&bytes) else {
             return super::parse(&bytes);
         };
-        if whole.data != header.data || whole.frame_time != header.frame_time || whole.declared_frames != header.declared_frames {
+        if whole.data != header.data
+            || whole.frame_time != header.frame_time
+            || whole.declared_frames != header.declared_frames
+        {
             return super::parse(&bytes);
         }
         if bytes.get(next..).is_some_and(|rest| !rest.is_empty() && builder.push(rest).is_none()) {
@@ -191,10 +200,20 @@ mod tests {
         match result {
             Err(e) => format!("error {e}"),
             Ok(clip) => {
-                let joints: Vec<String> = clip.skeleton().joints().iter().map(|j| format!("{} {:?} {:?}", j.name, j.offset, j.channels)).collect();
+                let joints: Vec<String> = clip
+                    .skeleton()
+                    .joints()
+                    .iter()
+                    .map(|j| format!("{} {:?} {:?}", j.name, j.offset, j.channels))
+                    .collect();
                 let data: Vec<u32> = clip.motion().data().iter().map(|v| v.to_bits()).collect();
-                let warnings: Vec<String> = clip.warnings.iter().map(|w| format!("{:?} {}", w.line, w.message)).collect();
-                format!("{joints:?} {} {} {data:?} {warnings:?}", clip.frame_count(), clip.motion().frame_time().to_bits())
+                let warnings: Vec<String> =
+                    clip.warnings.iter().map(|w| format!("{:?} {}", w.line, w.message)).collect();
+                format!(
+                    "{joints:?} {} {} {data:?} {warnings:?}",
+                    clip.frame_count(),
+                    clip.motion().frame_time().to_bits()
+                )
             }
         }
     }
@@ -225,20 +244,32 @@ mod tests {
         check("lone CR", walk.replace('\n', "\r").as_bytes());
         check("no final line break", walk.trim_end().as_bytes());
         check("blank lines among the rows", walk.replacen("\n0", "\n\n  \n0", 3).as_bytes());
-        check("Frames after Frame Time", walk.replacen("Frames:", "Framez:", 1).replacen("Frame Time:", "Frames: 67\nFrame Time:", 1).replacen("Framez:", "Frame Time:", 1).as_bytes());
+        check(
+            "Frames after Frame Time",
+            walk.replacen("Frames:", "Framez:", 1)
+                .replacen("Frame Time:", "Frames: 67\nFrame Time:", 1)
+                .replacen("Framez:", "Frame Time:", 1)
+                .as_bytes(),
+        );
         check("decimal commas", walk.replacen(" 0.", " 0,", 2).as_bytes());
         check("NaN", walk.replacen(" 0.", " nan ", 1).as_bytes());
         check("a short row", format!("{walk}1 2 3\n").as_bytes());
         check("a long row", walk.replacen("\n", " 1\n", walk.lines().count() - 3).as_bytes());
         check("a word in a row", format!("{walk}x\n").as_bytes());
         check("header only", &WALK[..walk.find("MOTION").unwrap_or(0)]);
-        check("no rows", &WALK[..walk.find("Frame Time").and_then(|i| walk[i..].find('\n').map(|j| i + j + 1)).unwrap_or(0)]);
+        check(
+            "no rows",
+            &WALK[..walk.find("Frame Time").and_then(|i| walk[i..].find('\n').map(|j| i + j + 1)).unwrap_or(0)],
+        );
         check("truncated in a row", &WALK[..WALK.len() - 7]);
         check("empty", b"");
         check("not BVH", b"hello\nframe time\n1\n2\n");
         check("not BVH, long", format!("{}\n{walk}", "x".repeat(100)).as_bytes());
         check("BVH after much white space", format!("{}{walk}", " \n".repeat(100)).as_bytes());
-        check("no channels", b"HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 0\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n\n\n");
+        check(
+            "no channels",
+            b"HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 0\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n\n\n",
+        );
     }
 
     proptest::proptest! {

@@ -78,7 +78,12 @@ pub fn write(clip: &Clip) -> String {
         }
     }
     let motion = clip.motion();
-    let _ = write!(out, "MOTION\nFrames: {}\nFrame Time: {}\n", motion.frame_count(), ryu::Buffer::new().format(motion.frame_time()));
+    let _ = write!(
+        out,
+        "MOTION\nFrames: {}\nFrame Time: {}\n",
+        motion.frame_count(),
+        ryu::Buffer::new().format(motion.frame_time())
+    );
     let order = column_order(skeleton, &written);
     for frame in 0..motion.frame_count() {
         let row = motion.row(frame);

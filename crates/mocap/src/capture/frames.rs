@@ -120,7 +120,10 @@ fn fail<T>(offset: usize, message: impl Into<String>) -> Result<T, FramesError> 
 
 fn name_at(bytes: &[u8], at: usize, size: usize, what: &str) -> Result<String, FramesError> {
     let field = &bytes[at..at + size];
-    let end = field.iter().position(|&c| c == 0).map_or_else(|| fail(at, format!("{what} has no NUL within its {size} bytes")), Ok)?;
+    let end = field
+        .iter()
+        .position(|&c| c == 0)
+        .map_or_else(|| fail(at, format!("{what} has no NUL within its {size} bytes")), Ok)?;
     Ok(String::from_utf8_lossy(&field[..end]).into_owned())
 }
 
@@ -179,12 +182,19 @@ mod tests {
         let (p, back) = rec.to_y_up(0).unwrap();
         assert_eq!(p, Vec3::new(1.0, 2.0, 3.0));
         assert!(back.dot(q).abs() > 0.99999, "{back} vs {q}");
-        let c = CaptureFrames { bones: vec!["Hips".into()], frames: vec![rec.clone(), FrameRecord { name: "run2".into(), ..rec }] };
+        let c = CaptureFrames {
+            bones: vec!["Hips".into()],
+            frames: vec![rec.clone(), FrameRecord { name: "run2".into(), ..rec }],
+        };
         let bytes = write(&c);
         assert_eq!(bytes.len(), 16 + 32 + 2 * (16 + 48));
         assert_eq!(parse(&bytes).unwrap(), c);
         assert_eq!(parse(&bytes[..bytes.len() - 1]).unwrap_err().offset, 8);
-        assert_eq!(parse(b"MOCAPCF1\xff\xff\xff\xff\xff\xff\xff\xff").unwrap_err().offset, 8, "huge counts are refused before allocating");
+        assert_eq!(
+            parse(b"MOCAPCF1\xff\xff\xff\xff\xff\xff\xff\xff").unwrap_err().offset,
+            8,
+            "huge counts are refused before allocating"
+        );
         assert_eq!(parse(b"nope").unwrap_err().offset, 0);
         let mut bad = bytes.clone();
         bad[16..48].fill(b'a');

@@ -123,7 +123,10 @@ impl Report {
     /// A plain-text table: per joint its vertices, residuals, convergence and
     /// agreement with the closed form.
     pub fn text(&self) -> String {
-        let mut out = format!("{:<16} {:<24} {:>10} {:>10} {:>8} {:>12}  spin\n", "joint", "vertices (bone)", "max resid", "mean", "failed", "vs closed");
+        let mut out = format!(
+            "{:<16} {:<24} {:>10} {:>10} {:>8} {:>12}  spin\n",
+            "joint", "vertices (bone)", "max resid", "mean", "failed", "vs closed"
+        );
         for j in &self.joints {
             let tracked = match &j.tracked {
                 Ok(s) => format!("{:?} ({})", s.vertices, s.bone),
@@ -145,7 +148,15 @@ impl Report {
                 out.push_str(&format!("no vertex set: {why}\n"));
             }
             if let Some((f, why)) = j.failures.first() {
-                out.push_str(&format!("{}: frame {f} did not converge ({why}){}\n", j.name, if j.failures.len() > 1 { format!(" and {} more frames", j.failures.len() - 1) } else { String::new() }));
+                out.push_str(&format!(
+                    "{}: frame {f} did not converge ({why}){}\n",
+                    j.name,
+                    if j.failures.len() > 1 {
+                        format!(" and {} more frames", j.failures.len() - 1)
+                    } else {
+                        String::new()
+                    }
+                ));
             }
         }
         out
@@ -190,7 +201,9 @@ impl Capture {
             .iter()
             .zip(&self.rotations)
             .enumerate()
-            .map(|(f, (p, r))| frames::FrameRecord::from_y_up(self.frame_names.get(f).cloned().unwrap_or_default(), p, r))
+            .map(|(f, (p, r))| {
+                frames::FrameRecord::from_y_up(self.frame_names.get(f).cloned().unwrap_or_default(), p, r)
+            })
             .collect();
         frames::CaptureFrames { bones, frames: records }
     }
@@ -251,8 +264,19 @@ impl Capturer {
 
     /// Starts a capture of a model's mesh (file vertices, its unit: the clip is in
     /// metres like the model on the stage).
-    pub fn from_mesh<'a>(mesh: &crate::MorphMesh, rig: impl Into<RigChoice<'a>>, options: &Options) -> Result<Capturer, CaptureError> {
-        let mut capturer = Capturer::from_frames(mesh.source_frames(), mesh.frame_names().to_vec(), mesh.animations().to_vec(), &mesh.source_triangles(), rig, options)?;
+    pub fn from_mesh<'a>(
+        mesh: &crate::MorphMesh,
+        rig: impl Into<RigChoice<'a>>,
+        options: &Options,
+    ) -> Result<Capturer, CaptureError> {
+        let mut capturer = Capturer::from_frames(
+            mesh.source_frames(),
+            mesh.frame_names().to_vec(),
+            mesh.animations().to_vec(),
+            &mesh.source_triangles(),
+            rig,
+            options,
+        )?;
         capturer.meters_per_unit = mesh.units().meters_per_unit();
         Ok(capturer)
     }
@@ -269,7 +293,14 @@ impl Capturer {
 
     /// Starts a capture of vertex frames (Y-up) with their names, animations and
     /// triangles; the clip keeps the frames' unit.
-    pub fn from_frames<'a>(frames: Vec<Vec<Vec3>>, names: Vec<String>, animations: Vec<Animation>, triangles: &[[usize; 3]], rig: impl Into<RigChoice<'a>>, options: &Options) -> Result<Capturer, CaptureError> {
+    pub fn from_frames<'a>(
+        frames: Vec<Vec<Vec3>>,
+        names: Vec<String>,
+        animations: Vec<Animation>,
+        triangles: &[[usize; 3]],
+        rig: impl Into<RigChoice<'a>>,
+        options: &Options,
+    ) -> Result<Capturer, CaptureError> {
         let fitted;
         let rig = match rig.into() {
             RigChoice::Given(rig) => rig,
@@ -281,11 +312,15 @@ impl Capturer {
         let vertices = frames.first().map_or(0, Vec::len);
         rig.check_for(vertices, frames.len()).map_err(|e| CaptureError(e.to_string()))?;
         let setup = &frames[rig.setup_frame];
-        let (lo, hi) = setup.iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+        let (lo, hi) = setup
+            .iter()
+            .fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
         let height = (hi - lo).max_element().max(1e-6);
         // Each joint's children, longest bone first (the primary one of a rotation).
         let mut children = rig.children();
-        let length = |j: usize, c: usize| Vec3::from_array(rig.joints[c].position).distance(Vec3::from_array(rig.joints[j].position));
+        let length = |j: usize, c: usize| {
+            Vec3::from_array(rig.joints[c].position).distance(Vec3::from_array(rig.joints[j].position))
+        };
         for (j, kids) in children.iter_mut().enumerate() {
             kids.sort_by(|&a, &b| length(j, b).total_cmp(&length(j, a)));
         }
@@ -349,7 +384,9 @@ impl Capturer {
                     return None;
                 }
                 let at = Vec3::from_array(rig.joints[j].position);
-                let mine = |b: Option<usize>| b.is_some_and(|b| b == j || rig.joints.get(b).is_some_and(|x| x.parent == Some(j)));
+                let mine = |b: Option<usize>| {
+                    b.is_some_and(|b| b == j || rig.joints.get(b).is_some_and(|x| x.parent == Some(j)))
+                };
                 let mut near: Vec<usize> = (0..setup.len()).filter(|&v| mine(rig.binding[v])).collect();
                 near.sort_by(|&a, &b| setup[a].distance(at).total_cmp(&setup[b].distance(at)));
                 near.truncate(64);
@@ -396,11 +433,13 @@ impl Capturer {
                 Some((part, motion)) => part.points.iter().map(|&p| motion.apply(p)).collect(),
                 None => set.vertices.iter().map(|&v| vertices[v]).collect(),
             };
-            let spheres: Vec<Sphere> = centers.iter().zip(&set.radii).map(|(c, &r)| Sphere { center: c.as_dvec3(), radius: r }).collect();
+            let spheres: Vec<Sphere> =
+                centers.iter().zip(&set.radii).map(|(c, &r)| Sphere { center: c.as_dvec3(), radius: r }).collect();
             // Start from the closed-form point (a frame can move far from the last
             // one: a jump), else from where the joint was in the last frame.
             let closed = spheres::least_squares(&spheres, f64::INFINITY).ok();
-            let previous = self.positions.last().and_then(|p| p.get(j)).copied().unwrap_or_else(|| setup_at(j)).as_dvec3();
+            let previous =
+                self.positions.last().and_then(|p| p.get(j)).copied().unwrap_or_else(|| setup_at(j)).as_dvec3();
             let start = closed.map_or(previous, |c| c.point);
             let report = &mut self.reports[j];
             let point = match spheres::successive(&spheres, start, &self.settings) {
@@ -467,12 +506,21 @@ impl Capturer {
     fn rotation(&self, j: usize, pos: &[Vec3], solved: &[Option<Vec3>], vertices: &[Vec3], inherited: Quat) -> Quat {
         let setup_at = |k: usize| self.rig.joints.get(k).map_or(Vec3::ZERO, |x| Vec3::from_array(x.position));
         // Children are kept longest first (see `from_frames`).
-        let kids: Vec<usize> = self.children.get(j).into_iter().flatten().copied().filter(|&c| solved[c].is_some() && setup_at(c) != setup_at(j)).collect();
+        let kids: Vec<usize> = self
+            .children
+            .get(j)
+            .into_iter()
+            .flatten()
+            .copied()
+            .filter(|&c| solved[c].is_some() && setup_at(c) != setup_at(j))
+            .collect();
         let Some(&first) = kids.first() else { return inherited };
         let (a0, a1) = (setup_at(first) - setup_at(j), pos[first] - pos[j]);
         // Two or more bones not all in one line: the rotation that best turns their
         // set-up directions into today's.
-        let spread = kids[1..].iter().any(|&k| (setup_at(k) - setup_at(j)).normalize_or_zero().cross(a0.normalize_or_zero()).length() > 0.2);
+        let spread = kids[1..]
+            .iter()
+            .any(|&k| (setup_at(k) - setup_at(j)).normalize_or_zero().cross(a0.normalize_or_zero()).length() > 0.2);
         if spread {
             let pairs: Vec<(Vec3, Vec3)> = kids.iter().map(|&k| (setup_at(k) - setup_at(j), pos[k] - pos[j])).collect();
             return fit_rotation(&pairs).unwrap_or(inherited);
@@ -516,7 +564,9 @@ impl Capturer {
             .enumerate()
             .map(|(j, joint)| {
                 let at = Vec3::from_array(joint.position);
-                let offset = joint.parent.and_then(|p| self.rig.joints.get(p)).map_or(at, |p| at - Vec3::from_array(p.position)) * self.meters_per_unit;
+                let offset =
+                    joint.parent.and_then(|p| self.rig.joints.get(p)).map_or(at, |p| at - Vec3::from_array(p.position))
+                        * self.meters_per_unit;
                 if joint.parent.is_none() {
                     let mut channels = vec![Channel::Xposition, Channel::Yposition, Channel::Zposition];
                     channels.extend(rot_channels.iter().copied());
@@ -538,13 +588,18 @@ impl Capturer {
                 for (j, joint) in skeleton.joints().iter().enumerate() {
                     let parent = joint.parent.map_or(Quat::IDENTITY, |p| rot[p]);
                     local.rotation.push((parent.inverse() * rot[j]).normalize());
-                    local.translation.push(if joint.parent.is_none() { pos[j] * self.meters_per_unit } else { joint.offset });
+                    local.translation.push(if joint.parent.is_none() {
+                        pos[j] * self.meters_per_unit
+                    } else {
+                        joint.offset
+                    });
                     local.scale.push(Vec3::ONE);
                 }
                 local
             })
             .collect();
-        crate::edit::clip_from_poses(skeleton, crate::morph::FRAME_TIME, &poses).map_err(|e| CaptureError(e.to_string()))
+        crate::edit::clip_from_poses(skeleton, crate::morph::FRAME_TIME, &poses)
+            .map_err(|e| CaptureError(e.to_string()))
     }
 }
 
@@ -629,7 +684,8 @@ impl TrackedPart {
     /// too few vertices or lacks a tracked one.
     fn new(frames: &[Vec<Vec3>], setup: usize, set: &mut track::JointSet, at: Vec3) -> Option<TrackedPart> {
         let shape = part_shape(frames, setup, set.part.clone(), true)?;
-        let place = |v: usize| shape.vertices.iter().position(|&x| x == v).and_then(|i| shape.reference.get(i)).copied();
+        let place =
+            |v: usize| shape.vertices.iter().position(|&x| x == v).and_then(|i| shape.reference.get(i)).copied();
         let points = set.vertices.iter().map(|&v| place(v)).collect::<Option<Vec<Vec3>>>()?;
         set.radii = points.iter().map(|p| f64::from(p.distance(at))).collect();
         Some(TrackedPart { shape, points })

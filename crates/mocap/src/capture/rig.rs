@@ -106,7 +106,9 @@ const HUMANOID: [(&str, Option<usize>, [f32; 3]); 26] = [
 
 /// Bounds of a point set: (min, max).
 fn bounds(points: &[Vec3]) -> (Vec3, Vec3) {
-    points.iter().fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)))
+    points
+        .iter()
+        .fold((Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)), |(lo, hi), p| (lo.min(*p), hi.max(*p)))
 }
 
 /// The median of `values` (0 when empty).
@@ -122,12 +124,17 @@ fn median(mut values: Vec<f32>) -> f32 {
 /// template's arm hanging down beside a raised arm of the mesh is drawn into it.
 fn center_bones(joints: &mut [RigJoint], positions: &[Vec3], rounds: usize) {
     for _ in 0..rounds {
-        let bones: Vec<(usize, usize)> = joints.iter().enumerate().filter_map(|(j, x)| x.parent.map(|p| (p, j))).collect();
+        let bones: Vec<(usize, usize)> =
+            joints.iter().enumerate().filter_map(|(j, x)| x.parent.map(|p| (p, j))).collect();
         let at = |j: &RigJoint| Vec3::from_array(j.position);
         let mut members: Vec<Vec<Vec3>> = vec![Vec::new(); bones.len()];
         for v in positions {
             let nearest = bones.iter().enumerate().min_by(|(_, a), (_, b)| {
-                segment_distance(*v, at(&joints[a.0]), at(&joints[a.1])).total_cmp(&segment_distance(*v, at(&joints[b.0]), at(&joints[b.1])))
+                segment_distance(*v, at(&joints[a.0]), at(&joints[a.1])).total_cmp(&segment_distance(
+                    *v,
+                    at(&joints[b.0]),
+                    at(&joints[b.1]),
+                ))
             });
             if let Some((k, _)) = nearest {
                 members[k].push(*v);
@@ -186,10 +193,16 @@ impl Rig {
             .enumerate()
             .map(|(j, joint)| {
                 let at = model.get(j).copied().unwrap_or(Transform::IDENTITY);
-                let only = children.get(j).filter(|c| c.len() == 1).and_then(|c| c.first()).and_then(|&c| skeleton.joints().get(c));
+                let only = children
+                    .get(j)
+                    .filter(|c| c.len() == 1)
+                    .and_then(|c| c.first())
+                    .and_then(|&c| skeleton.joints().get(c));
                 let spin = only.and_then(|child| {
                     let along = child.offset.normalize_or_zero();
-                    let axis = [Vec3::X, Vec3::Y, Vec3::Z].into_iter().min_by(|a, b| a.dot(along).abs().total_cmp(&b.dot(along).abs()))?;
+                    let axis = [Vec3::X, Vec3::Y, Vec3::Z]
+                        .into_iter()
+                        .min_by(|a, b| a.dot(along).abs().total_cmp(&b.dot(along).abs()))?;
                     let across = (axis - along * axis.dot(along)).normalize_or_zero();
                     (along != Vec3::ZERO).then(|| (at.rotation * across).to_array())
                 });
@@ -209,7 +222,11 @@ impl Rig {
     pub fn fit(positions: &[Vec3], setup_frame: usize, template: Option<(&Skeleton, &[Transform])>) -> Rig {
         let (lo, hi) = bounds(positions);
         let height = (hi.y - lo.y).max(1e-6);
-        let centre = Vec3::new(median(positions.iter().map(|p| p.x).collect()), lo.y, median(positions.iter().map(|p| p.z).collect()));
+        let centre = Vec3::new(
+            median(positions.iter().map(|p| p.x).collect()),
+            lo.y,
+            median(positions.iter().map(|p| p.z).collect()),
+        );
         let mut joints: Vec<RigJoint> = match template {
             Some((skeleton, model)) => {
                 let points: Vec<Vec3> = model.iter().map(|t| t.translation).collect();
@@ -219,7 +236,11 @@ impl Rig {
                 let rig = Rig::from_skeleton(skeleton, model, setup_frame);
                 rig.joints
                     .into_iter()
-                    .map(|j| RigJoint { position: (centre + (Vec3::from_array(j.position) - tcentre) * scale).to_array(), spin: None, ..j })
+                    .map(|j| RigJoint {
+                        position: (centre + (Vec3::from_array(j.position) - tcentre) * scale).to_array(),
+                        spin: None,
+                        ..j
+                    })
                     .collect()
             }
             None => HUMANOID
@@ -236,7 +257,8 @@ impl Rig {
             for _ in 0..2 {
                 for j in &mut joints {
                     let at = Vec3::from_array(j.position);
-                    let near: Vec<Vec3> = positions.iter().copied().filter(|p| p.distance(at) < height * 0.07).collect();
+                    let near: Vec<Vec3> =
+                        positions.iter().copied().filter(|p| p.distance(at) < height * 0.07).collect();
                     if near.len() >= 6 {
                         let mean = near.iter().copied().sum::<Vec3>() / near.len() as f32;
                         j.position = (at + (mean - at) * 0.7).to_array();
@@ -270,7 +292,12 @@ impl Rig {
                     *c += 1;
                 }
             }
-            let Some(drop) = (0..self.joints.len()).rev().find(|&j| self.joints[j].parent.is_some() && children[j].is_empty() && counts[j] < 4) else { return };
+            let Some(drop) = (0..self.joints.len())
+                .rev()
+                .find(|&j| self.joints[j].parent.is_some() && children[j].is_empty() && counts[j] < 4)
+            else {
+                return;
+            };
             self.joints.remove(drop);
             for j in &mut self.joints {
                 j.parent = j.parent.map(|p| if p > drop { p - 1 } else { p });
@@ -322,7 +349,12 @@ impl Rig {
             .collect();
         self.binding = positions
             .iter()
-            .map(|v| bones.iter().min_by(|a, b| segment_distance(*v, a.1, a.2).total_cmp(&segment_distance(*v, b.1, b.2))).map(|b| b.0))
+            .map(|v| {
+                bones
+                    .iter()
+                    .min_by(|a, b| segment_distance(*v, a.1, a.2).total_cmp(&segment_distance(*v, b.1, b.2)))
+                    .map(|b| b.0)
+            })
             .collect();
     }
 
@@ -371,7 +403,12 @@ impl Rig {
         if self.joints.iter().filter(|j| j.parent.is_none()).count() != 1 {
             return fail("a rig has exactly one root joint");
         }
-        if let Some((v, b)) = self.binding.iter().enumerate().find_map(|(v, b)| b.filter(|&b| self.joints.get(b).is_none_or(|j| j.parent.is_none())).map(|b| (v, b))) {
+        if let Some((v, b)) = self
+            .binding
+            .iter()
+            .enumerate()
+            .find_map(|(v, b)| b.filter(|&b| self.joints.get(b).is_none_or(|j| j.parent.is_none())).map(|b| (v, b)))
+        {
             return fail(format!("vertex {v} is bound to {b}, which is not a bone (a joint with a parent)"));
         }
         Ok(())
@@ -384,7 +421,11 @@ impl Rig {
             return fail(format!("{} vertices are bound but the model has {vertices}", self.binding.len()));
         }
         if self.setup_frame >= frames {
-            return fail(format!("set-up frame {} but the model has frames 0 to {}", self.setup_frame, frames.saturating_sub(1)));
+            return fail(format!(
+                "set-up frame {} but the model has frames 0 to {}",
+                self.setup_frame,
+                frames.saturating_sub(1)
+            ));
         }
         Ok(())
     }
@@ -396,7 +437,9 @@ mod tests {
 
     #[test]
     fn json_round_trips_and_bad_rigs_are_refused() {
-        let points: Vec<Vec3> = (0..200).map(|i| Vec3::new((i as f32 * 0.7).sin() * 4.0, i as f32 * 0.3, (i as f32 * 0.3).cos() * 6.0)).collect();
+        let points: Vec<Vec3> = (0..200)
+            .map(|i| Vec3::new((i as f32 * 0.7).sin() * 4.0, i as f32 * 0.3, (i as f32 * 0.3).cos() * 6.0))
+            .collect();
         let rig = Rig::fit(&points, 0, None);
         assert!(rig.joints.len() <= HUMANOID.len() && rig.joints.len() > 10);
         assert_eq!(rig.binding.len(), points.len());

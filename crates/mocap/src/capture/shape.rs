@@ -52,46 +52,23 @@ fn best_fit(from: &[Vec3], to: &[Vec3]) -> Option<Motion> {
         return None;
     }
     let (c0, c1) = (super::centroid(from), super::centroid(to));
-    let pairs: Vec<(Vec3, Vec3)> = from
-        .iter()
-        .zip(to)
-        .map(|(a, b)| (*a - c0, *b - c1))
-        .collect();
-    Some(Motion {
-        rotation: fit_rotation(&pairs)?,
-        from: c0,
-        to: c1,
-    })
+    let pairs: Vec<(Vec3, Vec3)> = from.iter().zip(to).map(|(a, b)| (*a - c0, *b - c1)).collect();
+    Some(Motion { rotation: fit_rotation(&pairs)?, from: c0, to: c1 })
 }
 
 impl RigidShape {
     /// The part `vertices` as it is in frame `setup` (no averaging); `None` with
     /// fewer than three vertices or one missing from that frame.
-    pub fn in_frame(
-        frames: &[Vec<Vec3>],
-        setup: usize,
-        vertices: Vec<usize>,
-    ) -> Option<RigidShape> {
+    pub fn in_frame(frames: &[Vec<Vec3>], setup: usize, vertices: Vec<usize>) -> Option<RigidShape> {
         let frame = frames.get(setup)?;
-        let reference = vertices
-            .iter()
-            .map(|&v| frame.get(v).copied())
-            .collect::<Option<Vec<_>>>()?;
-        (vertices.len() >= 3).then_some(RigidShape {
-            vertices,
-            reference,
-        })
+        let reference = vertices.iter().map(|&v| frame.get(v).copied()).collect::<Option<Vec<_>>>()?;
+        (vertices.len() >= 3).then_some(RigidShape { vertices, reference })
     }
 
     /// The part `vertices` averaged over every frame (see the module
     /// documentation), in frame `setup`'s coordinates: `rounds` rounds of aligning
     /// every frame onto the current average and averaging again.
-    pub fn average(
-        frames: &[Vec<Vec3>],
-        setup: usize,
-        vertices: Vec<usize>,
-        rounds: usize,
-    ) -> Option<RigidShape> {
+    pub fn average(frames: &[Vec<Vec3>], setup: usize, vertices: Vec<usize>, rounds: usize) -> Option<RigidShape> {
         let mut shape = RigidShape::in_frame(frames, setup, vertices)?;
         let n = shape.vertices.len();
         for _ in 0..rounds {
@@ -124,10 +101,7 @@ impl RigidShape {
 
     /// The part's vertices in `frame`, or `None` if one is missing.
     fn points(&self, frame: &[Vec3]) -> Option<Vec<Vec3>> {
-        self.vertices
-            .iter()
-            .map(|&v| frame.get(v).copied())
-            .collect()
+        self.vertices.iter().map(|&v| frame.get(v).copied()).collect()
     }
 
     /// The rigid motion that best takes the shape onto its vertices in `frame`.
@@ -162,15 +136,8 @@ mod tests {
 
     #[test]
     fn averaging_shrinks_the_noise_and_a_fit_places_a_fixed_point() {
-        let shape: Vec<Vec3> = (0..40)
-            .map(|i| {
-                Vec3::new(
-                    (i as f32 * 0.7).sin(),
-                    (i as f32 * 1.3).cos(),
-                    (i % 5) as f32 * 0.3,
-                )
-            })
-            .collect();
+        let shape: Vec<Vec3> =
+            (0..40).map(|i| Vec3::new((i as f32 * 0.7).sin(), (i as f32 * 1.3).cos(), (i % 5) as f32 * 0.3)).collect();
         let motions: Vec<Motion> = (0..120)
             .map(|f| {
                 let t = f as f32 * 0.05;
@@ -185,28 +152,13 @@ mod tests {
         let vertices: Vec<usize> = (0..shape.len()).collect();
         let raw = RigidShape::in_frame(&frames, 0, vertices.clone()).unwrap();
         let avg = RigidShape::average(&frames, 0, vertices, 2).unwrap();
-        let error = |s: &RigidShape| {
-            s.reference
-                .iter()
-                .zip(&shape)
-                .map(|(a, b)| a.distance(*b))
-                .fold(0.0f32, f32::max)
-        };
-        assert!(
-            error(&avg) < error(&raw) * 0.5,
-            "averaged {} vs raw {}",
-            error(&avg),
-            error(&raw)
-        );
+        let error = |s: &RigidShape| s.reference.iter().zip(&shape).map(|(a, b)| a.distance(*b)).fold(0.0f32, f32::max);
+        assert!(error(&avg) < error(&raw) * 0.5, "averaged {} vs raw {}", error(&avg), error(&raw));
         // A point fixed to the part (off it) is placed within the noise in every frame.
         let joint = Vec3::new(0.3, -1.5, 0.4);
         for (frame, m) in frames.iter().zip(&motions) {
             let placed = avg.fit(frame).unwrap().apply(joint);
-            assert!(
-                placed.distance(m.apply(joint)) < 0.01,
-                "{placed} vs {}",
-                m.apply(joint)
-            );
+            assert!(placed.distance(m.apply(joint)) < 0.01, "{placed} vs {}", m.apply(joint));
         }
     }
 

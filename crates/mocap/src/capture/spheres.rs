@@ -188,7 +188,8 @@ mod tests {
         centers.iter().map(|&c| Sphere { center: c, radius: (p - c).length() }).collect()
     }
 
-    const CENTERS: [DVec3; 4] = [DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.1, 0.0), DVec3::new(0.2, 1.0, 0.1), DVec3::new(0.1, 0.3, 0.9)];
+    const CENTERS: [DVec3; 4] =
+        [DVec3::new(0.0, 0.0, 0.0), DVec3::new(1.0, 0.1, 0.0), DVec3::new(0.2, 1.0, 0.1), DVec3::new(0.1, 0.3, 0.9)];
 
     #[test]
     fn exact_on_noise_free_spheres() {
@@ -234,7 +235,10 @@ mod tests {
         let p = DVec3::new(0.4, 0.5, 0.3);
         let s = spheres_around(p, &CENTERS);
         let tight = Settings { tolerance: 0.0, max_rounds: 3, meet: 1.0 };
-        assert!(matches!(successive(&s, DVec3::new(5.0, 5.0, 5.0), &tight), Err(SolveError::NotConverged { rounds: 3, .. })));
+        assert!(matches!(
+            successive(&s, DVec3::new(5.0, 5.0, 5.0), &tight),
+            Err(SolveError::NotConverged { rounds: 3, .. })
+        ));
     }
 
     #[test]

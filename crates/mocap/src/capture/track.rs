@@ -63,11 +63,7 @@ fn drift(frames: &[Vec<Vec3>], a: usize, b: usize) -> f32 {
             hi = hi.max(d);
         }
     }
-    if hi >= lo {
-        hi - lo
-    } else {
-        f32::INFINITY
-    }
+    if hi >= lo { hi - lo } else { f32::INFINITY }
 }
 
 /// What choosing a joint's vertices needs besides the frames and the rig: the
@@ -113,7 +109,13 @@ impl Chooser {
                         best = Some(set);
                     }
                 }
-                Err(reason) => why = format!("{}: bone {}: {reason}", joint.name, rig.joints.get(bone).map_or("?", |b| b.name.as_str())),
+                Err(reason) => {
+                    why = format!(
+                        "{}: bone {}: {reason}",
+                        joint.name,
+                        rig.joints.get(bone).map_or("?", |b| b.name.as_str())
+                    )
+                }
             }
         }
         best.ok_or(why)
@@ -138,7 +140,14 @@ const SEARCH: usize = 24;
 /// `i` to the joint; the larger, the less noise in the distances moves the solved
 /// joint), `drift` the largest change of a distance between two of them. Returns
 /// the four, their drift and the rigid part (see [`JointSet::part`]).
-fn pick_four(frames: &[Vec<Vec3>], setup: &[Vec3], at: Vec3, candidates: &[usize], tolerance: f32, count: usize) -> Result<(Vec<usize>, f32, Vec<usize>), String> {
+fn pick_four(
+    frames: &[Vec<Vec3>],
+    setup: &[Vec3],
+    at: Vec3,
+    candidates: &[usize],
+    tolerance: f32,
+    count: usize,
+) -> Result<(Vec<usize>, f32, Vec<usize>), String> {
     let n = candidates.len();
     if n < 4 {
         return Err(format!("{n} vertices bound, four are needed"));
@@ -155,7 +164,10 @@ fn pick_four(frames: &[Vec<Vec3>], setup: &[Vec3], at: Vec3, candidates: &[usize
     let first = (0..n).max_by_key(|&a| (0..n).filter(|&b| b != a && rigid(a, b)).count()).unwrap_or(0);
     let cluster: Vec<usize> = std::iter::once(first).chain((0..n).filter(|&b| b != first && rigid(first, b))).collect();
     if cluster.len() < 4 {
-        return Err(format!("no four of its vertices keep their distances over all frames (at most {} do)", cluster.len()));
+        return Err(format!(
+            "no four of its vertices keep their distances over all frames (at most {} do)",
+            cluster.len()
+        ));
     }
     let p = |a: usize| setup[candidates[a]];
     let dir = |a: usize| (at - p(a)).normalize_or_zero();
@@ -192,7 +204,10 @@ fn pick_four(frames: &[Vec<Vec3>], setup: &[Vec3], at: Vec3, candidates: &[usize
                         continue;
                     }
                     // Expected error ∝ (drift + noise) / √λ: prefer rigid and well spread.
-                    let d = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)].iter().map(|&(x, y)| drifts[four[x] * n + four[y]]).fold(0.0, f32::max);
+                    let d = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
+                        .iter()
+                        .map(|&(x, y)| drifts[four[x] * n + four[y]])
+                        .fold(0.0, f32::max);
                     let score = smallest_eigenvalue(four.map(dir)).max(0.0).sqrt() / (d + tolerance * 0.25);
                     scored.push((four, score));
                 }
@@ -209,7 +224,9 @@ fn pick_four(frames: &[Vec<Vec3>], setup: &[Vec3], at: Vec3, candidates: &[usize
         })
     };
     let best = scored.iter().take(64).find(|(four, _)| !flat_somewhere(four));
-    let Some(&(four, _)) = best else { return Err("its rigid vertices are (nearly) on one plane in some frame".into()) };
+    let Some(&(four, _)) = best else {
+        return Err("its rigid vertices are (nearly) on one plane in some frame".into());
+    };
     // More than four when asked for: add, one at a time, the vertex rigid with
     // all chosen that keeps the best score.
     let mut chosen = four.to_vec();
@@ -228,8 +245,18 @@ fn pick_four(frames: &[Vec<Vec3>], setup: &[Vec3], at: Vec3, candidates: &[usize
             None => break,
         }
     }
-    let d = chosen.iter().flat_map(|&a| chosen.iter().map(move |&b| (a, b))).filter(|(a, b)| a != b).map(|(a, b)| drifts[a * n + b]).fold(0.0, f32::max);
-    let part = cluster.iter().copied().filter(|&c| chosen.iter().all(|&x| x == c || rigid(x, c))).map(|k| candidates[k]).collect();
+    let d = chosen
+        .iter()
+        .flat_map(|&a| chosen.iter().map(move |&b| (a, b)))
+        .filter(|(a, b)| a != b)
+        .map(|(a, b)| drifts[a * n + b])
+        .fold(0.0, f32::max);
+    let part = cluster
+        .iter()
+        .copied()
+        .filter(|&c| chosen.iter().all(|&x| x == c || rigid(x, c)))
+        .map(|k| candidates[k])
+        .collect();
     Ok((chosen.iter().map(|&k| candidates[k]).collect(), d, part))
 }
 
@@ -253,7 +280,8 @@ fn smallest_eigenvalue(us: [Vec3; 4]) -> f32 {
         return q as f32;
     }
     let b = |r: usize, c: usize| (m[r][c] - if r == c { q } else { 0.0 }) / p;
-    let det = b(0, 0) * (b(1, 1) * b(2, 2) - b(1, 2) * b(2, 1)) - b(0, 1) * (b(1, 0) * b(2, 2) - b(1, 2) * b(2, 0)) + b(0, 2) * (b(1, 0) * b(2, 1) - b(1, 1) * b(2, 0));
+    let det = b(0, 0) * (b(1, 1) * b(2, 2) - b(1, 2) * b(2, 1)) - b(0, 1) * (b(1, 0) * b(2, 2) - b(1, 2) * b(2, 0))
+        + b(0, 2) * (b(1, 0) * b(2, 1) - b(1, 1) * b(2, 0));
     let phi = (det / 2.0).clamp(-1.0, 1.0).acos() / 3.0;
     (q + 2.0 * p * (phi + 2.0 * std::f64::consts::PI / 3.0).cos()) as f32
 }
@@ -313,10 +341,15 @@ pub fn spin_triangle(setup: &[Vec3], triangles: &[[usize; 3]], rig: &Rig, from: 
         return None;
     }
     let mid = (a + b) * 0.5;
-    let bound = |t: &[usize; 3]| t.iter().all(|&v| rig.binding.get(v).copied().flatten() == Some(to) && v < setup.len());
+    let bound =
+        |t: &[usize; 3]| t.iter().all(|&v| rig.binding.get(v).copied().flatten() == Some(to) && v < setup.len());
     let mine: Vec<&[usize; 3]> = triangles.iter().filter(|t| bound(t)).collect();
     let centroid = |t: &[usize; 3]| (setup[t[0]] + setup[t[1]] + setup[t[2]]) / 3.0;
-    let by_ray = mine.iter().filter_map(|t| hit(mid, spin, setup[t[0]], setup[t[1]], setup[t[2]]).map(|d| (d, **t))).min_by(|x, y| x.0.total_cmp(&y.0)).map(|x| x.1);
+    let by_ray = mine
+        .iter()
+        .filter_map(|t| hit(mid, spin, setup[t[0]], setup[t[1]], setup[t[2]]).map(|d| (d, **t)))
+        .min_by(|x, y| x.0.total_cmp(&y.0))
+        .map(|x| x.1);
     let across = |t: &[usize; 3]| {
         let c = centroid(t);
         (c - foot(c, a, b)).normalize_or_zero().dot(spin)
@@ -352,7 +385,13 @@ mod tests {
 
     #[test]
     fn eigenvalue_of_spread_and_clustered_directions() {
-        let spread = [Vec3::new(1.0, 1.0, 1.0), Vec3::new(1.0, -1.0, -1.0), Vec3::new(-1.0, 1.0, -1.0), Vec3::new(-1.0, -1.0, 1.0)].map(Vec3::normalize);
+        let spread = [
+            Vec3::new(1.0, 1.0, 1.0),
+            Vec3::new(1.0, -1.0, -1.0),
+            Vec3::new(-1.0, 1.0, -1.0),
+            Vec3::new(-1.0, -1.0, 1.0),
+        ]
+        .map(Vec3::normalize);
         assert!((smallest_eigenvalue(spread) - 4.0 / 3.0).abs() < 1e-5);
         let flat = [Vec3::X, Vec3::Y, -Vec3::X, -Vec3::Y];
         assert!(smallest_eigenvalue(flat).abs() < 1e-6);

@@ -3,13 +3,13 @@
 //! decoder for two reader types (one to read metadata, one to decode), which put
 //! the whole decoder into the browser build twice.
 
-use super::{Rgba, MAX_SIDE};
+use super::{MAX_SIDE, Rgba};
 use crate::error::ParseError;
 use zune_core::bytestream::ZCursor;
 use zune_core::colorspace::ColorSpace;
 use zune_core::options::DecoderOptions;
-use zune_jpeg::errors::DecodeErrors;
 use zune_jpeg::JpegDecoder;
+use zune_jpeg::errors::DecodeErrors;
 
 /// Decodes a JPEG file to RGBA8. Grey images come out grey, images with an alpha
 /// plane keep it, CMYK and YCCK are converted to RGB. A width or height past
@@ -27,15 +27,19 @@ pub fn decode(bytes: &[u8]) -> Result<Rgba, ParseError> {
     let options = DecoderOptions::default().set_strict_mode(false).set_max_width(jpeg_side).set_max_height(jpeg_side);
     let mut decoder = JpegDecoder::new_with_options(ZCursor::new(bytes), options);
     decoder.decode_headers().map_err(zune)?;
-    let ((width, height), input) = decoder.dimensions().zip(decoder.input_colorspace()).ok_or_else(|| fail("no frame header"))?;
+    let ((width, height), input) =
+        decoder.dimensions().zip(decoder.input_colorspace()).ok_or_else(|| fail("no frame header"))?;
     let (width, height) = (u32::try_from(width).unwrap_or(u32::MAX), u32::try_from(height).unwrap_or(u32::MAX));
     if width > MAX_SIDE || height > MAX_SIDE {
-        return Err(fail(&format!("it is {width} × {height} pixels; images over {MAX_SIDE} pixels on a side are not read")));
+        return Err(fail(&format!(
+            "it is {width} × {height} pixels; images over {MAX_SIDE} pixels on a side are not read"
+        )));
     }
     let output = output_colorspace(input);
     decoder.set_options(options.jpeg_set_out_colorspace(output));
     let pixels = decoder.decode().map_err(zune)?;
-    let rgba = to_rgba(pixels, output.num_components()).ok_or_else(|| fail("the decoder gave an unexpected pixel layout"))?;
+    let rgba =
+        to_rgba(pixels, output.num_components()).ok_or_else(|| fail("the decoder gave an unexpected pixel layout"))?;
     if rgba.len() != width as usize * height as usize * 4 {
         return Err(fail("the decoded pixels do not fill the image"));
     }

@@ -84,7 +84,9 @@ pub fn decode(format: ImageFormat, bytes: &[u8]) -> Result<Rgba, ParseError> {
     limits.max_image_height = Some(MAX_SIDE);
     limits.max_alloc = Some(u64::from(MAX_SIDE) * u64::from(MAX_SIDE) * 4);
     reader.limits(limits);
-    let image = reader.decode().map_err(|e| ParseError::at_byte(0, format!("cannot decode this {} image: {e}", format.name())))?;
+    let image = reader
+        .decode()
+        .map_err(|e| ParseError::at_byte(0, format!("cannot decode this {} image: {e}", format.name())))?;
     let rgba = image.into_rgba8();
     Ok(Rgba { width: rgba.width(), height: rgba.height(), pixels: rgba.into_raw() })
 }

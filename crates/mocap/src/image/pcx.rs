@@ -28,7 +28,10 @@ pub fn sniff(bytes: &[u8]) -> bool {
 /// Decodes a PCX image to RGBA8 (alpha 255).
 pub fn decode(bytes: &[u8]) -> Result<Rgba, ParseError> {
     if bytes.len() < HEADER {
-        return Err(ParseError::at_byte(bytes.len(), format!("the file ends inside the 128-byte PCX header ({} bytes)", bytes.len())));
+        return Err(ParseError::at_byte(
+            bytes.len(),
+            format!("the file ends inside the 128-byte PCX header ({} bytes)", bytes.len()),
+        ));
     }
     if bytes.first() != Some(&10) {
         return Err(ParseError::at_byte(0, "not a PCX image: the first byte is not 10 (ZSoft)"));
@@ -40,7 +43,12 @@ pub fn decode(bytes: &[u8]) -> Result<Rgba, ParseError> {
     let bits = bytes.get(3).copied().unwrap_or(0);
     let planes = bytes.get(65).copied().unwrap_or(0);
     if !(bits == 8 && (planes == 1 || planes == 3)) {
-        return Err(ParseError::at_byte(3, format!("{bits} bits per pixel in {planes} planes: only 8-bit paletted (1 plane) and 24-bit (3 planes) images are read")));
+        return Err(ParseError::at_byte(
+            3,
+            format!(
+                "{bits} bits per pixel in {planes} planes: only 8-bit paletted (1 plane) and 24-bit (3 planes) images are read"
+            ),
+        ));
     }
     let (xmin, ymin, xmax, ymax) = (u16_at(bytes, 4), u16_at(bytes, 6), u16_at(bytes, 8), u16_at(bytes, 10));
     if xmax < xmin || ymax < ymin {
@@ -58,11 +66,15 @@ pub fn decode(bytes: &[u8]) -> Result<Rgba, ParseError> {
     let palette = if planes == 1 { Some(palette(bytes)?) } else { None };
     let data_end = if palette.is_some() { bytes.len() - 769 } else { bytes.len() };
     let stride = line * usize::from(planes);
-    let needed = stride.checked_mul(height as usize).ok_or_else(|| ParseError::at_byte(66, "the image size overflows"))?;
+    let needed =
+        stride.checked_mul(height as usize).ok_or_else(|| ParseError::at_byte(66, "the image size overflows"))?;
     // RLE packs at most 63 bytes into 2, so the data bounds what can be claimed.
     let data = bytes.get(HEADER..data_end).unwrap_or(&[]);
     if needed > data.len().saturating_mul(32) {
-        return Err(ParseError::at_byte(HEADER, format!("{width}×{height} pixels cannot come from {} bytes of image data", data.len())));
+        return Err(ParseError::at_byte(
+            HEADER,
+            format!("{width}×{height} pixels cannot come from {} bytes of image data", data.len()),
+        ));
     }
     let scan = unpack(data, needed, encoding == 1)?;
     let mut pixels = Vec::with_capacity(width as usize * height as usize * 4);
@@ -86,7 +98,10 @@ pub fn decode(bytes: &[u8]) -> Result<Rgba, ParseError> {
 fn palette(bytes: &[u8]) -> Result<[u8; 768], ParseError> {
     let start = bytes.len().checked_sub(769).filter(|&s| s >= HEADER);
     let Some(start) = start else {
-        return Err(ParseError::at_byte(bytes.len(), "an 8-bit PCX image ends with a 769-byte palette, and this file is too short for one"));
+        return Err(ParseError::at_byte(
+            bytes.len(),
+            "an 8-bit PCX image ends with a 769-byte palette, and this file is too short for one",
+        ));
     };
     if bytes.get(start) != Some(&0x0C) {
         return Err(ParseError::at_byte(start, "no palette: an 8-bit PCX image ends with 0x0C and 768 bytes of RGB"));
@@ -100,13 +115,21 @@ fn palette(bytes: &[u8]) -> Result<[u8; 768], ParseError> {
 /// early is an error at the byte where it ended.
 fn unpack(data: &[u8], needed: usize, rle: bool) -> Result<Vec<u8>, ParseError> {
     if !rle {
-        return data.get(..needed).map(<[u8]>::to_vec).ok_or_else(|| ParseError::at_byte(HEADER + data.len(), format!("raw image data ends after {} of {needed} bytes", data.len())));
+        return data.get(..needed).map(<[u8]>::to_vec).ok_or_else(|| {
+            ParseError::at_byte(
+                HEADER + data.len(),
+                format!("raw image data ends after {} of {needed} bytes", data.len()),
+            )
+        });
     }
     let mut out = Vec::with_capacity(needed);
     let mut i = 0;
     while out.len() < needed {
         let Some(&b) = data.get(i) else {
-            return Err(ParseError::at_byte(HEADER + i, format!("the image data ends after {} of {needed} bytes", out.len())));
+            return Err(ParseError::at_byte(
+                HEADER + i,
+                format!("the image data ends after {} of {needed} bytes", out.len()),
+            ));
         };
         i += 1;
         if b & 0xC0 == 0xC0 {

@@ -44,7 +44,7 @@ mod tests;
 pub(crate) mod write;
 
 pub use normals::NORMALS;
-pub use write::{build, from_y_up, pack_frame, write, WriteError};
+pub use write::{WriteError, build, from_y_up, pack_frame, write};
 
 use crate::error::ParseError;
 
@@ -142,11 +142,7 @@ pub fn animation_base_name(name: &str) -> &str {
     let stem = name.trim_end_matches(|c: char| c.is_ascii_digit());
     let digits = name.len() - stem.len();
     let base = if digits >= 3 { &name[..stem.len() + 1] } else { stem };
-    if base.is_empty() {
-        name
-    } else {
-        base
-    }
+    if base.is_empty() { name } else { base }
 }
 
 /// Groups frame names into animations: consecutive frames with the same
@@ -238,7 +234,10 @@ fn header(bytes: &[u8]) -> Result<Header, ParseError> {
     let len = bytes.len();
     if len < 4 || !sniff(bytes) {
         let got = &bytes[..len.min(4)];
-        return Err(err(0, format!("not an MD2 file: it starts with {:?}, not \"IDP2\"", String::from_utf8_lossy(got))));
+        return Err(err(
+            0,
+            format!("not an MD2 file: it starts with {:?}, not \"IDP2\"", String::from_utf8_lossy(got)),
+        ));
     }
     if len >= 8 {
         let version = i32_at(bytes, 4);
@@ -252,7 +251,8 @@ fn header(bytes: &[u8]) -> Result<Header, ParseError> {
     let mut v = [0usize; 16];
     for (i, name) in FIELDS.iter().enumerate().skip(1) {
         let value = i32_at(bytes, field_offset(i));
-        v[i] = usize::try_from(value).map_err(|_| err(field_offset(i), format!("{name} is {value}, which is negative")))?;
+        v[i] = usize::try_from(value)
+            .map_err(|_| err(field_offset(i), format!("{name} is {value}, which is negative")))?;
     }
     let h = Header {
         skin_width: v[1],
@@ -288,7 +288,10 @@ fn header(bytes: &[u8]) -> Result<Header, ParseError> {
         ));
     }
     if ofs_end > len {
-        return Err(err(field_offset(15), format!("ofs_end is {ofs_end} but the file has only {len} bytes: it is truncated")));
+        return Err(err(
+            field_offset(15),
+            format!("ofs_end is {ofs_end} but the file has only {len} bytes: it is truncated"),
+        ));
     }
     let sections = [
         (10, 4, h.ofs_skins, h.num_skins, SKIN_NAME_SIZE, "skins"),
@@ -304,8 +307,7 @@ fn header(bytes: &[u8]) -> Result<Header, ParseError> {
                 field_offset(ofs_field),
                 format!(
                     "{} {ofs} + {count} {what} × {size} bytes ({}) runs past the end of the file ({len} bytes)",
-                    FIELDS[ofs_field],
-                    FIELDS[count_field],
+                    FIELDS[ofs_field], FIELDS[count_field],
                 ),
             ));
         }
@@ -321,8 +323,9 @@ pub fn parse(bytes: &[u8]) -> Result<Md2, ParseError> {
     let mut skins = Vec::with_capacity(h.num_skins);
     for i in 0..h.num_skins {
         let at = h.ofs_skins + i * SKIN_NAME_SIZE;
-        let name = c_string(&bytes[at..at + SKIN_NAME_SIZE])
-            .ok_or_else(|| err(at, format!("skin {i}'s name has no NUL terminator within its {SKIN_NAME_SIZE} bytes")))?;
+        let name = c_string(&bytes[at..at + SKIN_NAME_SIZE]).ok_or_else(|| {
+            err(at, format!("skin {i}'s name has no NUL terminator within its {SKIN_NAME_SIZE} bytes"))
+        })?;
         skins.push(name);
     }
 
@@ -362,8 +365,9 @@ pub fn parse(bytes: &[u8]) -> Result<Md2, ParseError> {
     for i in 0..h.num_frames {
         let at = h.ofs_frames + i * h.frame_size;
         let name_at = at + 24;
-        let name = c_string(&bytes[name_at..name_at + FRAME_NAME_SIZE])
-            .ok_or_else(|| err(name_at, format!("frame {i}'s name has no NUL terminator within its {FRAME_NAME_SIZE} bytes")))?;
+        let name = c_string(&bytes[name_at..name_at + FRAME_NAME_SIZE]).ok_or_else(|| {
+            err(name_at, format!("frame {i}'s name has no NUL terminator within its {FRAME_NAME_SIZE} bytes"))
+        })?;
         let vec3 = |o: usize| [f32_at(bytes, o), f32_at(bytes, o + 4), f32_at(bytes, o + 8)];
         let (scale, translate) = (vec3(at), vec3(at + 12));
         for (what, value, o) in [("scale", scale, at), ("translate", translate, at + 12)] {
@@ -372,10 +376,8 @@ pub fn parse(bytes: &[u8]) -> Result<Md2, ParseError> {
             }
         }
         let first = at + FRAME_HEADER_SIZE;
-        let vertices: Vec<[u8; 4]> = bytes[first..first + 4 * h.num_xyz]
-            .chunks_exact(4)
-            .map(|c| [c[0], c[1], c[2], c[3]])
-            .collect();
+        let vertices: Vec<[u8; 4]> =
+            bytes[first..first + 4 * h.num_xyz].chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
         if let Some(v) = vertices.iter().position(|v| usize::from(v[3]) >= NORMALS.len()) {
             return Err(err(
                 first + 4 * v + 3,
@@ -454,11 +456,7 @@ impl Md2 {
         let (lo, hi) = (0..f.vertices.len())
             .map(|v| f.quake_position(v)[2])
             .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), z| (lo.min(z), hi.max(z)));
-        if hi >= lo {
-            hi - lo
-        } else {
-            0.0
-        }
+        if hi >= lo { hi - lo } else { 0.0 }
     }
 
     /// The animation that contains frame `frame`, if any.

@@ -11,7 +11,10 @@
 //! assert_eq!(again, md2);
 //! ```
 
-use super::{Animation, Frame, Md2, Triangle, FRAME_HEADER_SIZE, FRAME_NAME_SIZE, HEADER_SIZE, IDENT, NORMALS, SKIN_NAME_SIZE, VERSION};
+use super::{
+    Animation, FRAME_HEADER_SIZE, FRAME_NAME_SIZE, Frame, HEADER_SIZE, IDENT, Md2, NORMALS, SKIN_NAME_SIZE, Triangle,
+    VERSION,
+};
 use glam::Vec3;
 
 /// Why frames cannot be packed into an MD2.
@@ -164,7 +167,10 @@ pub fn build(frames: &[(String, Vec<Vec3>)], triangles: &[[u32; 3]]) -> Result<M
         skin_height: 8,
         skins: Vec::new(),
         tex_coords: vec![[0, 0]],
-        triangles: triangles.iter().map(|t| Triangle { vertices: t.map(|i| i as u16), tex_coords: [0, 0, 0] }).collect(),
+        triangles: triangles
+            .iter()
+            .map(|t| Triangle { vertices: t.map(|i| i as u16), tex_coords: [0, 0, 0] })
+            .collect(),
         frames: packed,
         animations,
         vertex_count: n,
@@ -184,7 +190,9 @@ mod tests {
 
     #[test]
     fn packed_positions_are_within_half_a_step() {
-        let frame: Vec<Vec3> = (0..50).map(|i| Vec3::new((i as f32 * 0.37).sin() * 20.0, i as f32, (i as f32 * 0.11).cos() * 5.0)).collect();
+        let frame: Vec<Vec3> = (0..50)
+            .map(|i| Vec3::new((i as f32 * 0.37).sin() * 20.0, i as f32, (i as f32 * 0.11).cos() * 5.0))
+            .collect();
         let tris: Vec<[u32; 3]> = (0..48).map(|i| [i, i + 1, i + 2]).collect();
         let md2 = build(&[("a1".into(), frame.clone()), ("a2".into(), frame.clone())], &tris).unwrap();
         let back = super::super::parse(&write(&md2)).unwrap();
@@ -195,7 +203,10 @@ mod tests {
         let f = &back.frames[1];
         for (p, q) in frame.iter().zip(&out) {
             for k in 0..3 {
-                assert!((p[k] - q[k]).abs() <= 0.5 * f.scale.iter().cloned().fold(0.0, f32::max) + 1e-4, "{p} vs {q:?}");
+                assert!(
+                    (p[k] - q[k]).abs() <= 0.5 * f.scale.iter().cloned().fold(0.0, f32::max) + 1e-4,
+                    "{p} vs {q:?}"
+                );
             }
         }
         assert!(build(&[], &tris).is_err());

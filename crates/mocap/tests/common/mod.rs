@@ -15,5 +15,8 @@ pub fn corpus_dir() -> Option<PathBuf> {
         eprintln!("{}: corpus not found, skipped (MOCAP_SKIP_CORPUS=1)", dir.display());
         return None;
     }
-    panic!("{}: corpus not found (put ../shared beside the repository, set MOCAP_CORPUS, or opt out with MOCAP_SKIP_CORPUS=1)", dir.display());
+    panic!(
+        "{}: corpus not found (put ../shared beside the repository, set MOCAP_CORPUS, or opt out with MOCAP_SKIP_CORPUS=1)",
+        dir.display()
+    );
 }
