@@ -135,12 +135,13 @@ pub fn walk_bvh() -> String {
 }
 
 /// The walk as BVA text, made by the shipped code: [`walk_bvh`] parsed with
-/// `mocap::bvh::parse`, converted with `mocap::bva::from_clip`, written with
-/// `mocap::bva::write`.
+/// `mocap::formats::bvh::parse`, converted with `mocap::formats::bva::from_clip`, written with
+/// `mocap::formats::bva::write`.
 pub fn walk_bva() -> Result<String, String> {
-    let clip = mocap::bvh::parse(walk_bvh().as_bytes()).map_err(|e| format!("walk.bvh does not parse: {e}"))?;
-    let (bva, _warnings) = mocap::bva::from_clip(&clip);
-    Ok(mocap::bva::write(&bva))
+    let clip =
+        mocap::formats::bvh::parse(walk_bvh().as_bytes()).map_err(|e| format!("walk.bvh does not parse: {e}"))?;
+    let (bva, _warnings) = mocap::formats::bva::from_clip(&clip);
+    Ok(mocap::formats::bva::write(&bva))
 }
 
 #[cfg(test)]
@@ -158,7 +159,7 @@ mod tests {
 
     #[test]
     fn walk_bva_segments_stand_where_the_bvh_joints_are() {
-        let bvh = mocap::bvh::parse(super::walk_bvh().as_bytes()).expect("walk.bvh parses");
+        let bvh = mocap::formats::bvh::parse(super::walk_bvh().as_bytes()).expect("walk.bvh parses");
         let bytes = std::fs::read(crate::util::root().join("data/walk.bva"))
             .unwrap_or_else(|e| panic!("data/walk.bva: {e}: {STALE}"));
         let bva = mocap::load_one("walk.bva", &bytes).expect("walk.bva loads").clip().cloned().expect("a clip");

@@ -40,7 +40,7 @@ fn main() {
         println!("skipping: {} not found", path.display());
         return;
     };
-    let clip = mocap::Asset::Clip(mocap::bvh::parse(&bytes).expect("parse"));
+    let clip = mocap::Asset::Clip(mocap::formats::bvh::parse(&bytes).expect("parse"));
     let gpu = match Gpu::new() {
         Ok(gpu) => gpu,
         Err(e) => {
@@ -130,8 +130,8 @@ fn body_build_time(corpus: &Path) {
             |j| Some(bind.get(j)?.translation),
             extent,
         );
-        let body =
-            mocap::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0)).expect("a body");
+        let body = mocap::build::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0))
+            .expect("a body");
         vertices = body.positions().len();
     }
     let ms = start.elapsed().as_secs_f64() * 1e3 / runs as f64;

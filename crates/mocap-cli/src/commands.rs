@@ -274,8 +274,8 @@ pub enum EditOp {
 }
 
 /// The core edit for `op` on `clip` (units are resolved against the clip's guess).
-fn core_edit(op: &EditOp, clip: &Clip) -> Result<mocap::edit::Edit, String> {
-    use mocap::edit::Edit;
+fn core_edit(op: &EditOp, clip: &Clip) -> Result<mocap::ops::edit::Edit, String> {
+    use mocap::ops::edit::Edit;
     let number = |flag: &str, v: &str| {
         v.trim().parse::<f64>().ok().filter(|x| x.is_finite()).ok_or_else(|| format!("--{flag} {v}: expected a number"))
     };
@@ -329,13 +329,13 @@ pub fn edit(inputs: &[PathBuf], ops: &[EditOp], output: &Path) -> Result<ExitCod
     let mut clip = read_clip(inputs)?;
     for op in ops {
         let edit = core_edit(op, &clip)?;
-        clip = mocap::edit::apply(&clip, &edit).map_err(|e| format!("{}: {e}", shown(inputs)))?;
+        clip = mocap::ops::edit::apply(&clip, &edit).map_err(|e| format!("{}: {e}", shown(inputs)))?;
     }
-    let (baked, warnings) = mocap::bake::to_bvh(&clip);
+    let (baked, warnings) = mocap::ops::bake::to_bvh(&clip);
     for w in warnings {
         eprintln!("{}: warning: {w}", output.display());
     }
-    std::fs::write(output, mocap::bvh::write(&baked))
+    std::fs::write(output, mocap::formats::bvh::write(&baked))
         .map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
     Ok(ExitCode::SUCCESS)
 }
@@ -372,17 +372,18 @@ pub fn layer(base: &Path, layer: &Path, request: &LayerRequest, output: &Path) -
                 .ok_or_else(|| format!("--map {m}: expected BASE=LAYER"))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let settings = mocap::layer::Layer {
+    let settings = mocap::ops::layer::Layer {
         subtree: request.subtree.to_owned(),
         weight: request.weight,
         fade_in: request.fade_in,
         fade_out: request.fade_out,
-        blend: if request.additive { mocap::layer::Blend::Additive } else { mocap::layer::Blend::Override },
+        blend: if request.additive { mocap::ops::layer::Blend::Additive } else { mocap::ops::layer::Blend::Override },
         map,
     };
-    let out = mocap::layer::apply(&base_clip, &layer_clip, &settings)
+    let out = mocap::ops::layer::apply(&base_clip, &layer_clip, &settings)
         .map_err(|e| format!("{} + {}: {e}", base.display(), layer.display()))?;
-    std::fs::write(output, mocap::bvh::write(&out)).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+    std::fs::write(output, mocap::formats::bvh::write(&out))
+        .map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -418,7 +419,7 @@ pub fn capture(request: &CaptureRequest) -> Result<ExitCode, String> {
     }
     let model_path = request.model;
     let bytes = std::fs::read(model_path).map_err(|e| format!("{}: cannot read: {e}", model_path.display()))?;
-    let md2 = mocap::md2::parse(&bytes)
+    let md2 = mocap::formats::md2::parse(&bytes)
         .map_err(|e| format!("{}:{}:{}: {}", model_path.display(), e.line, e.column, e.message))?;
     use mocap::capture::{Capturer, RigChoice};
     let given = match request.rig {
@@ -472,13 +473,14 @@ pub fn capture(request: &CaptureRequest) -> Result<ExitCode, String> {
         })?,
         None => cap.clip.clone(),
     };
-    std::fs::write(output, mocap::bvh::write(&clip)).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+    std::fs::write(output, mocap::formats::bvh::write(&clip))
+        .map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
     if request.split {
         let stem = output.file_stem().and_then(|s| s.to_str()).unwrap_or("capture");
         for a in &cap.animations {
             let Some(part) = cap.animation_clip(&a.name) else { continue };
             let path = output.with_file_name(format!("{stem}-{}.bvh", a.name));
-            std::fs::write(&path, mocap::bvh::write(&part))
+            std::fs::write(&path, mocap::formats::bvh::write(&part))
                 .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
         }
     }
@@ -528,8 +530,8 @@ pub fn ik(paths: &[PathBuf], request: &IkRequest) -> Result<ExitCode, String> {
         _ => return Err(format!("--target {}: expected x,y,z (three finite numbers)", request.target)),
     };
     let chain = match request.bones {
-        Some(bones) => mocap::ik::Chain::up_from(skeleton, effector, bones.max(1)),
-        None => mocap::ik::Chain::for_joint(skeleton, effector),
+        Some(bones) => mocap::runtime::ik::Chain::up_from(skeleton, effector, bones.max(1)),
+        None => mocap::runtime::ik::Chain::for_joint(skeleton, effector),
     }
     .map_err(|e| e.to_string())?;
     let solver = request.solver.unwrap_or(if chain.joints().len() == 3 { "two-bone" } else { "fabrik" });
@@ -538,7 +540,7 @@ pub fn ik(paths: &[PathBuf], request: &IkRequest) -> Result<ExitCode, String> {
     // Within a ten-thousandth of the chain's length, with passes to spare (CCD
     // converges slowly on some chains; the others stop as soon as they are there).
     let length = chain.rest_length(skeleton);
-    let options = mocap::ik::Options {
+    let options = mocap::runtime::ik::Options {
         angle_unit: clip.motion().angle_unit(),
         iterations: 2000,
         tolerance: 1e-4 * length.max(1e-6),
@@ -547,9 +549,9 @@ pub fn ik(paths: &[PathBuf], request: &IkRequest) -> Result<ExitCode, String> {
     let result = match solver {
         "two-bone" if chain.joints().len() == 3 => {
             // Bend toward where the middle joint points now (keeps the knee forward).
-            let mid = mocap::ik::model_transform(skeleton, &pose, chain.joints()[1]).translation;
-            let root = mocap::ik::model_transform(skeleton, &pose, chain.root()).translation;
-            mocap::ik::two_bone(skeleton, &mut pose, &chain, target, mid + (mid - root), &options)
+            let mid = mocap::runtime::ik::model_transform(skeleton, &pose, chain.joints()[1]).translation;
+            let root = mocap::runtime::ik::model_transform(skeleton, &pose, chain.root()).translation;
+            mocap::runtime::ik::two_bone(skeleton, &mut pose, &chain, target, mid + (mid - root), &options)
         }
         "two-bone" => {
             return Err(format!(
@@ -557,8 +559,8 @@ pub fn ik(paths: &[PathBuf], request: &IkRequest) -> Result<ExitCode, String> {
                 chain.joints().len() - 1
             ));
         }
-        "ccd" => mocap::ik::ccd(skeleton, &mut pose, &chain, target, &options),
-        "fabrik" => mocap::ik::fabrik(skeleton, &mut pose, &chain, target, &options),
+        "ccd" => mocap::runtime::ik::ccd(skeleton, &mut pose, &chain, target, &options),
+        "fabrik" => mocap::runtime::ik::fabrik(skeleton, &mut pose, &chain, target, &options),
         other => return Err(format!("--solver {other}: expected two-bone, ccd or fabrik")),
     };
     let mut model = Vec::new();
@@ -590,12 +592,12 @@ pub fn convert(inputs: &[PathBuf], output: &Path) -> Result<ExitCode, String> {
     let clip = read_clip(inputs)?;
     let (text, warnings) = match ext.as_deref() {
         Some("bvh") => {
-            let (baked, warnings) = mocap::bake::to_bvh(&clip);
-            (mocap::bvh::write(&baked), warnings)
+            let (baked, warnings) = mocap::ops::bake::to_bvh(&clip);
+            (mocap::formats::bvh::write(&baked), warnings)
         }
         Some("bva") => {
-            let (bva, warnings) = mocap::bva::from_clip(&clip);
-            (mocap::bva::write(&bva), warnings)
+            let (bva, warnings) = mocap::formats::bva::from_clip(&clip);
+            (mocap::formats::bva::write(&bva), warnings)
         }
         _ => return Err(format!("{}: can write .bvh or .bva files", output.display())),
     };

@@ -272,14 +272,14 @@ pub struct Body {
     inverse_bind: Vec<mocap::glam::Mat4>,
 }
 
-/// The body of `clip` ([`mocap::body::build`] around its bind pose, tube radii by
+/// The body of `clip` ([`mocap::build::body::build`] around its bind pose, tube radii by
 /// [`mocap_render::body_radii`] for a figure of `extent` file units).
 pub fn body(clip: &mocap::Clip, extent: f32) -> Option<Body> {
     let bind = clip.bind_pose();
     let joints = clip.skeleton().joints();
     let radii =
         mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
-    let skin = mocap::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0)).ok()?;
+    let skin = mocap::build::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0)).ok()?;
     let mesh = SkinnedMeshData::new(
         skin.positions(),
         skin.normals(),
@@ -377,7 +377,7 @@ impl StageView {
 
     /// The shared timeline, in the first clip's frame time (frames on the command line count in it).
     pub fn timeline(&self) -> Timeline {
-        self.stage.timeline(0).unwrap_or(Timeline::new(mocap::time::DEFAULT_FRAME_TIME, 0))
+        self.stage.timeline(0).unwrap_or(Timeline::new(mocap::model::time::DEFAULT_FRAME_TIME, 0))
     }
 
     /// Fills `scene` with the floor and every clip posed at `time` seconds.
@@ -410,7 +410,7 @@ impl StageView {
             let color = mocap_render::PALETTE[n % mocap_render::PALETTE.len()];
             if let Some(body) = body {
                 let mut matrices = Vec::with_capacity(body.inverse_bind.len());
-                mocap::skin::skinning_matrices(pose, &body.inverse_bind, &mut matrices);
+                mocap::runtime::skin::skinning_matrices(pose, &body.inverse_bind, &mut matrices);
                 scene.skinned.push(SkinnedDraw {
                     mesh: body.mesh.clone(),
                     coarse: None,

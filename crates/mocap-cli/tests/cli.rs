@@ -127,8 +127,8 @@ fn convert_round_trips() {
     assert!(out.status.success(), "{}", stderr(&out));
     let written = std::fs::read_to_string(&out_file).unwrap();
     assert!(!written.contains('\r'));
-    let a = mocap::bvh::parse(SIMPLE.as_bytes()).unwrap();
-    let b = mocap::bvh::parse(written.as_bytes()).unwrap();
+    let a = mocap::formats::bvh::parse(SIMPLE.as_bytes()).unwrap();
+    let b = mocap::formats::bvh::parse(written.as_bytes()).unwrap();
     assert_eq!(a.motion(), b.motion());
     assert_eq!(a.skeleton(), b.skeleton());
     let bad = mocap(&["convert", file.to_str().unwrap(), "-o", dir.path().join("x.txt").to_str().unwrap()]);

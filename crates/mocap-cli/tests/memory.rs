@@ -21,7 +21,7 @@ fn frames_on_lavapipe_do_not_fault_their_memory_in_again() {
         return;
     }
     let walk = include_bytes!("../../../data/walk.bvh");
-    let clip = mocap::Asset::Clip(mocap::bvh::parse(walk).expect("walk.bvh"));
+    let clip = mocap::Asset::Clip(mocap::formats::bvh::parse(walk).expect("walk.bvh"));
     let stage = StageView::new(vec![("walk.bvh".to_owned(), clip.clone()); 64]);
     let mut offscreen = Offscreen::with_samples(&gpu, [1280, 720], 1);
     let camera = stage.camera(Orbit::default(), offscreen.size());

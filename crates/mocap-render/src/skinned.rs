@@ -34,8 +34,8 @@ pub struct SkinnedVertex {
 }
 
 /// A mesh bound to joints, as the renderer draws it: closed surfaces whose
-/// triangles wind counter-clockwise seen from outside (as `mocap::body` and
-/// `mocap::demo::tentacle_skin` make them). Only their front faces are drawn,
+/// triangles wind counter-clockwise seen from outside (as `mocap::build::body` and
+/// `mocap::build::demo::tentacle_skin` make them). Only their front faces are drawn,
 /// so a view from inside a surface sees through it.
 #[derive(Debug, PartialEq)]
 pub struct SkinnedMeshData {

@@ -4,7 +4,7 @@
 //! its current pose (joint transforms, or the model's two key frames).
 
 use mocap::glam::Mat4;
-use mocap::morph::MorphSample;
+use mocap::model::mesh::MorphSample;
 use mocap::stage::{Actor, PoseScratch};
 use mocap::{Asset, Interpolation, Model, Transform};
 use mocap_render::{FigureJoint, MorphMeshData, SkinImage, SkinnedMeshData};
@@ -37,7 +37,7 @@ pub struct Look {
     /// The clip's own pose (world, metres) while a correction is shown, drawn as a ghost.
     pub ghost: Vec<Transform>,
     /// Foot contacts and locks of a clip, found on first use (foot locking).
-    pub foot_lock: Option<mocap::contact::FootLock>,
+    pub foot_lock: Option<mocap::ops::contact::FootLock>,
 }
 
 /// Local rotations (and a root position) set by IK at one frame of a clip.
@@ -144,7 +144,7 @@ pub fn drawn_local_rotation(c: &Character, joint: usize) -> Option<mocap::glam::
 
 /// Moves joint `joint` of a clip character to `world` (metres) at the frame shown
 /// at `time`, by IK on its chain (the limb's two bones for a hand or foot found by
-/// [`mocap::ik::default_chains`], else the two bones above it; a root joint moves
+/// [`mocap::runtime::ik::default_chains`], else the two bones above it; a root joint moves
 /// itself), keeping earlier corrections of that frame. Returns the solve, or
 /// `None` for a model, an unknown joint or a non-finite target.
 pub fn drag_joint(
@@ -153,8 +153,8 @@ pub fn drag_joint(
     world: mocap::glam::Vec3,
     time: f64,
     scratch: &mut PoseScratch,
-) -> Option<mocap::ik::Solve> {
-    use mocap::ik;
+) -> Option<mocap::runtime::ik::Solve> {
+    use mocap::runtime::ik;
     let clip = c.clip()?;
     let skeleton = clip.skeleton();
     let parent = skeleton.joints().get(joint)?.parent;
@@ -203,7 +203,7 @@ pub fn drag_joint(
 pub struct Body {
     /// The bind-pose mesh with its weights.
     pub mesh: Arc<SkinnedMeshData>,
-    /// The same body cut coarser ([`mocap::body::Detail::COARSE`]), for the
+    /// The same body cut coarser ([`mocap::build::body::Detail::COARSE`]), for the
     /// fast look when it is small on screen ([`mocap_render::SkinnedDraw::coarse`]).
     pub coarse: Option<Arc<SkinnedMeshData>>,
     /// One inverse bind matrix per joint (file units).
@@ -211,20 +211,24 @@ pub struct Body {
 }
 
 /// The generated body of a clip whose first pose is `extent` file units across:
-/// [`mocap::body::build`] around [`mocap::Clip::bind_pose`], tube radii by
+/// [`mocap::build::body::build`] around [`mocap::Clip::bind_pose`], tube radii by
 /// [`mocap_render::body_radii`] (the capsule mode's radii in that pose, thicker).
 /// `None` when the skeleton gets none (too many bones).
-pub fn body_skin(clip: &mocap::Clip, extent: f32) -> Option<mocap::skin::Skin> {
-    body_skin_with(clip, extent, mocap::body::Detail::FULL)
+pub fn body_skin(clip: &mocap::Clip, extent: f32) -> Option<mocap::runtime::skin::Skin> {
+    body_skin_with(clip, extent, mocap::build::body::Detail::FULL)
 }
 
 /// [`body_skin`] with tubes cut as `detail` says.
-fn body_skin_with(clip: &mocap::Clip, extent: f32, detail: mocap::body::Detail) -> Option<mocap::skin::Skin> {
+fn body_skin_with(
+    clip: &mocap::Clip,
+    extent: f32,
+    detail: mocap::build::body::Detail,
+) -> Option<mocap::runtime::skin::Skin> {
     let bind = clip.bind_pose();
     let joints = clip.skeleton().joints();
     let radii =
         mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
-    mocap::body::build_with(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0), detail).ok()
+    mocap::build::body::build_with(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0), detail).ok()
 }
 
 /// Builds the body of a clip character ([`body_skin`]) once; later calls do nothing.
@@ -236,7 +240,7 @@ pub fn ensure_body(c: &mut Character) {
     let body = c.clip().and_then(|clip| {
         let skin = body_skin(clip, extent)?;
         let joints = clip.skeleton().len();
-        let mesh_of = |skin: &mocap::skin::Skin| {
+        let mesh_of = |skin: &mocap::runtime::skin::Skin| {
             SkinnedMeshData::new(
                 skin.positions(),
                 skin.normals(),
@@ -248,7 +252,7 @@ pub fn ensure_body(c: &mut Character) {
             .ok()
         };
         let mesh = mesh_of(&skin)?;
-        let coarse = body_skin_with(clip, extent, mocap::body::Detail::COARSE);
+        let coarse = body_skin_with(clip, extent, mocap::build::body::Detail::COARSE);
         let coarse = coarse.as_ref().and_then(mesh_of).map(Arc::new);
         Some(Body { mesh: Arc::new(mesh), coarse, inverse_bind: skin.inverse_bind().to_vec() })
     });
@@ -292,7 +296,7 @@ fn mesh_data(model: &Model) -> Option<Arc<MorphMeshData>> {
 }
 
 /// Poses the character at `time`: interpolated when `smooth`, else the frame shown
-/// at that time in its own frame time (the one rule of [`mocap::time`]); a model
+/// at that time in its own frame time (the one rule of [`mocap::model::time`]); a model
 /// not interpolating switches frames at the halfway point (Quake's nearest frame).
 /// Past its end a clip holds its last pose. The stages after sampling, on the local
 /// pose: a correction made by dragging (at its frame; the clip's own pose becomes
@@ -305,7 +309,7 @@ pub fn pose_at(c: &mut Character, time: f64, smooth: bool, lock_feet: bool, scra
         (false, true) => Interpolation::Nearest,
     };
     if lock_feet && c.extra.foot_lock.is_none() {
-        c.extra.foot_lock = c.clip().map(|clip| mocap::contact::FootLock::with_up(clip, c.up));
+        c.extra.foot_lock = c.clip().map(|clip| mocap::ops::contact::FootLock::with_up(clip, c.up));
     }
     let mut pose = std::mem::take(&mut c.extra.pose);
     let mut ghost = std::mem::take(&mut c.extra.ghost);

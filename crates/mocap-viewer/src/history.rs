@@ -24,7 +24,7 @@ pub struct Change {
     pub unkey: Option<usize>,
     /// The edit itself, when it can be made again on another clip (for deleting or
     /// moving a key under later edits); `None` for layers.
-    pub edit: Option<mocap::edit::Edit>,
+    pub edit: Option<mocap::ops::edit::Edit>,
 }
 
 /// Done and undone edits.
@@ -100,11 +100,11 @@ impl History {
     /// start from (the original, or what the last layer made) and the edits in
     /// order, with deleted keys taken out and moved ones in their new place.
     /// `None` when `c` has no edits.
-    pub fn effective(&self, c: usize) -> Option<(Asset, Vec<mocap::edit::Edit>)> {
+    pub fn effective(&self, c: usize) -> Option<(Asset, Vec<mocap::ops::edit::Edit>)> {
         let mine: Vec<&Change> = self.done.iter().filter(|x| x.character == c).collect();
         let first = mine.first()?;
         let mut base = first.before.clone();
-        let mut edits: Vec<mocap::edit::Edit> = Vec::new();
+        let mut edits: Vec<mocap::ops::edit::Edit> = Vec::new();
         for change in mine {
             if let Some(k) = change.unkey {
                 // A key deleted or moved: take the latest key at that frame out.

@@ -65,7 +65,7 @@ pub fn character_primitives(
     };
     if let Some(body) = body {
         let mut matrices = Vec::with_capacity(body.inverse_bind.len());
-        mocap::skin::skinning_matrices(transforms, &body.inverse_bind, &mut matrices);
+        mocap::runtime::skin::skinning_matrices(transforms, &body.inverse_bind, &mut matrices);
         scene.skinned.push(SkinnedDraw {
             mesh: body.mesh.clone(),
             coarse: body.coarse.clone(),

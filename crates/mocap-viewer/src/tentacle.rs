@@ -1,4 +1,4 @@
-//! The bendy-tentacle demo: a chain of bones ([`mocap::demo::tentacle`]) with one
+//! The bendy-tentacle demo: a chain of bones ([`mocap::build::demo::tentacle`]) with one
 //! soft or rigid skin, bent by sliders (forward kinematics) and, when following,
 //! pulled toward a target sphere the user drags in the view (IK, solver chosen).
 //!
@@ -7,7 +7,7 @@
 
 use crate::character::{Body, Character, Correction};
 use mocap::glam::{Quat, Vec3};
-use mocap::ik::{self, Chain, Options};
+use mocap::runtime::ik::{self, Chain, Options};
 use mocap_render::SkinnedMeshData;
 use std::sync::Arc;
 
@@ -64,8 +64,8 @@ pub struct Tentacle {
 impl Tentacle {
     /// A tentacle of `bones` bones, slightly bent, following a target to its side.
     pub fn new(bones: usize) -> Tentacle {
-        let bones = bones.clamp(*mocap::demo::BONES.start(), *mocap::demo::BONES.end());
-        let length = bones as f32 * mocap::demo::BONE_LENGTH;
+        let bones = bones.clamp(*mocap::build::demo::BONES.start(), *mocap::build::demo::BONES.end());
+        let length = bones as f32 * mocap::build::demo::BONE_LENGTH;
         Tentacle {
             bones,
             angles: (0..bones).map(|b| [if b == 0 { -10.0 } else { 20.0 }, 0.0]).collect(),
@@ -79,7 +79,7 @@ impl Tentacle {
 
     /// The skin for the current softness, as the renderer draws it.
     pub fn body(&self, clip: &mocap::Clip) -> Option<Body> {
-        let skin = mocap::demo::tentacle_skin(clip, self.soft).ok()?;
+        let skin = mocap::build::demo::tentacle_skin(clip, self.soft).ok()?;
         let mesh = SkinnedMeshData::new(
             skin.positions(),
             skin.normals(),

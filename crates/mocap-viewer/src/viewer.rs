@@ -161,7 +161,7 @@ impl Viewer {
     }
 
     /// Opens BVH clips read elsewhere (a host reading files as they arrive, see
-    /// `mocap::bvh::Stream`), named, or the errors reading them gave, as
+    /// `mocap::formats::bvh::Stream`), named, or the errors reading them gave, as
     /// [`Viewer::open_files`] opens files: the same messages, the same rules.
     pub fn open_clips(
         &mut self,
@@ -651,7 +651,12 @@ impl Viewer {
     /// shown, by IK ([`character::drag_joint`]); the corrected pose is drawn over
     /// the clip's own (ghosted) until [`Viewer::reset_pose`]. Returns the solve, or
     /// `None` when there is no such joint.
-    pub fn drag_joint(&mut self, character: usize, joint: usize, world: mocap::glam::Vec3) -> Option<mocap::ik::Solve> {
+    pub fn drag_joint(
+        &mut self,
+        character: usize,
+        joint: usize,
+        world: mocap::glam::Vec3,
+    ) -> Option<mocap::runtime::ik::Solve> {
         let time = self.playback.time;
         let c = self.stage.actors.get_mut(character)?;
         let solve = character::drag_joint(c, joint, world, time, &mut self.pose_scratch);
@@ -663,7 +668,7 @@ impl Viewer {
     /// its skin drawn in body mode, the tip following the target sphere.
     pub fn open_tentacle(&mut self, bones: usize) {
         let demo = crate::tentacle::Tentacle::new(bones);
-        let clip = mocap::demo::tentacle(demo.bones);
+        let clip = mocap::build::demo::tentacle(demo.bones);
         self.open_assets(vec![("tentacle".to_owned(), mocap::Asset::Clip(clip))]);
         self.settings.mode = DrawMode::Body;
         self.set_playing(false);
@@ -673,7 +678,7 @@ impl Viewer {
         self.tentacle = Some(demo);
         self.camera.pitch = 0.15;
         self.camera.yaw = 0.3;
-        let length = self.tentacle.as_ref().map_or(1.0, |t| t.bones as f32 * mocap::demo::BONE_LENGTH);
+        let length = self.tentacle.as_ref().map_or(1.0, |t| t.bones as f32 * mocap::build::demo::BONE_LENGTH);
         self.camera.target = mocap::glam::Vec3::new(0.0, length * 0.5, 0.0)
             + self.stage.actors.first().map_or(mocap::glam::Vec3::ZERO, |c| c.placement());
         self.camera.distance = length * 2.6;
@@ -711,7 +716,7 @@ impl Viewer {
         // The offset in the parent joint's frame and the file's units.
         let offset = at.rotation.inverse() * (end - at.translation) / (at.scale.x.abs().max(1e-9));
         let parent_name = clip.skeleton().joints().get(parent).map(|j| j.name.clone()).unwrap_or_default();
-        let edit = mocap::edit::Edit::AddJoint { parent: parent_name, name: name.clone(), offset };
+        let edit = mocap::ops::edit::Edit::AddJoint { parent: parent_name, name: name.clone(), offset };
         match self.edit(character, &edit, &format!("Add {name}")) {
             Ok(()) => {
                 let joint = self.stage.actors.get(character).and_then(|c| c.clip()?.skeleton().find(&name));
@@ -726,7 +731,7 @@ impl Viewer {
     /// in place of everything open, selected and in Edit mode: add joints from the
     /// Edit menu, pose them by dragging and Set key, then Save as BVH.
     pub fn new_character(&mut self) {
-        let clip = mocap::edit::new_character(60, 30.0);
+        let clip = mocap::ops::edit::new_character(60, 30.0);
         self.open_assets(vec![("character.bvh".to_owned(), mocap::Asset::Clip(clip))]);
         self.set_playing(false);
         self.settings.pose_mode = true;
@@ -742,13 +747,13 @@ impl Viewer {
         c.extra.body = Some(c.clip().and_then(|clip| demo.body(clip)));
     }
 
-    /// Applies a clip edit ([`mocap::edit`]) to character `character`, as one step
+    /// Applies a clip edit ([`mocap::ops::edit`]) to character `character`, as one step
     /// that [`Viewer::undo`] takes back. Returns why not when it cannot be made.
-    pub fn edit(&mut self, character: usize, edit: &mocap::edit::Edit, label: &str) -> Result<(), String> {
+    pub fn edit(&mut self, character: usize, edit: &mocap::ops::edit::Edit, label: &str) -> Result<(), String> {
         let c = self.stage.actors.get(character).ok_or_else(|| format!("no character {}", character + 1))?;
         let clip = c.clip().ok_or_else(|| format!("{}: a model has no motion to edit", c.name))?;
-        let edited = mocap::edit::apply(clip, edit).map_err(|e| format!("{}: {e}", c.name))?;
-        use mocap::edit::Edit;
+        let edited = mocap::ops::edit::apply(clip, edit).map_err(|e| format!("{}: {e}", c.name))?;
+        use mocap::ops::edit::Edit;
         let key = edit.key_frame();
         let retimes = matches!(edit, Edit::Trim { .. } | Edit::Resample { .. } | Edit::Reverse | Edit::PingPong);
         self.commit(character, edited, label, key, retimes, Some(edit.clone()), None);
@@ -790,7 +795,7 @@ impl Viewer {
         }
         let mut clip = base.clip().cloned().ok_or("not a clip")?;
         for edit in &edits {
-            clip = mocap::edit::apply(&clip, edit).map_err(|e| e.to_string())?;
+            clip = mocap::ops::edit::apply(&clip, edit).map_err(|e| e.to_string())?;
         }
         let label = match to {
             Some(to) => format!("Move key {frame} → {to}"),
@@ -814,8 +819,13 @@ impl Viewer {
     }
 
     /// Layers character `source`'s clip on the subtree of `layer.subtree` in
-    /// character `character` ([`mocap::layer::apply`]), as one undoable step.
-    pub fn add_layer(&mut self, character: usize, source: usize, layer: &mocap::layer::Layer) -> Result<(), String> {
+    /// character `character` ([`mocap::ops::layer::apply`]), as one undoable step.
+    pub fn add_layer(
+        &mut self,
+        character: usize,
+        source: usize,
+        layer: &mocap::ops::layer::Layer,
+    ) -> Result<(), String> {
         let base = self
             .stage
             .actors
@@ -825,7 +835,7 @@ impl Viewer {
         let other =
             self.stage.actors.get(source).and_then(|c| c.clip()).ok_or_else(|| format!("no clip {}", source + 1))?;
         let name = self.stage.actors.get(source).map_or(String::new(), |c| c.name.clone());
-        let out = mocap::layer::apply(base, other, layer).map_err(|e| e.to_string())?;
+        let out = mocap::ops::layer::apply(base, other, layer).map_err(|e| e.to_string())?;
         self.commit(character, out, &format!("Layer {name} on {}", layer.subtree), None, false, None, None);
         Ok(())
     }
@@ -839,7 +849,7 @@ impl Viewer {
         label: &str,
         key: Option<usize>,
         retimes: bool,
-        edit: Option<mocap::edit::Edit>,
+        edit: Option<mocap::ops::edit::Edit>,
         unkey: Option<usize>,
     ) {
         let Some(before) = self.stage.actors.get(character).map(|c| c.asset.clone()) else { return };
@@ -911,7 +921,7 @@ impl Viewer {
         let stem = character::file_stem(&c.name);
         let stem = stem.strip_suffix("-edited").unwrap_or(stem);
         let name = if self.history.edited(index) { format!("{stem}-edited.bvh") } else { format!("{stem}.bvh") };
-        Some((name, mocap::bvh::write(clip)))
+        Some((name, mocap::formats::bvh::write(clip)))
     }
 
     /// Asks whether to close a character whose edits are not saved.
@@ -949,9 +959,9 @@ impl Viewer {
     /// Turns the pose corrections made by dragging into keys: each character's
     /// correction becomes one undoable edit at its frame: a correction fading over
     /// [`crate::settings::ViewSettings::key_window`] frames on each side
-    /// ([`mocap::edit::Edit::Correct`]), or with
+    /// ([`mocap::ops::edit::Edit::Correct`]), or with
     /// [`crate::settings::ViewSettings::key_between`] a key of key-frame animation
-    /// interpolated to and from the character's other keys ([`mocap::edit::Edit::Key`]).
+    /// interpolated to and from the character's other keys ([`mocap::ops::edit::Edit::Key`]).
     /// Returns how many characters were keyed.
     pub fn set_key(&mut self) -> Result<usize, String> {
         let window = self.settings.key_window;
@@ -966,9 +976,9 @@ impl Viewer {
             let frame = correction.frame;
             let edit = if self.settings.key_between {
                 let keys = self.history.keys(index).into_iter().filter(|k| *k != frame).collect();
-                mocap::edit::Edit::Key { frame, rotations, translations, keys }
+                mocap::ops::edit::Edit::Key { frame, rotations, translations, keys }
             } else {
-                mocap::edit::Edit::Correct { frame, rotations, translations, window }
+                mocap::ops::edit::Edit::Correct { frame, rotations, translations, window }
             };
             self.edit(index, &edit, &format!("Key at frame {}", correction.frame))?;
             keyed += 1;

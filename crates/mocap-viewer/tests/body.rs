@@ -56,7 +56,7 @@ fn m_cycles_capsules_sticks_body() {
 
 #[test]
 fn a_skeleton_too_big_for_a_body_keeps_its_capsules() {
-    let depth = mocap::body::MAX_BODY_BONES + 10;
+    let depth = mocap::build::body::MAX_BODY_BONES + 10;
     let mut text = String::from("HIERARCHY\nROOT j0\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n");
     for i in 1..depth {
         text.push_str(&format!("JOINT j{i}\n{{\nOFFSET 0 0.01 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n"));
@@ -92,7 +92,7 @@ fn the_bodys_bounds_hold_the_posed_body_where_it_is_drawn() {
         let draw = &v.scene().skinned[0];
         let (lo, hi) = draw.world_bounds().expect("bounds");
         let (mut positions, mut normals) = (Vec::new(), Vec::new());
-        mocap::skin::skin_vertices(&skin, &draw.matrices, &mut positions, &mut normals);
+        mocap::runtime::skin::skin_vertices(&skin, &draw.matrices, &mut positions, &mut normals);
         let (mut vlo, mut vhi) = (mocap::glam::Vec3::INFINITY, mocap::glam::Vec3::NEG_INFINITY);
         for p in &positions {
             assert!(

@@ -3,7 +3,7 @@
 //! Ctrl+Shift+Z work, and Save as BVH writes the edited clip under a name that
 //! says so.
 
-use mocap::edit::Edit;
+use mocap::ops::edit::Edit;
 use mocap_viewer::Viewer;
 
 const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
@@ -63,7 +63,7 @@ fn save_as_bvh_writes_the_edited_clip_and_says_so() {
     v.edit(0, &Edit::Reverse, "Reverse").unwrap();
     let (name, text) = v.save_bvh(0).unwrap();
     assert_eq!(name, "walk-edited.bvh");
-    let again = mocap::bvh::parse(text.as_bytes()).unwrap();
+    let again = mocap::formats::bvh::parse(text.as_bytes()).unwrap();
     assert_eq!(again.motion().data(), clip(&v).motion().data(), "parse(save(x)) is x");
     assert_eq!(again.skeleton(), clip(&v).skeleton());
     // A model has no BVH.
@@ -139,12 +139,12 @@ fn a_layer_from_another_open_clip_is_one_undoable_step() {
     v.add("wave.bvh", WALK).unwrap();
     v.edit(1, &Edit::Reverse, "Reverse").unwrap();
     let original = clip(&v);
-    v.add_layer(0, 1, &mocap::layer::Layer::on("RightShoulder")).unwrap();
+    v.add_layer(0, 1, &mocap::ops::layer::Layer::on("RightShoulder")).unwrap();
     assert_ne!(clip(&v), original);
     assert_eq!(v.snapshot().undo.as_deref(), Some("Layer wave.bvh on RightShoulder"));
     v.undo();
     assert_eq!(clip(&v), original);
-    assert!(v.add_layer(0, 1, &mocap::layer::Layer::on("Wing")).is_err());
+    assert!(v.add_layer(0, 1, &mocap::ops::layer::Layer::on("Wing")).is_err());
 }
 
 #[test]
@@ -193,7 +193,7 @@ fn the_creator_makes_a_character_that_poses_keys_and_saves() {
     // Saved and read back: the same skeleton and motion.
     let (name, text) = v.save_bvh(0).unwrap();
     assert_eq!(name, "character-edited.bvh");
-    let again = mocap::bvh::parse(text.as_bytes()).unwrap();
+    let again = mocap::formats::bvh::parse(text.as_bytes()).unwrap();
     assert_eq!(again.skeleton(), clip(&v).skeleton());
     assert_eq!(again.motion().data(), clip(&v).motion().data());
     let mut dropped = Viewer::default();

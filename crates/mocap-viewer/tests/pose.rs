@@ -161,12 +161,12 @@ fn a_dragged_pose_becomes_a_key_that_fades_and_saves() {
     );
     // It fades: frame 14 moved less than frame 13, frame 15 (past the window) not at all.
     let clip = v.stage.actors[0].clip().unwrap().clone();
-    let original = mocap::bvh::parse(WALK).unwrap();
+    let original = mocap::formats::bvh::parse(WALK).unwrap();
     let moved = |f: usize| clip.world_positions(f)[hand].distance(original.world_positions(f)[hand]);
     assert!(moved(13) > moved(14) && moved(14) > 0.0 && moved(15) < 1e-4, "{} {} {}", moved(13), moved(14), moved(15));
     // Saved, it reads back with the key.
     let (_, text) = v.save_bvh(0).unwrap();
-    let saved = mocap::bvh::parse(text.as_bytes()).unwrap();
+    let saved = mocap::formats::bvh::parse(text.as_bytes()).unwrap();
     assert!(saved.world_positions(12)[hand].distance(clip.world_positions(12)[hand]) < 1e-3);
     // Undo restores the clip bit for bit.
     v.undo();

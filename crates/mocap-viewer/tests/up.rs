@@ -86,7 +86,7 @@ fn edits_keep_an_axis_set_by_hand_and_standing_the_file_up_guesses_again() {
     v.load("zup.bvh", z_up_bvh().as_bytes()).unwrap();
     v.set_playing(false);
     // The Edit menu's "Stand up a Z-up file" rewrites the data Y-up: still standing.
-    v.edit(0, &mocap::edit::Edit::UpAxis { from: 2, negative: false }, "Stand up").unwrap();
+    v.edit(0, &mocap::ops::edit::Edit::UpAxis { from: 2, negative: false }, "Stand up").unwrap();
     v.pose();
     assert_eq!(v.snapshot().clips[0].up, "y", "the rewritten file is guessed Y-up");
     assert!((height(&v) - 2.0).abs() < 0.05, "{}", height(&v));
@@ -94,6 +94,6 @@ fn edits_keep_an_axis_set_by_hand_and_standing_the_file_up_guesses_again() {
     assert_eq!(v.snapshot().clips[0].up, "z");
     // An axis set by hand survives an edit.
     assert!(v.set_up_axis(0, mocap::UpAxis::Y));
-    v.edit(0, &mocap::edit::Edit::Reverse, "Reverse").unwrap();
+    v.edit(0, &mocap::ops::edit::Edit::Reverse, "Reverse").unwrap();
     assert_eq!(v.snapshot().clips[0].up, "y");
 }

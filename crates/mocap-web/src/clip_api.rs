@@ -10,7 +10,7 @@ pub struct MotionClip {
     clip: Clip,
     scratch: Vec<Vec3>,
     /// The generated body, built on first use (`Some(None)`: the skeleton gets none).
-    body: Option<Option<mocap::skin::Skin>>,
+    body: Option<Option<mocap::runtime::skin::Skin>>,
 }
 
 /// Parses a motion file (BVH, BVA, or an Acclaim ASF alone: its rest pose; the
@@ -112,15 +112,15 @@ impl MotionClip {
         }
         let Some(body) = self.body() else { return Vec::new() };
         let (mut matrices, mut positions, mut normals) = (Vec::new(), Vec::new(), Vec::new());
-        mocap::skin::skinning_matrices(&model, body.inverse_bind(), &mut matrices);
-        mocap::skin::skin_vertices(body, &matrices, &mut positions, &mut normals);
+        mocap::runtime::skin::skinning_matrices(&model, body.inverse_bind(), &mut matrices);
+        mocap::runtime::skin::skin_vertices(body, &matrices, &mut positions, &mut normals);
         positions.iter().flat_map(|p| p.to_array()).collect()
     }
 
     /// The clip as standard BVH text.
     #[wasm_bindgen(js_name = toBvh)]
     pub fn to_bvh(&self) -> String {
-        mocap::bvh::write(&self.clip)
+        mocap::formats::bvh::write(&self.clip)
     }
 }
 
@@ -131,7 +131,7 @@ impl MotionClip {
     }
 
     /// The generated body, built once.
-    fn body(&mut self) -> Option<&mocap::skin::Skin> {
+    fn body(&mut self) -> Option<&mocap::runtime::skin::Skin> {
         if self.body.is_none() {
             let extent = self.clip.pose_extent();
             self.body = Some(mocap_viewer::character::body_skin(

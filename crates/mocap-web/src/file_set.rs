@@ -2,9 +2,9 @@
 //! memory, to open together with `MocapViewer.openFileSet`. Reading a `File`'s
 //! stream this way skips the whole-file `ArrayBuffer` and its copy into the
 //! module (`openFiles`), and a BVH file's motion rows are parsed while the rest
-//! of it is still being read (`mocap::bvh::Stream`).
+//! of it is still being read (`mocap::formats::bvh::Stream`).
 
-use mocap::bvh::Stream;
+use mocap::formats::bvh::Stream;
 use wasm_bindgen::prelude::*;
 
 /// Bytes copied out of JavaScript's memory at a time.

@@ -300,7 +300,7 @@ impl MocapViewer {
     /// `'offset:NAME:x,y,z'`, `'channels:NAME:ZXY[:position]'`. Returns the error
     /// message, or `undefined` when done.
     pub fn edit(&self, index: u32, spec: &str) -> Option<String> {
-        use mocap::edit::Edit;
+        use mocap::ops::edit::Edit;
         let parts: Vec<&str> = spec.split(':').collect();
         let number = |s: Option<&&str>| s.and_then(|v| v.trim().parse::<f64>().ok());
         let vec3 = |s: &str| -> Option<mocap::glam::Vec3> {
@@ -353,18 +353,21 @@ impl MocapViewer {
         additive: Option<bool>,
         map: Option<String>,
     ) -> Option<String> {
-        let blend =
-            if additive.unwrap_or(false) { mocap::layer::Blend::Additive } else { mocap::layer::Blend::Override };
+        let blend = if additive.unwrap_or(false) {
+            mocap::ops::layer::Blend::Additive
+        } else {
+            mocap::ops::layer::Blend::Override
+        };
         let mut pairs = Vec::new();
         for item in map.as_deref().unwrap_or("").split(',').filter(|s| !s.trim().is_empty()) {
             let Some((b, l)) = item.split_once('=') else { return Some(format!("{item}: a map entry is Base=Layer")) };
             pairs.push((b.trim().to_owned(), l.trim().to_owned()));
         }
-        let layer = mocap::layer::Layer {
+        let layer = mocap::ops::layer::Layer {
             weight: weight.unwrap_or(1.0),
             blend,
             map: pairs,
-            ..mocap::layer::Layer::on(subtree)
+            ..mocap::ops::layer::Layer::on(subtree)
         };
         self.with_viewer(|v| v.add_layer(index as usize, source as usize, &layer).err()).flatten()
     }

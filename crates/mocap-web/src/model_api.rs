@@ -1,6 +1,6 @@
 //! `parseModel(bytes, fileName)`: the core's Quake 2 MD2 reader from JavaScript.
 
-use mocap::md2::Md2;
+use mocap::formats::md2::Md2;
 use wasm_bindgen::prelude::*;
 
 /// A parsed MD2 model, for JavaScript (`parseModel`'s result).
@@ -14,7 +14,7 @@ pub struct ModelMesh {
 /// `file:byte N: message` when the file is malformed.
 #[wasm_bindgen(js_name = parseModel)]
 pub fn parse_model(bytes: &[u8], file_name: &str) -> Result<ModelMesh, JsError> {
-    let model = mocap::md2::parse(bytes).map_err(|e| JsError::new(&format!("{file_name}:{e}")))?;
+    let model = mocap::formats::md2::parse(bytes).map_err(|e| JsError::new(&format!("{file_name}:{e}")))?;
     Ok(ModelMesh { model, scratch: Vec::new() })
 }
 

@@ -154,12 +154,12 @@ fn main() {
     // (shared cores), each figure then comes from the same stretches of time.
     let (mut ours, mut floor, mut together) = (Duration::MAX, Duration::MAX, Duration::MAX);
     for _ in 0..10 {
-        ours = ours.min(best(1, || mocap::bvh::parse(&input).expect("parse")));
+        ours = ours.min(best(1, || mocap::formats::bvh::parse(&input).expect("parse")));
         floor = floor.min(best(1, || bare_floor(&input[rows_at..], &mut buf)));
         together = together.min(best(1, floor_at_once));
     }
     println!(
-        "mocap::bvh::parse       {:>8.1} ms  {:>7.0} MB/s  ({threads} threads available)",
+        "mocap::formats::bvh::parse       {:>8.1} ms  {:>7.0} MB/s  ({threads} threads available)",
         ours.as_secs_f64() * 1e3,
         mb / ours.as_secs_f64()
     );
@@ -187,7 +187,7 @@ fn main() {
     // Peak memory of one parse, beyond the input already in memory.
     let base = LIVE.load(Ordering::Relaxed);
     PEAK.store(base, Ordering::Relaxed);
-    let clip = mocap::bvh::parse(&input).expect("parse");
+    let clip = mocap::formats::bvh::parse(&input).expect("parse");
     let peak = PEAK.load(Ordering::Relaxed) - base;
     let matrix = clip.motion().data().len() * 4;
     let skeleton: usize =
@@ -230,7 +230,7 @@ fn main() {
     threaded_fk("FK batched, threaded", &clip, transforms);
 
     // What `mocap info` does: parse, then FK over every frame for the bounding box.
-    let info = best(5, || mocap::bvh::parse(&input).expect("parse").bounds());
+    let info = best(5, || mocap::formats::bvh::parse(&input).expect("parse").bounds());
     println!("parse + bounds (info)   {:>8.1} ms", info.as_secs_f64() * 1e3);
 
     acclaim();
@@ -244,8 +244,8 @@ fn acclaim() {
         println!("skipping Acclaim: {} not found (the corpus lives in ../shared)", dir.join("01_06.amc").display());
         return;
     };
-    let asf = mocap::acclaim::parse_asf(&asf_bytes).expect("01.asf parses");
-    let skeleton = mocap::acclaim::skeleton(&asf).expect("01.asf skeleton");
+    let asf = mocap::formats::acclaim::parse_asf(&asf_bytes).expect("01.asf parses");
+    let skeleton = mocap::formats::acclaim::skeleton(&asf).expect("01.asf skeleton");
     let mb = amc_bytes.len() as f64 / 1e6;
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let mut buf = Vec::with_capacity(amc_bytes.len() / 4);
@@ -304,7 +304,7 @@ fn acclaim() {
 fn threaded_fk(label: &str, clip: &mocap::Clip, transforms: f64) {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(8);
     let t = best(5, || {
-        let runs = mocap::batch::fold_frame_positions(
+        let runs = mocap::runtime::batch::fold_frame_positions(
             clip.skeleton(),
             clip.motion(),
             || 0.0f32,

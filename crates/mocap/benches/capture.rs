@@ -17,7 +17,7 @@ fn main() {
         eprintln!("{}: not found (the corpus is needed for this benchmark)", path.display());
         std::process::exit(1);
     };
-    let md2 = mocap::md2::parse(&bytes).expect("faerie parses");
+    let md2 = mocap::formats::md2::parse(&bytes).expect("faerie parses");
     let options = Options::default();
     let (mut fit, mut choose, mut solve) = (f64::MAX, f64::MAX, f64::MAX);
     let mut joints = 0;

@@ -5,7 +5,7 @@
 
 use mocap::LocalPose;
 use mocap::glam::Vec3;
-use mocap::ik::{self, Chain, Options};
+use mocap::runtime::ik::{self, Chain, Options};
 use std::time::Instant;
 
 fn chain_clip(n: usize) -> mocap::Clip {
@@ -20,7 +20,7 @@ fn chain_clip(n: usize) -> mocap::Clip {
         text.push_str(&format!("{} 4 0 ", 5.0 + i as f32));
     }
     text.push('\n');
-    mocap::bvh::parse(text.as_bytes()).expect("chain")
+    mocap::formats::bvh::parse(text.as_bytes()).expect("chain")
 }
 
 fn main() {

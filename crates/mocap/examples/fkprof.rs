@@ -5,7 +5,7 @@ const REPEAT: usize = 30;
 fn main() {
     let path = std::env::args().nth(1).expect("file");
     let batched = std::env::args().nth(2).as_deref() == Some("batch");
-    let clip = mocap::bvh::parse(&std::fs::read(path).expect("read")).expect("parse");
+    let clip = mocap::formats::bvh::parse(&std::fs::read(path).expect("read")).expect("parse");
     let mut world = Vec::new();
     let mut sum = 0.0f32;
     let t = std::time::Instant::now();

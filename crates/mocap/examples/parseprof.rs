@@ -23,7 +23,7 @@ fn main() {
         }
         out.len()
     } else {
-        mocap::bvh::parse(&input).expect("parse").motion().data().len()
+        mocap::formats::bvh::parse(&input).expect("parse").motion().data().len()
     };
     eprintln!("{mode}: {n} values, {} bytes, {:?}", input.len(), t.elapsed());
 }

@@ -169,7 +169,7 @@ fn cmu_01_01_amc_agrees_with_its_bvh_conversion_on_every_frame() {
     let amc = std::fs::read(dir.join("asf_amc/cmu/01_01.amc")).unwrap();
     let bvh = std::fs::read(dir.join("bvh/assimp_cmu/01_01.bvh")).unwrap();
     let acclaim = loaded(&[("01.asf", &asf), ("01_01.amc", &amc)]).pop().unwrap().unwrap().into_clip().unwrap();
-    let converted = mocap::bvh::parse(&bvh).unwrap();
+    let converted = mocap::formats::bvh::parse(&bvh).unwrap();
     assert_eq!(acclaim.frame_count() + 1, converted.frame_count(), "the BVH has a T-pose first");
     let pairs: Vec<(usize, usize)> = CMU_BVH
         .iter()
@@ -202,7 +202,7 @@ fn asf_amc_to_bvh_keeps_every_position() {
     let asf = std::fs::read(dir.join("asf_amc/cmu/02.asf")).unwrap();
     let amc = std::fs::read(dir.join("asf_amc/cmu/02_01.amc")).unwrap();
     let clip = loaded(&[("02.asf", &asf), ("02_01.amc", &amc)]).pop().unwrap().unwrap().into_clip().unwrap();
-    let back = mocap::bvh::parse(mocap::bvh::write(&clip).as_bytes()).unwrap();
+    let back = mocap::formats::bvh::parse(mocap::formats::bvh::write(&clip).as_bytes()).unwrap();
     assert_eq!(back.frame_count(), clip.frame_count());
     let height = clip.pose_height();
     let (mut pa, mut pb) = (Vec::new(), Vec::new());

@@ -10,20 +10,22 @@
 
 mod common;
 
+use mocap::Clip;
 use mocap::capture::{self, Options, Rig};
 use mocap::glam::Vec3;
-use mocap::{Clip, skin};
+use mocap::runtime::skin;
 
 fn walk() -> Clip {
-    mocap::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap()
+    mocap::formats::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap()
 }
 
 /// The walk's body, skinned on every frame, baked into MD2 bytes.
 fn baked_walk(clip: &Clip) -> Vec<u8> {
     let bind = clip.bind_pose();
     let extent = clip.pose_extent();
-    let body = mocap::body::build(clip.skeleton(), &bind, |_, l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8)
-        .unwrap();
+    let body =
+        mocap::build::body::build(clip.skeleton(), &bind, |_, l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8)
+            .unwrap();
     let triangles: Vec<[u32; 3]> = body.indices().chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
     let (mut model, mut m, mut p, mut n) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let frames: Vec<(String, Vec<Vec3>)> = (0..clip.frame_count())
@@ -34,7 +36,7 @@ fn baked_walk(clip: &Clip) -> Vec<u8> {
             (format!("walk{}", f + 1), p.clone())
         })
         .collect();
-    mocap::md2::write(&mocap::md2::build(&frames, &triangles).unwrap())
+    mocap::formats::md2::write(&mocap::formats::md2::build(&frames, &triangles).unwrap())
 }
 
 /// Joint position errors (share of the height) over every joint and frame, and
@@ -68,7 +70,7 @@ fn percentile(values: &[f32], q: f64) -> f32 {
 #[test]
 fn a_baked_walk_is_captured_back_close_to_the_truth() {
     let clip = walk();
-    let md2 = mocap::md2::parse(&baked_walk(&clip)).unwrap();
+    let md2 = mocap::formats::md2::parse(&baked_walk(&clip)).unwrap();
     assert_eq!(md2.frames.len(), clip.frame_count());
     let mut model = Vec::new();
     clip.world_transforms_into(0, &mut model);
@@ -104,7 +106,7 @@ fn a_baked_walk_is_captured_back_close_to_the_truth() {
     println!("stored vertex places: worst joint error {:.3} %", raw_max * 100.0);
     assert!(raw_max > max && raw_max < 0.01, "stored places {raw_max}, averaged {max}");
     // The captured clip is a normal clip: it saves as BVH and reads back.
-    let again = mocap::bvh::parse(mocap::bvh::write(&cap.clip).as_bytes()).unwrap();
+    let again = mocap::formats::bvh::parse(mocap::formats::bvh::write(&cap.clip).as_bytes()).unwrap();
     assert_eq!(again.frame_count(), clip.frame_count());
     assert_eq!(cap.animations.len(), 1);
     assert_eq!(cap.animations[0].name, "walk");
@@ -123,7 +125,7 @@ fn without_quantisation_the_capture_is_exact() {
     // The same walk as float frames (no 8-bit MD2 in between): the method itself
     // puts every joint where it was and every long bone within a tenth of a degree.
     let clip = walk();
-    let md2 = mocap::md2::parse(&baked_walk(&clip)).unwrap();
+    let md2 = mocap::formats::md2::parse(&baked_walk(&clip)).unwrap();
     let frames = float_frames(&clip);
     let mut model = Vec::new();
     clip.world_transforms_into(0, &mut model);
@@ -162,7 +164,7 @@ fn without_quantisation_the_capture_is_exact() {
 #[test]
 fn a_bad_rig_is_refused_with_a_reason() {
     let clip = walk();
-    let md2 = mocap::md2::parse(&baked_walk(&clip)).unwrap();
+    let md2 = mocap::formats::md2::parse(&baked_walk(&clip)).unwrap();
     let mut model = Vec::new();
     clip.world_transforms_into(0, &mut model);
     let rig = Rig::from_skeleton(clip.skeleton(), &model, 0);
@@ -178,7 +180,7 @@ fn a_bad_rig_is_refused_with_a_reason() {
 fn corpus_characters_are_captured_by_the_automatic_fit() {
     let Some(dir) = common::corpus_dir() else { return };
     for path in ["md2/waste/tris.md2", "md2/irrlicht_faerie/faerie.md2"] {
-        let md2 = mocap::md2::parse(&std::fs::read(dir.join(path)).unwrap()).unwrap();
+        let md2 = mocap::formats::md2::parse(&std::fs::read(dir.join(path)).unwrap()).unwrap();
         let frames = capture::model_frames(&md2);
         let rig = Rig::fit(&frames[0], 0, None);
         let cap = capture::capture(&md2, &rig, &Options::default()).unwrap();
@@ -209,7 +211,7 @@ fn corpus_characters_are_captured_by_the_automatic_fit() {
         let share = inside as f64 / all as f64;
         println!("{path}: {:.1} % of captured joint positions inside the model's bounds", share * 100.0);
         assert!(share > 0.97, "{path}: {:.1} % inside", share * 100.0);
-        let again = mocap::bvh::parse(mocap::bvh::write(&cap.clip).as_bytes()).unwrap();
+        let again = mocap::formats::bvh::parse(mocap::formats::bvh::write(&cap.clip).as_bytes()).unwrap();
         assert_eq!(again.frame_count(), md2.frames.len());
         assert!(
             cap.animation_clip("run").is_some_and(|c| c.frame_count() == 6),
@@ -228,8 +230,9 @@ fn corpus_characters_are_captured_by_the_automatic_fit() {
 fn float_frames(clip: &Clip) -> Vec<Vec<Vec3>> {
     let bind = clip.bind_pose();
     let extent = clip.pose_extent();
-    let body = mocap::body::build(clip.skeleton(), &bind, |_, l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8)
-        .unwrap();
+    let body =
+        mocap::build::body::build(clip.skeleton(), &bind, |_, l| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8)
+            .unwrap();
     let (mut model, mut m, mut p, mut n) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     (0..clip.frame_count())
         .map(|f| {

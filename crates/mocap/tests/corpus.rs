@@ -71,7 +71,7 @@ fn corpus_bvh_files_parse_as_the_manifest_says() {
             assert!(pos.iter().all(|p| p.is_finite()), "{} frame {f}", e.path);
         }
         // Round trip: same hierarchy, bit-identical values.
-        let again = mocap::bvh::parse(mocap::bvh::write(&clip).as_bytes())
+        let again = mocap::formats::bvh::parse(mocap::formats::bvh::write(&clip).as_bytes())
             .unwrap_or_else(|err| panic!("{}: rewritten: {err}", e.path));
         assert_same(&clip, &again, &e.path);
     }
@@ -89,7 +89,7 @@ fn unit_guesses_on_known_sources() {
         ("bvh/fairmotion/pfnn_hierarchy.bvh", mocap::Units::Meters),
     ];
     for (path, units) in expect {
-        let clip = mocap::bvh::parse(&std::fs::read(dir.join(path)).unwrap()).unwrap();
+        let clip = mocap::formats::bvh::parse(&std::fs::read(dir.join(path)).unwrap()).unwrap();
         assert_eq!(clip.units(), units, "{path}: height {}", clip.pose_height());
     }
 }
@@ -102,7 +102,7 @@ fn up_axis_guesses_on_every_corpus_clip() {
         if e.format != "bvh" || e.notes.contains("MALFORMED") {
             continue;
         }
-        let Ok(clip) = mocap::bvh::parse(&std::fs::read(dir.join(&e.path)).unwrap()) else { continue };
+        let Ok(clip) = mocap::formats::bvh::parse(&std::fs::read(dir.join(&e.path)).unwrap()) else { continue };
         // MakeHuman's skeletons and the dab of animated_drawings stand along Z
         // (drawn Y-up they lie on their backs); every other source is Y-up (the
         // Bandai Namco rest pose lies along X and Z, its motion stands in Y).
@@ -125,7 +125,7 @@ fn up_axis_guesses_on_every_corpus_clip() {
     let bva = std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bva")).unwrap();
     assert_eq!(mocap::load_one("walk.bva", &bva).unwrap().clip().unwrap().up_axis(), mocap::UpAxis::Y);
     // The MakeHuman walk, read Z-up, is 1.7 m tall in decimetres.
-    let walk = mocap::bvh::parse(&std::fs::read(dir.join("bvh/makehuman/walk1.bvh")).unwrap()).unwrap();
+    let walk = mocap::formats::bvh::parse(&std::fs::read(dir.join("bvh/makehuman/walk1.bvh")).unwrap()).unwrap();
     assert_eq!(walk.units(), mocap::Units::Decimeters, "height {}", walk.pose_height());
 }
 
@@ -159,9 +159,9 @@ fn corpus_bvh_files_read_as_they_arrive_as_parse_reads_them() {
     assert!(entries.len() >= 20, "manifest lists {} BVH files", entries.len());
     for e in &entries {
         let bytes = std::fs::read(dir.join(&e.path)).unwrap();
-        let whole = mocap::bvh::parse(&bytes);
+        let whole = mocap::formats::bvh::parse(&bytes);
         for piece in [1000, 65536] {
-            let mut stream = mocap::bvh::Stream::with_capacity(bytes.len());
+            let mut stream = mocap::formats::bvh::Stream::with_capacity(bytes.len());
             bytes.chunks(piece).for_each(|c| stream.push(c));
             let what = format!("{} in pieces of {piece} bytes", e.path);
             match (&whole, stream.finish()) {

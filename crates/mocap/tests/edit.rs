@@ -2,11 +2,11 @@
 //! saves as BVH and reads back the same.
 
 use mocap::Clip;
-use mocap::edit::{Edit, apply, apply_all};
 use mocap::glam::Vec3;
+use mocap::ops::edit::{Edit, apply, apply_all};
 
 fn walk() -> Clip {
-    mocap::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap()
+    mocap::formats::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap()
 }
 
 fn positions(clip: &Clip, frame: usize) -> Vec<Vec3> {
@@ -19,7 +19,7 @@ fn same_pose(a: &Clip, fa: usize, b: &Clip, fb: usize, tolerance: f32) -> bool {
 
 /// Saving and reading back gives the same clip, value for value.
 fn round_trips(clip: &Clip) {
-    let again = mocap::bvh::parse(mocap::bvh::write(clip).as_bytes()).unwrap();
+    let again = mocap::formats::bvh::parse(mocap::formats::bvh::write(clip).as_bytes()).unwrap();
     assert_eq!(again.skeleton(), clip.skeleton());
     assert_eq!(again.motion().data(), clip.motion().data());
 }
@@ -222,7 +222,7 @@ fn a_keyed_correction_fades_over_its_window() {
 
 #[test]
 fn the_creator_builds_a_character_that_saves_and_reads_back() {
-    let mut c = mocap::edit::new_character(20, 30.0);
+    let mut c = mocap::ops::edit::new_character(20, 30.0);
     assert_eq!(c.skeleton().len(), 2);
     assert_eq!(c.frame_count(), 20);
     let steps = [
@@ -274,7 +274,7 @@ fn the_creator_builds_a_character_that_saves_and_reads_back() {
 #[test]
 fn keys_interpolate_from_key_to_key_and_hold_outside() {
     use mocap::glam::Quat;
-    let mut c = mocap::edit::new_character(60, 30.0);
+    let mut c = mocap::ops::edit::new_character(60, 30.0);
     c = apply(&c, &Edit::AddJoint { parent: "Hips".into(), name: "Arm".into(), offset: Vec3::new(0.0, 0.5, 0.0) })
         .unwrap();
     let turn = |deg: f32| vec![("Arm".to_owned(), Quat::from_rotation_z(deg.to_radians()))];

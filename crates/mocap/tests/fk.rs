@@ -1,7 +1,7 @@
 //! Forward kinematics and sampling semantics.
 
 use mocap::Timeline;
-use mocap::bvh::parse;
+use mocap::formats::bvh::parse;
 use mocap::glam::{EulerRot, Mat3, Quat, Vec3};
 use mocap::{Channel, Interpolation};
 

@@ -8,9 +8,9 @@ use std::path::Path;
 fn check(name: &str, data: &[u8]) {
     // Read as it arrives (the page's drop), in pieces of a few sizes: the same
     // frames and the same error.
-    let whole = mocap::bvh::parse(data);
+    let whole = mocap::formats::bvh::parse(data);
     for piece in [1, 7, 4096] {
-        let mut stream = mocap::bvh::Stream::with_capacity(data.len());
+        let mut stream = mocap::formats::bvh::Stream::with_capacity(data.len());
         data.chunks(piece).for_each(|c| stream.push(c));
         let streamed = stream.finish();
         let outcome = |r: &Result<mocap::Clip, mocap::ParseError>| {
@@ -34,7 +34,7 @@ fn check(name: &str, data: &[u8]) {
         let _ = clip.units();
         let mut out = Vec::new();
         clip.sample_world_positions_into(clip.duration() * 0.37, mocap::Interpolation::Linear, &mut out);
-        let again = mocap::bvh::parse(mocap::bvh::write(&clip).as_bytes())
+        let again = mocap::formats::bvh::parse(mocap::formats::bvh::write(&clip).as_bytes())
             .unwrap_or_else(|e| panic!("{name}: rewritten clip fails: {e}"));
         assert_eq!(again.frame_count(), clip.frame_count(), "{name}");
         assert_eq!(again.skeleton().len(), clip.skeleton().len(), "{name}");

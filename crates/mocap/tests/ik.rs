@@ -6,7 +6,7 @@
 mod common;
 
 use mocap::glam::Vec3;
-use mocap::ik::{self, Chain, Options};
+use mocap::runtime::ik::{self, Chain, Options};
 use mocap::{LocalPose, Skeleton};
 
 /// A chain of `n` joints along +Y, bones of `length`, each with three rotation
@@ -25,7 +25,7 @@ fn chain_clip(n: usize, length: f32) -> mocap::Clip {
         text.push_str(&format!(" {} {} 0", 10.0 + i as f32, 5.0));
     }
     text.push('\n');
-    mocap::bvh::parse(text.as_bytes()).unwrap()
+    mocap::formats::bvh::parse(text.as_bytes()).unwrap()
 }
 
 fn pose_of(clip: &mocap::Clip) -> LocalPose {
@@ -270,7 +270,7 @@ fn default_chains_are_the_arms_and_legs_of_real_skeletons() {
         }
         // Each is a two-bone chain; the feet are the lowest effectors.
         assert!(chains.iter().all(|(_, c)| c.joints().len() == 3));
-        let rest = mocap::fk::rest_positions(clip.skeleton());
+        let rest = mocap::runtime::fk::rest_positions(clip.skeleton());
         assert!(rest[chains[1].1.effector()].y < rest[chains[2].1.effector()].y, "{file}: {names:?}");
     }
 }
@@ -298,12 +298,12 @@ fn skating_clip() -> mocap::Clip {
         let rest = "0 0 0 ".repeat(8);
         text.push_str(&format!("{x} 0 0 0 0 0 {left} {right} {rest}\n"));
     }
-    mocap::bvh::parse(text.as_bytes()).unwrap()
+    mocap::formats::bvh::parse(text.as_bytes()).unwrap()
 }
 
 #[test]
 fn foot_locking_pins_a_skating_foot_and_lets_it_go() {
-    use mocap::contact::FootLock;
+    use mocap::ops::contact::FootLock;
     let clip = skating_clip();
     let lock = FootLock::new(&clip);
     assert_eq!(lock.legs.len(), 2, "two legs found");
@@ -339,8 +339,8 @@ fn foot_locking_pins_a_skating_foot_and_lets_it_go() {
 
 #[test]
 fn the_generated_walk_has_alternating_foot_contacts() {
-    let walk = mocap::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap();
-    let lock = mocap::contact::FootLock::new(&walk);
+    let walk = mocap::formats::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap();
+    let lock = mocap::ops::contact::FootLock::new(&walk);
     assert_eq!(lock.legs.len(), 2);
     for leg in &lock.legs {
         let n = leg.contact.iter().filter(|c| **c).count();

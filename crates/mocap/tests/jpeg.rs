@@ -1,10 +1,10 @@
-//! The JPEG skin reader (`mocap::image::jpeg`), on files made here with the
+//! The JPEG skin reader (`mocap::formats::image::jpeg`), on files made here with the
 //! `image` crate's encoder: colour and grey pictures come back as RGBA8 close to
 //! what was encoded, and damaged or oversized files are errors, never panics.
 
 use image::ExtendedColorType;
 use image::codecs::jpeg::JpegEncoder;
-use mocap::image::{MAX_SIDE, Rgba, decode_any};
+use mocap::formats::image::{MAX_SIDE, Rgba, decode_any};
 
 /// A `width × height` picture with red across, green down and blue from both.
 fn gradient(width: u32, height: u32) -> Vec<u8> {

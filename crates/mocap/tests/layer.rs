@@ -2,12 +2,12 @@
 //! puts every joint inside it on the layer, matches joints named by other
 //! conventions, blends by weight and fades, and saves as BVH.
 
-use mocap::edit::{Edit, apply as edit};
-use mocap::layer::{self, Blend, Layer};
+use mocap::ops::edit::{Edit, apply as edit};
+use mocap::ops::layer::{self, Blend, Layer};
 use mocap::{Clip, LocalPose};
 
 fn walk() -> Clip {
-    mocap::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap()
+    mocap::formats::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap()
 }
 
 fn subtree(clip: &Clip, root: usize) -> Vec<bool> {
@@ -50,7 +50,7 @@ fn a_layer_drives_its_subtree_and_nothing_else() {
             assert!(o.rotation[j].dot(w.rotation[j]).abs() > 0.9999, "frame {f}: joint {j} is the layer's");
         }
     }
-    mocap::bvh::parse(mocap::bvh::write(&out).as_bytes()).unwrap();
+    mocap::formats::bvh::parse(mocap::formats::bvh::write(&out).as_bytes()).unwrap();
 }
 
 #[test]
@@ -70,7 +70,7 @@ fn joints_named_by_another_convention_match() {
     let (o, w) = (local(&out, 20), local(&wave, 20));
     assert!(o.rotation[hand].dot(w.rotation[wave.skeleton().find("rForeArm").unwrap()]).abs() > 0.9999);
     // Nothing to match: a clear error.
-    let other = mocap::bvh::parse(b"HIERARCHY\nROOT Tail\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 1 0\n}\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0\n").unwrap();
+    let other = mocap::formats::bvh::parse(b"HIERARCHY\nROOT Tail\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 1 0\n}\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0\n").unwrap();
     assert!(
         layer::apply(&base, &other, &Layer::on("RightShoulder"))
             .unwrap_err()

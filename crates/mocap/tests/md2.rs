@@ -6,7 +6,7 @@
 mod common;
 
 mod md2 {
-    use mocap::md2::{self, Md2, NORMALS};
+    use mocap::formats::md2::{self, Md2, NORMALS};
     use proptest::prelude::*;
     use std::time::{Duration, Instant};
 
@@ -453,13 +453,13 @@ mod md2 {
 fn quake_pcx_skins_decode_to_the_known_pixels() {
     let Some(dir) = common::corpus_dir() else { return };
     // Reference values from an independent decoder (Pillow 11).
-    let skin = mocap::image::pcx::decode(&std::fs::read(dir.join("md2/waste/waste.pcx")).unwrap()).unwrap();
+    let skin = mocap::formats::image::pcx::decode(&std::fs::read(dir.join("md2/waste/waste.pcx")).unwrap()).unwrap();
     assert_eq!((skin.width, skin.height), (308, 175), "the size tris.md2's header gives");
     assert_eq!(skin.pixel(0, 0), Some([0, 0, 0, 255]));
     assert_eq!(skin.pixel(10, 20), Some([167, 139, 119, 255]));
     assert_eq!(skin.pixel(100, 50), Some([107, 107, 107, 255]));
     assert_eq!(skin.pixel(307, 174), Some([0, 0, 0, 255]));
-    let weapon = mocap::image::pcx::decode(&std::fs::read(dir.join("md2/waste/weapon.PCX")).unwrap()).unwrap();
+    let weapon = mocap::formats::image::pcx::decode(&std::fs::read(dir.join("md2/waste/weapon.PCX")).unwrap()).unwrap();
     assert_eq!((weapon.width, weapon.height), (136, 59));
     assert_eq!(weapon.pixel(0, 0), Some([15, 15, 15, 255]));
     assert_eq!(weapon.pixel(10, 20), Some([0, 0, 0, 255]));
@@ -494,7 +494,7 @@ fn a_dropped_folder_pairs_models_with_their_skins() {
     assert_eq!(player.mesh.frame_count(), 198);
     assert_eq!(
         player.mesh.source_counts,
-        mocap::morph::SourceCounts { vertices: 312, triangles: 596, tex_coords: 435 }
+        mocap::model::mesh::SourceCounts { vertices: 312, triangles: 596, tex_coords: 435 }
     );
     // Every MD2 model is in Quake units, read as inches: the player is about 1.4 m.
     let height = player.mesh.height() * player.mesh.units().meters_per_unit();

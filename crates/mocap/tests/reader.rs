@@ -1,7 +1,7 @@
 //! BVH reader behaviour on small inline fixtures: robustness cases and error positions.
 
 use mocap::Channel;
-use mocap::bvh::parse;
+use mocap::formats::bvh::parse;
 use mocap::glam::Vec3;
 
 /// A one-joint file with the given channel line and rows.
@@ -111,7 +111,7 @@ fn frame_time_missing_or_zero_defaults_with_warning() {
     let missing = one_joint("CHANNELS 1 Xposition", "1\n", 1).replace("Frame Time: 0.5\n", "");
     for src in [zero, missing] {
         let clip = parse(src.as_bytes()).unwrap();
-        assert_eq!(clip.frame_time(), mocap::bvh::DEFAULT_FRAME_TIME);
+        assert_eq!(clip.frame_time(), mocap::formats::bvh::DEFAULT_FRAME_TIME);
         assert!(clip.warnings.iter().any(|w| w.message.contains("1/30")), "{:?}", clip.warnings);
     }
 }

@@ -106,9 +106,9 @@ proptest! {
 
     #[test]
     fn write_then_parse_is_exact(clip in clip_strategy()) {
-        let text = mocap::bvh::write(&clip);
+        let text = mocap::formats::bvh::write(&clip);
         prop_assert!(!text.contains('\r'));
-        let back = mocap::bvh::parse(text.as_bytes()).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+        let back = mocap::formats::bvh::parse(text.as_bytes()).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         prop_assert_eq!(clip.skeleton().len(), back.skeleton().len());
         for (a, b) in clip.skeleton().joints().iter().zip(back.skeleton().joints()) {
             if !a.is_end_site() { prop_assert_eq!(&a.name, &b.name); }
@@ -123,8 +123,8 @@ proptest! {
 
     #[test]
     fn rest_rotations_and_general_channels_survive_write_then_parse(clip in general_clip_strategy()) {
-        let text = mocap::bvh::write(&clip);
-        let back = mocap::bvh::parse(text.as_bytes()).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
+        let text = mocap::formats::bvh::write(&clip);
+        let back = mocap::formats::bvh::parse(text.as_bytes()).map_err(|e| TestCaseError::fail(format!("{e}\n{text}")))?;
         prop_assert_eq!(clip.skeleton().len(), back.skeleton().len());
         prop_assert_eq!(clip.frame_count(), back.frame_count());
         let size = clip.bounds().size().length().max(1.0);
@@ -152,8 +152,8 @@ proptest! {
         ];
         for loaded in mocap::load(&inputs).into_iter().flatten() {
             let _ = loaded.asset.bounds();
-            let _ = mocap::bvh::write(loaded.clip().unwrap());
-            let _ = mocap::bva::write(&mocap::bva::from_clip(loaded.clip().unwrap()).0);
+            let _ = mocap::formats::bvh::write(loaded.clip().unwrap());
+            let _ = mocap::formats::bva::write(&mocap::formats::bva::from_clip(loaded.clip().unwrap()).0);
         }
     }
 
@@ -162,9 +162,9 @@ proptest! {
         let base = b"HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0 1 0\n}\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n1 2 3\n4 5 6\n";
         let mut input = base[..cut.min(base.len())].to_vec();
         input.extend_from_slice(&bytes);
-        if let Ok(clip) = mocap::bvh::parse(&input) {
+        if let Ok(clip) = mocap::formats::bvh::parse(&input) {
             let _ = clip.bounds();
-            let _ = mocap::bvh::write(&clip);
+            let _ = mocap::formats::bvh::write(&clip);
         }
     }
 }

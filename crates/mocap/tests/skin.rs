@@ -7,7 +7,7 @@ mod common;
 
 use mocap::Transform;
 use mocap::glam::{Quat, Vec3};
-use mocap::skin::{self, Skin, SkinError};
+use mocap::runtime::skin::{self, Skin, SkinError};
 use std::collections::HashMap;
 
 fn t(translation: Vec3, rotation: Quat) -> Transform {
@@ -105,7 +105,7 @@ fn every_corpus_skeleton_gets_a_closed_body_with_whole_weights() {
         } else {
             mocap::local_to_model(clip.skeleton(), &mocap::LocalPose::rest(clip.skeleton()), &mut bind);
         }
-        let body = mocap::body::build(clip.skeleton(), &bind, radius(clip.pose_extent()))
+        let body = mocap::build::body::build(clip.skeleton(), &bind, radius(clip.pose_extent()))
             .unwrap_or_else(|e| panic!("{path}: {e}"));
         assert!(!body.indices().is_empty(), "{path}");
         assert!(closed(body.indices()), "{path}: every edge is shared by two triangles");
@@ -138,10 +138,10 @@ fn a_bent_elbow_leaves_no_gap() {
     // piece where the two tubes meet (every point of the elbow's ring of vertices
     // on one tube has a close point on the other).
     let text = "HIERARCHY\nROOT s\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT e\n{\nOFFSET 1 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nJOINT w\n{\nOFFSET 1 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\nEnd Site\n{\nOFFSET 0.2 0 0\n}\n}\n}\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n0 0 0 0 0 0 0 0 0\n0 0 0 90 0 0 0 0 0\n";
-    let clip = mocap::bvh::parse(text.as_bytes()).unwrap();
+    let clip = mocap::formats::bvh::parse(text.as_bytes()).unwrap();
     let mut bind = Vec::new();
     clip.world_transforms_into(0, &mut bind);
-    let body = mocap::body::build(clip.skeleton(), &bind, |_, _| 0.1).unwrap();
+    let body = mocap::build::body::build(clip.skeleton(), &bind, |_, _| 0.1).unwrap();
     let mut posed = Vec::new();
     clip.world_transforms_into(1, &mut posed);
     let (mut m, mut p, mut n) = (Vec::new(), Vec::new(), Vec::new());
@@ -150,7 +150,7 @@ fn a_bent_elbow_leaves_no_gap() {
     let elbow = posed[1].translation;
     // Tubes: s→e (vertices 0..V), e→w (V..2V). Near the elbow, the first tube's
     // far cap and the second tube's near cap: the same sphere blend, so they match.
-    let v = mocap::body::TUBE_VERTICES as usize;
+    let v = mocap::build::body::TUBE_VERTICES as usize;
     let near_elbow = |range: std::ops::Range<usize>| {
         p[range].iter().filter(|q| q.distance(elbow) < 0.101).copied().collect::<Vec<_>>()
     };

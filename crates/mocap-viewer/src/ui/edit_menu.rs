@@ -2,7 +2,7 @@
 //! and redo, and Save as BVH.
 
 use crate::viewer::Viewer;
-use mocap::edit::Edit;
+use mocap::ops::edit::Edit;
 
 /// Shows the Edit menu's entries (inside the toolbar's menu button).
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {

@@ -4,7 +4,7 @@
 //! changeable (or left out) joint by joint. "Layer" makes it one undoable edit.
 
 use crate::viewer::Viewer;
-use mocap::layer::{self, Blend, Layer};
+use mocap::ops::layer::{self, Blend, Layer};
 
 /// What the Layer window is set to.
 #[derive(Clone, Debug)]

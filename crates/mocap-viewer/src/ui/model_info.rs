@@ -49,7 +49,7 @@ pub fn show(ui: &mut egui::Ui, c: &Character, model: &Model) {
 }
 
 /// The skin in use, scaled to fit [`THUMBNAIL`]; its texture is made once per image.
-fn thumbnail(ui: &mut egui::Ui, skin: &mocap::morph::Skin) {
+fn thumbnail(ui: &mut egui::Ui, skin: &mocap::model::mesh::Skin) {
     let id = egui::Id::unique(("skin-thumbnail", Arc::as_ptr(&skin.image) as usize));
     let cached: Option<egui::TextureHandle> = ui.ctx().data(|d| d.get_temp(id));
     let texture = cached.unwrap_or_else(|| {

@@ -14,7 +14,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
         ui.ctx(),
         |ui| {
             let mut bones = demo.bones;
-            ui.add(egui::Slider::new(&mut bones, mocap::demo::BONES).text("bones"));
+            ui.add(egui::Slider::new(&mut bones, mocap::build::demo::BONES).text("bones"));
             if bones != demo.bones {
                 rebuild = Some(bones);
             }

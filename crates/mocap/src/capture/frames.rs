@@ -20,7 +20,7 @@
 //! allocation) and every name's terminator, and reports the byte offset of what
 //! is wrong.
 
-use crate::md2::write::name_field;
+use crate::formats::md2::write::name_field;
 use glam::{EulerRot, Mat3, Quat, Vec3};
 
 /// The file's first eight bytes.

@@ -34,11 +34,11 @@ pub mod track;
 
 pub use rig::{Rig, RigError, RigJoint};
 
-use crate::channel::Channel;
-use crate::clip::Clip;
-use crate::md2::{Animation, Md2};
-use crate::pose::LocalPose;
-use crate::skeleton::{EulerConvention, Joint, Skeleton};
+use crate::formats::md2::{Animation, Md2};
+use crate::model::channel::Channel;
+use crate::model::clip::Clip;
+use crate::model::skeleton::{EulerConvention, Joint, Skeleton};
+use crate::runtime::pose::LocalPose;
 use glam::{Mat3, Quat, Vec3};
 use spheres::{Settings, Sphere};
 
@@ -190,7 +190,7 @@ impl Capture {
     /// The clip of one animation (its frame range), or `None` without one of that name.
     pub fn animation_clip(&self, name: &str) -> Option<Clip> {
         let a = self.animations.iter().find(|a| a.name == name)?;
-        crate::edit::apply(&self.clip, &crate::edit::Edit::Trim { first: a.first, last: a.last }).ok()
+        crate::ops::edit::apply(&self.clip, &crate::ops::edit::Edit::Trim { first: a.first, last: a.last }).ok()
     }
 
     /// The capture in the source's per-frame layout ([`frames`]).
@@ -258,7 +258,7 @@ impl Capturer {
         let names = md2.frames.iter().map(|f| f.name.clone()).collect();
         let mut capturer = Capturer::from_frames(frames, names, md2.animations.clone(), &triangles, rig, options)?;
         // Quake units, read as inches by the rule every MD2 follows (see `MorphMesh::units`).
-        capturer.meters_per_unit = crate::Units::guess(crate::morph::QUAKE_PLAYER_HEIGHT).meters_per_unit();
+        capturer.meters_per_unit = crate::Units::guess(crate::model::mesh::QUAKE_PLAYER_HEIGHT).meters_per_unit();
         Ok(capturer)
     }
 
@@ -598,7 +598,7 @@ impl Capturer {
                 local
             })
             .collect();
-        crate::edit::clip_from_poses(skeleton, crate::morph::FRAME_TIME, &poses)
+        crate::ops::edit::clip_from_poses(skeleton, crate::model::mesh::FRAME_TIME, &poses)
             .map_err(|e| CaptureError(e.to_string()))
     }
 }

@@ -27,8 +27,8 @@
 //! scaled to it; [`Rig::bind`] binds every vertex to its nearest bone;
 //! [`Rig::from_skeleton`] makes the rig of a skeleton in a known pose.
 
-use crate::fk::Transform;
-use crate::skeleton::Skeleton;
+use crate::model::skeleton::Skeleton;
+use crate::runtime::fk::Transform;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 

@@ -1,0 +1,451 @@
+//! Vertex-animated meshes: the asset a Quake 2 MD2 model becomes (mesh + vertex
+//! frames), independent of the file it came from.
+//!
+//! A [`MorphMesh`] holds one triangle list over *drawing vertices* (a file vertex
+//! paired with one texture coordinate: MD2 triangles index positions and texture
+//! coordinates separately, a GPU draws one index per corner), and for every key
+//! frame the position and unit normal of each drawing vertex, Y-up, in file units.
+//! A [`Model`] is a mesh on the stage: the mesh, the skin it is drawn with, and the
+//! animation it plays. Time maps to frames by the one rule of [`crate::model::time`], at
+//! [`FRAME_TIME`] (Quake 2 animates models at 10 frames per second):
+//! [`Model::frames_at`] gives the two key frames to blend and the blend weight,
+//! which the renderer interpolates on the GPU.
+
+use crate::formats::image::Rgba;
+use crate::formats::md2::{self, Animation, Md2};
+use crate::model::clip::{Aabb, Units};
+use crate::model::time::{FramePosition, Timeline};
+use crate::runtime::sample::Interpolation;
+use glam::Vec3;
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// Seconds between key frames: Quake 2 runs model animations at 10 Hz.
+pub const FRAME_TIME: f64 = 0.1;
+
+/// Height of a Quake 2 player model in Quake units: the size the unit of every
+/// MD2 model is guessed from.
+pub const QUAKE_PLAYER_HEIGHT: f32 = 56.0;
+
+/// A triangle mesh whose vertices move from key frame to key frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MorphMesh {
+    vertex_count: usize,
+    positions: Vec<[f32; 3]>,
+    normals: Vec<[f32; 3]>,
+    tex_coords: Vec<[f32; 2]>,
+    indices: Vec<u32>,
+    /// The file vertex each drawing vertex was split from.
+    sources: Vec<u32>,
+    frame_names: Vec<String>,
+    animations: Vec<Animation>,
+    /// Skin file names the model names (may be empty).
+    pub skins: Vec<String>,
+    /// Skin size in pixels the texture coordinates were made for (the file's header).
+    pub skin_size: [u32; 2],
+    /// Counts in the source file: vertices, triangles, texture coordinates.
+    pub source_counts: SourceCounts,
+    bounds: Aabb,
+    first_bounds: Aabb,
+}
+
+/// Counts as the source file gives them (before vertices are split per texture
+/// coordinate for drawing).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SourceCounts {
+    /// Vertices per frame.
+    pub vertices: usize,
+    /// Triangles.
+    pub triangles: usize,
+    /// Texture coordinates.
+    pub tex_coords: usize,
+}
+
+impl MorphMesh {
+    /// Builds the drawing mesh of a parsed MD2 model: file vertices split per texture
+    /// coordinate, positions and normals of every frame decoded to Y-up (file units),
+    /// texture coordinates divided by the header's skin size (not by any image's, so
+    /// a skin of another size still maps).
+    pub fn from_md2(model: &Md2) -> MorphMesh {
+        let mut key_to_vertex: HashMap<(u16, u16), u32> = HashMap::new();
+        let mut sources: Vec<(u16, u16)> = Vec::new();
+        let mut indices = Vec::with_capacity(model.triangles.len() * 3);
+        for triangle in &model.triangles {
+            for corner in 0..3 {
+                let key = (triangle.vertices[corner], triangle.tex_coords[corner]);
+                let index = *key_to_vertex.entry(key).or_insert_with(|| {
+                    sources.push(key);
+                    (sources.len() - 1) as u32
+                });
+                indices.push(index);
+            }
+        }
+        let (w, h) = (model.skin_width.max(1) as f32, model.skin_height.max(1) as f32);
+        let tex_coords = sources
+            .iter()
+            .map(|&(_, t)| {
+                model.tex_coords.get(usize::from(t)).map_or([0.0; 2], |st| [f32::from(st[0]) / w, f32::from(st[1]) / h])
+            })
+            .collect();
+        let mut positions = Vec::with_capacity(sources.len() * model.frames.len());
+        let mut normals = Vec::with_capacity(sources.len() * model.frames.len());
+        for frame in &model.frames {
+            for &(v, _) in &sources {
+                let Some(packed) = frame.vertices.get(usize::from(v)) else { continue };
+                positions.push(md2::to_y_up(frame.quake_position(usize::from(v))));
+                normals
+                    .push(md2::to_y_up(md2::NORMALS.get(usize::from(packed[3])).copied().unwrap_or([0.0, 0.0, 1.0])));
+            }
+        }
+        let mut mesh = MorphMesh {
+            vertex_count: sources.len(),
+            positions,
+            normals,
+            tex_coords,
+            indices,
+            sources: sources.iter().map(|&(v, _)| u32::from(v)).collect(),
+            frame_names: model.frames.iter().map(|f| f.name.clone()).collect(),
+            animations: model.animations.clone(),
+            skins: model.skins.clone(),
+            skin_size: [model.skin_width, model.skin_height],
+            source_counts: SourceCounts {
+                vertices: model.vertex_count,
+                triangles: model.triangles.len(),
+                tex_coords: model.tex_coords.len(),
+            },
+            bounds: Aabb::EMPTY,
+            first_bounds: Aabb::EMPTY,
+        };
+        mesh.bounds = bounds_of(&mesh.positions);
+        mesh.first_bounds = bounds_of(mesh.frame_positions(0));
+        mesh
+    }
+
+    /// Every frame's positions per file vertex (before the split per texture
+    /// coordinate; Y-up, file units): what a capture tracks. A file vertex no
+    /// triangle uses stays at the origin.
+    pub fn source_frames(&self) -> Vec<Vec<Vec3>> {
+        (0..self.frame_count())
+            .map(|f| {
+                let mut out = vec![Vec3::ZERO; self.source_counts.vertices];
+                for (p, &v) in self.frame_positions(f).iter().zip(&self.sources) {
+                    if let Some(o) = out.get_mut(v as usize) {
+                        *o = Vec3::from(*p);
+                    }
+                }
+                out
+            })
+            .collect()
+    }
+
+    /// The triangles as file vertex indices.
+    pub fn source_triangles(&self) -> Vec<[usize; 3]> {
+        let at = |i: u32| self.sources.get(i as usize).map_or(0, |&v| v as usize);
+        self.indices.chunks_exact(3).map(|t| [at(t[0]), at(t[1]), at(t[2])]).collect()
+    }
+
+    /// Drawing vertices per frame.
+    pub fn vertex_count(&self) -> usize {
+        self.vertex_count
+    }
+
+    /// Key frames.
+    pub fn frame_count(&self) -> usize {
+        self.frame_names.len()
+    }
+
+    /// Triangle corners: three indices per triangle into the drawing vertices.
+    pub fn indices(&self) -> &[u32] {
+        &self.indices
+    }
+
+    /// Texture coordinates per drawing vertex (0–1 across the skin, rows down).
+    pub fn tex_coords(&self) -> &[[f32; 2]] {
+        &self.tex_coords
+    }
+
+    /// Positions of every frame, frame after frame (Y-up, file units).
+    pub fn positions(&self) -> &[[f32; 3]] {
+        &self.positions
+    }
+
+    /// Unit normals of every frame, laid out as [`MorphMesh::positions`].
+    pub fn normals(&self) -> &[[f32; 3]] {
+        &self.normals
+    }
+
+    /// Positions of one frame (empty when out of range).
+    pub fn frame_positions(&self, frame: usize) -> &[[f32; 3]] {
+        let start = frame.saturating_mul(self.vertex_count);
+        self.positions.get(start..start.saturating_add(self.vertex_count)).unwrap_or(&[])
+    }
+
+    /// Frame names in file order.
+    pub fn frame_names(&self) -> &[String] {
+        &self.frame_names
+    }
+
+    /// Named animations in file order (at least one for a parsed model).
+    pub fn animations(&self) -> &[Animation] {
+        &self.animations
+    }
+
+    /// Bounds of every vertex over every frame (file units).
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// Bounds of the first key frame (file units): the pose a model stands in
+    /// (MD2 models are centred on their origin; their feet are this box's
+    /// bottom, and frames such as deaths reach lower).
+    pub fn first_bounds(&self) -> Aabb {
+        self.first_bounds
+    }
+
+    /// Height of the first frame (file units): the size a unit guess reads.
+    pub fn height(&self) -> f32 {
+        self.first_bounds.size().y
+    }
+
+    /// Largest edge of the first frame's bounds (file units).
+    pub fn extent(&self) -> f32 {
+        self.first_bounds.size().max_element()
+    }
+
+    /// The length unit: MD2 models are all in Quake units, so one guess holds for
+    /// every model (weapons and monsters too), made by the rule every asset uses
+    /// ([`Units::guess`]) on a Quake 2 player's height ([`QUAKE_PLAYER_HEIGHT`]):
+    /// inches. A player then stands 1.42 m tall beside a BVH actor.
+    pub fn units(&self) -> Units {
+        Units::guess(QUAKE_PLAYER_HEIGHT)
+    }
+}
+
+fn bounds_of(points: &[[f32; 3]]) -> Aabb {
+    let mut b = Aabb::EMPTY;
+    points.iter().for_each(|&p| b.include(Vec3::from(p)));
+    b
+}
+
+/// A decoded skin and the file it came from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Skin {
+    /// The image file's name.
+    pub name: String,
+    /// Its pixels.
+    pub image: Arc<Rgba>,
+}
+
+/// Two key frames and the weight of the second: what one draw of a morph mesh needs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MorphSample {
+    /// First key frame (absolute index in the file).
+    pub frame0: usize,
+    /// Second key frame.
+    pub frame1: usize,
+    /// Weight of `frame1`, in `[0, 1)`; 0 when not interpolating.
+    pub blend: f32,
+}
+
+/// A morph mesh on the stage: its skin and the animation it plays.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Model {
+    /// The mesh (shared: the renderer keeps its GPU copy by this).
+    pub mesh: Arc<MorphMesh>,
+    /// The skin it is drawn with; `None` draws a neutral lit material.
+    pub skin: Option<Skin>,
+    animation: Option<usize>,
+}
+
+impl Model {
+    /// A model playing all its frames in file order.
+    pub fn new(mesh: MorphMesh, skin: Option<Skin>) -> Model {
+        Model { mesh: Arc::new(mesh), skin, animation: None }
+    }
+
+    /// The animation playing: an index into [`MorphMesh::animations`], or `None` for
+    /// all frames in file order.
+    pub fn animation(&self) -> Option<usize> {
+        self.animation
+    }
+
+    /// The name of the animation playing, `"all"` for every frame.
+    pub fn animation_name(&self) -> &str {
+        self.animation.and_then(|a| self.mesh.animations.get(a)).map_or("all", |a| a.name.as_str())
+    }
+
+    /// Plays animation `index` (`None`: all frames); false (and no change) when out of range.
+    pub fn set_animation(&mut self, index: Option<usize>) -> bool {
+        if index.is_some_and(|i| i >= self.mesh.animations.len()) {
+            return false;
+        }
+        self.animation = index;
+        true
+    }
+
+    /// Plays the animation named `name` (`"all"` for every frame); false when there is none.
+    pub fn set_animation_by_name(&mut self, name: &str) -> bool {
+        if name == "all" {
+            return self.set_animation(None);
+        }
+        let found = self.mesh.animations.iter().position(|a| a.name == name);
+        found.is_some_and(|i| self.set_animation(Some(i)))
+    }
+
+    /// First and last key frame played (inclusive).
+    pub fn range(&self) -> (usize, usize) {
+        match self.animation.and_then(|a| self.mesh.animations.get(a)) {
+            Some(a) => (a.first, a.last),
+            None => (0, self.mesh.frame_count().saturating_sub(1)),
+        }
+    }
+
+    /// The frames played, [`FRAME_TIME`] apart.
+    pub fn timeline(&self) -> Timeline {
+        let (first, last) = self.range();
+        Timeline::new(FRAME_TIME, last - first + 1)
+    }
+
+    /// The key frames to draw at `time` (seconds into the animation) and the blend
+    /// between them: linear between neighbours, or the frame shown
+    /// ([`Interpolation::Step`], "switch at the frame") or the nearest one
+    /// ([`Interpolation::Nearest`], "switch at the halfway point"). The animation
+    /// loops: past its last frame it blends back into its first and starts again
+    /// (so beside a longer clip it keeps playing, as in the game).
+    pub fn frames_at(&self, time: f64, interpolation: Interpolation) -> MorphSample {
+        let (first, last) = self.range();
+        let n = last - first + 1;
+        // One lap of the loop: the n frames and the way back to the first.
+        let lap = Timeline::new(FRAME_TIME, n + 1);
+        let period = lap.duration();
+        let time =
+            if time > self.timeline().duration() && n > 1 && time.is_finite() { time.rem_euclid(period) } else { time };
+        let wrap = |f: usize| f % n;
+        let FramePosition { frame0, frame1, alpha } = lap.position(time);
+        let (frame0, frame1, blend) = match interpolation {
+            Interpolation::Linear => (frame0, frame1, alpha),
+            Interpolation::Step => (frame0, frame0, 0.0),
+            Interpolation::Nearest => {
+                let f = lap.nearest(time);
+                (f, f, 0.0)
+            }
+        };
+        MorphSample { frame0: first + wrap(frame0), frame1: first + wrap(frame1), blend }
+    }
+
+    /// Bounds of every vertex over the frames played (file units): the floor and
+    /// the camera follow the animation chosen, not the model's whole file.
+    pub fn bounds(&self) -> Aabb {
+        let (first, last) = self.range();
+        let start = first.saturating_mul(self.mesh.vertex_count);
+        let end = (last + 1).saturating_mul(self.mesh.vertex_count);
+        self.mesh.positions.get(start..end).map_or(self.mesh.bounds, bounds_of)
+    }
+
+    /// The name of key frame `frame` (empty when out of range).
+    pub fn frame_name(&self, frame: usize) -> &str {
+        self.mesh.frame_names.get(frame).map_or("", String::as_str)
+    }
+}
+
+/// The last path component of a name, lower-cased (`models/x/Skin.PCX` → `skin.pcx`).
+pub fn file_key(name: &str) -> String {
+    name.rsplit(['/', '\\']).next().unwrap_or(name).to_ascii_lowercase()
+}
+
+/// Which of `images` (file names) belongs to a model named `model_name` with
+/// embedded skin names `skins`: the first image whose file name matches an embedded
+/// skin name (case-insensitive, any folder prefix), else the first whose name
+/// without extension is the model's. `None` when none matches.
+pub fn match_skin(model_name: &str, skins: &[String], images: &[&str]) -> Option<usize> {
+    let wanted: Vec<String> = skins.iter().map(|s| file_key(s)).collect();
+    if let Some(i) = images.iter().position(|name| wanted.contains(&file_key(name))) {
+        return Some(i);
+    }
+    let stem = |n: &str| {
+        let key = file_key(n);
+        key.rsplit_once('.').map_or(key.clone(), |(s, _)| s.to_owned())
+    };
+    let model = stem(model_name);
+    images.iter().position(|name| stem(name) == model)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A two-frame MD2: one triangle whose first corner uses two texture coordinates
+    /// in a second triangle (so it splits), moving up by 2 units between frames.
+    fn model() -> Md2 {
+        let frame = |name: &str, z: f32| md2::Frame {
+            name: name.to_owned(),
+            scale: [1.0; 3],
+            translate: [0.0, 0.0, z],
+            vertices: vec![[0, 0, 0, 5], [10, 0, 0, 5], [0, 0, 20, 5]],
+        };
+        Md2 {
+            skin_width: 64,
+            skin_height: 32,
+            skins: vec!["models/x/Skin.PCX".into()],
+            tex_coords: vec![[0, 0], [64, 0], [0, 32], [32, 16]],
+            triangles: vec![
+                md2::Triangle { vertices: [0, 1, 2], tex_coords: [0, 1, 2] },
+                md2::Triangle { vertices: [0, 2, 1], tex_coords: [3, 2, 1] },
+            ],
+            frames: vec![frame("run1", 0.0), frame("run2", 2.0), frame("jump1", 4.0)],
+            animations: md2::group_animations(["run1", "run2", "jump1"]),
+            vertex_count: 3,
+        }
+    }
+
+    #[test]
+    fn vertices_split_per_texture_coordinate_and_map_by_the_header_size() {
+        let mesh = MorphMesh::from_md2(&model());
+        assert_eq!(mesh.vertex_count(), 4, "vertex 0 is used with two texture coordinates");
+        assert_eq!(mesh.indices(), &[0, 1, 2, 3, 2, 1]);
+        assert_eq!(mesh.tex_coords(), &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5]]);
+        assert_eq!(mesh.frame_count(), 3);
+        assert_eq!(mesh.positions().len(), 12);
+        // Quake (0, 0, 20) is Y-up (0, 20, 0); frame 1 is 2 units higher.
+        assert_eq!(mesh.frame_positions(0)[2], [0.0, 20.0, 0.0]);
+        assert_eq!(mesh.frame_positions(1)[2], [0.0, 22.0, 0.0]);
+        assert_eq!(mesh.frame_positions(1)[3], mesh.frame_positions(1)[0]);
+        assert!(mesh.frame_positions(3).is_empty());
+        assert_eq!(mesh.height(), 20.0);
+        assert_eq!(mesh.bounds().max.y, 24.0);
+        assert!(mesh.normals().iter().all(|n| (Vec3::from(*n).length() - 1.0).abs() < 1e-3));
+    }
+
+    #[test]
+    fn animations_choose_the_frames_and_time_maps_at_ten_per_second() {
+        let mut m = Model::new(MorphMesh::from_md2(&model()), None);
+        assert_eq!(m.animation_name(), "all");
+        assert_eq!(m.timeline().frames(), 3);
+        assert_eq!(m.frames_at(0.15, Interpolation::Linear), MorphSample { frame0: 1, frame1: 2, blend: 0.5 });
+        assert!(m.set_animation_by_name("jump"));
+        assert_eq!(m.range(), (2, 2));
+        assert_eq!(m.frames_at(5.0, Interpolation::Linear), MorphSample { frame0: 2, frame1: 2, blend: 0.0 });
+        assert!(m.set_animation_by_name("run"));
+        assert_eq!(m.frames_at(0.05, Interpolation::Linear), MorphSample { frame0: 0, frame1: 1, blend: 0.5 });
+        // Past its end the animation loops: back into its first frame, then again.
+        assert_eq!(m.frames_at(0.1, Interpolation::Linear), MorphSample { frame0: 1, frame1: 1, blend: 0.0 });
+        assert_eq!(m.frames_at(0.15, Interpolation::Linear), MorphSample { frame0: 1, frame1: 0, blend: 0.5 });
+        assert_eq!(m.frames_at(0.25, Interpolation::Linear), MorphSample { frame0: 0, frame1: 1, blend: 0.5 });
+        assert_eq!(m.frames_at(0.16, Interpolation::Nearest), MorphSample { frame0: 0, frame1: 0, blend: 0.0 });
+        assert_eq!(m.frames_at(0.06, Interpolation::Step), MorphSample { frame0: 0, frame1: 0, blend: 0.0 });
+        assert_eq!(m.frames_at(0.06, Interpolation::Nearest), MorphSample { frame0: 1, frame1: 1, blend: 0.0 });
+        assert_eq!(m.frame_name(1), "run2");
+        assert_eq!((m.bounds().min.y, m.bounds().max.y), (0.0, 22.0), "run's frames only");
+        assert!(!m.set_animation(Some(9)) && !m.set_animation_by_name("walk"));
+        assert_eq!(m.animation_name(), "run");
+    }
+
+    #[test]
+    fn skins_match_by_embedded_name_then_model_name() {
+        let skins = vec!["players/waste/weapon.pcx".to_owned()];
+        assert_eq!(match_skin("weapon.md2", &skins, &["waste.pcx", "dir/WEAPON.PCX"]), Some(1));
+        assert_eq!(match_skin("a/tris.md2", &[], &["waste.pcx", "tris.bmp"]), Some(1));
+        assert_eq!(match_skin("tris.md2", &[], &["waste.pcx"]), None);
+        assert_eq!(match_skin("tris.md2", &skins, &[]), None);
+    }
+}
