@@ -127,11 +127,6 @@ impl FloorCache {
         FloorCache { copies, textures: None, holds: None, previous: None }
     }
 
-    /// Copies only what OpenGL copies, whatever the device (for tests).
-    pub fn limit_to_single_sampled_color(&mut self) {
-        self.copies = Copies::SingleSampledColor;
-    }
-
     /// Plans a frame whose floor is `key` (none: no floor). A floor equal to
     /// the previous frame's is copied from the cache, filled first when it
     /// holds another floor; any other frame draws its floor (`None`).

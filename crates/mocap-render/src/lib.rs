@@ -57,6 +57,8 @@ pub use grid::Grid;
 pub use mesh::{MeshDraw, MorphMeshData, MorphVertex, NEUTRAL_TINT, SkinImage};
 pub use radius::{BODY_THICKNESS, HELPER_BONE, MAX_CARRIED, body_radii, bone_radii, bone_radius, size_figure};
 pub use renderer::SceneRenderer;
+#[cfg(feature = "test-support")]
+pub use renderer::TestPaths;
 pub use scene::{Capsule, Line, Scene, Sphere};
 pub use shadow::key_light_direction;
 pub use skinned::{COARSE_BODY_SPAN_PX, SkinnedDraw, SkinnedMeshData, SkinnedVertex};

@@ -72,8 +72,7 @@ pub struct SceneRenderer {
     floor_cache: FloorCache,
     /// Whether the last frame's floor was copied from the cache.
     floor_copied: bool,
-    /// Whether every capsule gets four corners (tests only; see
-    /// [`SceneRenderer::give_every_capsule_four_corners`]).
+    /// Whether every capsule gets four corners (see [`TestPaths`]).
     four_corners_always: bool,
     line_scratch: Vec<LineInstance>,
     /// The lit capsules' view depths (their middles'), spans in pixels and
@@ -158,6 +157,20 @@ const KEEP: wgpu::BlendComponent = wgpu::BlendComponent {
     operation: wgpu::BlendOperation::Add,
 };
 
+/// Paths a renderer can be made to take whatever the device, so that tests
+/// can compare their pixels with the usual ones (feature `test-support`).
+#[cfg(feature = "test-support")]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TestPaths {
+    /// Give every capsule its quad's four corners, leaving the shader to make
+    /// it one triangle or a rectangle in each pass (capsules small in every
+    /// pass are otherwise given as their triangle alone).
+    pub four_corners_always: bool,
+    /// Copy only the floor's colour of single-sampled frames and draw its
+    /// depth, as on OpenGL.
+    pub floor_color_only: bool,
+}
+
 /// WGSL sources: the shared uniform and lighting code prepended to each shader.
 const LIT_PRELUDE: &str = concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/lighting.wgsl"));
 
@@ -166,6 +179,29 @@ impl SceneRenderer {
     /// need multisampling are drawn with ([`SceneRenderer::samples_for`]).
     /// Pipelines are made when first drawn with.
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat, sample_count: u32) -> SceneRenderer {
+        SceneRenderer::build(device, format, sample_count, Copies::of(device), false)
+    }
+
+    /// A renderer as [`SceneRenderer::new`] makes it, taking the paths `paths`
+    /// chooses whatever the device (tests compare them with the usual ones).
+    #[cfg(feature = "test-support")]
+    pub fn with_test_paths(
+        device: &wgpu::Device,
+        format: wgpu::TextureFormat,
+        sample_count: u32,
+        paths: TestPaths,
+    ) -> SceneRenderer {
+        let copies = if paths.floor_color_only { Copies::SingleSampledColor } else { Copies::of(device) };
+        SceneRenderer::build(device, format, sample_count, copies, paths.four_corners_always)
+    }
+
+    fn build(
+        device: &wgpu::Device,
+        format: wgpu::TextureFormat,
+        sample_count: u32,
+        copies: Copies,
+        four_corners_always: bool,
+    ) -> SceneRenderer {
         let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("mocap frame uniforms"),
             size: std::mem::size_of::<FrameUniforms>() as u64,
@@ -213,9 +249,9 @@ impl SceneRenderer {
             meshes,
             skinned,
             bodies_cast_as_capsules: false,
-            floor_cache: FloorCache::new(Copies::of(device)),
+            floor_cache: FloorCache::new(copies),
             floor_copied: false,
-            four_corners_always: false,
+            four_corners_always,
             line_scratch: Vec::new(),
             capsule_order: Vec::new(),
             sphere_scratch: Vec::new(),
@@ -251,26 +287,10 @@ impl SceneRenderer {
     }
 
     /// How many sets of pipelines (one per sample count, look and shadow
-    /// setting drawn with) are made so far.
-    #[doc(hidden)]
+    /// setting drawn with) are made so far. Shader compilation is slow on some
+    /// platforms: a page whose first frame needs one set should make one.
     pub fn pipeline_sets(&self) -> usize {
         self.pipelines.len()
-    }
-
-    /// Gives every capsule its quad's four corners, leaving the shader to make
-    /// it one triangle or a rectangle in each pass (as before capsules small in
-    /// every pass were given as their triangle alone), so that tests can
-    /// compare both ways' pixels.
-    #[doc(hidden)]
-    pub fn give_every_capsule_four_corners(&mut self) {
-        self.four_corners_always = true;
-    }
-
-    /// Copies only the floor's colour and draws its depth, as on OpenGL, whatever
-    /// the device (so tests exercise that path on any adapter).
-    #[doc(hidden)]
-    pub fn copy_only_the_floors_color(&mut self) {
-        self.floor_cache.limit_to_single_sampled_color();
     }
 
     /// Whether the last frame started from the floor drawn for an earlier one

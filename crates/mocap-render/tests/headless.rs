@@ -998,10 +998,10 @@ fn a_still_camera_starts_each_frame_from_the_floor_drawn_before_with_the_same_pi
     // Copying colour and depth; and as on OpenGL, the colour of single-sampled
     // frames only (the depth drawn), multisampled frames drawing their floor.
     for (samples, color_only) in [(1, false), (4, false), (1, true), (4, true)] {
-        let Some((device, queue, mut renderer, target)) = setup(samples) else { return };
-        if color_only {
-            renderer.copy_only_the_floors_color();
-        }
+        let Some((device, queue, renderer, target)) = setup(samples) else { return };
+        let paths = mocap_render::TestPaths { floor_color_only: color_only, ..Default::default() };
+        let mut renderer =
+            if color_only { SceneRenderer::with_test_paths(&device, FORMAT, samples, paths) } else { renderer };
         let copies = !color_only || samples == 1;
         let samples_label = format!("{samples} samples{}", if color_only { ", colour only" } else { "" });
         // Each frame as a new renderer draws it (its first frame draws its floor).
@@ -1331,7 +1331,8 @@ fn capsules_given_as_their_triangle_alone_draw_the_same_pixels() {
     });
     renderer.render(&device, &queue, &target, &scene, &camera);
     let alone = read_pixels(&device, &queue, &target);
-    renderer.give_every_capsule_four_corners();
+    let paths = mocap_render::TestPaths { four_corners_always: true, ..Default::default() };
+    let mut renderer = SceneRenderer::with_test_paths(&device, FORMAT, 1, paths);
     renderer.render(&device, &queue, &target, &scene, &camera);
     let four = read_pixels(&device, &queue, &target);
     let differ = alone.chunks(4).zip(four.chunks(4)).filter(|(a, b)| a != b).count();
