@@ -223,7 +223,7 @@ pub fn check_download_size(dist: &Path) -> Result<(), String> {
     }
     if flagged && total > DOWNLOAD_AIM {
         return Err(format!(
-            "download size: {total} bytes gzipped, over the {DOWNLOAD_AIM}-byte aim (see README, Performance)"
+            "download size: {total} bytes gzipped, over the {DOWNLOAD_AIM}-byte aim (see docs/performance.md)"
         ));
     }
     Ok(())

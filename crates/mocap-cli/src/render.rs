@@ -3,15 +3,11 @@
 //! sequences and contact sheets. The scene is built from world positions and mesh
 //! frames; the renderer knows no formats.
 
-use mocap::glam::Vec3;
 use mocap::stage::{Actor, Layout, PoseScratch, Stage};
-use mocap::{Asset, Interpolation, Model, Timeline};
-use mocap_render::{
-    Camera, DrawMode, FigureJoint, FigureStyle, Grid, MeshDraw, MorphMeshData, RenderTarget, Scene, SceneRenderer,
-    SkinImage, SkinnedDraw, SkinnedMeshData, wgpu,
-};
+use mocap::{Asset, Interpolation, Timeline};
+use mocap_render::{Camera, DrawMode, RenderTarget, Scene, SceneRenderer, wgpu};
+use mocap_scene::{ActorDraw, Drawable, OrbitCamera, SceneStyle};
 use std::path::Path;
-use std::sync::Arc;
 
 /// Colour format of the offscreen target (sRGB, read back as RGBA8).
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
@@ -19,8 +15,6 @@ const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 /// (`SceneRenderer::samples_for`: scenes without meshes or bodies are smooth on
 /// one sample).
 const SAMPLES: u32 = 4;
-/// Vertical field of view, radians.
-const FOV_Y: f32 = 0.8;
 
 /// Where the camera is: orbit angles in degrees and a distance in file units.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -34,8 +28,10 @@ pub struct Orbit {
 }
 
 impl Default for Orbit {
+    /// The page's default view ([`OrbitCamera::default`]'s angles), framing the whole motion.
     fn default() -> Orbit {
-        Orbit { yaw: 30.0, pitch: 15.0, distance: None }
+        let c = OrbitCamera::default();
+        Orbit { yaw: c.yaw.to_degrees(), pitch: c.pitch.to_degrees(), distance: None }
     }
 }
 
@@ -257,59 +253,11 @@ fn pick<'a>(target: &'a RenderTarget, single: &'a Option<RenderTarget>, use_sing
     single.as_ref().filter(|_| use_single).unwrap_or(target)
 }
 
-/// What `mocap render` draws for one actor: a skeleton's figure or a model's mesh.
-pub enum Look {
-    /// The figure of a clip's skeleton, and its body in body mode (none when the
-    /// skeleton gets none: it keeps its capsules).
-    Figure(Vec<FigureJoint>, Option<Body>),
-    /// A model's mesh on the GPU (none when it cannot be drawn).
-    Mesh(Option<Arc<MorphMeshData>>),
-}
-
-/// A clip's generated body as the renderer draws it.
-pub struct Body {
-    mesh: Arc<SkinnedMeshData>,
-    inverse_bind: Vec<mocap::glam::Mat4>,
-}
-
-/// The body of `clip` ([`mocap::build::body::build`] around its bind pose, tube radii by
-/// [`mocap_render::body_radii`] for a figure of `extent` file units).
-pub fn body(clip: &mocap::Clip, extent: f32) -> Option<Body> {
-    let bind = clip.bind_pose();
-    let joints = clip.skeleton().joints();
-    let radii =
-        mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
-    let skin = mocap::build::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0)).ok()?;
-    let mesh = SkinnedMeshData::new(
-        skin.positions(),
-        skin.normals(),
-        skin.joints(),
-        skin.weights(),
-        skin.indices().to_vec(),
-        clip.skeleton().len(),
-    )
-    .ok()?;
-    Some(Body { mesh: Arc::new(mesh), inverse_bind: skin.inverse_bind().to_vec() })
-}
-
-/// The renderer's copy of a model's mesh and skin ([`MorphMeshData::from_frames`]).
-pub fn mesh_data(model: &Model) -> Option<Arc<MorphMeshData>> {
-    let m = &model.mesh;
-    let skin = model.skin.as_ref().map(|s| SkinImage {
-        width: s.image.width,
-        height: s.image.height,
-        pixels: s.image.pixels.clone(),
-    });
-    MorphMeshData::from_frames(m.vertex_count(), m.positions(), m.normals(), m.tex_coords(), m.indices(), skin)
-        .ok()
-        .map(Arc::new)
-}
-
 /// How `mocap render` draws the shared [`Stage`] (the one the viewer uses: clips
 /// and models in metres by their guessed units, side by side in lanes, one
 /// timeline over all).
 pub struct StageView {
-    stage: Stage<Look>,
+    stage: Stage<Drawable>,
     mode: DrawMode,
     scratch: std::cell::RefCell<(PoseScratch, Vec<mocap::Transform>)>,
 }
@@ -318,19 +266,8 @@ impl StageView {
     /// Places `assets` (name, clip or model) in lanes.
     pub fn new(assets: Vec<(String, Asset)>) -> StageView {
         let actors = assets.into_iter().map(|(name, asset)| {
-            let look = match &asset {
-                Asset::Clip(clip) => Look::Figure(
-                    mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site()))),
-                    None,
-                ),
-                Asset::Model(model) => Look::Mesh(mesh_data(model)),
-            };
-            let mut actor = Actor::new(&name, asset, look);
-            // Bone radii once, in the pose the body is built around (see `body`).
-            if let (Some(clip), Look::Figure(figure, _)) = (actor.asset.clip(), &mut actor.extra) {
-                let bind: Vec<mocap::glam::Vec3> = clip.bind_pose().iter().map(|t| t.translation).collect();
-                mocap_render::size_figure(figure, &bind, actor.extent);
-            }
+            let mut actor = Actor::new(&name, asset, Drawable::default());
+            actor.extra = Drawable::of(&actor.asset, actor.extent);
             actor
         });
         StageView {
@@ -361,10 +298,7 @@ impl StageView {
         self.mode = mode;
         if mode == DrawMode::Body {
             for actor in &mut self.stage.actors {
-                let extent = actor.extent;
-                if let (Look::Figure(_, slot @ None), Some(clip)) = (&mut actor.extra, actor.asset.clip()) {
-                    *slot = body(clip, extent);
-                }
+                actor.extra.ensure_body(actor.asset.clip(), actor.extent);
             }
         }
         self
@@ -380,77 +314,50 @@ impl StageView {
         self.stage.timeline(0).unwrap_or(Timeline::new(mocap::model::time::DEFAULT_FRAME_TIME, 0))
     }
 
-    /// Fills `scene` with the floor and every clip posed at `time` seconds.
+    /// Fills `scene` with the floor and every actor posed at `time` seconds,
+    /// through the scene builder the viewer uses ([`mocap_scene::push_actor`]).
     pub fn scene_at(&self, time: f64, scene: &mut Scene) {
         scene.clear();
-        scene.background = [38, 40, 46, 255];
-        scene.grid = Some(self.floor());
-        let extent = self.stage.extent();
+        scene.grid = Some(mocap_scene::floor_grid(&self.stage));
+        let style = SceneStyle { mode: self.mode, ..SceneStyle::default() };
         let mut scratch = self.scratch.borrow_mut();
         let (pose_scratch, pose) = &mut *scratch;
         for (n, actor) in self.stage.visible() {
-            let (figure, body) = match &actor.extra {
-                Look::Figure(figure, body) => (figure, body.as_ref().filter(|_| self.mode == DrawMode::Body)),
-                Look::Mesh(mesh) => {
-                    if let (Some(mesh), Some(at)) = (mesh, actor.morph_at(time, Interpolation::Linear)) {
-                        let tint = if mesh.has_skin() { [255; 4] } else { mocap_render::NEUTRAL_TINT };
-                        let frames = [at.frame0, at.frame1].map(|f| u32::try_from(f).unwrap_or(u32::MAX));
-                        scene.meshes.push(MeshDraw {
-                            mesh: mesh.clone(),
-                            frames,
-                            blend: at.blend,
-                            transform: actor.world_matrix(),
-                            tint,
-                        });
-                    }
-                    continue;
-                }
-            };
-            actor.pose_at(time, Interpolation::Linear, pose_scratch, pose);
-            let color = mocap_render::PALETTE[n % mocap_render::PALETTE.len()];
-            if let Some(body) = body {
-                let mut matrices = Vec::with_capacity(body.inverse_bind.len());
-                mocap::runtime::skin::skinning_matrices(pose, &body.inverse_bind, &mut matrices);
-                scene.skinned.push(SkinnedDraw {
-                    mesh: body.mesh.clone(),
-                    coarse: None,
-                    matrices,
-                    tint: color,
-                    weights_view: false,
-                });
+            let morph = actor.morph_at(time, Interpolation::Linear);
+            pose.clear();
+            if actor.asset.clip().is_some() {
+                actor.pose_at(time, Interpolation::Linear, pose_scratch, pose);
             }
-            let style = FigureStyle {
-                mode: if self.mode == DrawMode::Body && body.is_none() { DrawMode::Capsules } else { self.mode },
-                color,
-                joint_color: mocap_render::JOINT_COLOR,
-                size: extent,
-                show_joints: true,
-                highlight: None,
+            let draw = ActorDraw {
+                drawable: &actor.extra,
+                pose,
+                morph,
+                world_matrix: actor.world_matrix(),
+                color: mocap_render::PALETTE[n % mocap_render::PALETTE.len()],
+                extent: actor.world_extent(),
+                selected: None,
+                ghost: &[],
             };
-            mocap_render::push_figure(scene, figure, pose, &style);
+            mocap_scene::push_actor(scene, &draw, &style);
         }
     }
 
-    /// A floor at the stage's floor height, with 0.5 m cells.
-    fn floor(&self) -> Grid {
-        let b = self.stage.floor_bounds();
-        Grid::floor(b.min, b.max, self.stage.extent(), 0.5)
+    /// A camera orbiting the stage's centre, framed by the viewer's rule
+    /// ([`OrbitCamera::frame`]) for a view of `size` pixels unless `orbit` sets
+    /// the distance.
+    pub fn camera(&self, orbit: Orbit, size: [u32; 2]) -> Camera {
+        self.orbit_camera(orbit, size).to_camera(size[0] as f32 / size[1].max(1) as f32)
     }
 
-    /// A camera orbiting the motion's centre; the default distance fits it all.
-    pub fn camera(&self, orbit: Orbit, size: [u32; 2]) -> Camera {
-        let aspect = size[0] as f32 / size[1] as f32;
-        let (bounds, extent) = (self.stage.bounds(), self.stage.extent());
-        let (target, radius) = if bounds.is_empty() {
-            (Vec3::ZERO, extent)
-        } else {
-            (bounds.center(), (bounds.size().length() * 0.5).max(extent * 0.5))
-        };
-        let fit = (FOV_Y * 0.5).tan() * aspect.min(1.0);
-        let distance = orbit.distance.unwrap_or(radius / fit * 1.05);
-        let (yaw, pitch) = (orbit.yaw.to_radians(), orbit.pitch.to_radians().clamp(-1.5, 1.5));
-        let direction = Vec3::new(yaw.sin() * pitch.cos(), pitch.sin(), yaw.cos() * pitch.cos());
-        Camera::look_at(target + direction * distance, target, FOV_Y, aspect)
+    /// The orbit camera [`StageView::camera`] draws with.
+    pub fn orbit_camera(&self, orbit: Orbit, size: [u32; 2]) -> OrbitCamera {
+        let mut camera = OrbitCamera { aspect: size[0] as f32 / size[1].max(1) as f32, ..OrbitCamera::default() };
+        camera.set_angles(orbit.yaw.to_radians(), orbit.pitch.to_radians());
+        camera.frame(self.stage.bounds());
+        if let Some(distance) = orbit.distance {
+            camera.distance = distance;
+        }
+        camera
     }
 }
 

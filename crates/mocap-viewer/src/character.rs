@@ -3,12 +3,10 @@
 //! the figure or mesh the renderer draws, children lists for the joint tree, and
 //! its current pose (joint transforms, or the model's two key frames).
 
-use mocap::glam::Mat4;
 use mocap::model::mesh::MorphSample;
 use mocap::stage::{Actor, PoseScratch};
-use mocap::{Asset, Interpolation, Model, Transform};
-use mocap_render::{FigureJoint, MorphMeshData, SkinImage, SkinnedMeshData};
-use std::sync::Arc;
+use mocap::{Asset, Interpolation, Transform};
+use mocap_scene::Drawable;
 
 /// Bone colours given to characters in turn (the renderer's palette).
 pub use mocap_render::PALETTE;
@@ -18,20 +16,15 @@ pub use mocap_render::PALETTE;
 pub struct Look {
     /// Bone colour (sRGB, 0-255).
     pub color: [u8; 4],
-    /// Parents and joint markers, as the renderer draws them.
-    pub figure: Vec<FigureJoint>,
+    /// What it is drawn with: a clip's figure and body, or a model's mesh.
+    pub drawable: Drawable,
     /// Children of each joint, in joint order (for the joint tree).
     pub children: Vec<Vec<usize>>,
     /// World transforms of the last [`pose_at`] (metres, placed), in joint order
     /// (empty for a model).
     pub pose: Vec<Transform>,
-    /// A model's mesh as the renderer draws it (`None` for a clip).
-    pub mesh: Option<Arc<MorphMeshData>>,
     /// A model's key frames at the last [`pose_at`].
     pub morph: Option<MorphSample>,
-    /// The generated body of a clip (body mode), built on first use: `None` not
-    /// tried yet, `Some(None)` when the skeleton gets none (too many bones).
-    pub body: Option<Option<Body>>,
     /// A pose corrected by dragging a joint (Edit mode), shown at its frame.
     pub correction: Option<Correction>,
     /// The clip's own pose (world, metres) while a correction is shown, drawn as a ghost.
@@ -198,65 +191,9 @@ pub fn drag_joint(
     Some(solve)
 }
 
-/// A clip's generated body as the renderer draws it.
-#[derive(Clone, Debug)]
-pub struct Body {
-    /// The bind-pose mesh with its weights.
-    pub mesh: Arc<SkinnedMeshData>,
-    /// The same body cut coarser ([`mocap::build::body::Detail::COARSE`]), for the
-    /// fast look when it is small on screen ([`mocap_render::SkinnedDraw::coarse`]).
-    pub coarse: Option<Arc<SkinnedMeshData>>,
-    /// One inverse bind matrix per joint (file units).
-    pub inverse_bind: Vec<Mat4>,
-}
-
-/// The generated body of a clip whose first pose is `extent` file units across:
-/// [`mocap::build::body::build`] around [`mocap::Clip::bind_pose`], tube radii by
-/// [`mocap_render::body_radii`] (the capsule mode's radii in that pose, thicker).
-/// `None` when the skeleton gets none (too many bones).
-pub fn body_skin(clip: &mocap::Clip, extent: f32) -> Option<mocap::runtime::skin::Skin> {
-    body_skin_with(clip, extent, mocap::build::body::Detail::FULL)
-}
-
-/// [`body_skin`] with tubes cut as `detail` says.
-fn body_skin_with(
-    clip: &mocap::Clip,
-    extent: f32,
-    detail: mocap::build::body::Detail,
-) -> Option<mocap::runtime::skin::Skin> {
-    let bind = clip.bind_pose();
-    let joints = clip.skeleton().joints();
-    let radii =
-        mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
-    mocap::build::body::build_with(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0), detail).ok()
-}
-
-/// Builds the body of a clip character ([`body_skin`]) once; later calls do nothing.
+/// Builds the body of a clip character ([`mocap_scene::body_skin`]) once; later calls do nothing.
 pub fn ensure_body(c: &mut Character) {
-    if c.extra.body.is_some() {
-        return;
-    }
-    let extent = c.extent;
-    let body = c.clip().and_then(|clip| {
-        let skin = body_skin(clip, extent)?;
-        let joints = clip.skeleton().len();
-        let mesh_of = |skin: &mocap::runtime::skin::Skin| {
-            SkinnedMeshData::new(
-                skin.positions(),
-                skin.normals(),
-                skin.joints(),
-                skin.weights(),
-                skin.indices().to_vec(),
-                joints,
-            )
-            .ok()
-        };
-        let mesh = mesh_of(&skin)?;
-        let coarse = body_skin_with(clip, extent, mocap::build::body::Detail::COARSE);
-        let coarse = coarse.as_ref().and_then(mesh_of).map(Arc::new);
-        Some(Body { mesh: Arc::new(mesh), coarse, inverse_bind: skin.inverse_bind().to_vec() })
-    });
-    c.extra.body = Some(body);
+    c.extra.drawable.ensure_body(c.asset.clip(), c.extent);
 }
 
 /// A clip or model on the viewer's stage.
@@ -265,34 +202,13 @@ pub type Character = Actor<Look>;
 /// A visible character named `name`, in the first palette colour no character in
 /// `open` uses.
 pub fn new_character(name: &str, asset: Asset, open: &[Character]) -> Character {
-    let mut look = Look { color: next_color(open), ..Look::default() };
-    match &asset {
-        Asset::Clip(clip) => {
-            look.figure = mocap_render::figure(clip.skeleton().joints().iter().map(|j| (j.parent, !j.is_end_site())));
-            look.children = clip.skeleton().children();
-        }
-        Asset::Model(model) => look.mesh = mesh_data(model),
-    }
+    let look = Look { color: next_color(open), ..Look::default() };
     let mut c = Actor::new(name, asset, look);
-    // Bone radii once, in the pose the body is built around (see body_skin).
+    c.extra.drawable = Drawable::of(&c.asset, c.extent);
     if let Some(clip) = c.asset.clip() {
-        let bind: Vec<mocap::glam::Vec3> = clip.bind_pose().iter().map(|t| t.translation).collect();
-        mocap_render::size_figure(&mut c.extra.figure, &bind, c.extent);
+        c.extra.children = clip.skeleton().children();
     }
     c
-}
-
-/// The renderer's copy of a model's key frames and skin.
-fn mesh_data(model: &Model) -> Option<Arc<MorphMeshData>> {
-    let m = &model.mesh;
-    let skin = model.skin.as_ref().map(|s| SkinImage {
-        width: s.image.width,
-        height: s.image.height,
-        pixels: s.image.pixels.clone(),
-    });
-    MorphMeshData::from_frames(m.vertex_count(), m.positions(), m.normals(), m.tex_coords(), m.indices(), skin)
-        .ok()
-        .map(Arc::new)
 }
 
 /// Poses the character at `time`: interpolated when `smooth`, else the frame shown

@@ -1,6 +1,6 @@
 //! Keyboard shortcuts, turned into [`Action`]s.
 
-use crate::camera::Waypoint;
+use mocap_scene::Waypoint;
 
 /// Something the user asked for from the keyboard or a button.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -11,7 +11,6 @@
 
 #[cfg(target_arch = "wasm32")]
 pub mod app;
-pub mod camera;
 pub mod capture;
 pub mod character;
 pub mod drag;
@@ -35,9 +34,9 @@ pub mod view_state;
 pub mod viewer;
 pub mod viewport;
 
-pub use camera::{OrbitCamera, Waypoint};
 pub use character::{Character, Look};
 pub use layout::Layout;
+pub use mocap_scene::{OrbitCamera, Waypoint};
 pub use notice::{Notice, Outcome};
 pub use panels::Panels;
 pub use playback::Playback;

@@ -5,10 +5,11 @@
 //! The demo's pose is built each frame as a correction of the tentacle's single
 //! frame: slider rotations first, then the solver from there toward the target.
 
-use crate::character::{Body, Character, Correction};
+use crate::character::{Character, Correction};
 use mocap::glam::{Quat, Vec3};
 use mocap::runtime::ik::{self, Chain, Options};
 use mocap_render::SkinnedMeshData;
+use mocap_scene::Body;
 use std::sync::Arc;
 
 /// The IK solvers the demo offers.

@@ -1,7 +1,6 @@
 //! The viewer: the open characters, playback, camera, selection and settings, and
 //! the frame loop that ties them to the UI.
 
-use crate::camera::OrbitCamera;
 use crate::character::{self, Character};
 use crate::keys::{self, Action};
 use crate::layout::Layout;
@@ -15,6 +14,7 @@ use crate::stage::Stage;
 use crate::viewport::Viewport;
 use crate::{pose_scene, ui};
 use mocap_render::Scene;
+use mocap_scene::OrbitCamera;
 
 /// Longest wall-clock step playback takes in one frame (s); longer gaps (a hidden
 /// tab, a debugger) do not make the playhead jump.
@@ -673,7 +673,7 @@ impl Viewer {
         self.settings.mode = DrawMode::Body;
         self.set_playing(false);
         if let Some(c) = self.stage.actors.first_mut() {
-            c.extra.body = Some(c.clip().and_then(|clip| demo.body(clip)));
+            c.extra.drawable.body = Some(c.clip().and_then(|clip| demo.body(clip)));
         }
         self.tentacle = Some(demo);
         self.camera.pitch = 0.15;
@@ -744,7 +744,7 @@ impl Viewer {
     /// Rebuilds the tentacle's skin after the demo's softness changed.
     pub fn refresh_tentacle_skin(&mut self) {
         let (Some(demo), Some(c)) = (&self.tentacle, self.stage.actors.first_mut()) else { return };
-        c.extra.body = Some(c.clip().and_then(|clip| demo.body(clip)));
+        c.extra.drawable.body = Some(c.clip().and_then(|clip| demo.body(clip)));
     }
 
     /// Applies a clip edit ([`mocap::ops::edit`]) to character `character`, as one step

@@ -1,9 +1,9 @@
 //! The 3D view: renders the scene offscreen with `mocap-render` and shows it as an egui image.
 
-use crate::camera::OrbitCamera;
 use crate::drag::{self, Handle, JointDrag, ViewGeometry};
 use crate::quality::{Adaptive, Quality};
 use mocap_render::{Blit, BlitSource, RenderTarget, Scene, SceneRenderer};
+use mocap_scene::OrbitCamera;
 
 /// Colour format of the offscreen image: egui composites in gamma space, so the
 /// scene is drawn with sRGB-encoded colours into a plain unorm texture, like egui's own.
@@ -105,6 +105,8 @@ impl Viewport {
             handle_camera_input(ui, &response, camera);
         }
         let aspect = (rect.width() / rect.height().max(1.0)).max(1e-3);
+        // Framing (OrbitCamera::frame) fits the view's narrower field of view.
+        camera.aspect = aspect;
         self.geometry = Some(ViewGeometry { rect, camera: camera.to_camera(aspect) });
         let Some(rs) = render_state else {
             ui.painter().text(

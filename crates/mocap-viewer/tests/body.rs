@@ -85,7 +85,7 @@ fn the_bodys_bounds_hold_the_posed_body_where_it_is_drawn() {
     v.set_playing(false);
     v.apply_fragment("mode=body");
     let c = &v.stage.actors[0];
-    let skin = mocap_viewer::character::body_skin(c.clip().unwrap(), c.extent).expect("a body");
+    let skin = mocap_scene::body_skin(c.clip().unwrap(), c.extent).expect("a body");
     for frame in [0, 20, 40, 60] {
         v.seek(frame);
         v.pose();

@@ -134,10 +134,8 @@ impl MotionClip {
     fn body(&mut self) -> Option<&mocap::runtime::skin::Skin> {
         if self.body.is_none() {
             let extent = self.clip.pose_extent();
-            self.body = Some(mocap_viewer::character::body_skin(
-                &self.clip,
-                if extent > 0.0 && extent.is_finite() { extent } else { 1.0 },
-            ));
+            self.body =
+                Some(mocap_scene::body_skin(&self.clip, if extent > 0.0 && extent.is_finite() { extent } else { 1.0 }));
         }
         self.body.as_ref().and_then(Option::as_ref)
     }

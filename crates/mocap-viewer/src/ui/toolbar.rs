@@ -1,11 +1,11 @@
 //! Top bar: Open, Add and Share buttons, layout, draw mode, the View menu (panels
 //! and view toggles), foot lock and Edit mode, and the Camera, Edit and Demos menus.
 
-use crate::camera::Waypoint;
 use crate::keys::{Action, HELP};
 use crate::layout::Layout;
 use crate::settings::DrawMode;
 use crate::viewer::{OpenMode, Viewer};
+use mocap_scene::Waypoint;
 
 /// Shows the top panel.
 pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {

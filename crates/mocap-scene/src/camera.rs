@@ -1,4 +1,6 @@
-//! The orbit camera: plain state (target, angles, distance) plus controls.
+//! The orbit camera: plain state (target, angles, distance, the view's shape)
+//! plus controls, and the one rule that frames a stage ([`OrbitCamera::frame`]),
+//! used by the page and `mocap render` alike.
 
 use mocap::Aabb;
 use mocap::glam::Vec3;
@@ -28,11 +30,14 @@ pub struct OrbitCamera {
     pub distance: f32,
     /// Vertical field of view in radians.
     pub fov_y: f32,
+    /// Width over height of the view it frames for (the viewer sets it from the
+    /// view each frame; [`OrbitCamera::frame`] fits the narrower field of view).
+    pub aspect: f32,
 }
 
 impl Default for OrbitCamera {
     fn default() -> OrbitCamera {
-        OrbitCamera { target: Vec3::ZERO, yaw: 0.6, pitch: 0.3, distance: 5.0, fov_y: 0.8 }
+        OrbitCamera { target: Vec3::ZERO, yaw: 0.6, pitch: 0.3, distance: 5.0, fov_y: 0.8, aspect: 1.0 }
     }
 }
 
@@ -51,14 +56,23 @@ impl OrbitCamera {
         Camera::look_at(self.eye(), self.target, self.fov_y, aspect)
     }
 
-    /// Looks at the centre of `bounds` from far enough to see all of it, keeping the angles.
+    /// Looks at the centre of `bounds` from far enough to see all of it, keeping the
+    /// angles: the one camera-fit rule ([`fit_distance`] for the box's enclosing
+    /// sphere in a view of [`OrbitCamera::aspect`]). Empty or non-finite bounds
+    /// change nothing.
     pub fn frame(&mut self, bounds: Aabb) {
         if bounds.is_empty() || !bounds.min.is_finite() || !bounds.max.is_finite() {
             return;
         }
         let radius = (bounds.size().length() * 0.5).max(1e-3);
         self.target = bounds.center();
-        self.distance = radius / (self.fov_y * 0.5).sin() * 1.05;
+        self.distance = fit_distance(radius, self.fov_y, self.aspect);
+    }
+
+    /// Sets the orbit angles (radians), the elevation clamped short of straight up or down.
+    pub fn set_angles(&mut self, yaw: f32, pitch: f32) {
+        self.yaw = yaw;
+        self.pitch = pitch.clamp(-MAX_PITCH, MAX_PITCH);
     }
 
     /// Rotates around the target by pixel deltas.
@@ -93,6 +107,17 @@ impl OrbitCamera {
     }
 }
 
+/// How far from its centre a sphere of `radius` is seen whole, with 5% to spare,
+/// through a view whose vertical field of view is `fov_y` (radians) and whose
+/// width over height is `aspect`: the sphere's angular radius is the narrower
+/// half field of view (vertical, or horizontal in a view taller than wide).
+pub fn fit_distance(radius: f32, fov_y: f32, aspect: f32) -> f32 {
+    let half_y = fov_y * 0.5;
+    let aspect = if aspect.is_finite() && aspect > 0.0 { aspect } else { 1.0 };
+    let half_x = (half_y.tan() * aspect).atan();
+    radius / half_y.min(half_x).sin() * 1.05
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -104,6 +129,24 @@ mod tests {
         assert_eq!(c.target, Vec3::new(0.0, 1.0, 0.0));
         assert!(c.distance > 3.0_f32.sqrt());
         assert!((c.eye() - c.target).length() - c.distance < 1e-4);
+    }
+
+    #[test]
+    fn framing_fits_the_narrower_field_of_view() {
+        let bounds = Aabb { min: Vec3::splat(-1.0), max: Vec3::splat(1.0) };
+        let mut wide = OrbitCamera { aspect: 16.0 / 9.0, ..OrbitCamera::default() };
+        wide.frame(bounds);
+        let mut square = OrbitCamera::default();
+        square.frame(bounds);
+        assert_eq!(wide.distance, square.distance, "a wide view fits the height");
+        let mut tall = OrbitCamera { aspect: 0.5, ..OrbitCamera::default() };
+        tall.frame(bounds);
+        assert!(tall.distance > square.distance * 1.5, "a tall view fits the width");
+        // The sphere touches the narrower edge: its angular radius is the half field of view.
+        let radius = 3.0_f32.sqrt();
+        let seen = (radius / (tall.distance / 1.05)).asin();
+        let half_x = ((0.4_f32).tan() * 0.5).atan();
+        assert!((seen - half_x).abs() < 1e-4);
     }
 
     #[test]

@@ -1,0 +1,113 @@
+//! What an actor is drawn with: a clip's figure (bones and joints, sized once in
+//! its bind pose) and its generated body (built on first use), or a model's mesh.
+
+use mocap::glam::{Mat4, Vec3};
+use mocap::{Asset, Clip, Model};
+use mocap_render::{FigureJoint, MorphMeshData, SkinImage, SkinnedMeshData};
+use std::sync::Arc;
+
+/// A clip's generated body as the renderer draws it.
+#[derive(Clone, Debug)]
+pub struct Body {
+    /// The bind-pose mesh with its weights.
+    pub mesh: Arc<SkinnedMeshData>,
+    /// The same body cut coarser ([`mocap::build::body::Detail::COARSE`]), for the
+    /// fast look when it is small on screen ([`mocap_render::SkinnedDraw::coarse`]).
+    pub coarse: Option<Arc<SkinnedMeshData>>,
+    /// One inverse bind matrix per joint (file units).
+    pub inverse_bind: Vec<Mat4>,
+}
+
+/// What one actor is drawn with.
+#[derive(Clone, Debug, Default)]
+pub struct Drawable {
+    /// Parents, joint markers and bone radii of a clip's figure (empty for a model).
+    pub figure: Vec<FigureJoint>,
+    /// A model's mesh on the GPU side (`None` for a clip, or a model that cannot be drawn).
+    pub mesh: Option<Arc<MorphMeshData>>,
+    /// The generated body of a clip, built on first use ([`Drawable::ensure_body`]):
+    /// `None` not tried yet, `Some(None)` when the skeleton gets none (too many bones).
+    pub body: Option<Option<Body>>,
+}
+
+impl Drawable {
+    /// What `asset` is drawn with: a clip's figure with bone radii for a figure
+    /// `extent` file units across ([`mocap_render::size_figure`], in the pose the
+    /// body is built around), or a model's mesh. No body yet.
+    pub fn of(asset: &Asset, extent: f32) -> Drawable {
+        match asset {
+            Asset::Clip(clip) => {
+                let joints = clip.skeleton().joints();
+                let mut figure = mocap_render::figure(joints.iter().map(|j| (j.parent, !j.is_end_site())));
+                let bind: Vec<Vec3> = clip.bind_pose().iter().map(|t| t.translation).collect();
+                mocap_render::size_figure(&mut figure, &bind, extent);
+                Drawable { figure, ..Drawable::default() }
+            }
+            Asset::Model(model) => Drawable { mesh: mesh_data(model), ..Drawable::default() },
+        }
+    }
+
+    /// Builds the body of `clip` (an actor `extent` file units across) once; later
+    /// calls do nothing. See [`body_skin`].
+    pub fn ensure_body(&mut self, clip: Option<&Clip>, extent: f32) {
+        if self.body.is_none() {
+            self.body = Some(clip.and_then(|clip| build_body(clip, extent)));
+        }
+    }
+
+    /// The body, if built and the skeleton has one.
+    pub fn built_body(&self) -> Option<&Body> {
+        self.body.as_ref().and_then(Option::as_ref)
+    }
+}
+
+/// The generated body of a clip whose first pose is `extent` file units across:
+/// [`mocap::build::body::build`] around [`mocap::Clip::bind_pose`], tube radii by
+/// [`mocap_render::body_radii`] (the capsule mode's radii in that pose, thicker).
+/// `None` when the skeleton gets none (too many bones).
+pub fn body_skin(clip: &Clip, extent: f32) -> Option<mocap::runtime::skin::Skin> {
+    body_skin_with(clip, extent, mocap::build::body::Detail::FULL)
+}
+
+/// [`body_skin`] with tubes cut as `detail` says.
+fn body_skin_with(clip: &Clip, extent: f32, detail: mocap::build::body::Detail) -> Option<mocap::runtime::skin::Skin> {
+    let bind = clip.bind_pose();
+    let joints = clip.skeleton().joints();
+    let radii =
+        mocap_render::body_radii(joints.len(), |j| joints.get(j)?.parent, |j| Some(bind.get(j)?.translation), extent);
+    mocap::build::body::build_with(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0), detail).ok()
+}
+
+/// The body at full detail and its coarse cut, as the renderer draws them.
+fn build_body(clip: &Clip, extent: f32) -> Option<Body> {
+    let skin = body_skin(clip, extent)?;
+    let joints = clip.skeleton().len();
+    let mesh_of = |skin: &mocap::runtime::skin::Skin| {
+        SkinnedMeshData::new(
+            skin.positions(),
+            skin.normals(),
+            skin.joints(),
+            skin.weights(),
+            skin.indices().to_vec(),
+            joints,
+        )
+        .ok()
+    };
+    let mesh = mesh_of(&skin)?;
+    let coarse = body_skin_with(clip, extent, mocap::build::body::Detail::COARSE);
+    let coarse = coarse.as_ref().and_then(mesh_of).map(Arc::new);
+    Some(Body { mesh: Arc::new(mesh), coarse, inverse_bind: skin.inverse_bind().to_vec() })
+}
+
+/// The renderer's copy of a model's key frames and skin ([`MorphMeshData::from_frames`]).
+pub fn mesh_data(model: &Model) -> Option<Arc<MorphMeshData>> {
+    let m = &model.mesh;
+    let skin = model.skin.as_ref().map(|s| SkinImage {
+        width: s.image.width,
+        height: s.image.height,
+        pixels: s.image.pixels.clone(),
+    });
+    MorphMeshData::from_frames(m.vertex_count(), m.positions(), m.normals(), m.tex_coords(), m.indices(), skin)
+        .ok()
+        .map(Arc::new)
+}
