@@ -1,6 +1,7 @@
 //! The eframe app: runs a shared [`Viewer`] each frame with eframe's wgpu state.
 
-use crate::viewer::{OpenMode, Viewer};
+use crate::command::{HostRequest, OpenMode};
+use crate::viewer::Viewer;
 use std::cell::RefCell;
 use std::rc::Rc;
 
@@ -9,7 +10,7 @@ pub struct ViewerApp {
     viewer: Rc<RefCell<Viewer>>,
     on_open_requested: Box<dyn FnMut(OpenMode)>,
     on_share_requested: Box<dyn FnMut()>,
-    on_save_requested: Box<dyn FnMut()>,
+    on_save_requested: Box<dyn FnMut(String, String)>,
     /// The panels' colour, which the window is cleared to (see [`ViewerApp::new`]).
     panel_fill: egui::Color32,
     /// Applies a render scale to the whole window (see [`ViewerApp::on_render_scale`]).
@@ -45,7 +46,7 @@ impl ViewerApp {
             viewer,
             on_open_requested,
             on_share_requested: Box::new(|| {}),
-            on_save_requested: Box::new(|| {}),
+            on_save_requested: Box::new(|_, _| {}),
             panel_fill,
             on_render_scale: None,
             render_scale: 1.0,
@@ -96,9 +97,9 @@ impl ViewerApp {
         }
     }
 
-    /// Sets what runs when the user presses "Save as BVH" (the host saves
-    /// [`Viewer::save_bvh`] of the current character).
-    pub fn on_save(mut self, f: Box<dyn FnMut()>) -> ViewerApp {
+    /// Sets what runs when the viewer asks to save a file ([`HostRequest::Save`]:
+    /// Save as BVH, Save rig): `f` gets the file's name and contents.
+    pub fn on_save(mut self, f: Box<dyn FnMut(String, String)>) -> ViewerApp {
         self.on_save_requested = f;
         self
     }
@@ -116,28 +117,22 @@ impl eframe::App for ViewerApp {
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        let (open, share, save, reduced, view) = {
+        let (requests, reduced, view) = {
             let Ok(mut viewer) = self.viewer.try_borrow_mut() else { return };
-            viewer.ui(ui, frame.wgpu_render_state());
+            let mut requests = viewer.ui(ui, frame.wgpu_render_state());
+            // Requests made by commands from the JS API between frames, too.
+            requests.extend(viewer.take_requests());
             let view = self.on_view_change.is_some().then(|| viewer.view_fragment());
-            (
-                std::mem::take(&mut viewer.open_requested),
-                std::mem::take(&mut viewer.share_requested),
-                std::mem::take(&mut viewer.save_requested),
-                viewer.viewport.reduced,
-                view,
-            )
+            (requests, viewer.viewport.reduced, view)
         };
         self.update_render_scale(ui.ctx(), reduced);
         self.update_view(view);
-        if save {
-            (self.on_save_requested)();
-        }
-        if let Some(mode) = open {
-            (self.on_open_requested)(mode);
-        }
-        if share {
-            (self.on_share_requested)();
+        for request in requests {
+            match request {
+                HostRequest::Save { name, text } => (self.on_save_requested)(name, text),
+                HostRequest::PickFiles(mode) => (self.on_open_requested)(mode),
+                HostRequest::Share => (self.on_share_requested)(),
+            }
         }
     }
 }

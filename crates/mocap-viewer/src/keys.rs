@@ -1,45 +1,21 @@
-//! Keyboard shortcuts, turned into [`Action`]s.
+//! Keyboard shortcuts, turned into [`Command`]s.
 
+use crate::command::Command;
 use mocap_scene::Waypoint;
 
-/// Something the user asked for from the keyboard or a button.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Action {
-    /// Play/pause.
-    TogglePlay,
-    /// Step frames (pauses).
-    Step(isize),
-    /// Go to the first frame of the range.
-    First,
-    /// Go to the last frame of the range.
-    Last,
-    /// Multiply the camera distance.
-    Zoom(f32),
-    /// Orbit by pixels (horizontal).
-    Orbit(f32),
-    /// Jump to a view.
-    Waypoint(Waypoint),
-    /// Toggle following the root.
-    ToggleFollow,
-    /// Toggle bone axes.
-    ToggleAxes,
-    /// Switch between capsules and sticks.
-    ToggleDrawMode,
-    /// Frame the whole motion again.
-    ResetCamera,
-    /// Turn the dragged pose corrections into keys (k in Edit mode with a correction).
-    SetKey,
-    /// Take back the last clip edit (Ctrl+Z).
-    Undo,
-    /// Make the last undone edit again (Ctrl+Shift+Z, Ctrl+Y).
-    Redo,
+/// The keys help: every command with a key, from the command table, and the mouse.
+pub fn help() -> String {
+    let mut parts: Vec<String> = Command::WITH_KEYS
+        .iter()
+        .chain(&[Command::Redo, Command::SetKey])
+        .filter_map(|c| Some(format!("{} {}", c.shortcut()?, c.tooltip_text())))
+        .collect();
+    parts.push("drag: left orbit, right/middle pan, wheel zoom".to_owned());
+    parts.join(" · ")
 }
 
-/// Key bindings, listed for the help text.
-pub const HELP: &str = "Space play/pause · ←/→ step · Home/End first/last · z/Z zoom · j/k orbit · 1 2 3 views · f follow root · a axes · m capsules/sticks/body · r reset view · k in Edit mode: set key · Ctrl+Z undo · Ctrl+Shift+Z / Ctrl+Y redo · drag: left orbit, right/middle pan, wheel zoom";
-
 /// Reads this frame's key presses (ignored while a text field has focus).
-pub fn read_actions(ctx: &egui::Context, out: &mut Vec<Action>) {
+pub fn read_commands(ctx: &egui::Context, out: &mut Vec<Command>) {
     if ctx.egui_wants_keyboard_input() {
         return;
     }
@@ -60,33 +36,33 @@ pub fn read_actions(ctx: &egui::Context, out: &mut Vec<Action>) {
 }
 
 /// Shortcuts with Ctrl (Cmd on a Mac).
-fn command_action(key: egui::Key, shift: bool) -> Option<Action> {
+fn command_action(key: egui::Key, shift: bool) -> Option<Command> {
     match key {
-        egui::Key::Z if shift => Some(Action::Redo),
-        egui::Key::Z => Some(Action::Undo),
-        egui::Key::Y => Some(Action::Redo),
+        egui::Key::Z if shift => Some(Command::Redo),
+        egui::Key::Z => Some(Command::Undo),
+        egui::Key::Y => Some(Command::Redo),
         _ => None,
     }
 }
 
-fn action_for(key: egui::Key, shift: bool) -> Option<Action> {
+fn action_for(key: egui::Key, shift: bool) -> Option<Command> {
     use egui::Key;
     Some(match key {
-        Key::Space => Action::TogglePlay,
-        Key::ArrowLeft => Action::Step(-1),
-        Key::ArrowRight => Action::Step(1),
-        Key::Home => Action::First,
-        Key::End => Action::Last,
-        Key::Z => Action::Zoom(if shift { 1.25 } else { 0.8 }),
-        Key::J => Action::Orbit(-40.0),
-        Key::K => Action::Orbit(40.0),
-        Key::Num1 => Action::Waypoint(Waypoint::Front),
-        Key::Num2 => Action::Waypoint(Waypoint::Side),
-        Key::Num3 => Action::Waypoint(Waypoint::Top),
-        Key::F => Action::ToggleFollow,
-        Key::A => Action::ToggleAxes,
-        Key::M => Action::ToggleDrawMode,
-        Key::R => Action::ResetCamera,
+        Key::Space => Command::TogglePlay,
+        Key::ArrowLeft => Command::Step(-1),
+        Key::ArrowRight => Command::Step(1),
+        Key::Home => Command::First,
+        Key::End => Command::Last,
+        Key::Z => Command::Zoom(if shift { 1.25 } else { 0.8 }),
+        Key::J => Command::Orbit(-40.0),
+        Key::K => Command::Orbit(40.0),
+        Key::Num1 => Command::Waypoint(Waypoint::Front),
+        Key::Num2 => Command::Waypoint(Waypoint::Side),
+        Key::Num3 => Command::Waypoint(Waypoint::Top),
+        Key::F => Command::ToggleFollow,
+        Key::A => Command::ToggleAxes,
+        Key::M => Command::ToggleDrawMode,
+        Key::R => Command::ResetCamera,
         _ => return None,
     })
 }
@@ -97,11 +73,11 @@ mod tests {
 
     #[test]
     fn shift_z_zooms_out() {
-        assert_eq!(action_for(egui::Key::Z, true), Some(Action::Zoom(1.25)));
-        assert_eq!(action_for(egui::Key::Z, false), Some(Action::Zoom(0.8)));
+        assert_eq!(action_for(egui::Key::Z, true), Some(Command::Zoom(1.25)));
+        assert_eq!(action_for(egui::Key::Z, false), Some(Command::Zoom(0.8)));
         assert_eq!(action_for(egui::Key::Q, false), None);
-        assert_eq!(command_action(egui::Key::Z, false), Some(Action::Undo));
-        assert_eq!(command_action(egui::Key::Z, true), Some(Action::Redo));
-        assert_eq!(command_action(egui::Key::Y, false), Some(Action::Redo));
+        assert_eq!(command_action(egui::Key::Z, false), Some(Command::Undo));
+        assert_eq!(command_action(egui::Key::Z, true), Some(Command::Redo));
+        assert_eq!(command_action(egui::Key::Y, false), Some(Command::Redo));
     }
 }

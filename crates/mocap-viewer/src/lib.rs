@@ -13,6 +13,7 @@
 pub mod app;
 pub mod capture;
 pub mod character;
+pub mod command;
 pub mod drag;
 pub mod fonts;
 pub mod history;
@@ -35,6 +36,7 @@ pub mod viewer;
 pub mod viewport;
 
 pub use character::{Character, Look};
+pub use command::{Command, HostRequest, OpenMode};
 pub use layout::Layout;
 pub use mocap_scene::{OrbitCamera, Waypoint};
 pub use notice::{Notice, Outcome};
@@ -45,4 +47,4 @@ pub use settings::ViewSettings;
 pub use snapshot::{ClipSummary, Snapshot};
 pub use stage::Stage;
 pub use view_state::ViewState;
-pub use viewer::{OpenMode, Viewer};
+pub use viewer::Viewer;

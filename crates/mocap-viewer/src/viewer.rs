@@ -2,7 +2,8 @@
 //! the frame loop that ties them to the UI.
 
 use crate::character::{self, Character};
-use crate::keys::{self, Action};
+use crate::command::{Command, HostRequest, OpenMode};
+use crate::keys;
 use crate::layout::Layout;
 use crate::notice::Notice;
 use crate::panels::Panels;
@@ -19,15 +20,6 @@ use mocap_scene::OrbitCamera;
 /// Longest wall-clock step playback takes in one frame (s); longer gaps (a hidden
 /// tab, a debugger) do not make the playhead jump.
 const MAX_STEP: f64 = 0.5;
-
-/// What a file picker the user asked for should do with the files.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum OpenMode {
-    /// Close what is open and open the picked files ("Open…").
-    Replace,
-    /// Add the picked files to what is open ("Add…").
-    Add,
-}
 
 /// A rotation ring being dragged: the joint, the ring's axis and centre, where the
 /// press was (as a vector in the ring's plane and its angle), and the joint's world
@@ -69,10 +61,6 @@ pub struct Viewer {
     /// The banner's message: the last failure to open files or refused action, and
     /// what became of what was open.
     pub error: Option<Notice>,
-    /// Set when the user pressed "Open…" or "Add…"; the host shows a file picker and clears it.
-    pub open_requested: Option<OpenMode>,
-    /// Set when the user pressed "Share"; the host builds the link and clears it.
-    pub share_requested: bool,
     /// Which panels are shown.
     pub panels: Panels,
     /// Reads dropped files; remembers the last Acclaim skeleton for motions dropped alone.
@@ -81,8 +69,6 @@ pub struct Viewer {
     pub tentacle: Option<crate::tentacle::Tentacle>,
     /// Clip edits, for undo and redo.
     pub history: crate::history::History,
-    /// Set when the user pressed "Save as BVH"; the host saves [`Viewer::save_bvh`] and clears it.
-    pub save_requested: bool,
     /// The Layer window, while it is open.
     pub layer_dialog: Option<ui::layer_window::LayerDialog>,
     /// A model capture in progress.
@@ -93,8 +79,6 @@ pub struct Viewer {
     pub capture_rig: Option<mocap::capture::Rig>,
     /// A capture rig being set up on a model.
     pub rig_edit: Option<crate::rig_edit::RigEdit>,
-    /// A file to download instead of the BVH on the next save request (name, text).
-    pub download: Option<(String, String)>,
     /// A character with unsaved edits the user asked to close: the viewer asks first.
     pub pending_close: Option<usize>,
     ring_drag: Option<RingDrag>,
@@ -110,7 +94,10 @@ pub struct Viewer {
     last_time: Option<f64>,
     /// Set by [`Viewer::hold`] while the host reads files.
     held: bool,
-    actions: Vec<Action>,
+    /// Commands sent during this frame, applied after it.
+    commands: Vec<Command>,
+    /// What the page is asked to do, returned by [`Viewer::ui`].
+    requests: Vec<HostRequest>,
     tree_labels: Vec<String>,
 }
 
@@ -416,26 +403,30 @@ impl Viewer {
         Snapshot::of(self, self.tree_labels.clone(), self.viewport.frames_rendered, self.viewport.backend.clone())
     }
 
-    /// Draws the whole UI for one frame and advances playback.
-    pub fn ui(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) {
+    /// Draws the whole UI for one frame and advances playback. Panels and keys
+    /// send [`Command`]s, applied after the frame in order ([`Viewer::apply`]);
+    /// returns what the page is asked to do.
+    pub fn ui(&mut self, ui: &mut egui::Ui, render_state: Option<&egui_wgpu::RenderState>) -> Vec<HostRequest> {
         self.advance_clock(ui.ctx());
-        self.actions.clear();
-        keys::read_actions(ui.ctx(), &mut self.actions);
-        let actions = std::mem::take(&mut self.actions);
-        actions.iter().for_each(|&a| self.apply(a));
-        self.actions = actions;
+        let mut commands = std::mem::take(&mut self.commands);
+        commands.clear();
+        keys::read_commands(ui.ctx(), &mut commands);
+        // Keys act before the panels are drawn, as they always did.
+        for c in commands.drain(..) {
+            self.apply(c);
+        }
 
         if !self.panels.embed {
-            ui::toolbar::show(ui, self);
+            ui::toolbar::show(ui, self, &mut commands);
         }
-        ui::timeline::show(ui, self);
+        ui::timeline::show(ui, self, &mut commands);
         if self.panels.show_inspector() {
-            ui::side::show(ui, self);
+            ui::side::show(ui, self, &mut commands);
         }
         let mut labels = std::mem::take(&mut self.tree_labels);
         labels.clear();
         if self.panels.show_hierarchy() {
-            ui::hierarchy::show(ui, self, &mut labels);
+            ui::hierarchy::show(ui, self, &mut labels, &mut commands);
         }
         self.tree_labels = labels;
 
@@ -453,7 +444,9 @@ impl Viewer {
                 self.playback.playing && !self.stage.actors.is_empty(),
             );
             joint_drag = dragged;
-            ui::overlay::show(ui, &mut self.error, !self.stage.actors.is_empty());
+            if ui::overlay::show(ui, self.error.as_ref(), !self.stage.actors.is_empty()) {
+                commands.push(Command::DismissNotice);
+            }
         });
         if joint_drag.is_none() {
             self.ring_drag = None;
@@ -461,93 +454,244 @@ impl Viewer {
             self.finish_new_bone();
         }
         if let Some(d) = joint_drag {
-            if let Some(grow) =
-                self.grow.as_mut().filter(|g| g.character == d.handle.character && g.parent == d.handle.joint)
-            {
-                // Growing a new bone: its end follows the pointer until release.
-                grow.end = Some(d.target);
-            } else if let Some(axis) = d.handle.ring {
-                self.set_playing(false);
-                self.drag_ring(d, axis);
-            } else if [crate::rig_edit::RIG_JOINT, crate::rig_edit::RIG_SPIN, crate::rig_edit::RIG_PAINT]
-                .contains(&d.handle.character)
-            {
-                self.drag_rig(d.handle, d.target, d.pointer);
-            } else if d.handle.character == crate::drag::TARGET {
-                if let Some(t) = &mut self.tentacle {
-                    t.target = d.target;
-                }
-            } else {
-                let switching = match self.grab {
-                    Some((press, switching)) if press == d.press => switching,
-                    _ => {
-                        let switching = d.handle.character != self.current();
-                        self.grab = Some((d.press, switching));
-                        switching
-                    }
-                };
-                self.set_playing(false);
-                self.selected = Some(Selection { character: d.handle.character, joint: d.handle.joint });
-                if !switching {
-                    self.drag_joint(d.handle.character, d.handle.joint, d.target);
-                }
-            }
+            self.drag(d);
             ui.ctx().request_repaint();
         }
-        if self.tentacle.is_some() {
-            ui::tentacle::show(ui, self);
+        if let Some(tentacle) = &mut self.tentacle {
+            ui::tentacle::show(ui, tentacle, self.settings.show_weights, &mut commands);
         }
-        ui::layer_window::show(ui.ctx(), self);
+        if let Some(dialog) = &mut self.layer_dialog {
+            ui::layer_window::show(ui.ctx(), dialog, &self.stage, &mut commands);
+        }
         if self.step_capture() {
             ui.ctx().request_repaint();
         }
-        self.confirm_close(ui.ctx());
+        if let Some(index) = self.pending_close {
+            let name = self.stage.actors.get(index).map(|c| c.name.as_str());
+            confirm_close(ui.ctx(), index, name, &mut commands);
+        }
+        let applied = !commands.is_empty();
+        for c in commands.drain(..) {
+            self.apply(c);
+        }
+        self.commands = commands;
+        if applied {
+            ui.ctx().request_repaint();
+        }
         if self.playback.playing && !self.stage.actors.is_empty() && !self.held {
             ui.ctx().request_repaint();
         }
+        std::mem::take(&mut self.requests)
     }
 
-    /// Applies a user action.
-    pub fn apply(&mut self, action: Action) {
+    /// A joint, ring, rig handle or the tentacle's target dragged in the view.
+    fn drag(&mut self, d: crate::drag::JointDrag) {
+        if let Some(grow) =
+            self.grow.as_mut().filter(|g| g.character == d.handle.character && g.parent == d.handle.joint)
+        {
+            // Growing a new bone: its end follows the pointer until release.
+            grow.end = Some(d.target);
+        } else if let Some(axis) = d.handle.ring {
+            self.set_playing(false);
+            self.drag_ring(d, axis);
+        } else if [crate::rig_edit::RIG_JOINT, crate::rig_edit::RIG_SPIN, crate::rig_edit::RIG_PAINT]
+            .contains(&d.handle.character)
+        {
+            self.drag_rig(d.handle, d.target, d.pointer);
+        } else if d.handle.character == crate::drag::TARGET {
+            if let Some(t) = &mut self.tentacle {
+                t.target = d.target;
+            }
+        } else {
+            let switching = match self.grab {
+                Some((press, switching)) if press == d.press => switching,
+                _ => {
+                    let switching = d.handle.character != self.current();
+                    self.grab = Some((d.press, switching));
+                    switching
+                }
+            };
+            self.set_playing(false);
+            self.selected = Some(Selection { character: d.handle.character, joint: d.handle.joint });
+            if !switching {
+                self.drag_joint(d.handle.character, d.handle.joint, d.target);
+            }
+        }
+    }
+
+    /// Requests for the page made outside [`Viewer::ui`] (by commands applied
+    /// from the JS API), taken.
+    pub fn take_requests(&mut self) -> Vec<HostRequest> {
+        std::mem::take(&mut self.requests)
+    }
+
+    /// Applies one command (see [`crate::command`]). A refused one shows its
+    /// reason in the banner and changes nothing.
+    pub fn apply(&mut self, command: Command) {
+        if let Err(message) = self.run(command) {
+            self.refuse(message);
+        }
+    }
+
+    /// Executes `command`; `Err` when it was refused.
+    fn run(&mut self, command: Command) -> Result<(), String> {
         let timing = self.timing();
-        match (action, timing) {
-            (Action::TogglePlay, _) => self.set_playing(!self.playback.playing),
-            (Action::Step(d), Some(t)) => self.playback.step(d, t),
-            (Action::First, Some(t)) => {
+        match (command, timing) {
+            (Command::TogglePlay, _) => self.set_playing(!self.playback.playing),
+            (Command::SetPlaying(on), _) => self.set_playing(on),
+            (Command::Step(d), Some(t)) => self.playback.step(d, t),
+            (Command::First, Some(t)) => {
                 let (a, _) = self.playback.frame_range(t);
                 self.playback.seek(a, t);
             }
-            (Action::Last, Some(t)) => {
+            (Command::Last, Some(t)) => {
                 let (_, b) = self.playback.frame_range(t);
                 self.playback.playing = false;
                 self.playback.seek(b, t);
             }
-            (Action::Zoom(f), _) => self.camera.zoom(f),
-            (Action::Orbit(px), _) if px > 0.0 && self.settings.pose_mode && self.has_corrections() => {
+            (Command::Seek(frame), _) => self.seek(frame),
+            (Command::PauseAt(frame), _) => {
+                self.set_playing(false);
+                self.seek(frame);
+            }
+            (Command::SetLooping(on), _) => self.playback.looping = on,
+            (Command::SetSpeed(speed), _) => {
+                if speed.is_finite() && speed > 0.0 {
+                    self.playback.speed = speed;
+                }
+            }
+            (Command::SetRange(range), _) => self.playback.range = range,
+            (Command::Zoom(f), _) => self.camera.zoom(f),
+            (Command::Orbit(px), _) if px > 0.0 && self.settings.pose_mode && self.has_corrections() => {
                 // In Edit mode with a correction, k sets the key instead of orbiting.
-                if let Err(message) = self.set_key() {
-                    self.refuse(message);
+                self.set_key()?;
+            }
+            (Command::Orbit(px), _) => self.camera.orbit(px, 0.0),
+            (Command::Waypoint(w), _) => self.camera.waypoint(w),
+            (Command::ToggleFollow, _) => self.settings.follow_root = !self.settings.follow_root,
+            (Command::ToggleAxes, _) => self.settings.show_axes = !self.settings.show_axes,
+            (Command::ToggleDrawMode, _) => self.settings.mode = self.settings.mode.next(),
+            (Command::SetSettings(settings), _) => self.settings = settings,
+            (Command::SetPanels(panels), _) => self.panels = panels,
+            (Command::SetLayout(layout), _) => self.set_layout(layout),
+            (Command::ResetCamera, _) => self.reset_camera(),
+            (Command::Select { character, joint }, _) => self.select_in(character, joint),
+            (Command::SetVisible(index, on), _) => {
+                self.set_visible(index, on);
+            }
+            (Command::SetAnimation(index, name), _) => {
+                if !self.set_animation(index, &name) {
+                    return Err(format!("no animation `{name}`"));
                 }
             }
-            (Action::Orbit(px), _) => self.camera.orbit(px, 0.0),
-            (Action::Waypoint(w), _) => self.camera.waypoint(w),
-            (Action::ToggleFollow, _) => self.settings.follow_root = !self.settings.follow_root,
-            (Action::ToggleAxes, _) => self.settings.show_axes = !self.settings.show_axes,
-            (Action::ToggleDrawMode, _) => self.settings.mode = self.settings.mode.next(),
-            (Action::ResetCamera, _) => self.reset_camera(),
-            (Action::SetKey, _) => {
-                if let Err(message) = self.set_key() {
-                    self.refuse(message);
+            (Command::SetUpAxis(index, up), _) => {
+                self.set_up_axis(index, up);
+            }
+            (Command::Close(index), _) => {
+                if self.history.edited(index) {
+                    self.pending_close = Some(index);
+                } else {
+                    self.remove(index);
                 }
             }
-            (Action::Undo, _) => {
+            (Command::CloseNow(index), _) => {
+                self.pending_close = None;
+                self.remove(index);
+            }
+            (Command::KeepOpen, _) => self.pending_close = None,
+            (Command::SetKey, _) => {
+                self.set_key()?;
+            }
+            (Command::ResetPose, _) => self.reset_pose(),
+            (Command::StepKey(forward), _) => {
+                self.step_key(forward);
+            }
+            (Command::MoveKey { from, to }, _) => {
+                self.move_key(from, to)?;
+                self.set_playing(false);
+                self.seek(to);
+            }
+            (Command::DeleteKey(frame), _) => self.delete_key(frame)?,
+            (Command::Undo, _) => {
                 self.undo();
             }
-            (Action::Redo, _) => {
+            (Command::Redo, _) => {
                 self.redo();
             }
-            (Action::Step(_) | Action::First | Action::Last, None) => {}
+            (Command::Edit { character, edit, label }, _) => self.edit(character, &edit, &label)?,
+            (Command::AddLayer { character, source, layer }, _) => {
+                self.add_layer(character, source, &layer)?;
+                self.layer_dialog = None;
+            }
+            (Command::RotateJoint { character, joint, rotation }, _) => {
+                self.rotate_joint(character, joint, rotation);
+            }
+            (Command::NewCharacter, _) => self.new_character(),
+            (Command::GrowBone(name), _) => {
+                if !self.grow_bone(&name) {
+                    return Err("select a joint of a clip to grow a bone from".into());
+                }
+            }
+            (Command::RefreshTentacleSkin, _) => self.refresh_tentacle_skin(),
+            (Command::ResizeTentacle(bones), _) => {
+                if let Some(demo) = self.tentacle.clone() {
+                    self.open_tentacle(bones);
+                    if let Some(t) = &mut self.tentacle {
+                        (t.follow, t.solver, t.soft, t.target) = (demo.follow, demo.solver, demo.soft, demo.target);
+                    }
+                    self.refresh_tentacle_skin();
+                }
+            }
+            (Command::CloseTentacle, _) => {
+                self.tentacle = None;
+                self.reset_pose();
+            }
+            (Command::SetOffset(index, offset), _) => {
+                if let Some(c) = self.stage.actors.get_mut(index)
+                    && offset.is_finite()
+                {
+                    c.offset = offset;
+                }
+            }
+            (Command::ShowWeights(on), _) => self.settings.show_weights = on,
+            (Command::OpenLayerDialog { character, joint }, _) => {
+                self.layer_dialog = Some(ui::layer_window::LayerDialog::new(character, &joint));
+            }
+            (Command::CloseLayerDialog, _) => self.layer_dialog = None,
+            (Command::StartCapture(index), _) => self.start_capture(index)?,
+            (Command::FitRig { model, template }, _) => self.start_rig_edit(model, template)?,
+            (Command::SetRigView { show_binding, painting }, _) => {
+                if let Some(e) = &mut self.rig_edit {
+                    (e.show_binding, e.painting) = (show_binding, painting);
+                }
+            }
+            (Command::BindRig, _) => self.bind_rig(),
+            (Command::FinishRigEdit, _) => self.finish_rig_edit(),
+            (Command::OpenTentacle(bones), _) => self.open_tentacle(bones),
+            (Command::Open(mode), _) => self.requests.push(HostRequest::PickFiles(mode)),
+            (Command::Share, _) => self.requests.push(HostRequest::Share),
+            (Command::SaveBvh, _) => {
+                let (name, text) = self.save_bvh(self.current()).ok_or("a model has no motion to save as BVH")?;
+                self.requests.push(HostRequest::Save { name, text });
+            }
+            (Command::SaveCharacter(index), _) => {
+                // Saving saves the current character: make it this one.
+                if self.current() != index {
+                    self.selected = Some(Selection { character: index, joint: 0 });
+                }
+                let (name, text) = self.save_bvh(index).ok_or("a model has no motion to save as BVH")?;
+                self.requests.push(HostRequest::Save { name, text });
+            }
+            (Command::SaveRig, _) => {
+                let (name, text) = self.rig_download().ok_or("no capture rig to save")?;
+                self.requests.push(HostRequest::Save { name, text });
+            }
+            (Command::Refuse(message), _) => return Err(message),
+            (Command::DismissNotice, _) => self.error = None,
+            (Command::Notify(notice), _) => self.error = Some(notice),
+            (Command::Step(_) | Command::First | Command::Last, None) => {}
         }
+        Ok(())
     }
 
     /// Back to the default view angles, framing every visible character's motion.
@@ -924,38 +1068,6 @@ impl Viewer {
         Some((name, mocap::formats::bvh::write(clip)))
     }
 
-    /// Asks whether to close a character whose edits are not saved.
-    fn confirm_close(&mut self, ctx: &egui::Context) {
-        let Some(index) = self.pending_close else { return };
-        let Some(name) = self.stage.actors.get(index).map(|c| c.name.clone()) else {
-            self.pending_close = None;
-            return;
-        };
-        egui::Window::new("Unsaved edits")
-            .collapsible(false)
-            .resizable(false)
-            .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
-            .show(ctx, |ui| {
-                ui.label(format!("{name} has edits that are not saved."));
-                ui.horizontal(|ui| {
-                    if ui.button("Save as BVH").clicked() {
-                        // Saving saves the current character: make it this one.
-                        if self.current() != index {
-                            self.selected = Some(Selection { character: index, joint: 0 });
-                        }
-                        self.save_requested = true;
-                    }
-                    if ui.button("Close without saving").clicked() {
-                        self.pending_close = None;
-                        self.remove(index);
-                    }
-                    if ui.button("Keep it open").clicked() {
-                        self.pending_close = None;
-                    }
-                });
-            });
-    }
-
     /// Turns the pose corrections made by dragging into keys: each character's
     /// correction becomes one undoable edit at its frame: a correction fading over
     /// [`crate::settings::ViewSettings::key_window`] frames on each side
@@ -1075,4 +1187,30 @@ impl Viewer {
     pub fn scene(&self) -> &Scene {
         &self.scene
     }
+}
+
+/// Asks whether to close character `index` (called `name`), whose edits are not saved.
+fn confirm_close(ctx: &egui::Context, index: usize, name: Option<&str>, out: &mut Vec<Command>) {
+    let Some(name) = name else {
+        out.push(Command::KeepOpen);
+        return;
+    };
+    egui::Window::new("Unsaved edits")
+        .collapsible(false)
+        .resizable(false)
+        .anchor(egui::Align2::CENTER_CENTER, egui::vec2(0.0, 0.0))
+        .show(ctx, |ui| {
+            ui.label(format!("{name} has edits that are not saved."));
+            ui.horizontal(|ui| {
+                if ui.button("Save as BVH").clicked() {
+                    out.push(Command::SaveCharacter(index));
+                }
+                if ui.button("Close without saving").clicked() {
+                    out.push(Command::CloseNow(index));
+                }
+                if ui.button("Keep it open").clicked() {
+                    out.push(Command::KeepOpen);
+                }
+            });
+        });
 }

@@ -3,8 +3,8 @@
 //! `m` cycles the three modes, and a skeleton too big for a body keeps capsules.
 
 use mocap_render::DrawMode;
+use mocap_viewer::Command;
 use mocap_viewer::Viewer;
-use mocap_viewer::keys::Action;
 
 const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
 
@@ -48,7 +48,7 @@ fn m_cycles_capsules_sticks_body() {
     v.load("walk.bvh", WALK).unwrap();
     let mut seen = Vec::new();
     for _ in 0..3 {
-        v.apply(Action::ToggleDrawMode);
+        v.apply(Command::ToggleDrawMode);
         seen.push(v.settings.mode);
     }
     assert_eq!(seen, [DrawMode::Sticks, DrawMode::Body, DrawMode::Capsules]);

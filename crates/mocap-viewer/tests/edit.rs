@@ -92,7 +92,9 @@ fn ctrl_z_and_ctrl_shift_z_undo_and_redo() {
             events,
             ..Default::default()
         };
-        let mut out = ctx.run_ui(input, |ui| v.ui(ui, None));
+        let mut out = ctx.run_ui(input, |ui| {
+            v.ui(ui, None);
+        });
         out.textures_delta.clear();
     };
     let camera = v.camera.clone();
@@ -119,7 +121,9 @@ fn closing_an_edited_character_asks_first() {
             screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))),
             ..Default::default()
         };
-        let mut out = ctx.run_ui(input, |ui| v.ui(ui, None));
+        let mut out = ctx.run_ui(input, |ui| {
+            v.ui(ui, None);
+        });
         out.textures_delta.clear();
     };
     // What the × button does for an edited character: ask, keep it open meanwhile.
@@ -235,26 +239,28 @@ fn the_edit_menu_draws_for_clips_models_and_nothing() {
     // The menu's contents, drawn in a plain panel (no clicks): no panic for any state.
     let ctx = egui::Context::default();
     let mut v = Viewer::default();
-    let draw = |v: &mut Viewer| {
+    let draw = |v: &Viewer| {
         let input = egui::RawInput {
             screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(800.0, 1400.0))),
             ..Default::default()
         };
+        let mut commands = Vec::new();
         let mut out = ctx.run_ui(input, |ui| {
-            egui::CentralPanel::default().show(ui, |ui| mocap_viewer::ui::edit_menu::show(ui, v));
+            egui::CentralPanel::default().show(ui, |ui| mocap_viewer::ui::edit_menu::show(ui, v, &mut commands));
         });
         out.textures_delta.clear();
+        assert!(commands.is_empty(), "drawing the menu sends nothing: {commands:?}");
     };
-    draw(&mut v);
+    draw(&v);
     v.load("walk.bvh", WALK).unwrap();
-    draw(&mut v);
+    draw(&v);
     v.select(Some(7));
     v.playback.range = Some((5, 20));
     v.add("wave.bvh", WALK).unwrap();
     v.edit(0, &Edit::Reverse, "Reverse").unwrap();
-    draw(&mut v);
+    draw(&v);
     v.select(Some(5));
-    draw(&mut v);
+    draw(&v);
     assert!(v.error.is_none());
 }
 

@@ -131,7 +131,9 @@ fn the_ui_draws_a_model_with_its_panels() {
             screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))),
             ..Default::default()
         };
-        let mut output = ctx.run_ui(input, |ui| v.ui(ui, None));
+        let mut output = ctx.run_ui(input, |ui| {
+            v.ui(ui, None);
+        });
         output.textures_delta.clear();
         if i == 0 {
             v.set_playing(true);

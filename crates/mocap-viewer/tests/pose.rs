@@ -72,7 +72,9 @@ fn run(ctx: &egui::Context, v: &mut Viewer, time: f64, events: Vec<egui::Event>)
         events,
         ..Default::default()
     };
-    let mut output = ctx.run_ui(input, |ui| v.ui(ui, None));
+    let mut output = ctx.run_ui(input, |ui| {
+        v.ui(ui, None);
+    });
     output.textures_delta.clear();
 }
 

@@ -87,7 +87,9 @@ fn dragging_the_red_sphere_moves_the_target_and_the_tip_follows() {
             events,
             ..Default::default()
         };
-        let mut out = ctx.run_ui(input, |ui| v.ui(ui, None));
+        let mut out = ctx.run_ui(input, |ui| {
+            v.ui(ui, None);
+        });
         out.textures_delta.clear();
     };
     run(&mut v, 0.0, vec![]);

@@ -12,7 +12,9 @@ fn frame(ctx: &egui::Context, viewer: &mut Viewer, time: f64, events: Vec<egui::
         events,
         ..Default::default()
     };
-    let mut output = ctx.run_ui(input, |ui| viewer.ui(ui, None));
+    let mut output = ctx.run_ui(input, |ui| {
+        viewer.ui(ui, None);
+    });
     output.textures_delta.clear();
 }
 
@@ -109,7 +111,9 @@ fn a_held_view_keeps_its_playhead_and_asks_for_no_frames() {
     v.load("walk.bvh", WALK).unwrap();
     let asks_for_frames = |ctx: &egui::Context, v: &mut Viewer, time: f64| {
         let input = egui::RawInput { time: Some(time), ..Default::default() };
-        let mut output = ctx.run_ui(input, |ui| v.ui(ui, None));
+        let mut output = ctx.run_ui(input, |ui| {
+            v.ui(ui, None);
+        });
         output.textures_delta.clear();
         output.viewport_output.values().any(|o| o.repaint_delay.is_zero())
     };

@@ -87,7 +87,7 @@ fn pose_becomes_bones_joints_and_a_floor_in_metres() {
     assert!((1.0..2.5).contains(&height), "height in metres: {height}");
 
     // Sticks: one line per bone, a sphere per joint (not End Sites), casters for shadows.
-    v.apply(mocap_viewer::keys::Action::ToggleDrawMode);
+    v.apply(mocap_viewer::Command::ToggleDrawMode);
     v.settings.shadows = false;
     v.pose();
     let scene = v.scene();

@@ -11,6 +11,8 @@ use wasm_bindgen::prelude::*;
 #[wasm_bindgen]
 pub struct MocapViewer {
     pub(crate) viewer: Rc<RefCell<Viewer>>,
+    /// The last file the viewer asked to save (`HostRequest::Save`), until the page takes it.
+    pub(crate) saved: Rc<RefCell<Option<(String, String)>>>,
     pub(crate) ctx: Rc<RefCell<Option<egui::Context>>>,
     pub(crate) _runner: eframe::WebRunner,
 }
@@ -204,12 +206,11 @@ impl MocapViewer {
         v.save_bvh(index).map(|(name, text)| vec![name, text])
     }
 
-    /// A file the viewer asked to download instead of the BVH (Save rig):
-    /// `[fileName, text]`, taken (asked once), or `undefined`.
+    /// The file the viewer asked to save with its last `mocap-save` event (Save
+    /// as BVH, Save rig): `[fileName, text]`, taken (asked once), or `undefined`.
     #[wasm_bindgen(js_name = takeDownload)]
     pub fn take_download(&self) -> Option<Vec<String>> {
-        let mut v = self.viewer.try_borrow_mut().ok()?;
-        v.download.take().map(|(name, text)| vec![name, text])
+        self.saved.try_borrow_mut().ok()?.take().map(|(name, text)| vec![name, text])
     }
 
     /// Captures the skeletal motion of model `index` (an MD2): with the rig given
@@ -379,13 +380,15 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = setKey)]
     pub fn set_key(&self, window: Option<u32>, between: Option<bool>) -> Option<String> {
         self.with_viewer(|v| {
+            let mut settings = v.settings.clone();
             if let Some(w) = window {
-                v.settings.key_window = w as usize;
-                v.settings.key_between = false;
+                settings.key_window = w as usize;
+                settings.key_between = false;
             }
             if let Some(b) = between {
-                v.settings.key_between = b;
+                settings.key_between = b;
             }
+            v.apply(mocap_viewer::Command::SetSettings(settings));
             v.set_key().err()
         })
         .flatten()
@@ -531,15 +534,17 @@ impl MocapViewer {
     /// was open is still open.
     #[wasm_bindgen(js_name = showError)]
     pub fn show_error(&self, message: &str, opened: Option<bool>) {
-        self.with_viewer(|v| {
-            v.error = Some(mocap_viewer::Notice::open_failed(message.to_owned(), opened.unwrap_or(false)))
-        });
+        let notice = mocap_viewer::Notice::open_failed(message.to_owned(), opened.unwrap_or(false));
+        self.with_viewer(|v| v.apply(mocap_viewer::Command::Notify(notice)));
     }
 
     /// Switches the embed layout (3D view and a minimal timeline) on or off.
     #[wasm_bindgen(js_name = setEmbed)]
     pub fn set_embed(&self, embed: bool) {
-        self.with_viewer(|v| v.panels.embed = embed);
+        self.with_viewer(|v| {
+            let panels = mocap_viewer::Panels { embed, ..v.panels.clone() };
+            v.apply(mocap_viewer::Command::SetPanels(panels));
+        });
     }
 
     /// Closes every character (the view shows a drop hint).

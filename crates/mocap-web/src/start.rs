@@ -68,6 +68,14 @@ async fn start_on(
         web_sys::console::error_1(&format!("default clip: {e}").into());
     }
     let viewer = Rc::new(RefCell::new(viewer));
+    let saved: Rc<RefCell<Option<(String, String)>>> = Rc::default();
+    let app_saved = saved.clone();
+    let save = move |name: String, text: String| {
+        if let Ok(mut slot) = app_saved.try_borrow_mut() {
+            *slot = Some((name, text));
+        }
+        save_event();
+    };
     let ctx: Rc<RefCell<Option<egui::Context>>> = Rc::default();
 
     let open_picker = move |mode: OpenMode| {
@@ -98,18 +106,18 @@ async fn start_on(
                 }
                 let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker))
                     .on_share(Box::new(share_event))
-                    .on_save(Box::new(save_event))
+                    .on_save(Box::new(save))
                     .on_render_scale(Box::new(eframe::web::set_render_scale))
                     .on_view_change(Box::new(view_event));
                 Ok(Box::new(app))
             }),
         )
         .await?;
-    Ok(MocapViewer { viewer, ctx, _runner: runner })
+    Ok(MocapViewer { viewer, saved, ctx, _runner: runner })
 }
 
-/// Tells the page that the user pressed "Save as BVH" (a `mocap-save` event on
-/// `window`; the page calls `saveBvh()` and downloads the file).
+/// Tells the page that the viewer asked to save a file (a `mocap-save` event on
+/// `window`; the page takes it with `takeDownload()` and downloads it).
 fn save_event() {
     let event = web_sys::Event::new("mocap-save");
     if let (Some(window), Ok(event)) = (web_sys::window(), event) {

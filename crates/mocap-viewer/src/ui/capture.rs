@@ -3,10 +3,12 @@
 //! the last capture gave (joints tracked, residuals, joints without vertices, the
 //! animations as frame ranges), and Save rig.
 
+use crate::command::Command;
 use crate::viewer::Viewer;
 
-/// Shows the capture section for model `index`.
-pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
+/// Shows the capture section for model `index`; what the user does comes back
+/// as commands in `out`.
+pub fn show(ui: &mut egui::Ui, viewer: &Viewer, index: usize, out: &mut Vec<Command>) {
     ui.separator();
     ui.heading("Skeleton capture");
     if let Some((done, total)) = viewer.capture_progress() {
@@ -14,7 +16,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
         ui.add(egui::ProgressBar::new(share).show_percentage().text(format!("capturing: step {done} of {total}")));
         return;
     }
-    rig_setup(ui, viewer, index);
+    rig_setup(ui, viewer, index, out);
     let rig_note = if viewer.rig_edit.as_ref().is_some_and(|e| e.model == index) {
         Some("with the rig being set up".to_owned())
     } else {
@@ -22,9 +24,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
     };
     let hint = "Turn the model's vertex animation into skeletal motion: a humanoid fitted in its first frame (or a rig dropped as JSON), four tracked vertices per joint";
     if ui.button("Capture skeleton").on_hover_text(hint).clicked() {
-        if let Err(e) = viewer.start_capture(index) {
-            viewer.refuse(e);
-        }
+        out.push(Command::StartCapture(index));
     }
     ui.label(
         egui::RichText::new(rig_note.unwrap_or_else(|| "automatic fit (drop a rig .json to use yours)".to_owned()))
@@ -37,14 +37,13 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
         .on_hover_text("Download the rig used (JSON); drop it back with the model to capture with it")
         .clicked()
     {
-        viewer.download = viewer.rig_download();
-        viewer.save_requested = true;
+        out.push(Command::SaveRig);
     }
 }
 
 /// Fit skeleton, and while a rig is set up on this model: Bind, painting, the
 /// binding view, Save rig and Done.
-fn rig_setup(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
+fn rig_setup(ui: &mut egui::Ui, viewer: &Viewer, index: usize, out: &mut Vec<Command>) {
     let editing = viewer.rig_edit.as_ref().is_some_and(|e| e.model == index);
     if !editing {
         let clips: Vec<(usize, String)> = viewer
@@ -58,27 +57,24 @@ fn rig_setup(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
         ui.horizontal(|ui| {
             let hint = "Place a skeleton in the model's first frame to adjust by hand: drag its joints and spin handles, bind, paint";
             if ui.button("Fit skeleton").on_hover_text(hint).clicked() {
-                if let Err(e) = viewer.start_rig_edit(index, None) {
-                    viewer.refuse(e);
-                }
+                out.push(Command::FitRig { model: index, template: None });
             }
             for (i, name) in clips {
                 if ui.small_button(format!("fit {name}")).on_hover_text("Fit this clip's skeleton (its first pose) instead of the humanoid").clicked() {
-                    if let Err(e) = viewer.start_rig_edit(index, Some(i)) {
-                        viewer.refuse(e);
-                    }
+                    out.push(Command::FitRig { model: index, template: Some(i) });
                 }
             }
         });
         return;
     }
-    let Some(e) = viewer.rig_edit.as_mut() else { return };
+    let Some(e) = viewer.rig_edit.as_ref() else { return };
+    let (mut show_binding, mut painting) = (e.show_binding, e.painting);
     let selected = e.selected.and_then(|j| e.rig.joints.get(j)).map(|j| j.name.clone());
     ui.label(egui::RichText::new("Drag the crosses (joints) to where they belong and the cyan handles to turn each bone's up; the model shows its set-up frame.").weak());
     ui.label(format!("Selected: {}", selected.as_deref().unwrap_or("none (press a joint)")));
     ui.horizontal(|ui| {
-        ui.checkbox(&mut e.show_binding, "Show binding");
-        ui.add_enabled(selected.is_some(), egui::Checkbox::new(&mut e.painting, "Paint"))
+        ui.checkbox(&mut show_binding, "Show binding");
+        ui.add_enabled(selected.is_some(), egui::Checkbox::new(&mut painting, "Paint"))
             .on_hover_text("Drag over the model: the vertices under the pointer go to the selected joint's bone (the one ending at it)");
     });
     let mut bind = false;
@@ -89,15 +85,17 @@ fn rig_setup(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize) {
         save = ui.button("Save rig").on_hover_text("Download the rig (JSON)").clicked();
         done = ui.button("Done").on_hover_text("Keep the rig for the next capture and stop editing").clicked();
     });
+    if (show_binding, painting) != (e.show_binding, e.painting) {
+        out.push(Command::SetRigView { show_binding, painting });
+    }
     if bind {
-        viewer.bind_rig();
+        out.push(Command::BindRig);
     }
     if save {
-        viewer.download = viewer.rig_download();
-        viewer.save_requested = true;
+        out.push(Command::SaveRig);
     }
     if done {
-        viewer.finish_rig_edit();
+        out.push(Command::FinishRigEdit);
     }
 }
 

@@ -1,19 +1,14 @@
 //! The Edit menu: clip edits on the current character (each one undoable), undo
 //! and redo, and Save as BVH.
 
+use crate::command::{Command, button};
 use crate::viewer::Viewer;
 use mocap::ops::edit::Edit;
 
-/// Shows the Edit menu's entries (inside the toolbar's menu button).
-pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
-    if ui
-        .button("New character")
-        .on_hover_text(
-            "Start a skeleton from one root joint: add joints here, pose them by dragging (Edit mode) and Set key",
-        )
-        .clicked()
-    {
-        viewer.new_character();
+/// Shows the Edit menu's entries (inside the toolbar's menu button); what the
+/// user picks comes back as commands in `out`.
+pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
+    if button(ui, Command::NewCharacter, out) {
         ui.close();
         return;
     }
@@ -85,7 +80,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
             if let Some(offset) = offset {
                 set_offset(ui, joint, offset, &mut edit);
             }
-            layer_menu(ui, viewer, index, joint);
+            layer_menu(ui, index, joint, out);
         }
         None => {
             ui.label(egui::RichText::new("Select a joint to rename or remove it").weak());
@@ -94,34 +89,31 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
     ui.separator();
     let undo = viewer.history.next_undo().map(|l| format!("Undo {l} (Ctrl+Z)"));
     if ui.add_enabled(undo.is_some(), egui::Button::new(undo.as_deref().unwrap_or("Undo (Ctrl+Z)"))).clicked() {
-        viewer.undo();
+        out.push(Command::Undo);
     }
     let redo = viewer.history.next_redo().map(|l| format!("Redo {l} (Ctrl+Shift+Z)"));
     if ui.add_enabled(redo.is_some(), egui::Button::new(redo.as_deref().unwrap_or("Redo (Ctrl+Shift+Z)"))).clicked() {
-        viewer.redo();
+        out.push(Command::Redo);
     }
     ui.separator();
-    if ui.button("Save as BVH").on_hover_text("Download this character with every edit baked in").clicked() {
-        viewer.save_requested = true;
+    if button(ui, Command::SaveBvh, out) {
         ui.close();
     }
     if let Some(name) = grow {
-        viewer.grow_bone(&name);
+        out.push(Command::GrowBone(name));
         ui.close();
     }
-    if let Some((e, label)) = edit {
-        if let Err(message) = viewer.edit(index, &e, &label) {
-            viewer.refuse(message);
-        }
+    if let Some((edit, label)) = edit {
+        out.push(Command::Edit { character: index, edit, label });
         ui.close();
     }
 }
 
 /// Opens the Layer window for the selected joint's subtree.
-fn layer_menu(ui: &mut egui::Ui, viewer: &mut Viewer, index: usize, joint: &str) {
+fn layer_menu(ui: &mut egui::Ui, index: usize, joint: &str, out: &mut Vec<Command>) {
     let hint = "Play another open clip on this joint's subtree: weight, fades, override or additive, and which joint plays which";
     if ui.button(format!("Layer on {joint}'s subtree…")).on_hover_text(hint).clicked() {
-        viewer.layer_dialog = Some(super::layer_window::LayerDialog::new(index, joint));
+        out.push(Command::OpenLayerDialog { character: index, joint: joint.to_owned() });
         ui.close();
     }
 }

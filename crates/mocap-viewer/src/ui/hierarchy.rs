@@ -8,6 +8,7 @@
 //! [`MAX_INDENT_LEVELS`] and show their depth instead.
 
 use crate::character::Character;
+use crate::command::Command;
 use crate::selection::Selection;
 use crate::viewer::Viewer;
 use std::collections::HashSet;
@@ -40,7 +41,7 @@ struct Folded {
 }
 
 /// Shows the hierarchy panel; records the label of every listed joint in `labels`.
-pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
+pub fn show(ui: &mut egui::Ui, viewer: &Viewer, labels: &mut Vec<String>, out: &mut Vec<Command>) {
     egui::Panel::left("hierarchy").resizable(true).default_size(240.0).show(ui, |ui| {
         ui.heading("Characters");
         let folded_id = egui::Id::unique("hierarchy-folded");
@@ -70,15 +71,15 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
             for row in rows.get(range).unwrap_or(&[]) {
                 match *row {
                     Row::Header(c) => {
-                        if let Some(character) = viewer.stage.actors.get_mut(c) {
-                            if header_row(ui, c, character, &mut folded) {
+                        if let Some(character) = viewer.stage.actors.get(c) {
+                            if header_row(ui, c, character, &mut folded, out) {
                                 remove = Some(c);
                             }
                         }
                     }
                     Row::Offset(c) => {
-                        if let Some(character) = viewer.stage.actors.get_mut(c) {
-                            offset_row(ui, character);
+                        if let Some(character) = viewer.stage.actors.get(c) {
+                            offset_row(ui, c, character, out);
                         }
                     }
                     Row::Animation(c) => {
@@ -101,18 +102,15 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer, labels: &mut Vec<String>) {
             d.insert_temp(folded_id, folded);
         });
         if selected != viewer.selected {
-            viewer.selected = selected;
+            let (character, joint) = selected.map_or((viewer.current(), None), |s| (s.character, Some(s.joint)));
+            out.push(Command::Select { character, joint });
         }
         if let Some((index, name)) = animation {
-            viewer.set_animation(index, &name);
+            out.push(Command::SetAnimation(index, name));
         }
         if let Some(index) = remove {
             // A character with unsaved edits is closed only after asking.
-            if viewer.history.edited(index) {
-                viewer.pending_close = Some(index);
-            } else {
-                viewer.remove(index);
-            }
+            out.push(Command::Close(index));
         }
     });
 }
@@ -192,7 +190,7 @@ fn fold_toggle(ui: &mut egui::Ui, open: bool) -> bool {
 }
 
 /// One character's header row. Returns whether "remove" was pressed.
-fn header_row(ui: &mut egui::Ui, index: usize, c: &mut Character, folded: &mut Folded) -> bool {
+fn header_row(ui: &mut egui::Ui, index: usize, c: &Character, folded: &mut Folded, out: &mut Vec<Command>) -> bool {
     let mut remove = false;
     ui.horizontal(|ui| {
         let open = !folded.characters.contains(&index);
@@ -200,7 +198,10 @@ fn header_row(ui: &mut egui::Ui, index: usize, c: &mut Character, folded: &mut F
             folded.characters.insert(index);
         }
         swatch(ui, c.extra.color);
-        ui.checkbox(&mut c.visible, "").on_hover_text("Show this character");
+        let mut visible = c.visible;
+        if ui.checkbox(&mut visible, "").on_hover_text("Show this character").changed() {
+            out.push(Command::SetVisible(index, visible));
+        }
         let name = egui::RichText::new(format!("{}. {}", index + 1, c.name)).strong();
         ui.label(if c.visible { name } else { name.weak() }).on_hover_text(&c.name);
         remove = ui.small_button("×").on_hover_text("Close this character").clicked();
@@ -216,14 +217,18 @@ fn swatch(ui: &mut egui::Ui, color: [u8; 4]) {
 }
 
 /// The hand-set offset in metres (on top of the layout's).
-fn offset_row(ui: &mut egui::Ui, c: &mut Character) {
+fn offset_row(ui: &mut egui::Ui, index: usize, c: &Character, out: &mut Vec<Command>) {
+    let mut offset = c.offset;
     ui.horizontal(|ui| {
         ui.add_space(INDENT);
         ui.label("offset").on_hover_text("Moves this character (metres), on top of the layout");
-        for (value, axis) in [(&mut c.offset.x, "x "), (&mut c.offset.y, "y "), (&mut c.offset.z, "z ")] {
+        for (value, axis) in [(&mut offset.x, "x "), (&mut offset.y, "y "), (&mut offset.z, "z ")] {
             ui.add(egui::DragValue::new(value).speed(0.01).max_decimals(2).prefix(axis));
         }
     });
+    if offset != c.offset {
+        out.push(Command::SetOffset(index, offset));
+    }
 }
 
 /// A model's animation chooser: "all" (every frame in file order) or one named

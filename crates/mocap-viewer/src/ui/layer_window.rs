@@ -3,7 +3,8 @@
 //! joint of the subtree, proposed by name across the common conventions and
 //! changeable (or left out) joint by joint. "Layer" makes it one undoable edit.
 
-use crate::viewer::Viewer;
+use crate::command::Command;
+use crate::stage::Stage;
 use mocap::ops::layer::{self, Blend, Layer};
 
 /// What the Layer window is set to.
@@ -60,15 +61,13 @@ struct Row {
 }
 
 /// Shows the Layer window while it is open.
-pub fn show(ctx: &egui::Context, viewer: &mut Viewer) {
-    let Some(mut dialog) = viewer.layer_dialog.take() else { return };
-    let Some(base_name) =
-        viewer.stage.actors.get(dialog.character).filter(|c| c.clip().is_some()).map(|c| c.name.clone())
+pub fn show(ctx: &egui::Context, dialog: &mut LayerDialog, stage: &Stage, out: &mut Vec<Command>) {
+    let Some(base_name) = stage.actors.get(dialog.character).filter(|c| c.clip().is_some()).map(|c| c.name.clone())
     else {
+        out.push(Command::CloseLayerDialog);
         return;
     };
-    let others: Vec<(usize, String)> = viewer
-        .stage
+    let others: Vec<(usize, String)> = stage
         .actors
         .iter()
         .enumerate()
@@ -79,7 +78,7 @@ pub fn show(ctx: &egui::Context, viewer: &mut Viewer) {
         dialog.source = others.first().map(|(i, _)| *i);
         dialog.map.clear();
     }
-    let (rows, names) = dialog.source.map_or_else(|| (Vec::new(), Vec::new()), |s| mapping(viewer, &dialog, s));
+    let (rows, names) = dialog.source.map_or_else(|| (Vec::new(), Vec::new()), |s| mapping(stage, dialog, s));
     let mut open = true;
     let mut apply = false;
     egui::Window::new(format!("Layer on {}", dialog.joint))
@@ -135,22 +134,17 @@ pub fn show(ctx: &egui::Context, viewer: &mut Viewer) {
                 }
             });
         });
-    if apply {
-        if let Some(source) = dialog.source {
-            match viewer.add_layer(dialog.character, source, &dialog.layer()) {
-                Ok(()) => return,
-                Err(message) => viewer.refuse(message),
-            }
-        }
+    if apply && let Some(source) = dialog.source {
+        out.push(Command::AddLayer { character: dialog.character, source, layer: dialog.layer() });
     }
-    if open {
-        viewer.layer_dialog = Some(dialog);
+    if !open {
+        out.push(Command::CloseLayerDialog);
     }
 }
 
 /// The mapping rows of the subtree and the layer's joint names (End Sites aside).
-fn mapping(viewer: &Viewer, dialog: &LayerDialog, source: usize) -> (Vec<Row>, Vec<String>) {
-    let clip = |i: usize| viewer.stage.actors.get(i).and_then(|c| c.clip());
+fn mapping(stage: &Stage, dialog: &LayerDialog, source: usize) -> (Vec<Row>, Vec<String>) {
+    let clip = |i: usize| stage.actors.get(i).and_then(|c| c.clip());
     let (Some(base), Some(other)) = (clip(dialog.character), clip(source)) else { return (Vec::new(), Vec::new()) };
     let (bs, ls) = (base.skeleton(), other.skeleton());
     let names =

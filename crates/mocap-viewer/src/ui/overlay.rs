@@ -2,12 +2,12 @@
 
 use crate::notice::Notice;
 
-/// Shows the banner for `notice` (with a close button, which clears it) over the
-/// view, and a hint to drop files when nothing is open.
-pub fn show(ui: &mut egui::Ui, notice: &mut Option<Notice>, anything_open: bool) {
+/// Shows the banner for `notice` over the view, and a hint to drop files when
+/// nothing is open; returns whether the banner's Close was pressed.
+pub fn show(ui: &mut egui::Ui, notice: Option<&Notice>, anything_open: bool) -> bool {
     let rect = ui.max_rect();
     let mut close = false;
-    if let Some(n) = notice.as_ref() {
+    if let Some(n) = notice {
         let area = egui::Area::new(egui::Id::unique("mocap-error")).fixed_pos(rect.left_top() + egui::vec2(12.0, 12.0));
         area.show(ui.ctx(), |ui| {
             egui::Frame::popup(ui.style()).fill(egui::Color32::from_rgb(90, 20, 24)).show(ui, |ui| {
@@ -22,9 +22,6 @@ pub fn show(ui: &mut egui::Ui, notice: &mut Option<Notice>, anything_open: bool)
             });
         });
     }
-    if close {
-        *notice = None;
-    }
     if !anything_open {
         ui.painter().text(
             rect.center(),
@@ -34,4 +31,5 @@ pub fn show(ui: &mut egui::Ui, notice: &mut Option<Notice>, anything_open: bool)
             egui::Color32::GRAY,
         );
     }
+    close
 }

@@ -2,12 +2,13 @@
 //! (forward kinematics), following the target by IK with a chosen solver, soft or
 //! rigid skin, and the weights view.
 
-use crate::tentacle::Solver;
-use crate::viewer::Viewer;
+use crate::command::Command;
+use crate::tentacle::{Solver, Tentacle};
 
-/// Shows the demo window (when the demo is open).
-pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
-    let Some(mut demo) = viewer.tentacle.clone() else { return };
+/// Shows the demo window, editing `demo` (the demo's own state) in place; what
+/// reaches outside it (its skin, the weights view, closing) comes back in `out`.
+pub fn show(ui: &mut egui::Ui, demo: &mut Tentacle, show_weights: bool, out: &mut Vec<Command>) {
+    let mut weights = show_weights;
     let mut open = true;
     let mut rebuild = None;
     egui::Window::new("Bendy tentacle").open(&mut open).default_pos(egui::pos2(260.0, 60.0)).resizable(false).show(
@@ -32,7 +33,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                     .on_hover_text("Vertices blended across each joint: a smooth bend");
                 ui.selectable_value(&mut demo.soft, false, "Rigid skin")
                     .on_hover_text("Each vertex on one bone: a crease at each joint");
-                ui.checkbox(&mut viewer.settings.show_weights, "Weights");
+                ui.checkbox(&mut weights, "Weights");
             });
             if soft != demo.soft {
                 rebuild = rebuild.or(Some(0));
@@ -52,22 +53,14 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
         },
     );
     match rebuild {
-        Some(0) => {
-            viewer.tentacle = Some(demo);
-            viewer.refresh_tentacle_skin();
-        }
-        Some(bones) => {
-            let (follow, solver, soft, target) = (demo.follow, demo.solver, demo.soft, demo.target);
-            viewer.open_tentacle(bones);
-            if let Some(t) = &mut viewer.tentacle {
-                (t.follow, t.solver, t.soft, t.target) = (follow, solver, soft, target);
-            }
-            viewer.refresh_tentacle_skin();
-        }
-        None => viewer.tentacle = Some(demo),
+        Some(0) => out.push(Command::RefreshTentacleSkin),
+        Some(bones) => out.push(Command::ResizeTentacle(bones)),
+        None => {}
+    }
+    if weights != show_weights {
+        out.push(Command::ShowWeights(weights));
     }
     if !open {
-        viewer.tentacle = None;
-        viewer.reset_pose();
+        out.push(Command::CloseTentacle);
     }
 }

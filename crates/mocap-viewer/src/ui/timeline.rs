@@ -1,12 +1,12 @@
 //! Bottom panel: transport buttons, scrub bar, loop, speed and loop range, over
 //! the longest clip, counted in frames of the current character.
 
-use crate::keys::Action;
+use crate::command::{Command, button};
 use crate::playback::SPEED_RANGE;
 use crate::viewer::Viewer;
 
-/// Shows the timeline panel.
-pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
+/// Shows the timeline panel; what the user does comes back as commands in `out`.
+pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
     egui::Panel::bottom("timeline").show(ui, |ui| {
         ui.add_space(4.0);
         let Some(timing) = viewer.timing() else {
@@ -16,93 +16,92 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
         let frame = viewer.playback.frame(timing);
         let play = if viewer.playback.playing { "Pause" } else { "Play" };
         if viewer.panels.embed {
-            minimal(ui, viewer, play, frame, timing);
+            minimal(ui, play, frame, timing, out);
             return;
         }
+        let mut settings = viewer.settings.clone();
         ui.horizontal(|ui| {
-            let mut act = |ui: &mut egui::Ui, text: &str, hint: &str, action: Action| {
-                if ui.button(text).on_hover_text(hint).clicked() {
-                    viewer.apply(action);
-                }
-            };
-            act(ui, "|<", "First frame (Home)", Action::First);
-            act(ui, "<", "Step back (←)", Action::Step(-1));
-            act(ui, play, "Play / pause (Space)", Action::TogglePlay);
-            act(ui, ">", "Step forward (→)", Action::Step(1));
-            act(ui, ">|", "Last frame (End)", Action::Last);
+            button(ui, Command::First, out);
+            button(ui, Command::Step(-1), out);
+            if ui.button(play).on_hover_text(Command::TogglePlay.tooltip()).clicked() {
+                out.push(Command::TogglePlay);
+            }
+            button(ui, Command::Step(1), out);
+            button(ui, Command::Last, out);
             if viewer.has_corrections() {
                 // Keying sits here, on the timeline's row, so the view above never moves.
                 ui.separator();
-                if ui.button("Set key").on_hover_text("Key the corrected pose at this frame (k)").clicked() {
-                    viewer.apply(Action::SetKey);
-                }
-                key_mode(ui, &mut viewer.settings);
-                if ui.button("Reset pose").on_hover_text("Forget the poses corrected by dragging").clicked() {
-                    viewer.reset_pose();
-                }
+                button(ui, Command::SetKey, out);
+                key_mode(ui, &mut settings);
+                button(ui, Command::ResetPose, out);
             }
             if !viewer.history.keys(viewer.current()).is_empty() {
                 ui.separator();
                 if ui.button("◀ key").on_hover_text("Previous keyed frame").clicked() {
-                    viewer.step_key(false);
+                    out.push(Command::StepKey(false));
                 }
                 if ui.button("key ▶").on_hover_text("Next keyed frame").clicked() {
-                    viewer.step_key(true);
+                    out.push(Command::StepKey(true));
                 }
                 let here = viewer.frame();
                 if viewer.history.keys(viewer.current()).contains(&here) {
-                    let mut result = None;
                     if ui.button("← move").on_hover_text("Move this key one frame earlier").clicked() && here > 0 {
-                        result = Some(viewer.move_key(here, here - 1).map(|()| here - 1));
+                        out.push(Command::MoveKey { from: here, to: here - 1 });
                     }
                     if ui.button("move →").on_hover_text("Move this key one frame later").clicked() && here < timing.last() {
-                        result = Some(viewer.move_key(here, here + 1).map(|()| here + 1));
+                        out.push(Command::MoveKey { from: here, to: here + 1 });
                     }
                     if ui.button("× key").on_hover_text("Delete this key (later edits are made again)").clicked() {
-                        result = Some(viewer.delete_key(here).map(|()| here));
-                    }
-                    match result {
-                        Some(Ok(frame)) => viewer.seek(frame),
-                        Some(Err(message)) => viewer.refuse(message),
-                        None => {}
+                        out.push(Command::DeleteKey(here));
                     }
                 }
             }
         });
+        if settings != viewer.settings {
+            out.push(Command::SetSettings(settings));
+        }
         ui.horizontal(|ui| {
             let counted_in = viewer.current_character().map_or(String::new(), |d| format!("Frames of {} ({:.2} fps)", d.name, 1.0 / d.asset.timeline().frame_time()));
             ui.monospace(format!("frame {frame:>5} / {}   {:>8.3} s", timing.last(), viewer.playback.time))
                 .on_hover_text(format!("{counted_in}: the selected joint's character, else the first. The timeline spans the longest clip; shorter ones hold their last pose."));
             ui.separator();
-            ui.checkbox(&mut viewer.playback.looping, "Loop");
-            ui.add(
-                egui::Slider::new(&mut viewer.playback.speed, SPEED_RANGE)
-                    .logarithmic(true)
-                    .text("speed")
-                    .suffix("×")
-                    .max_decimals(2),
-            );
+            let mut looping = viewer.playback.looping;
+            if ui.checkbox(&mut looping, "Loop").changed() {
+                out.push(Command::SetLooping(looping));
+            }
+            let mut speed = viewer.playback.speed;
+            let slider = egui::Slider::new(&mut speed, SPEED_RANGE)
+                .logarithmic(true)
+                .text("speed")
+                .suffix("×")
+                .max_decimals(2);
+            if ui.add(slider).changed() {
+                out.push(Command::SetSpeed(speed));
+            }
         });
         ui.horizontal(|ui| {
             let mut f = frame;
             ui.spacing_mut().slider_width = (ui.available_width() - 60.0).max(100.0);
             let slider = frame_slider(ui, &mut f, timing.last());
             if slider.changed() {
-                viewer.playback.seek(f, timing);
+                out.push(Command::Seek(f));
             }
             if viewer.settings.foot_lock {
                 contact_marks(ui, viewer, &slider, timing);
             }
-            key_marks(ui, viewer, &slider, timing);
+            key_marks(ui, viewer, &slider, timing, out);
         });
         ui.horizontal(|ui| {
             let mut on = viewer.playback.range.is_some();
             if ui.checkbox(&mut on, "Loop range").changed() {
-                viewer.playback.range = on.then_some((frame, timing.last()));
+                out.push(Command::SetRange(on.then_some((frame, timing.last()))));
             }
-            if let Some((a, b)) = &mut viewer.playback.range {
-                ui.add(egui::DragValue::new(a).range(0..=timing.last()).prefix("from "));
-                ui.add(egui::DragValue::new(b).range(0..=timing.last()).prefix("to "));
+            if let Some((mut a, mut b)) = viewer.playback.range {
+                let from = ui.add(egui::DragValue::new(&mut a).range(0..=timing.last()).prefix("from "));
+                let to = ui.add(egui::DragValue::new(&mut b).range(0..=timing.last()).prefix("to "));
+                if from.changed() || to.changed() {
+                    out.push(Command::SetRange(Some((a, b))));
+                }
             }
         });
         ui.add_space(2.0);
@@ -134,7 +133,13 @@ fn contact_marks(ui: &egui::Ui, viewer: &Viewer, slider: &egui::Response, timing
 /// The current character's keyed frames as small diamonds on the scrub bar. A
 /// diamond can be dragged along the bar: a ghost follows the pointer, snapped to
 /// frames, and the key moves there (one undoable step) where it is let go.
-fn key_marks(ui: &egui::Ui, viewer: &mut Viewer, slider: &egui::Response, timing: crate::playback::Timing) {
+fn key_marks(
+    ui: &egui::Ui,
+    viewer: &Viewer,
+    slider: &egui::Response,
+    timing: crate::playback::Timing,
+    out: &mut Vec<Command>,
+) {
     let keys = viewer.history.keys(viewer.current());
     if keys.is_empty() {
         return;
@@ -176,13 +181,7 @@ fn key_marks(ui: &egui::Ui, viewer: &mut Viewer, slider: &egui::Response, timing
         }
     }
     if let Some((from, to)) = moved {
-        match viewer.move_key(from, to) {
-            Ok(()) => {
-                viewer.set_playing(false);
-                viewer.seek(to);
-            }
-            Err(message) => viewer.refuse(message),
-        }
+        out.push(Command::MoveKey { from, to });
     }
 }
 
@@ -193,15 +192,15 @@ fn diamond(ui: &egui::Ui, x: f32, y: f32, d: f32, fill: egui::Color32) {
 }
 
 /// The embed layout's timeline: play/pause and the scrub bar on one row.
-fn minimal(ui: &mut egui::Ui, viewer: &mut Viewer, play: &str, frame: usize, timing: crate::playback::Timing) {
+fn minimal(ui: &mut egui::Ui, play: &str, frame: usize, timing: crate::playback::Timing, out: &mut Vec<Command>) {
     ui.horizontal(|ui| {
-        if ui.button(play).on_hover_text("Play / pause (Space)").clicked() {
-            viewer.apply(Action::TogglePlay);
+        if ui.button(play).on_hover_text(Command::TogglePlay.tooltip()).clicked() {
+            out.push(Command::TogglePlay);
         }
         let mut f = frame;
         ui.spacing_mut().slider_width = (ui.available_width() - 60.0).max(100.0);
         if frame_slider(ui, &mut f, timing.last()).changed() {
-            viewer.playback.seek(f, timing);
+            out.push(Command::Seek(f));
         }
     });
     ui.add_space(2.0);

@@ -1,25 +1,22 @@
 //! Top bar: Open, Add and Share buttons, layout, draw mode, the View menu (panels
 //! and view toggles), foot lock and Edit mode, and the Camera, Edit and Demos menus.
 
-use crate::keys::{Action, HELP};
+use crate::command::{Command, OpenMode, button};
 use crate::layout::Layout;
-use crate::settings::DrawMode;
-use crate::viewer::{OpenMode, Viewer};
+use crate::panels::Panels;
+use crate::settings::{DrawMode, ViewSettings};
+use crate::viewer::Viewer;
 use mocap_scene::Waypoint;
 
-/// Shows the top panel.
-pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
+/// Shows the top panel; what the user does comes back as commands in `out`.
+pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
+    let mut settings = viewer.settings.clone();
+    let mut panels = viewer.panels.clone();
     egui::Panel::top("toolbar").show(ui, |ui| {
         ui.horizontal_wrapped(|ui| {
-            if ui.button("Open…").on_hover_text("Open motion files (.bvh, .bva, .asf with .amc) or Quake 2 models (.md2 with their skins) in place of what is open (or drop them anywhere on the page)").clicked() {
-                viewer.open_requested = Some(OpenMode::Replace);
-            }
-            if ui.button("Add…").on_hover_text("Add motion files or models to what is open (or drop them with Shift held)").clicked() {
-                viewer.open_requested = Some(OpenMode::Add);
-            }
-            if ui.button("Share").on_hover_text("Copy a link that reproduces this view").clicked() {
-                viewer.share_requested = true;
-            }
+            button(ui, Command::Open(OpenMode::Replace), out);
+            button(ui, Command::Open(OpenMode::Add), out);
+            button(ui, Command::Share, out);
             match viewer.stage.actors.as_slice() {
                 [] => {}
                 [one] => {
@@ -30,45 +27,47 @@ pub fn show(ui: &mut egui::Ui, viewer: &mut Viewer) {
                 }
             }
             ui.separator();
-            layout_choice(ui, viewer);
+            layout_choice(ui, viewer.stage.layout, out);
             ui.separator();
-            draw_mode_choice(ui, viewer);
-            ui.menu_button("View", |ui| view_menu(ui, viewer));
+            draw_mode_choice(ui, &mut settings.mode);
+            ui.menu_button("View", |ui| view_menu(ui, &mut settings, &mut panels));
             ui.separator();
-            ui.checkbox(&mut viewer.settings.foot_lock, "Foot lock").on_hover_text("Pin each foot to the floor while it is in contact (legs solved by IK); contacts show on the timeline");
+            ui.checkbox(&mut settings.foot_lock, "Foot lock").on_hover_text("Pin each foot to the floor while it is in contact (legs solved by IK); contacts show on the timeline");
             let editing = viewer.current_character().map_or(String::new(), |c| format!("Editing {}. ", c.name));
-            ui.checkbox(&mut viewer.settings.pose_mode, "Edit mode").on_hover_text(format!("{editing}Edit mode acts on the selected joint's character: drag a joint and its chain follows by IK, or turn it with its rotation rings; the clip's own pose shows as a ghost. A press on another character's joint switches to it."));
+            ui.checkbox(&mut settings.pose_mode, "Edit mode").on_hover_text(format!("{editing}Edit mode acts on the selected joint's character: drag a joint and its chain follows by IK, or turn it with its rotation rings; the clip's own pose shows as a ghost. A press on another character's joint switches to it."));
             ui.separator();
-            ui.menu_button("Camera", |ui| camera_menu(ui, viewer));
-            ui.menu_button("Edit", |ui| super::edit_menu::show(ui, viewer));
+            ui.menu_button("Camera", |ui| camera_menu(ui, out));
+            ui.menu_button("Edit", |ui| super::edit_menu::show(ui, viewer, out));
             ui.menu_button("Demos", |ui| {
-                if ui.button("Bendy tentacle").on_hover_text("Soft skinning and IK on a chain of bones (also ?demo=tentacle)").clicked() {
-                    viewer.open_tentacle(2);
+                if button(ui, Command::OpenTentacle(2), out) {
                     ui.close();
                 }
             });
-            ui.label("Keys (?)").on_hover_text(HELP);
+            ui.label("Keys (?)").on_hover_text(crate::keys::help());
         });
     });
+    if settings != viewer.settings {
+        out.push(Command::SetSettings(settings));
+    }
+    if panels != viewer.panels {
+        out.push(Command::SetPanels(panels));
+    }
 }
 
 /// Front, side and top views, and back to the framing view (also keys 1 2 3 and r).
-fn camera_menu(ui: &mut egui::Ui, viewer: &mut Viewer) {
-    for (label, w) in [("Front (1)", Waypoint::Front), ("Side (2)", Waypoint::Side), ("Top (3)", Waypoint::Top)] {
-        if ui.button(label).clicked() {
-            viewer.apply(Action::Waypoint(w));
+fn camera_menu(ui: &mut egui::Ui, out: &mut Vec<Command>) {
+    for w in [Waypoint::Front, Waypoint::Side, Waypoint::Top] {
+        if button(ui, Command::Waypoint(w), out) {
             ui.close();
         }
     }
-    if ui.button("Reset view (r)").clicked() {
-        viewer.reset_camera();
+    if button(ui, Command::ResetCamera, out) {
         ui.close();
     }
 }
 
 /// Capsules / Sticks / Body.
-fn draw_mode_choice(ui: &mut egui::Ui, viewer: &mut Viewer) {
-    let mode = &mut viewer.settings.mode;
+fn draw_mode_choice(ui: &mut egui::Ui, mode: &mut DrawMode) {
     ui.selectable_value(mode, DrawMode::Capsules, "Capsules").on_hover_text("Lit solids sized to each bone (m)");
     ui.selectable_value(mode, DrawMode::Sticks, "Sticks").on_hover_text("Lines and joint balls (m)");
     ui.selectable_value(mode, DrawMode::Body, "Body").on_hover_text("A smooth skinned body around the bones (m)");
@@ -76,19 +75,19 @@ fn draw_mode_choice(ui: &mut egui::Ui, viewer: &mut Viewer) {
 
 /// Panels and view toggles: tree, inspector, shadows, joints, weights, axes,
 /// follow root, interpolation.
-fn view_menu(ui: &mut egui::Ui, viewer: &mut Viewer) {
-    ui.checkbox(&mut viewer.panels.hierarchy, "Tree").on_hover_text("Show the joint hierarchy");
-    ui.checkbox(&mut viewer.panels.inspector, "Inspector").on_hover_text("Show clip info and the joint inspector");
+fn view_menu(ui: &mut egui::Ui, settings: &mut ViewSettings, panels: &mut Panels) {
+    ui.checkbox(&mut panels.hierarchy, "Tree").on_hover_text("Show the joint hierarchy");
+    ui.checkbox(&mut panels.inspector, "Inspector").on_hover_text("Show clip info and the joint inspector");
     ui.separator();
-    ui.checkbox(&mut viewer.settings.shadows, "Shadows").on_hover_text("Soft shadows from the key light on the floor");
-    ui.checkbox(&mut viewer.settings.show_joints, "Joints").on_hover_text("Joint balls in stick mode");
-    ui.checkbox(&mut viewer.settings.show_weights, "Weights")
+    ui.checkbox(&mut settings.shadows, "Shadows").on_hover_text("Soft shadows from the key light on the floor");
+    ui.checkbox(&mut settings.show_joints, "Joints").on_hover_text("Joint balls in stick mode");
+    ui.checkbox(&mut settings.show_weights, "Weights")
         .on_hover_text("Colour the body by its bone influences (body mode)");
-    ui.checkbox(&mut viewer.settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");
-    ui.checkbox(&mut viewer.settings.follow_root, "Follow root").on_hover_text("f");
-    ui.checkbox(&mut viewer.settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
+    ui.checkbox(&mut settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");
+    ui.checkbox(&mut settings.follow_root, "Follow root").on_hover_text("f");
+    ui.checkbox(&mut settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
     ui.separator();
-    quality_choice(ui, &mut viewer.settings.quality);
+    quality_choice(ui, &mut settings.quality);
 }
 
 /// Quality: Auto / Full / Fast while moving.
@@ -101,12 +100,12 @@ fn quality_choice(ui: &mut egui::Ui, quality: &mut crate::quality::Quality) {
 }
 
 /// Spread / Overlay.
-fn layout_choice(ui: &mut egui::Ui, viewer: &mut Viewer) {
-    let mut layout = viewer.stage.layout;
+fn layout_choice(ui: &mut egui::Ui, current: Layout, out: &mut Vec<Command>) {
+    let mut layout = current;
     ui.selectable_value(&mut layout, Layout::Spread, "Spread").on_hover_text("Characters side by side");
     ui.selectable_value(&mut layout, Layout::Overlay, "Overlay")
         .on_hover_text("Characters on top of each other, to compare");
-    if layout != viewer.stage.layout {
-        viewer.set_layout(layout);
+    if layout != current {
+        out.push(Command::SetLayout(layout));
     }
 }

@@ -1,0 +1,370 @@
+//! Everything that changes the viewer, as data. Panels, keys, the URL fragment
+//! and the JS API produce [`Command`]s; [`crate::Viewer::apply`] executes them
+//! after the frame, one at a time, in order. A command that has a menu entry,
+//! a button or a key carries its label, tooltip and shortcut ([`Command::label`],
+//! [`Command::tooltip`], [`Command::shortcut`]), so menus, buttons and the keys
+//! help ([`crate::keys::help`]) come from one table.
+
+use crate::layout::Layout;
+use crate::panels::Panels;
+use crate::settings::ViewSettings;
+use mocap_scene::Waypoint;
+
+/// What a file picker the user asked for should do with the files.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OpenMode {
+    /// Close what is open and open the picked files ("Open…").
+    Replace,
+    /// Add the picked files to what is open ("Add…").
+    Add,
+}
+
+/// Something the viewer asks of the page it runs in, returned by
+/// [`crate::Viewer::ui`] (the host acts on it; the viewer keeps no flag).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum HostRequest {
+    /// Show a file picker and open the picked files so.
+    PickFiles(OpenMode),
+    /// Build a link that reproduces this view and offer it.
+    Share,
+    /// Save a file: the current character as BVH, or a capture rig.
+    Save {
+        /// File name (`walk-edited.bvh`).
+        name: String,
+        /// Its contents.
+        text: String,
+    },
+}
+
+/// One change to the viewer.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Command {
+    /// Play or pause.
+    TogglePlay,
+    /// Start (`true`) or stop playback.
+    SetPlaying(bool),
+    /// Step frames (pauses).
+    Step(isize),
+    /// Go to the first frame of the range.
+    First,
+    /// Go to the last frame of the range.
+    Last,
+    /// Go to a frame of the timeline (clamped), keeping the play state.
+    Seek(usize),
+    /// Pause and go to a frame.
+    PauseAt(usize),
+    /// Loop at the end, or stop there.
+    SetLooping(bool),
+    /// Playback speed (1 = real time).
+    SetSpeed(f32),
+    /// The loop range (first, last frame), or none.
+    SetRange(Option<(usize, usize)>),
+    /// Multiply the camera distance.
+    Zoom(f32),
+    /// Orbit by pixels (horizontal); in Edit mode with a correction, sets the key.
+    Orbit(f32),
+    /// Jump to a view.
+    Waypoint(Waypoint),
+    /// Frame the whole motion again from the default angles.
+    ResetCamera,
+    /// Toggle following the root.
+    ToggleFollow,
+    /// Toggle bone axes.
+    ToggleAxes,
+    /// Cycle capsules → sticks → body.
+    ToggleDrawMode,
+    /// Replace the view settings (a panel edited a copy).
+    SetSettings(ViewSettings),
+    /// Replace which panels are shown.
+    SetPanels(Panels),
+    /// Side by side or overlaid, framed again.
+    SetLayout(Layout),
+    /// Select joint `joint` of character `character` (nothing with `None`).
+    Select {
+        /// Character index.
+        character: usize,
+        /// Joint index.
+        joint: Option<usize>,
+    },
+    /// Show or hide a character.
+    SetVisible(usize, bool),
+    /// Play a model's animation by name (`all`: every frame).
+    SetAnimation(usize, String),
+    /// Stand a clip up along its file's axis.
+    SetUpAxis(usize, mocap::UpAxis),
+    /// Close a character, asking first when it has unsaved edits.
+    Close(usize),
+    /// Close a character at once, edits or not.
+    CloseNow(usize),
+    /// Keep the character the close question was about open.
+    KeepOpen,
+    /// Turn the dragged pose corrections into keys.
+    SetKey,
+    /// Forget every pose correction made by dragging.
+    ResetPose,
+    /// Go to the next (`true`) or previous keyed frame.
+    StepKey(bool),
+    /// Move the current character's key at `from` to `to`, then show `to`.
+    MoveKey {
+        /// The key's frame.
+        from: usize,
+        /// Where it goes.
+        to: usize,
+    },
+    /// Delete the current character's key at a frame.
+    DeleteKey(usize),
+    /// Take back the last clip edit.
+    Undo,
+    /// Make the last undone edit again.
+    Redo,
+    /// Apply a clip edit to a character, one undoable step named `label`.
+    Edit {
+        /// Character index.
+        character: usize,
+        /// The edit.
+        edit: mocap::ops::edit::Edit,
+        /// Its name in the undo history.
+        label: String,
+    },
+    /// Layer character `source` on a subtree of character `character`.
+    AddLayer {
+        /// The base character.
+        character: usize,
+        /// The layered character.
+        source: usize,
+        /// Subtree, weight, blend and joint map.
+        layer: mocap::ops::layer::Layer,
+    },
+    /// Set a joint's local rotation at the frame shown (a correction).
+    RotateJoint {
+        /// Character index.
+        character: usize,
+        /// Joint index.
+        joint: usize,
+        /// The local rotation.
+        rotation: mocap::glam::Quat,
+    },
+    /// Start a new character from one root joint (the creator).
+    NewCharacter,
+    /// Arm "drag out a new bone" from the selected joint, named so.
+    GrowBone(String),
+    /// Move a character by hand (metres, on top of the layout).
+    SetOffset(usize, mocap::glam::Vec3),
+    /// Show bodies coloured by their skin weights, or not.
+    ShowWeights(bool),
+    /// Open the Layer window for a joint's subtree of a character.
+    OpenLayerDialog {
+        /// Character index.
+        character: usize,
+        /// The joint whose subtree is layered.
+        joint: String,
+    },
+    /// Close the Layer window.
+    CloseLayerDialog,
+    /// Start capturing the skeletal motion of model `index`.
+    StartCapture(usize),
+    /// Fit a skeleton in model `model`'s first frame to set up by hand (the
+    /// humanoid, or the first pose of clip `template`).
+    FitRig {
+        /// The model.
+        model: usize,
+        /// A clip whose skeleton is fitted instead of the humanoid.
+        template: Option<usize>,
+    },
+    /// How the rig being set up is shown: its binding, and painting it.
+    SetRigView {
+        /// Colour the model by the bone each vertex is bound to.
+        show_binding: bool,
+        /// Drags paint vertices onto the selected joint's bone.
+        painting: bool,
+    },
+    /// Bind every vertex of the model to its nearest bone of the rig.
+    BindRig,
+    /// Keep the rig for the next capture and stop setting it up.
+    FinishRigEdit,
+    /// Rebuild the tentacle's skin (its softness changed).
+    RefreshTentacleSkin,
+    /// Give the tentacle this many bones, keeping its other settings.
+    ResizeTentacle(usize),
+    /// Close the tentacle demo.
+    CloseTentacle,
+    /// Open the bendy-tentacle demo with this many bones.
+    OpenTentacle(usize),
+    /// Show a file picker ("Open…" or "Add…").
+    Open(OpenMode),
+    /// Make a share link.
+    Share,
+    /// Save the current character as BVH.
+    SaveBvh,
+    /// Save character `index` as BVH (from the close question; it becomes current).
+    SaveCharacter(usize),
+    /// Save the capture rig as JSON.
+    SaveRig,
+    /// Show a notice in the banner (files that could not be opened by the host).
+    Notify(crate::notice::Notice),
+    /// Show a refused action's message in the banner.
+    Refuse(String),
+    /// Close the banner.
+    DismissNotice,
+}
+
+impl Command {
+    /// The commands with a key, in the order the keys help lists them.
+    pub const WITH_KEYS: [Command; 17] = [
+        Command::TogglePlay,
+        Command::Step(-1),
+        Command::Step(1),
+        Command::First,
+        Command::Last,
+        Command::Zoom(0.8),
+        Command::Zoom(1.25),
+        Command::Orbit(-40.0),
+        Command::Orbit(40.0),
+        Command::Waypoint(Waypoint::Front),
+        Command::Waypoint(Waypoint::Side),
+        Command::Waypoint(Waypoint::Top),
+        Command::ToggleFollow,
+        Command::ToggleAxes,
+        Command::ToggleDrawMode,
+        Command::ResetCamera,
+        Command::Undo,
+    ];
+
+    /// The label of its button or menu entry.
+    pub fn label(&self) -> &'static str {
+        match self {
+            Command::TogglePlay => "Play / pause",
+            Command::First => "|<",
+            Command::Last => ">|",
+            Command::Step(d) if *d < 0 => "<",
+            Command::Step(_) => ">",
+            Command::Zoom(f) if *f < 1.0 => "Zoom in",
+            Command::Zoom(_) => "Zoom out",
+            Command::Orbit(_) => "Orbit",
+            Command::Waypoint(Waypoint::Front) => "Front",
+            Command::Waypoint(Waypoint::Side) => "Side",
+            Command::Waypoint(Waypoint::Top) => "Top",
+            Command::ResetCamera => "Reset view",
+            Command::ToggleFollow => "Follow root",
+            Command::ToggleAxes => "Axes",
+            Command::ToggleDrawMode => "Next draw mode",
+            Command::SetKey => "Set key",
+            Command::ResetPose => "Reset pose",
+            Command::Undo => "Undo",
+            Command::Redo => "Redo",
+            Command::Open(OpenMode::Replace) => "Open…",
+            Command::Open(OpenMode::Add) => "Add…",
+            Command::Share => "Share",
+            Command::SaveBvh => "Save as BVH",
+            Command::NewCharacter => "New character",
+            Command::OpenTentacle(_) => "Bendy tentacle",
+            _ => "",
+        }
+    }
+
+    /// What its button or menu entry does, for the tooltip (shortcut included).
+    pub fn tooltip(&self) -> String {
+        let text = self.tooltip_text();
+        match self.shortcut() {
+            Some(key) if !text.is_empty() => format!("{text} ({key})"),
+            _ => text.to_owned(),
+        }
+    }
+
+    /// What it does, without its shortcut.
+    pub fn tooltip_text(&self) -> &'static str {
+        match self {
+            Command::TogglePlay => "Play / pause",
+            Command::First => "First frame",
+            Command::Last => "Last frame",
+            Command::Step(d) if *d < 0 => "Step back",
+            Command::Step(_) => "Step forward",
+            Command::Zoom(f) if *f < 1.0 => "Zoom in",
+            Command::Zoom(_) => "Zoom out",
+            Command::Orbit(_) => "Orbit the camera",
+            Command::Waypoint(_) => "Look from this side",
+            Command::ResetCamera => "Back to the default view angles, framing everything",
+            Command::ToggleFollow => "Keep the camera over the current character's root",
+            Command::ToggleAxes => "Bone axes: x red, y green, z blue",
+            Command::ToggleDrawMode => "Capsules, sticks, body",
+            Command::SetKey => "Key the corrected pose at this frame",
+            Command::ResetPose => "Forget the poses corrected by dragging",
+            Command::Undo => "Take back the last edit",
+            Command::Redo => "Make the last undone edit again",
+            Command::Open(OpenMode::Replace) => {
+                "Open motion files (.bvh, .bva, .asf with .amc) or Quake 2 models (.md2 with their skins) in place of what is open (or drop them anywhere on the page)"
+            }
+            Command::Open(OpenMode::Add) => "Add motion files or models to what is open (or drop them with Shift held)",
+            Command::Share => "Copy a link that reproduces this view",
+            Command::SaveBvh => "Download the current character as BVH, every edit baked in",
+            Command::NewCharacter => {
+                "Start a skeleton from one root joint: add joints here, pose them by dragging (Edit mode) and Set key"
+            }
+            Command::OpenTentacle(_) => "Soft skinning and IK on a chain of bones (also ?demo=tentacle)",
+            _ => "",
+        }
+    }
+
+    /// Its keyboard shortcut as the help writes it.
+    pub fn shortcut(&self) -> Option<&'static str> {
+        Some(match self {
+            Command::TogglePlay => "Space",
+            Command::Step(d) if *d < 0 => "←",
+            Command::Step(_) => "→",
+            Command::First => "Home",
+            Command::Last => "End",
+            Command::Zoom(f) if *f < 1.0 => "z",
+            Command::Zoom(_) => "Z",
+            Command::Orbit(px) if *px < 0.0 => "j",
+            Command::Orbit(_) => "k",
+            Command::Waypoint(Waypoint::Front) => "1",
+            Command::Waypoint(Waypoint::Side) => "2",
+            Command::Waypoint(Waypoint::Top) => "3",
+            Command::ToggleFollow => "f",
+            Command::ToggleAxes => "a",
+            Command::ToggleDrawMode => "m",
+            Command::ResetCamera => "r",
+            Command::SetKey => "k in Edit mode",
+            Command::Undo => "Ctrl+Z",
+            Command::Redo => "Ctrl+Shift+Z / Ctrl+Y",
+            _ => return None,
+        })
+    }
+
+    /// Whether it changes a clip (and so the undo history).
+    pub fn edits(&self) -> bool {
+        matches!(
+            self,
+            Command::SetKey
+                | Command::MoveKey { .. }
+                | Command::DeleteKey(_)
+                | Command::Undo
+                | Command::Redo
+                | Command::Edit { .. }
+                | Command::AddLayer { .. }
+        )
+    }
+}
+
+/// A button that sends `command` (its label and tooltip from the table).
+pub fn button(ui: &mut egui::Ui, command: Command, out: &mut Vec<Command>) -> bool {
+    let clicked = ui.button(command.label()).on_hover_text(command.tooltip()).clicked();
+    if clicked {
+        out.push(command);
+    }
+    clicked
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_command_with_a_key_has_a_label_and_a_tooltip_naming_its_key() {
+        for c in Command::WITH_KEYS {
+            let key = c.shortcut().expect("a key");
+            assert!(!c.label().is_empty(), "{c:?}");
+            assert!(c.tooltip().ends_with(&format!("({key})")), "{c:?}: {}", c.tooltip());
+        }
+    }
+}
