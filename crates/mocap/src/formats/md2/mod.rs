@@ -33,8 +33,8 @@
 //!
 //! ```
 //! // Not an MD2 file at all:
-//! assert!(!mocap::md2::sniff(b"HIERARCHY"));
-//! let e = mocap::md2::parse(b"IDP2\x07\0\0\0").unwrap_err();
+//! assert!(!mocap::formats::md2::sniff(b"HIERARCHY"));
+//! let e = mocap::formats::md2::parse(b"IDP2\x07\0\0\0").unwrap_err();
 //! assert!(e.message.starts_with("byte 4:"), "{e}");
 //! ```
 
@@ -150,7 +150,7 @@ pub fn animation_base_name(name: &str) -> &str {
 /// a base name that reappears after another one starts a new entry.
 ///
 /// ```
-/// use mocap::md2::{group_animations, Animation};
+/// use mocap::formats::md2::{group_animations, Animation};
 /// let names = ["stand01", "stand02", "run1", "run2", "pain101", "pain201", "run3"];
 /// let a = group_animations(names);
 /// let got: Vec<_> = a.iter().map(|a| (a.name.as_str(), a.first, a.last)).collect();
