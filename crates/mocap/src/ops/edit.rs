@@ -8,6 +8,10 @@
 //! values in each joint's own rotation order): [`Edit::Resample`],
 //! [`Edit::LoopKnit`], [`Edit::InPlace`], [`Edit::UpAxis`], [`Edit::Scale`],
 //! [`Edit::RemoveJoint`]; [`Edit::Rename`] changes names only.
+//!
+//! Every edit is also written as text, a spec (`trim:0:9`, `knit:4`, `up:z`):
+//! [`EditSpec`] reads and writes the grammar, and `"…".parse::<Edit>()` reads the
+//! specs that need no clip.
 
 use crate::model::channel::{AngleUnit, Channel, ChannelKind};
 use crate::model::clip::Clip;
@@ -18,6 +22,10 @@ use crate::ops::bake;
 use crate::runtime::pose::{LocalPose, from_row};
 use crate::runtime::sample::{Interpolation, SampleScratch, sample};
 use glam::{EulerRot, Quat, Vec3};
+
+mod spec;
+
+pub use spec::{EditSpec, SpecError};
 
 /// One clip edit.
 #[derive(Clone, Debug, PartialEq)]
