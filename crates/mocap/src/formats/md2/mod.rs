@@ -38,11 +38,15 @@
 //! assert!(e.message.starts_with("byte 4:"), "{e}");
 //! ```
 
+mod mesh;
 mod normals;
 #[cfg(test)]
 mod tests;
 pub(crate) mod write;
 
+/// A named run of frames: the model's own type, which frame names group into
+/// ([`group_animations`]: the base name is [`animation_base_name`]).
+pub use crate::model::mesh::Animation;
 pub use normals::NORMALS;
 pub use write::{WriteError, build, from_y_up, pack_frame, write};
 
@@ -87,17 +91,6 @@ pub struct Frame {
     /// Packed vertices `[x, y, z, normal index]`: position `translate + scale · xyz` in
     /// Quake axes, and an index into [`NORMALS`] (always `< 162`).
     pub vertices: Vec<[u8; 4]>,
-}
-
-/// A named run of consecutive frames (`stand`: frames 0 to 39).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Animation {
-    /// Base name shared by the frames ([`animation_base_name`]).
-    pub name: String,
-    /// Index of the first frame.
-    pub first: usize,
-    /// Index of the last frame (inclusive, `>= first`).
-    pub last: usize,
 }
 
 /// A parsed MD2 model.
