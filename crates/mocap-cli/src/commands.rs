@@ -1,5 +1,6 @@
 //! The subcommands. Each returns an exit code or a message for stderr.
 
+use mocap::ops::edit::EditSpec;
 use mocap::{Asset, Clip, Format, Input, Loaded, Model};
 use serde_json::{Value, json};
 use std::io::Write;
@@ -273,52 +274,34 @@ pub enum EditOp {
     Remove(String, bool),
 }
 
-/// The core edit for `op` on `clip` (units are resolved against the clip's guess).
-fn core_edit(op: &EditOp, clip: &Clip) -> Result<mocap::ops::edit::Edit, String> {
-    use mocap::ops::edit::Edit;
-    let number = |flag: &str, v: &str| {
-        v.trim().parse::<f64>().ok().filter(|x| x.is_finite()).ok_or_else(|| format!("--{flag} {v}: expected a number"))
-    };
-    Ok(match op {
-        EditOp::Trim(v) => {
-            let (a, b) = v.split_once(':').ok_or_else(|| format!("--trim {v}: expected a:b (frames)"))?;
-            let frame = |x: &str| x.trim().parse::<usize>().map_err(|_| format!("--trim {v}: expected a:b (frames)"));
-            Edit::Trim { first: frame(a)?, last: frame(b)? }
+impl EditOp {
+    /// The core's edit spec for this flag: a value flag's text is read by the
+    /// core's reader ([`mocap::ops::edit::EditSpec`]) as the spec of the same name
+    /// (`--knit 4` is `knit:4`, `--up -z` is `up:-z`); an error names the flag.
+    pub fn spec(&self) -> Result<EditSpec, String> {
+        use mocap::ops::edit::Edit;
+        // `--NAME V` is the spec `NAME:V`.
+        let read = |name: &str, v: &str| {
+            format!("{name}:{v}").parse::<EditSpec>().map_err(|e| format!("--{name} {v}: expected {}", e.expected))
+        };
+        match self {
+            EditOp::Trim(v) => read("trim", v),
+            EditOp::Fps(v) => read("fps", v),
+            EditOp::Reverse => Ok(Edit::Reverse.into()),
+            EditOp::PingPong => Ok(Edit::PingPong.into()),
+            EditOp::Knit(v) => read("knit", v),
+            EditOp::InPlace(turning) => Ok(Edit::InPlace { remove_turning: *turning }.into()),
+            EditOp::Up(v) => read("up", v),
+            EditOp::Units(v) => read("units", v),
+            EditOp::Scale(v) => read("scale", v),
+            // Joint names are taken as given (a `:` in one is no separator here).
+            EditOp::Rename(v) => {
+                let (from, to) = v.split_once('=').ok_or_else(|| format!("--rename {v}: expected OLD=NEW"))?;
+                Ok(Edit::Rename { from: from.to_owned(), to: to.to_owned() }.into())
+            }
+            EditOp::Remove(name, fold) => Ok(Edit::RemoveJoint { name: name.clone(), fold: *fold }.into()),
         }
-        EditOp::Fps(v) => Edit::Resample { fps: number("fps", v)? },
-        EditOp::Reverse => Edit::Reverse,
-        EditOp::PingPong => Edit::PingPong,
-        EditOp::Knit(v) => {
-            Edit::LoopKnit { frames: v.trim().parse().map_err(|_| format!("--knit {v}: expected a frame count"))? }
-        }
-        EditOp::InPlace(turning) => Edit::InPlace { remove_turning: *turning },
-        EditOp::Up(v) => {
-            let t = v.trim().to_ascii_lowercase();
-            let (negative, axis) = t.strip_prefix('-').map_or((false, t.as_str()), |a| (true, a));
-            let from = ["x", "y", "z"]
-                .iter()
-                .position(|a| *a == axis)
-                .ok_or_else(|| format!("--up {v}: expected x, y, z, -x, -y or -z"))?;
-            Edit::UpAxis { from, negative }
-        }
-        EditOp::Units(v) => {
-            let target = match v.trim() {
-                "m" => mocap::Units::Meters,
-                "dm" => mocap::Units::Decimeters,
-                "cm" => mocap::Units::Centimeters,
-                "mm" => mocap::Units::Millimeters,
-                "in" => mocap::Units::Inches,
-                _ => return Err(format!("--units {v}: expected m, dm, cm, mm or in")),
-            };
-            Edit::Scale { factor: clip.units().meters_per_unit() / target.meters_per_unit() }
-        }
-        EditOp::Scale(v) => Edit::Scale { factor: number("scale", v)? as f32 },
-        EditOp::Rename(v) => {
-            let (from, to) = v.split_once('=').ok_or_else(|| format!("--rename {v}: expected OLD=NEW"))?;
-            Edit::Rename { from: from.to_owned(), to: to.to_owned() }
-        }
-        EditOp::Remove(name, fold) => Edit::RemoveJoint { name: name.clone(), fold: *fold },
-    })
+    }
 }
 
 /// `mocap edit`: the edits in order, then BVH.
@@ -328,7 +311,8 @@ pub fn edit(inputs: &[PathBuf], ops: &[EditOp], output: &Path) -> Result<ExitCod
     }
     let mut clip = read_clip(inputs)?;
     for op in ops {
-        let edit = core_edit(op, &clip)?;
+        // Units resolve against the clip as edited so far.
+        let edit = op.spec()?.resolve(&clip);
         clip = mocap::ops::edit::apply(&clip, &edit).map_err(|e| format!("{}: {e}", shown(inputs)))?;
     }
     let (baked, warnings) = mocap::ops::bake::to_bvh(&clip);

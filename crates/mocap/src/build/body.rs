@@ -177,7 +177,7 @@ impl Builder {
 }
 
 /// Builds the body of `skeleton` around its bind pose (`bind`: one model
-/// transform per joint, file units); `radius(joint, length)` gives the tube
+/// transform per joint, file units, e.g. [`crate::model::clip::Clip::bind_pose`]); `radius(joint, length)` gives the tube
 /// radius of the bone from `joint`'s parent to `joint` (a radius that is not a
 /// positive number gives a tenth of the length). A skeleton with no bone asks
 /// `radius(root, 0.0)` for each root's ball.

@@ -8,7 +8,10 @@
 //! weighted rigidly (each vertex to the bone it lies along) or softly (blended
 //! across each joint).
 
+use crate::model::channel::Channel;
 use crate::model::clip::Clip;
+use crate::model::motion::Motion;
+use crate::model::skeleton::{EulerConvention, Joint, Skeleton};
 use crate::runtime::skin::{Skin, SkinError};
 use glam::Vec3;
 use std::f32::consts::TAU;
@@ -25,21 +28,25 @@ pub const TIP: &str = "tip";
 /// The tentacle's skeleton with `bones` bones (clamped to [`BONES`]), at rest.
 pub fn tentacle(bones: usize) -> Clip {
     let bones = bones.clamp(*BONES.start(), *BONES.end());
-    let mut text =
-        String::from("HIERARCHY\nROOT bone0\n{\n  OFFSET 0 0 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n");
-    for b in 1..bones {
-        text.push_str(&format!(
-            "JOINT bone{b}\n{{\n  OFFSET 0 {BONE_LENGTH} 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n"
-        ));
-    }
-    text.push_str(&format!("End Site {TIP}\n{{\n  OFFSET 0 {BONE_LENGTH} 0\n}}\n"));
-    text.push_str(&"}\n".repeat(bones));
-    text.push_str("MOTION\nFrames: 1\nFrame Time: 0.0333333\n");
-    text.push_str(&"0 0 0 ".repeat(bones));
-    text.push('\n');
-    // Generated text in the format's own grammar: it always parses.
-    crate::formats::bvh::parse(text.as_bytes()).unwrap_or_default()
+    let bone = Vec3::new(0.0, BONE_LENGTH, 0.0);
+    let rotations = || vec![Channel::Zrotation, Channel::Xrotation, Channel::Yrotation];
+    let mut joints: Vec<Joint> = (0..bones)
+        .map(|b| Joint::new(format!("bone{b}"), b.checked_sub(1), if b == 0 { Vec3::ZERO } else { bone }, rotations()))
+        .collect();
+    joints.push(Joint::end_site(TIP, Some(bones - 1), bone));
+    let width = 3 * bones;
+    // One frame of the rest pose, at the 30 Hz the clip has always had (written
+    // to 6 digits, as in a BVH file).
+    let clip = Skeleton::new(joints, EulerConvention::Intrinsic).ok().and_then(|skeleton| {
+        let motion = Motion::new(FRAME_TIME, width, 1, vec![0.0; width])?;
+        Clip::new(skeleton, motion).ok()
+    });
+    // A chain of unique names with one channel set per joint: always valid.
+    clip.unwrap_or_default()
 }
+
+/// Seconds per frame of [`tentacle`]'s clip.
+const FRAME_TIME: f64 = 0.0333333;
 
 /// One tube around the whole chain of `clip` (as [`tentacle`] makes it), tapering to
 /// 40% at the tip: each vertex weighted to the bone it lies along (`soft` false),
@@ -118,6 +125,34 @@ pub fn tentacle_skin(clip: &Clip, soft: bool) -> Result<Skin, SkinError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The tentacle as it was made before it was built in code: BVH text, parsed.
+    fn tentacle_from_text(bones: usize) -> Clip {
+        let bones = bones.clamp(*BONES.start(), *BONES.end());
+        let mut text =
+            String::from("HIERARCHY\nROOT bone0\n{\n  OFFSET 0 0 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n");
+        for b in 1..bones {
+            text.push_str(&format!(
+                "JOINT bone{b}\n{{\n  OFFSET 0 {BONE_LENGTH} 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n"
+            ));
+        }
+        text.push_str(&format!("End Site {TIP}\n{{\n  OFFSET 0 {BONE_LENGTH} 0\n}}\n"));
+        text.push_str(&"}\n".repeat(bones));
+        text.push_str("MOTION\nFrames: 1\nFrame Time: 0.0333333\n");
+        text.push_str(&"0 0 0 ".repeat(bones));
+        text.push('\n');
+        // Generated text in the format's own grammar: it always parses.
+        crate::formats::bvh::parse(text.as_bytes()).unwrap_or_default()
+    }
+
+    #[test]
+    fn the_tentacle_built_in_code_is_the_one_its_bvh_text_gave() {
+        for bones in [0, 1, 2, 3, 7, 10, 11, 50] {
+            let (code, text) = (tentacle(bones), tentacle_from_text(bones));
+            assert_eq!(code, text, "{bones} bones");
+            assert_eq!(crate::formats::bvh::write(&code), crate::formats::bvh::write(&text), "{bones} bones");
+        }
+    }
 
     #[test]
     fn the_tentacle_is_a_chain_with_a_closed_skin() {

@@ -283,7 +283,7 @@ impl Clip {
         crate::runtime::batch::for_each_frame_positions(&self.skeleton, &self.motion, visit);
     }
 
-    /// The pose a generated body is built around ([`crate::build::body::build`]): the model
+    /// The pose a skin is bound in (a generated body is built around it): the model
     /// transforms of frame 0, or of the rest pose when there are no frames (file
     /// units; a rest pose with zero offsets and positions in the channels would
     /// have no bones).

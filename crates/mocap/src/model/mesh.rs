@@ -11,13 +11,10 @@
 //! [`Model::frames_at`] gives the two key frames to blend and the blend weight,
 //! which the renderer interpolates on the GPU.
 
-use crate::formats::image::Rgba;
-use crate::formats::md2::{self, Animation, Md2};
 use crate::model::clip::{Aabb, Units};
 use crate::model::time::{FramePosition, Timeline};
 use crate::runtime::sample::Interpolation;
 use glam::Vec3;
-use std::collections::HashMap;
 use std::sync::Arc;
 
 /// Seconds between key frames: Quake 2 runs model animations at 10 Hz.
@@ -61,58 +58,71 @@ pub struct SourceCounts {
     pub tex_coords: usize,
 }
 
+/// What a reader gives to make a [`MorphMesh`] ([`MorphMesh::from_parts`]): the
+/// fields of the mesh, laid out as its accessors describe them.
+pub(crate) struct MeshParts {
+    /// Every frame's positions per drawing vertex, frame after frame (Y-up, file units).
+    pub positions: Vec<[f32; 3]>,
+    /// Unit normals, laid out as `positions`.
+    pub normals: Vec<[f32; 3]>,
+    /// Texture coordinates per drawing vertex (0–1 across the skin).
+    pub tex_coords: Vec<[f32; 2]>,
+    /// Three indices per triangle into the drawing vertices.
+    pub indices: Vec<u32>,
+    /// The file vertex each drawing vertex was split from (one per drawing vertex).
+    pub sources: Vec<u32>,
+    /// Frame names in file order.
+    pub frame_names: Vec<String>,
+    /// Named animations in file order.
+    pub animations: Vec<Animation>,
+    /// Skin file names the model names.
+    pub skins: Vec<String>,
+    /// Skin size the texture coordinates were made for.
+    pub skin_size: [u32; 2],
+    /// Counts in the source file.
+    pub source_counts: SourceCounts,
+}
+
+/// A named run of consecutive frames (`stand`: frames 0 to 39).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Animation {
+    /// Base name shared by the frames (for MD2, the frame names without their
+    /// trailing digits).
+    pub name: String,
+    /// Index of the first frame.
+    pub first: usize,
+    /// Index of the last frame (inclusive, `>= first`).
+    pub last: usize,
+}
+
 impl MorphMesh {
-    /// Builds the drawing mesh of a parsed MD2 model: file vertices split per texture
-    /// coordinate, positions and normals of every frame decoded to Y-up (file units),
-    /// texture coordinates divided by the header's skin size (not by any image's, so
-    /// a skin of another size still maps).
-    pub fn from_md2(model: &Md2) -> MorphMesh {
-        let mut key_to_vertex: HashMap<(u16, u16), u32> = HashMap::new();
-        let mut sources: Vec<(u16, u16)> = Vec::new();
-        let mut indices = Vec::with_capacity(model.triangles.len() * 3);
-        for triangle in &model.triangles {
-            for corner in 0..3 {
-                let key = (triangle.vertices[corner], triangle.tex_coords[corner]);
-                let index = *key_to_vertex.entry(key).or_insert_with(|| {
-                    sources.push(key);
-                    (sources.len() - 1) as u32
-                });
-                indices.push(index);
-            }
-        }
-        let (w, h) = (model.skin_width.max(1) as f32, model.skin_height.max(1) as f32);
-        let tex_coords = sources
-            .iter()
-            .map(|&(_, t)| {
-                model.tex_coords.get(usize::from(t)).map_or([0.0; 2], |st| [f32::from(st[0]) / w, f32::from(st[1]) / h])
-            })
-            .collect();
-        let mut positions = Vec::with_capacity(sources.len() * model.frames.len());
-        let mut normals = Vec::with_capacity(sources.len() * model.frames.len());
-        for frame in &model.frames {
-            for &(v, _) in &sources {
-                let Some(packed) = frame.vertices.get(usize::from(v)) else { continue };
-                positions.push(md2::to_y_up(frame.quake_position(usize::from(v))));
-                normals
-                    .push(md2::to_y_up(md2::NORMALS.get(usize::from(packed[3])).copied().unwrap_or([0.0, 0.0, 1.0])));
-            }
-        }
+    /// The mesh from its parts (a reader's work: [`MorphMesh::from_md2`] for MD2);
+    /// the vertex count is that of `parts.sources`, the bounds are computed here.
+    pub(crate) fn from_parts(parts: MeshParts) -> MorphMesh {
+        let MeshParts {
+            positions,
+            normals,
+            tex_coords,
+            indices,
+            sources,
+            frame_names,
+            animations,
+            skins,
+            skin_size,
+            source_counts,
+        } = parts;
         let mut mesh = MorphMesh {
             vertex_count: sources.len(),
             positions,
             normals,
             tex_coords,
             indices,
-            sources: sources.iter().map(|&(v, _)| u32::from(v)).collect(),
-            frame_names: model.frames.iter().map(|f| f.name.clone()).collect(),
-            animations: model.animations.clone(),
-            skins: model.skins.clone(),
-            skin_size: [model.skin_width, model.skin_height],
-            source_counts: SourceCounts {
-                vertices: model.vertex_count,
-                triangles: model.triangles.len(),
-                tex_coords: model.tex_coords.len(),
-            },
+            sources,
+            frame_names,
+            animations,
+            skins,
+            skin_size,
+            source_counts,
             bounds: Aabb::EMPTY,
             first_bounds: Aabb::EMPTY,
         };
@@ -225,6 +235,29 @@ fn bounds_of(points: &[[f32; 3]]) -> Aabb {
     let mut b = Aabb::EMPTY;
     points.iter().for_each(|&p| b.include(Vec3::from(p)));
     b
+}
+
+/// An RGBA8 image, rows top to bottom.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rgba {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width × height × 4` bytes: red, green, blue, alpha per pixel.
+    pub pixels: Vec<u8>,
+}
+
+impl Rgba {
+    /// The pixel at `(x, y)` as `[r, g, b, a]`; `None` outside the image.
+    pub fn pixel(&self, x: u32, y: u32) -> Option<[u8; 4]> {
+        if x >= self.width || y >= self.height {
+            return None;
+        }
+        let i = (y as usize * self.width as usize + x as usize) * 4;
+        let p = self.pixels.get(i..i + 4)?;
+        Some([p[0], p[1], p[2], p[3]])
+    }
 }
 
 /// A decoded skin and the file it came from.
@@ -374,51 +407,39 @@ pub fn match_skin(model_name: &str, skins: &[String], images: &[&str]) -> Option
 mod tests {
     use super::*;
 
-    /// A two-frame MD2: one triangle whose first corner uses two texture coordinates
-    /// in a second triangle (so it splits), moving up by 2 units between frames.
-    fn model() -> Md2 {
-        let frame = |name: &str, z: f32| md2::Frame {
-            name: name.to_owned(),
-            scale: [1.0; 3],
-            translate: [0.0, 0.0, z],
-            vertices: vec![[0, 0, 0, 5], [10, 0, 0, 5], [0, 0, 20, 5]],
-        };
-        Md2 {
-            skin_width: 64,
-            skin_height: 32,
-            skins: vec!["models/x/Skin.PCX".into()],
-            tex_coords: vec![[0, 0], [64, 0], [0, 32], [32, 16]],
-            triangles: vec![
-                md2::Triangle { vertices: [0, 1, 2], tex_coords: [0, 1, 2] },
-                md2::Triangle { vertices: [0, 2, 1], tex_coords: [3, 2, 1] },
-            ],
-            frames: vec![frame("run1", 0.0), frame("run2", 2.0), frame("jump1", 4.0)],
-            animations: md2::group_animations(["run1", "run2", "jump1"]),
-            vertex_count: 3,
-        }
+    /// Three frames of one triangle (file vertices 0, 1, 2), 2 units higher each
+    /// frame; frames `run1`, `run2` and `jump1`.
+    fn mesh() -> MorphMesh {
+        let frame = |y: f32| [[0.0, y, 0.0], [10.0, y, 0.0], [0.0, 20.0 + y, 0.0]];
+        let animation = |name: &str, first, last| Animation { name: name.into(), first, last };
+        MorphMesh::from_parts(MeshParts {
+            positions: [0.0, 2.0, 4.0].into_iter().flat_map(frame).collect(),
+            normals: vec![[0.0, 1.0, 0.0]; 9],
+            tex_coords: vec![[0.0; 2]; 3],
+            indices: vec![0, 1, 2],
+            sources: vec![0, 1, 2],
+            frame_names: vec!["run1".into(), "run2".into(), "jump1".into()],
+            animations: vec![animation("run", 0, 1), animation("jump", 2, 2)],
+            skins: Vec::new(),
+            skin_size: [64, 32],
+            source_counts: SourceCounts { vertices: 3, triangles: 1, tex_coords: 3 },
+        })
     }
 
     #[test]
-    fn vertices_split_per_texture_coordinate_and_map_by_the_header_size() {
-        let mesh = MorphMesh::from_md2(&model());
-        assert_eq!(mesh.vertex_count(), 4, "vertex 0 is used with two texture coordinates");
-        assert_eq!(mesh.indices(), &[0, 1, 2, 3, 2, 1]);
-        assert_eq!(mesh.tex_coords(), &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5]]);
-        assert_eq!(mesh.frame_count(), 3);
-        assert_eq!(mesh.positions().len(), 12);
-        // Quake (0, 0, 20) is Y-up (0, 20, 0); frame 1 is 2 units higher.
-        assert_eq!(mesh.frame_positions(0)[2], [0.0, 20.0, 0.0]);
+    fn a_mesh_from_its_parts_has_its_frames_and_bounds() {
+        let mesh = mesh();
+        assert_eq!((mesh.vertex_count(), mesh.frame_count()), (3, 3));
         assert_eq!(mesh.frame_positions(1)[2], [0.0, 22.0, 0.0]);
-        assert_eq!(mesh.frame_positions(1)[3], mesh.frame_positions(1)[0]);
         assert!(mesh.frame_positions(3).is_empty());
         assert_eq!(mesh.height(), 20.0);
         assert_eq!(mesh.bounds().max.y, 24.0);
-        assert!(mesh.normals().iter().all(|n| (Vec3::from(*n).length() - 1.0).abs() < 1e-3));
+        assert_eq!(mesh.source_triangles(), [[0, 1, 2]]);
     }
 
     #[test]
     fn animations_choose_the_frames_and_time_maps_at_ten_per_second() {
-        let mut m = Model::new(MorphMesh::from_md2(&model()), None);
+        let mut m = Model::new(mesh(), None);
         assert_eq!(m.animation_name(), "all");
         assert_eq!(m.timeline().frames(), 3);
         assert_eq!(m.frames_at(0.15, Interpolation::Linear), MorphSample { frame0: 1, frame1: 2, blend: 0.5 });

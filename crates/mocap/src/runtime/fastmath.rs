@@ -1,7 +1,8 @@
 //! A fast, branch-free `sin_cos` for f32, accurate to a few ULP for the angles
 //! motion files hold (|x| up to ~4000 radians). It has no branches and no libm
 //! calls, so loops over it vectorise; it is what lets forward kinematics run at
-//! more than 100 M joint transforms per second.
+//! more than 100 M joint transforms per second. Beside it, the quaternion product
+//! the local-pose and FK stages share ([`quat_mul`]), on plain arrays.
 
 /// π/2 in three parts (Cody–Waite): `k · PIO2_1` is exact for |k| < 2^16.
 const PIO2_1: f32 = 1.570_312_5;
@@ -29,6 +30,20 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
     let sin = ((sb & !swap) | (cb & swap)) ^ ((q & 2) << 30);
     let cos = ((cb & !swap) | (sb & swap)) ^ ((q.wrapping_add(1) & 2) << 30);
     (f32::from_bits(sin), f32::from_bits(cos))
+}
+
+/// Hamilton product `a · b` of quaternions `[x, y, z, w]` (plain arrays: glam's SIMD
+/// types carry a padding lane whose garbage can be a denormal, see [`crate::runtime::fk`]).
+#[inline(always)]
+pub(crate) fn quat_mul(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
+    let [ax, ay, az, aw] = a;
+    let [bx, by, bz, bw] = b;
+    [
+        aw * bx + ax * bw + ay * bz - az * by,
+        aw * by - ax * bz + ay * bw + az * bx,
+        aw * bz + ax * by - ay * bx + az * bw,
+        aw * bw - ax * bx - ay * by - az * bz,
+    ]
 }
 
 #[cfg(test)]

@@ -5,6 +5,7 @@
 
 use crate::model::channel::AngleUnit;
 use crate::model::skeleton::{Joint, Skeleton};
+use crate::runtime::fastmath::quat_mul;
 use crate::runtime::pose::{LocalPose, plain_joint_local};
 use glam::{Quat, Vec3};
 
@@ -45,19 +46,6 @@ impl Transform {
 // The hot path works on plain arrays with scalar math: glam's SIMD types carry a
 // padding lane whose garbage can be a denormal, and denormal assists made FK ~30×
 // slower. Quaternions are [x, y, z, w].
-
-/// Hamilton product `a · b`.
-#[inline(always)]
-pub(crate) fn quat_mul(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
-    let [ax, ay, az, aw] = a;
-    let [bx, by, bz, bw] = b;
-    [
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-        aw * bw - ax * bx - ay * by - az * bz,
-    ]
-}
 
 /// Rotates `v` by unit quaternion `q`: v + 2w(u×v) + 2u×(u×v).
 #[inline(always)]

@@ -7,8 +7,7 @@
 
 use crate::model::channel::{AngleUnit, ChannelKind};
 use crate::model::skeleton::{EulerConvention, Skeleton};
-use crate::runtime::fastmath::sin_cos;
-use crate::runtime::fk::quat_mul;
+use crate::runtime::fastmath::{quat_mul, sin_cos};
 use glam::{Quat, Vec3};
 
 /// Translation, rotation and scale of every joint relative to its parent, in joint

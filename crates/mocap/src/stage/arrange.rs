@@ -21,7 +21,7 @@ pub const MAX_SINGLE_ROW: usize = 8;
 /// a negative or non-finite `gap` counts as 0. The result has one finite offset per box.
 ///
 /// ```
-/// use mocap::{Aabb, arrange::spread, glam::Vec3};
+/// use mocap::{Aabb, glam::Vec3, stage::arrange::spread};
 /// let a = Aabb { min: Vec3::new(-1.0, 0.0, 0.0), max: Vec3::new(1.0, 2.0, 0.0) };
 /// let offsets = spread(&[a, a], 1.0);
 /// assert_eq!(offsets, vec![Vec3::new(-1.5, 0.0, 0.0), Vec3::new(1.5, 0.0, 0.0)]);

@@ -12,9 +12,9 @@
 //! let asf = b":root\n order TX TY TZ RX RY RZ\n axis XYZ\n position 0 0 0\n orientation 0 0 0\n\
 //! :bonedata\n begin\n  id 1\n  name spine\n  direction 0 1 0\n  length 2\n  axis 0 0 0 XYZ\n  dof rx\n end\n\
 //! :hierarchy\n begin\n  root spine\n end\n";
-//! let skeleton = mocap::acclaim::parse_asf(asf).unwrap();
+//! let skeleton = mocap::formats::acclaim::parse_asf(asf).unwrap();
 //! let amc = b":FULLY-SPECIFIED\n:DEGREES\n1\nroot 0 0 0 0 0 0\nspine 45\n";
-//! let motion = mocap::acclaim::parse_amc(amc, &skeleton.amc_layout()).unwrap();
+//! let motion = mocap::formats::acclaim::parse_amc(amc, &skeleton.amc_layout()).unwrap();
 //! assert_eq!(motion.frame_count, 1);
 //! assert_eq!(motion.data[6], 45.0);
 //! ```

@@ -29,9 +29,9 @@
 //!     XTRAN YTRAN ZTRAN XROT YROT ZROT XSCALE YSCALE ZSCALE\n\
 //!     INCHES INCHES INCHES DEGREES DEGREES DEGREES INCHES INCHES INCHES\n\
 //!     1 2 3 4 5 6 7 8 9\n";
-//! let bva = mocap::bva::parse(text).unwrap();
+//! let bva = mocap::formats::bva::parse(text).unwrap();
 //! assert_eq!(bva.segments[0].row(0), &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
-//! assert_eq!(mocap::bva::parse(mocap::bva::write(&bva).as_bytes()).unwrap(), bva);
+//! assert_eq!(mocap::formats::bva::parse(mocap::formats::bva::write(&bva).as_bytes()).unwrap(), bva);
 //! ```
 
 mod lines;

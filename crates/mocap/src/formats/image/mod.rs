@@ -9,6 +9,9 @@ pub mod pcx;
 
 use crate::error::ParseError;
 
+/// The decoded image: the model's own type (a skin's pixels), which every decoder here makes.
+pub use crate::model::mesh::Rgba;
+
 /// Largest width or height of a decoded image; larger ones are refused before
 /// anything is allocated (skins are at most a few thousand pixels wide).
 pub const MAX_SIDE: u32 = 8192;
@@ -98,27 +101,4 @@ pub fn decode_any(name: &str, bytes: &[u8]) -> Result<Rgba, ParseError> {
         .or_else(|| ImageFormat::from_extension(name))
         .ok_or_else(|| ParseError::at_byte(0, "not an image this viewer reads (PCX, BMP, PNG or JPEG)"))?;
     decode(format, bytes)
-}
-
-/// An RGBA8 image, rows top to bottom.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Rgba {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// `width × height × 4` bytes: red, green, blue, alpha per pixel.
-    pub pixels: Vec<u8>,
-}
-
-impl Rgba {
-    /// The pixel at `(x, y)` as `[r, g, b, a]`; `None` outside the image.
-    pub fn pixel(&self, x: u32, y: u32) -> Option<[u8; 4]> {
-        if x >= self.width || y >= self.height {
-            return None;
-        }
-        let i = (y as usize * self.width as usize + x as usize) * 4;
-        let p = self.pixels.get(i..i + 4)?;
-        Some([p[0], p[1], p[2], p[3]])
-    }
 }

@@ -33,16 +33,20 @@
 //!
 //! ```
 //! // Not an MD2 file at all:
-//! assert!(!mocap::md2::sniff(b"HIERARCHY"));
-//! let e = mocap::md2::parse(b"IDP2\x07\0\0\0").unwrap_err();
+//! assert!(!mocap::formats::md2::sniff(b"HIERARCHY"));
+//! let e = mocap::formats::md2::parse(b"IDP2\x07\0\0\0").unwrap_err();
 //! assert!(e.message.starts_with("byte 4:"), "{e}");
 //! ```
 
+mod mesh;
 mod normals;
 #[cfg(test)]
 mod tests;
 pub(crate) mod write;
 
+/// A named run of frames: the model's own type, which frame names group into
+/// ([`group_animations`]: the base name is [`animation_base_name`]).
+pub use crate::model::mesh::Animation;
 pub use normals::NORMALS;
 pub use write::{WriteError, build, from_y_up, pack_frame, write};
 
@@ -87,17 +91,6 @@ pub struct Frame {
     /// Packed vertices `[x, y, z, normal index]`: position `translate + scale · xyz` in
     /// Quake axes, and an index into [`NORMALS`] (always `< 162`).
     pub vertices: Vec<[u8; 4]>,
-}
-
-/// A named run of consecutive frames (`stand`: frames 0 to 39).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Animation {
-    /// Base name shared by the frames ([`animation_base_name`]).
-    pub name: String,
-    /// Index of the first frame.
-    pub first: usize,
-    /// Index of the last frame (inclusive, `>= first`).
-    pub last: usize,
 }
 
 /// A parsed MD2 model.
@@ -150,7 +143,7 @@ pub fn animation_base_name(name: &str) -> &str {
 /// a base name that reappears after another one starts a new entry.
 ///
 /// ```
-/// use mocap::md2::{group_animations, Animation};
+/// use mocap::formats::md2::{group_animations, Animation};
 /// let names = ["stand01", "stand02", "run1", "run2", "pain101", "pain201", "run3"];
 /// let a = group_animations(names);
 /// let got: Vec<_> = a.iter().map(|a| (a.name.as_str(), a.first, a.last)).collect();

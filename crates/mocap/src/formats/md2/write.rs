@@ -6,8 +6,8 @@
 //! ```
 //! use mocap::glam::Vec3;
 //! let frame = vec![Vec3::ZERO, Vec3::new(10.0, 0.0, 0.0), Vec3::new(0.0, 20.0, 0.0)];
-//! let md2 = mocap::md2::build(&[("stand1".to_owned(), frame)], &[[0, 1, 2]]).unwrap();
-//! let again = mocap::md2::parse(&mocap::md2::write(&md2)).unwrap();
+//! let md2 = mocap::formats::md2::build(&[("stand1".to_owned(), frame)], &[[0, 1, 2]]).unwrap();
+//! let again = mocap::formats::md2::parse(&mocap::formats::md2::write(&md2)).unwrap();
 //! assert_eq!(again, md2);
 //! ```
 
