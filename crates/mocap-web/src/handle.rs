@@ -301,11 +301,41 @@ impl MocapViewer {
     /// `'offset:NAME:x,y,z'`, `'channels:NAME:ZXY[:position]'`. Returns the error
     /// message, or `undefined` when done.
     pub fn edit(&self, index: u32, spec: &str) -> Option<String> {
-        // The one edit-spec parser, shared with `mocap edit` (mocap::ops::edit::spec).
-        let edit = match spec.parse::<mocap::ops::edit::Edit>() {
-            Ok(edit) => edit,
-            Err(e) => return Some(e.to_string()),
+        use mocap::ops::edit::Edit;
+        let parts: Vec<&str> = spec.split(':').collect();
+        let number = |s: Option<&&str>| s.and_then(|v| v.trim().parse::<f64>().ok());
+        let vec3 = |s: &str| -> Option<mocap::glam::Vec3> {
+            let v: Vec<f32> = s.split(',').map(|x| x.trim().parse().ok()).collect::<Option<_>>()?;
+            <[f32; 3]>::try_from(v).ok().map(mocap::glam::Vec3::from_array)
         };
+        let edit = match parts.as_slice() {
+            ["reverse"] => Some(Edit::Reverse),
+            ["ping-pong"] => Some(Edit::PingPong),
+            ["in-place"] => Some(Edit::InPlace { remove_turning: false }),
+            ["in-place-turning"] => Some(Edit::InPlace { remove_turning: true }),
+            ["up-z"] => Some(Edit::UpAxis { from: 2, negative: false }),
+            ["trim", a, b] => a.parse().ok().zip(b.parse().ok()).map(|(first, last)| Edit::Trim { first, last }),
+            ["fps", _] => number(parts.get(1)).map(|fps| Edit::Resample { fps }),
+            ["knit", n] => n.parse().ok().map(|frames| Edit::LoopKnit { frames }),
+            ["scale", _] => number(parts.get(1)).map(|f| Edit::Scale { factor: f as f32 }),
+            ["rename", from, to] => Some(Edit::Rename { from: (*from).to_owned(), to: (*to).to_owned() }),
+            ["remove", joint] => Some(Edit::RemoveJoint { name: (*joint).to_owned(), fold: true }),
+            ["add", parent, name, xyz] => vec3(xyz).map(|offset| Edit::AddJoint {
+                parent: (*parent).to_owned(),
+                name: (*name).to_owned(),
+                offset,
+            }),
+            ["offset", name, xyz] => vec3(xyz).map(|offset| Edit::SetOffset { name: (*name).to_owned(), offset }),
+            ["channels", name, order] => {
+                Some(Edit::SetChannels { name: (*name).to_owned(), position: false, order: (*order).to_owned() })
+            }
+            ["channels", name, order, "position"] => {
+                Some(Edit::SetChannels { name: (*name).to_owned(), position: true, order: (*order).to_owned() })
+            }
+            ["drop", joint] => Some(Edit::RemoveJoint { name: (*joint).to_owned(), fold: false }),
+            _ => None,
+        };
+        let Some(edit) = edit else { return Some(format!("{spec}: not an edit this viewer makes")) };
         self.with_viewer(|v| v.edit(index as usize, &edit, spec).err()).flatten()
     }
 
