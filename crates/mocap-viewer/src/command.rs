@@ -41,8 +41,6 @@ pub enum HostRequest {
 pub enum Command {
     /// Play or pause.
     TogglePlay,
-    /// Start (`true`) or stop playback.
-    SetPlaying(bool),
     /// Step frames (pauses).
     Step(isize),
     /// Go to the first frame of the range.
@@ -51,8 +49,6 @@ pub enum Command {
     Last,
     /// Go to a frame of the timeline (clamped), keeping the play state.
     Seek(usize),
-    /// Pause and go to a frame.
-    PauseAt(usize),
     /// Loop at the end, or stop there.
     SetLooping(bool),
     /// Playback speed (1 = real time).
@@ -202,34 +198,11 @@ pub enum Command {
     SaveRig,
     /// Show a notice in the banner (files that could not be opened by the host).
     Notify(crate::notice::Notice),
-    /// Show a refused action's message in the banner.
-    Refuse(String),
     /// Close the banner.
     DismissNotice,
 }
 
 impl Command {
-    /// The commands with a key, in the order the keys help lists them.
-    pub const WITH_KEYS: [Command; 17] = [
-        Command::TogglePlay,
-        Command::Step(-1),
-        Command::Step(1),
-        Command::First,
-        Command::Last,
-        Command::Zoom(0.8),
-        Command::Zoom(1.25),
-        Command::Orbit(-40.0),
-        Command::Orbit(40.0),
-        Command::Waypoint(Waypoint::Front),
-        Command::Waypoint(Waypoint::Side),
-        Command::Waypoint(Waypoint::Top),
-        Command::ToggleFollow,
-        Command::ToggleAxes,
-        Command::ToggleDrawMode,
-        Command::ResetCamera,
-        Command::Undo,
-    ];
-
     /// The label of its button or menu entry.
     pub fn label(&self) -> &'static str {
         match self {
@@ -281,8 +254,11 @@ impl Command {
             Command::Step(_) => "Step forward",
             Command::Zoom(f) if *f < 1.0 => "Zoom in",
             Command::Zoom(_) => "Zoom out",
-            Command::Orbit(_) => "Orbit the camera",
-            Command::Waypoint(_) => "Look from this side",
+            Command::Orbit(px) if *px < 0.0 => "Orbit left",
+            Command::Orbit(_) => "Orbit right",
+            Command::Waypoint(Waypoint::Front) => "Look at the front",
+            Command::Waypoint(Waypoint::Side) => "Look from the side",
+            Command::Waypoint(Waypoint::Top) => "Look down from above",
             Command::ResetCamera => "Back to the default view angles, framing everything",
             Command::ToggleFollow => "Keep the camera over the current character's root",
             Command::ToggleAxes => "Bone axes: x red, y green, z blue",
@@ -305,50 +281,25 @@ impl Command {
         }
     }
 
-    /// Its keyboard shortcut as the help writes it.
-    pub fn shortcut(&self) -> Option<&'static str> {
-        Some(match self {
-            Command::TogglePlay => "Space",
-            Command::Step(d) if *d < 0 => "←",
-            Command::Step(_) => "→",
-            Command::First => "Home",
-            Command::Last => "End",
-            Command::Zoom(f) if *f < 1.0 => "z",
-            Command::Zoom(_) => "Z",
-            Command::Orbit(px) if *px < 0.0 => "j",
-            Command::Orbit(_) => "k",
-            Command::Waypoint(Waypoint::Front) => "1",
-            Command::Waypoint(Waypoint::Side) => "2",
-            Command::Waypoint(Waypoint::Top) => "3",
-            Command::ToggleFollow => "f",
-            Command::ToggleAxes => "a",
-            Command::ToggleDrawMode => "m",
-            Command::ResetCamera => "r",
-            Command::SetKey => "k in Edit mode",
-            Command::Undo => "Ctrl+Z",
-            Command::Redo => "Ctrl+Shift+Z / Ctrl+Y",
-            _ => return None,
-        })
-    }
-
-    /// Whether it changes a clip (and so the undo history).
-    pub fn edits(&self) -> bool {
-        matches!(
-            self,
-            Command::SetKey
-                | Command::MoveKey { .. }
-                | Command::DeleteKey(_)
-                | Command::Undo
-                | Command::Redo
-                | Command::Edit { .. }
-                | Command::AddLayer { .. }
-        )
+    /// Its keyboard shortcut as the help writes it, from the one binding
+    /// table ([`crate::keys::BINDINGS`]).
+    pub fn shortcut(&self) -> Option<String> {
+        crate::keys::shortcut(self)
     }
 }
 
 /// A button that sends `command` (its label and tooltip from the table).
 pub fn button(ui: &mut egui::Ui, command: Command, out: &mut Vec<Command>) -> bool {
-    let clicked = ui.button(command.label()).on_hover_text(command.tooltip()).clicked();
+    button_with(ui, command.label(), command, out)
+}
+
+/// A button reading `text` that sends `command` (its tooltip from the table;
+/// made only while the button is hovered).
+pub fn button_with(ui: &mut egui::Ui, text: &str, command: Command, out: &mut Vec<Command>) -> bool {
+    let response = ui.button(text).on_hover_ui(|ui| {
+        ui.label(command.tooltip());
+    });
+    let clicked = response.clicked();
     if clicked {
         out.push(command);
     }
@@ -357,11 +308,9 @@ pub fn button(ui: &mut egui::Ui, command: Command, out: &mut Vec<Command>) -> bo
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-
     #[test]
     fn every_command_with_a_key_has_a_label_and_a_tooltip_naming_its_key() {
-        for c in Command::WITH_KEYS {
+        for c in crate::keys::BINDINGS.iter().map(|b| &b.command) {
             let key = c.shortcut().expect("a key");
             assert!(!c.label().is_empty(), "{c:?}");
             assert!(c.tooltip().ends_with(&format!("({key})")), "{c:?}: {}", c.tooltip());

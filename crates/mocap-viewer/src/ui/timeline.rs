@@ -1,7 +1,7 @@
 //! Bottom panel: transport buttons, scrub bar, loop, speed and loop range, over
 //! the longest clip, counted in frames of the current character.
 
-use crate::command::{Command, button};
+use crate::command::{Command, button, button_with};
 use crate::playback::SPEED_RANGE;
 use crate::viewer::Viewer;
 
@@ -23,9 +23,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
         ui.horizontal(|ui| {
             button(ui, Command::First, out);
             button(ui, Command::Step(-1), out);
-            if ui.button(play).on_hover_text(Command::TogglePlay.tooltip()).clicked() {
-                out.push(Command::TogglePlay);
-            }
+            button_with(ui, play, Command::TogglePlay, out);
             button(ui, Command::Step(1), out);
             button(ui, Command::Last, out);
             if viewer.has_corrections() {
@@ -194,9 +192,7 @@ fn diamond(ui: &egui::Ui, x: f32, y: f32, d: f32, fill: egui::Color32) {
 /// The embed layout's timeline: play/pause and the scrub bar on one row.
 fn minimal(ui: &mut egui::Ui, play: &str, frame: usize, timing: crate::playback::Timing, out: &mut Vec<Command>) {
     ui.horizontal(|ui| {
-        if ui.button(play).on_hover_text(Command::TogglePlay.tooltip()).clicked() {
-            out.push(Command::TogglePlay);
-        }
+        button_with(ui, play, Command::TogglePlay, out);
         let mut f = frame;
         ui.spacing_mut().slider_width = (ui.available_width() - 60.0).max(100.0);
         if frame_slider(ui, &mut f, timing.last()).changed() {

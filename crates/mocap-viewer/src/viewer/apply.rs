@@ -25,7 +25,6 @@ impl Viewer {
         let timing = self.timing();
         match (command, timing) {
             (Command::TogglePlay, _) => self.set_playing(!self.playback.playing),
-            (Command::SetPlaying(on), _) => self.set_playing(on),
             (Command::Step(d), Some(t)) => self.playback.step(d, t),
             (Command::First, Some(t)) => {
                 let (a, _) = self.playback.frame_range(t);
@@ -37,10 +36,6 @@ impl Viewer {
                 self.playback.seek(b, t);
             }
             (Command::Seek(frame), _) => self.seek(frame),
-            (Command::PauseAt(frame), _) => {
-                self.set_playing(false);
-                self.seek(frame);
-            }
             (Command::SetLooping(on), _) => self.playback.looping = on,
             (Command::SetSpeed(speed), _) => {
                 if speed.is_finite() && speed > 0.0 {
@@ -157,27 +152,29 @@ impl Viewer {
             (Command::OpenTentacle(bones), _) => self.open_tentacle(bones),
             (Command::Open(mode), _) => self.requests.push(HostRequest::PickFiles(mode)),
             (Command::Share, _) => self.requests.push(HostRequest::Share),
-            (Command::SaveBvh, _) => {
-                let (name, text) = self.save_bvh(self.current()).ok_or("a model has no motion to save as BVH")?;
-                self.requests.push(HostRequest::Save { name, text });
-            }
+            (Command::SaveBvh, _) => self.request_save(self.current())?,
             (Command::SaveCharacter(index), _) => {
                 // Saving saves the current character: make it this one.
                 if self.current() != index {
                     self.selected = Some(Selection { character: index, joint: 0 });
                 }
-                let (name, text) = self.save_bvh(index).ok_or("a model has no motion to save as BVH")?;
-                self.requests.push(HostRequest::Save { name, text });
+                self.request_save(index)?;
             }
             (Command::SaveRig, _) => {
                 let (name, text) = self.rig_download().ok_or("no capture rig to save")?;
                 self.requests.push(HostRequest::Save { name, text });
             }
-            (Command::Refuse(message), _) => return Err(message),
             (Command::DismissNotice, _) => self.error = None,
             (Command::Notify(notice), _) => self.error = Some(notice),
             (Command::Step(_) | Command::First | Command::Last, None) => {}
         }
+        Ok(())
+    }
+
+    /// Asks the page to save character `index` as BVH ([`Viewer::save_bvh`]).
+    fn request_save(&mut self, index: usize) -> Result<(), String> {
+        let (name, text) = self.save_bvh(index).ok_or("a model has no motion to save as BVH")?;
+        self.requests.push(HostRequest::Save { name, text });
         Ok(())
     }
 }
