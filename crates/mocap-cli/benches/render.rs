@@ -117,21 +117,13 @@ fn body_build_time(corpus: &Path) {
         })
         .max_by_key(|(_, c)| c.skeleton().len());
     let Some((path, clip)) = largest else { return };
-    let bind = clip.bind_pose();
     let extent = clip.pose_extent();
     let runs = 20;
     let start = Instant::now();
     let mut vertices = 0;
     for _ in 0..runs {
-        let joints = clip.skeleton().joints();
-        let radii = mocap_render::body_radii(
-            joints.len(),
-            |j| joints.get(j)?.parent,
-            |j| Some(bind.get(j)?.translation),
-            extent,
-        );
-        let body = mocap::build::body::build(clip.skeleton(), &bind, |j, _| radii.get(j).copied().unwrap_or(0.0))
-            .expect("a body");
+        // The body the viewer and `mocap render` build (mocap_scene::body_skin).
+        let body = mocap_scene::body_skin(&clip, extent).expect("a body");
         vertices = body.positions().len();
     }
     let ms = start.elapsed().as_secs_f64() * 1e3 / runs as f64;

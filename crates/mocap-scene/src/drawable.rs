@@ -81,22 +81,33 @@ fn body_skin_with(clip: &Clip, extent: f32, detail: mocap::build::body::Detail) 
 /// The body at full detail and its coarse cut, as the renderer draws them.
 fn build_body(clip: &Clip, extent: f32) -> Option<Body> {
     let skin = body_skin(clip, extent)?;
-    let joints = clip.skeleton().len();
-    let mesh_of = |skin: &mocap::runtime::skin::Skin| {
-        SkinnedMeshData::new(
-            skin.positions(),
-            skin.normals(),
-            skin.joints(),
-            skin.weights(),
-            skin.indices().to_vec(),
-            joints,
-        )
-        .ok()
-    };
-    let mesh = mesh_of(&skin)?;
     let coarse = body_skin_with(clip, extent, mocap::build::body::Detail::COARSE);
-    let coarse = coarse.as_ref().and_then(mesh_of).map(Arc::new);
-    Some(Body { mesh: Arc::new(mesh), coarse, inverse_bind: skin.inverse_bind().to_vec() })
+    Body::from_skin(&skin, coarse.as_ref(), clip.skeleton().len())
+}
+
+impl Body {
+    /// The renderer's copy of `skin` (and of its coarse cut, if any) for a
+    /// skeleton of `joints` joints; `None` when the renderer cannot take it.
+    pub fn from_skin(
+        skin: &mocap::runtime::skin::Skin,
+        coarse: Option<&mocap::runtime::skin::Skin>,
+        joints: usize,
+    ) -> Option<Body> {
+        let mesh_of = |skin: &mocap::runtime::skin::Skin| {
+            SkinnedMeshData::new(
+                skin.positions(),
+                skin.normals(),
+                skin.joints(),
+                skin.weights(),
+                skin.indices().to_vec(),
+                joints,
+            )
+            .ok()
+        };
+        let mesh = mesh_of(skin)?;
+        let coarse = coarse.and_then(mesh_of).map(Arc::new);
+        Some(Body { mesh: Arc::new(mesh), coarse, inverse_bind: skin.inverse_bind().to_vec() })
+    }
 }
 
 /// The renderer's copy of a model's key frames and skin ([`MorphMeshData::from_frames`]).

@@ -191,11 +191,6 @@ pub fn drag_joint(
     Some(solve)
 }
 
-/// Builds the body of a clip character ([`mocap_scene::body_skin`]) once; later calls do nothing.
-pub fn ensure_body(c: &mut Character) {
-    c.extra.drawable.ensure_body(c.asset.clip(), c.extent);
-}
-
 /// A clip or model on the viewer's stage.
 pub type Character = Actor<Look>;
 

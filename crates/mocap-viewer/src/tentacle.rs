@@ -8,9 +8,7 @@
 use crate::character::{Character, Correction};
 use mocap::glam::{Quat, Vec3};
 use mocap::runtime::ik::{self, Chain, Options};
-use mocap_render::SkinnedMeshData;
 use mocap_scene::Body;
-use std::sync::Arc;
 
 /// The IK solvers the demo offers.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -81,16 +79,7 @@ impl Tentacle {
     /// The skin for the current softness, as the renderer draws it.
     pub fn body(&self, clip: &mocap::Clip) -> Option<Body> {
         let skin = mocap::build::demo::tentacle_skin(clip, self.soft).ok()?;
-        let mesh = SkinnedMeshData::new(
-            skin.positions(),
-            skin.normals(),
-            skin.joints(),
-            skin.weights(),
-            skin.indices().to_vec(),
-            clip.skeleton().len(),
-        )
-        .ok()?;
-        Some(Body { mesh: Arc::new(mesh), coarse: None, inverse_bind: skin.inverse_bind().to_vec() })
+        Body::from_skin(&skin, None, clip.skeleton().len())
     }
 
     /// Sets the character's pose for this frame: slider rotations, then (when
