@@ -3,7 +3,8 @@
 //! Errors go to stderr as `FILE:LINE:COL: message` with a non-zero exit status.
 
 use clap::{ArgMatches, CommandFactory, FromArgMatches, Parser, Subcommand};
-use mocap_cli::commands::{self, EditOp};
+use mocap::ops::edit::{Edit, EditSpec};
+use mocap_cli::commands;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -239,9 +240,10 @@ enum Command {
     },
 }
 
-/// The edits of `mocap edit`, in the order they appear on the command line.
-fn edit_ops(matches: &ArgMatches) -> Result<Vec<EditOp>, String> {
-    let mut ops: Vec<(usize, EditOp)> = Vec::new();
+/// The edits of `mocap edit` as the core's edit specs, in the order they appear
+/// on the command line (`--NAME V` is the spec `NAME:V`, [`commands::flag_spec`]).
+fn edit_specs(matches: &ArgMatches) -> Result<Vec<EditSpec>, String> {
+    let mut specs: Vec<(usize, EditSpec)> = Vec::new();
     let values = |id: &str| -> Vec<(usize, String)> {
         match (matches.indices_of(id), matches.get_raw(id)) {
             (Some(i), Some(v)) => i.zip(v.map(|x| x.to_string_lossy().into_owned())).collect(),
@@ -249,45 +251,33 @@ fn edit_ops(matches: &ArgMatches) -> Result<Vec<EditOp>, String> {
         }
     };
     let flag = |id: &str| -> Option<usize> { matches.get_flag(id).then(|| matches.index_of(id)).flatten() };
-    for (i, v) in values("trim") {
-        ops.push((i, EditOp::Trim(v)));
-    }
-    for (i, v) in values("fps") {
-        ops.push((i, EditOp::Fps(v)));
-    }
-    for (i, v) in values("knit") {
-        ops.push((i, EditOp::Knit(v)));
-    }
-    for (i, v) in values("up") {
-        ops.push((i, EditOp::Up(v)));
-    }
-    for (i, v) in values("units") {
-        ops.push((i, EditOp::Units(v)));
-    }
-    for (i, v) in values("scale") {
-        ops.push((i, EditOp::Scale(v)));
-    }
-    for (i, v) in values("rename") {
-        ops.push((i, EditOp::Rename(v)));
-    }
-    for (i, v) in values("remove") {
-        ops.push((i, EditOp::Remove(v, true)));
-    }
-    for (i, v) in values("drop_joint") {
-        ops.push((i, EditOp::Remove(v, false)));
-    }
-    for (id, op) in [
-        ("reverse", EditOp::Reverse),
-        ("ping_pong", EditOp::PingPong),
-        ("in_place", EditOp::InPlace(false)),
-        ("in_place_turning", EditOp::InPlace(true)),
-    ] {
-        if let Some(i) = flag(id) {
-            ops.push((i, op));
+    for name in ["trim", "fps", "knit", "up", "units", "scale"] {
+        for (i, v) in values(name) {
+            specs.push((i, commands::flag_spec(name, &v)?));
         }
     }
-    ops.sort_by_key(|(i, _)| *i);
-    Ok(ops.into_iter().map(|(_, op)| op).collect())
+    // Joint names are taken as given (a `:` in one is no separator here).
+    for (i, v) in values("rename") {
+        let (from, to) = v.split_once('=').ok_or_else(|| format!("--rename {v}: expected OLD=NEW"))?;
+        specs.push((i, Edit::Rename { from: from.to_owned(), to: to.to_owned() }.into()));
+    }
+    for (id, fold) in [("remove", true), ("drop_joint", false)] {
+        for (i, name) in values(id) {
+            specs.push((i, Edit::RemoveJoint { name, fold }.into()));
+        }
+    }
+    for (id, edit) in [
+        ("reverse", Edit::Reverse),
+        ("ping_pong", Edit::PingPong),
+        ("in_place", Edit::InPlace { remove_turning: false }),
+        ("in_place_turning", Edit::InPlace { remove_turning: true }),
+    ] {
+        if let Some(i) = flag(id) {
+            specs.push((i, edit.into()));
+        }
+    }
+    specs.sort_by_key(|(i, _)| *i);
+    Ok(specs.into_iter().map(|(_, spec)| spec).collect())
 }
 
 fn main() -> ExitCode {
@@ -304,8 +294,8 @@ fn main() -> ExitCode {
             let request = commands::LayerRequest { subtree: &subtree, weight, additive, fade_in, fade_out, map: &map };
             commands::layer(&base, &layer, &request, &output)
         }
-        Command::Edit { files, output, .. } => match matches.subcommand_matches("edit").map(edit_ops) {
-            Some(Ok(ops)) => commands::edit(&files, &ops, &output),
+        Command::Edit { files, output, .. } => match matches.subcommand_matches("edit").map(edit_specs) {
+            Some(Ok(specs)) => commands::edit(&files, &specs, &output),
             Some(Err(e)) => Err(e),
             None => Err("edit: no arguments".into()),
         },

@@ -36,6 +36,7 @@ mod grid;
 mod lines;
 mod mesh;
 mod pipeline;
+mod pipeline_set;
 mod placed;
 mod radius;
 mod renderer;

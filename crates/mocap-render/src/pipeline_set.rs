@@ -1,0 +1,335 @@
+//! The renderer's pipelines: one set per sample count, look and shadow setting
+//! drawn with ([`PipelineKey`]), made on first use.
+
+use crate::capsule::{self, CapsuleVertex};
+use crate::lines::{LINE_ATTRIBUTES, LineInstance};
+use crate::pipeline::{self, PipelineSpec, instances};
+use crate::shadow;
+use crate::spheres::{SPHERE_ATTRIBUTES, SphereInstance};
+use crate::uniforms::OutlineRule;
+
+/// What a set of pipelines is made for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct PipelineKey {
+    pub(crate) samples: u32,
+    /// The shaders' `FAST_LOOK` constant (one shadow lookup per pixel).
+    pub(crate) fast_look: bool,
+    /// The shaders' `SHADOWS` constant (off: no pixel looks at the shadow map).
+    pub(crate) shadows: bool,
+}
+
+impl PipelineKey {
+    /// Whether capsule, line and sphere outlines are blended by their
+    /// coverage (drawn farthest first): full quality on one sample.
+    pub(crate) fn blends_outlines(self) -> bool {
+        self.samples == 1 && !self.fast_look
+    }
+
+    /// How impostor outlines meet the pixels: a pixel-centre test in the fast
+    /// look on one sample, else filtered (samples, or blending).
+    pub(crate) fn outline(self) -> OutlineRule {
+        if self.samples == 1 && self.fast_look { OutlineRule::PixelCentres } else { OutlineRule::Filtered }
+    }
+}
+
+pub(crate) struct Pipelines {
+    /// Capsule impostors into the shadow map.
+    pub(crate) shadow: wgpu::RenderPipeline,
+    pub(crate) floor: wgpu::RenderPipeline,
+    /// The floor's depth only (under a floor whose colour was copied).
+    pub(crate) floor_depth: wgpu::RenderPipeline,
+    pub(crate) floor_shadow: wgpu::RenderPipeline,
+    pub(crate) capsules: wgpu::RenderPipeline,
+    pub(crate) spheres: wgpu::RenderPipeline,
+    pub(crate) lines: wgpu::RenderPipeline,
+    pub(crate) overlay_lines: wgpu::RenderPipeline,
+    pub(crate) morph: wgpu::RenderPipeline,
+    pub(crate) morph_shadow: wgpu::RenderPipeline,
+    pub(crate) skinned: wgpu::RenderPipeline,
+    pub(crate) skinned_shadow: wgpu::RenderPipeline,
+}
+
+/// Multiplies the colour below by the fragment's colour (floor shadows).
+pub(crate) const MULTIPLY: wgpu::BlendState = wgpu::BlendState {
+    color: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::Dst,
+        dst_factor: wgpu::BlendFactor::Zero,
+        operation: wgpu::BlendOperation::Add,
+    },
+    alpha: wgpu::BlendComponent {
+        src_factor: wgpu::BlendFactor::Zero,
+        dst_factor: wgpu::BlendFactor::One,
+        operation: wgpu::BlendOperation::Add,
+    },
+};
+
+/// Keeps the target's value (the capsules' alpha channel).
+pub(crate) const KEEP: wgpu::BlendComponent = wgpu::BlendComponent {
+    src_factor: wgpu::BlendFactor::Zero,
+    dst_factor: wgpu::BlendFactor::One,
+    operation: wgpu::BlendOperation::Add,
+};
+
+/// WGSL sources: the shared uniform and lighting code prepended to each shader.
+pub(crate) const LIT_PRELUDE: &str = concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/lighting.wgsl"));
+
+/// The pipelines made for `key` among `made`, if they are.
+pub(crate) fn pipelines_for(made: &[(PipelineKey, Pipelines)], key: PipelineKey) -> Option<&Pipelines> {
+    made.iter().find(|(k, _)| *k == key).map(|(_, p)| p)
+}
+
+/// The bind group layouts the pipelines use.
+pub(crate) struct Layouts<'a> {
+    pub(crate) frame: &'a wgpu::BindGroupLayout,
+    pub(crate) shadow: &'a wgpu::BindGroupLayout,
+    pub(crate) skin: &'a wgpu::BindGroupLayout,
+    pub(crate) joints: &'a wgpu::BindGroupLayout,
+}
+
+impl Pipelines {
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        layouts: &Layouts,
+        format: wgpu::TextureFormat,
+        key: PipelineKey,
+    ) -> Pipelines {
+        let sample_count = key.samples;
+        let (frame_layout, shadow_layout, skin_layout) = (layouts.frame, layouts.shadow, layouts.skin);
+        let skinned_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap skinned"),
+            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(layouts.joints)],
+            immediate_size: 0,
+        });
+        let skinned_shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap skinned shadow"),
+            bind_group_layouts: &[Some(frame_layout), None, Some(layouts.joints)],
+            immediate_size: 0,
+        });
+        let textured_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap textured"),
+            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(skin_layout)],
+            immediate_size: 0,
+        });
+        let lit_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap lit"),
+            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout)],
+            immediate_size: 0,
+        });
+        let shadow_pass_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap shadow pass"),
+            bind_group_layouts: &[Some(frame_layout)],
+            immediate_size: 0,
+        });
+        let module = |label: &str, body: &str| {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(format!("{LIT_PRELUDE}{body}").into()),
+            })
+        };
+        let capsule_shader = module("mocap capsules", &capsule::shader_source());
+        let floor_shader = module("mocap floor", include_str!("shaders/floor.wgsl"));
+        let sphere_shader = module("mocap spheres", include_str!("shaders/spheres.wgsl"));
+        let line_shader = module("mocap lines", include_str!("shaders/lines.wgsl"));
+        let morph_shader = module("mocap meshes", include_str!("shaders/morph.wgsl"));
+        let morph_buffers = crate::mesh::buffer_layouts();
+        let skinned_shader = module("mocap skinned", include_str!("shaders/skinned.wgsl"));
+        let skinned_buffers = crate::skinned::buffer_layouts();
+        let capsule_buffers = [Some(wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &capsule::ATTRIBUTES,
+        })];
+        let spheres = [instances(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
+        let line_buffers = [instances(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
+        let base = PipelineSpec {
+            label: "mocap capsules",
+            shader: &capsule_shader,
+            vertex_entry: "vs_main",
+            fragment_entry: "fs_main",
+            buffers: &capsule_buffers,
+            color: Some((format, wgpu::BlendState::REPLACE)),
+            depth_format: crate::DEPTH_FORMAT,
+            depth_write: true,
+            depth_compare: wgpu::CompareFunction::LessEqual,
+            depth_bias: Default::default(),
+            cull_back: true,
+            sample_count,
+            alpha_to_coverage: false,
+            depth_fragment: false,
+            color_writes: wgpu::ColorWrites::ALL,
+            fast_look: key.fast_look,
+            shadows: key.shadows,
+            blend_outlines: key.blends_outlines(),
+        };
+        // Depth-only passes into the shadow map: every caster's `vs_shadow`, no colour.
+        let depth_only = PipelineSpec {
+            vertex_entry: "vs_shadow",
+            color: None,
+            depth_format: shadow::FORMAT,
+            depth_bias: wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 },
+            cull_back: false,
+            sample_count: 1,
+            ..base
+        };
+        let shadow = pipeline::build(
+            device,
+            &shadow_pass_layout,
+            &PipelineSpec {
+                label: "mocap shadow casters",
+                fragment_entry: "fs_shadow",
+                depth_fragment: true,
+                ..depth_only
+            },
+        );
+        let floor = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap floor",
+                shader: &floor_shader,
+                buffers: &[],
+                color: Some((format, wgpu::BlendState::ALPHA_BLENDING)),
+                cull_back: false,
+                ..base
+            },
+        );
+        let floor_depth = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap floor depth",
+                shader: &floor_shader,
+                fragment_entry: "fs_depth",
+                buffers: &[],
+                color_writes: wgpu::ColorWrites::empty(),
+                cull_back: false,
+                ..base
+            },
+        );
+        let floor_shadow = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap floor shadow",
+                shader: &floor_shader,
+                vertex_entry: "vs_shadow",
+                fragment_entry: "fs_shadow",
+                buffers: &[],
+                color: Some((format, MULTIPLY)),
+                depth_write: false,
+                depth_compare: wgpu::CompareFunction::Always,
+                cull_back: false,
+                ..base
+            },
+        );
+        // Impostors: triangles of either winding; alpha is the outline's coverage
+        // (samples on a multisampled target, blended on one sample at full
+        // quality) and the target keeps its alpha.
+        let coverage =
+            if key.blends_outlines() { wgpu::BlendState::ALPHA_BLENDING.color } else { wgpu::BlendComponent::REPLACE };
+        let capsules = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                color: Some((format, wgpu::BlendState { color: coverage, alpha: KEEP })),
+                cull_back: false,
+                alpha_to_coverage: true,
+                ..base
+            },
+        );
+        let spheres = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap spheres",
+                shader: &sphere_shader,
+                buffers: &spheres,
+                color: Some((format, wgpu::BlendState { color: coverage, alpha: KEEP })),
+                cull_back: false,
+                ..base
+            },
+        );
+        let lines = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap lines",
+                shader: &line_shader,
+                buffers: &line_buffers,
+                color: Some((format, wgpu::BlendState::ALPHA_BLENDING)),
+                cull_back: false,
+                ..base
+            },
+        );
+        let overlay_lines = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap overlay lines",
+                shader: &line_shader,
+                buffers: &line_buffers,
+                color: Some((format, wgpu::BlendState::ALPHA_BLENDING)),
+                depth_write: false,
+                depth_compare: wgpu::CompareFunction::Always,
+                cull_back: false,
+                ..base
+            },
+        );
+        let morph = pipeline::build(
+            device,
+            &textured_layout,
+            &PipelineSpec {
+                label: "mocap meshes",
+                shader: &morph_shader,
+                buffers: &morph_buffers,
+                cull_back: false,
+                ..base
+            },
+        );
+        let morph_shadow = pipeline::build(
+            device,
+            &shadow_pass_layout,
+            &PipelineSpec { label: "mocap mesh shadows", shader: &morph_shader, buffers: &morph_buffers, ..depth_only },
+        );
+        let skinned = pipeline::build(
+            device,
+            &skinned_layout,
+            // Bodies are closed and wound counter-clockwise seen from outside
+            // (`SkinnedMeshData`): their back faces lie behind their front
+            // faces, so they are not drawn (about a third of a body frame's
+            // time on lavapipe). The shadow pass draws both: culling either
+            // side there moves shadow edges.
+            &PipelineSpec {
+                label: "mocap skinned",
+                shader: &skinned_shader,
+                buffers: &skinned_buffers,
+                cull_back: true,
+                ..base
+            },
+        );
+        let skinned_shadow = pipeline::build(
+            device,
+            &skinned_shadow_layout,
+            &PipelineSpec {
+                label: "mocap skinned shadows",
+                shader: &skinned_shader,
+                buffers: &skinned_buffers,
+                ..depth_only
+            },
+        );
+        Pipelines {
+            shadow,
+            floor,
+            floor_depth,
+            floor_shadow,
+            capsules,
+            spheres,
+            lines,
+            overlay_lines,
+            morph,
+            morph_shadow,
+            skinned,
+            skinned_shadow,
+        }
+    }
+}
