@@ -1,0 +1,75 @@
+//! Commands change the viewer; requests to the page come back from the frame
+//! (no flags); a refused command says why in the banner and changes nothing.
+
+use mocap_viewer::{Command, HostRequest, OpenMode, Viewer};
+
+const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
+
+/// One frame of the whole UI (no GPU), returning what it asks of the page.
+fn frame(ctx: &egui::Context, v: &mut Viewer, time: f64) -> Vec<HostRequest> {
+    let input = egui::RawInput {
+        time: Some(time),
+        screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1280.0, 800.0))),
+        ..Default::default()
+    };
+    let mut requests = Vec::new();
+    let mut out = ctx.run_ui(input, |ui| requests = v.ui(ui, None));
+    out.textures_delta.clear();
+    requests
+}
+
+#[test]
+fn requests_to_the_page_are_returned_by_the_frame_once() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    frame(&ctx, &mut v, 0.0);
+    v.apply(Command::Open(OpenMode::Add));
+    v.apply(Command::Share);
+    v.apply(Command::SaveBvh);
+    let requests = frame(&ctx, &mut v, 0.1);
+    assert_eq!(requests.len(), 3, "{requests:?}");
+    assert_eq!(requests[0], HostRequest::PickFiles(OpenMode::Add));
+    assert_eq!(requests[1], HostRequest::Share);
+    match &requests[2] {
+        HostRequest::Save { name, text } => {
+            assert_eq!(name, "walk.bvh");
+            assert_eq!(text, &mocap::formats::bvh::write(v.stage.actors[0].clip().unwrap()));
+        }
+        other => panic!("expected a save, got {other:?}"),
+    }
+    assert!(frame(&ctx, &mut v, 0.2).is_empty(), "each request is handed over once");
+}
+
+#[test]
+fn a_refused_command_says_why_and_changes_nothing() {
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    let before = v.snapshot();
+    v.apply(Command::SetAnimation(0, "run".to_owned()));
+    let notice = v.error.clone().expect("a notice");
+    assert!(notice.headline().contains("no animation `run`"), "{}", notice.headline());
+    v.apply(Command::GrowBone("Tail".to_owned()));
+    assert!(v.error.as_ref().unwrap().headline().contains("select a joint"), "{:?}", v.error);
+    v.apply(Command::Edit {
+        character: 0,
+        edit: mocap::ops::edit::Edit::Trim { first: 50, last: 10 },
+        label: "Trim".into(),
+    });
+    assert!(v.error.as_ref().unwrap().headline().starts_with("Could not do that: "), "{:?}", v.error);
+    let after = v.snapshot();
+    assert_eq!(after.clips, before.clips, "nothing changed");
+    assert!(v.take_requests().is_empty());
+    v.apply(Command::DismissNotice);
+    assert!(v.error.is_none());
+}
+
+#[test]
+fn the_keys_help_lists_every_binding_from_the_one_table() {
+    let help = mocap_viewer::keys::help();
+    for b in &mocap_viewer::keys::BINDINGS {
+        assert!(help.contains(b.written), "{} missing from the help: {help}", b.written);
+        assert!(b.command.tooltip().contains(b.written), "{:?}: {}", b.command, b.command.tooltip());
+    }
+    assert!(help.contains("k in Edit mode"));
+}
