@@ -293,6 +293,23 @@ pub fn button(ui: &mut egui::Ui, command: Command, out: &mut Vec<Command>) -> bo
     button_with(ui, command.label(), command, out)
 }
 
+/// A menu entry that sends `command`: its label, its key on the right (as
+/// menus show them), its tooltip while hovered.
+pub fn menu_entry(ui: &mut egui::Ui, command: Command, out: &mut Vec<Command>) -> bool {
+    let mut entry = egui::Button::new(command.label());
+    if let Some(key) = command.shortcut() {
+        entry = entry.shortcut_text(key);
+    }
+    let response = ui.add(entry).on_hover_ui(|ui| {
+        ui.label(command.tooltip());
+    });
+    let clicked = response.clicked();
+    if clicked {
+        out.push(command);
+    }
+    clicked
+}
+
 /// A button reading `text` that sends `command` (its tooltip from the table;
 /// made only while the button is hovered).
 pub fn button_with(ui: &mut egui::Ui, text: &str, command: Command, out: &mut Vec<Command>) -> bool {

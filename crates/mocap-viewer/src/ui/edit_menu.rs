@@ -87,14 +87,8 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
         }
     }
     ui.separator();
-    let undo = viewer.history.next_undo().map(|l| format!("Undo {l} (Ctrl+Z)"));
-    if ui.add_enabled(undo.is_some(), egui::Button::new(undo.as_deref().unwrap_or("Undo (Ctrl+Z)"))).clicked() {
-        out.push(Command::Undo);
-    }
-    let redo = viewer.history.next_redo().map(|l| format!("Redo {l} (Ctrl+Shift+Z)"));
-    if ui.add_enabled(redo.is_some(), egui::Button::new(redo.as_deref().unwrap_or("Redo (Ctrl+Shift+Z)"))).clicked() {
-        out.push(Command::Redo);
-    }
+    history_entry(ui, Command::Undo, viewer.history.next_undo(), out);
+    history_entry(ui, Command::Redo, viewer.history.next_redo(), out);
     ui.separator();
     if button(ui, Command::SaveBvh, out) {
         ui.close();
@@ -206,4 +200,14 @@ fn rename(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>) {
         }
     });
     ui.ctx().data_mut(|d| d.insert_temp(id, text));
+}
+
+/// Undo or Redo, naming the edit it takes back or makes again (`Undo Reverse`),
+/// its key on the right; disabled when there is none.
+fn history_entry(ui: &mut egui::Ui, command: Command, edit: Option<&str>, out: &mut Vec<Command>) {
+    let label = edit.map_or_else(|| command.label().to_owned(), |l| format!("{} {l}", command.label()));
+    let entry = egui::Button::new(label).shortcut_text(command.shortcut().unwrap_or_default());
+    if ui.add_enabled(edit.is_some(), entry).clicked() {
+        out.push(command);
+    }
 }

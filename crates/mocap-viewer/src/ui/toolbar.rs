@@ -1,7 +1,7 @@
 //! Top bar: Open, Add and Share buttons, layout, draw mode, the View menu (panels
 //! and view toggles), foot lock and Edit mode, and the Camera, Edit and Demos menus.
 
-use crate::command::{Command, OpenMode, button};
+use crate::command::{Command, OpenMode, button, menu_entry};
 use crate::layout::Layout;
 use crate::panels::Panels;
 use crate::settings::{DrawMode, ViewSettings};
@@ -57,11 +57,11 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
 /// Front, side and top views, and back to the framing view (also keys 1 2 3 and r).
 fn camera_menu(ui: &mut egui::Ui, out: &mut Vec<Command>) {
     for w in [Waypoint::Front, Waypoint::Side, Waypoint::Top] {
-        if button(ui, Command::Waypoint(w), out) {
+        if menu_entry(ui, Command::Waypoint(w), out) {
             ui.close();
         }
     }
-    if button(ui, Command::ResetCamera, out) {
+    if menu_entry(ui, Command::ResetCamera, out) {
         ui.close();
     }
 }
