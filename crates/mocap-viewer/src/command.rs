@@ -235,6 +235,15 @@ impl Command {
         }
     }
 
+    /// Its label followed by its key, as menus show it (`Front (1)`; the label
+    /// alone for a command without a key).
+    pub fn label_with_key(&self) -> String {
+        match self.shortcut() {
+            Some(key) => format!("{} ({key})", self.label()),
+            None => self.label().to_owned(),
+        }
+    }
+
     /// What its button or menu entry does, for the tooltip (shortcut included).
     pub fn tooltip(&self) -> String {
         let text = self.tooltip_text();
@@ -293,21 +302,10 @@ pub fn button(ui: &mut egui::Ui, command: Command, out: &mut Vec<Command>) -> bo
     button_with(ui, command.label(), command, out)
 }
 
-/// A menu entry that sends `command`: its label, its key on the right (as
-/// menus show them), its tooltip while hovered.
+/// A menu entry that sends `command`: its label with its key (`Front (1)`),
+/// its tooltip while hovered.
 pub fn menu_entry(ui: &mut egui::Ui, command: Command, out: &mut Vec<Command>) -> bool {
-    let mut entry = egui::Button::new(command.label());
-    if let Some(key) = command.shortcut() {
-        entry = entry.shortcut_text(key);
-    }
-    let response = ui.add(entry).on_hover_ui(|ui| {
-        ui.label(command.tooltip());
-    });
-    let clicked = response.clicked();
-    if clicked {
-        out.push(command);
-    }
-    clicked
+    button_with(ui, &command.label_with_key(), command, out)
 }
 
 /// A button reading `text` that sends `command` (its tooltip from the table;

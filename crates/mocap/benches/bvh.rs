@@ -159,7 +159,7 @@ fn main() {
         together = together.min(best(1, floor_at_once));
     }
     println!(
-        "mocap::formats::bvh::parse       {:>8.1} ms  {:>7.0} MB/s  ({threads} threads available)",
+        "mocap bvh::parse           {:>8.1} ms  {:>7.0} MB/s  ({threads} threads available)",
         ours.as_secs_f64() * 1e3,
         mb / ours.as_secs_f64()
     );

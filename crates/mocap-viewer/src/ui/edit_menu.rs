@@ -202,12 +202,15 @@ fn rename(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>) {
     ui.ctx().data_mut(|d| d.insert_temp(id, text));
 }
 
-/// Undo or Redo, naming the edit it takes back or makes again (`Undo Reverse`),
-/// its key on the right; disabled when there is none.
+/// Undo or Redo, naming the edit it takes back or makes again, with its key
+/// (`Undo Reverse (Ctrl+Z)`); disabled when there is none.
 fn history_entry(ui: &mut egui::Ui, command: Command, edit: Option<&str>, out: &mut Vec<Command>) {
-    let label = edit.map_or_else(|| command.label().to_owned(), |l| format!("{} {l}", command.label()));
-    let entry = egui::Button::new(label).shortcut_text(command.shortcut().unwrap_or_default());
-    if ui.add_enabled(edit.is_some(), entry).clicked() {
+    let key = command.shortcut().map_or(String::new(), |k| format!(" ({k})"));
+    let label = match edit {
+        Some(edit) => format!("{} {edit}{key}", command.label()),
+        None => format!("{}{key}", command.label()),
+    };
+    if ui.add_enabled(edit.is_some(), egui::Button::new(label)).clicked() {
         out.push(command);
     }
 }
