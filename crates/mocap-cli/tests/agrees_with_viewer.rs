@@ -4,6 +4,7 @@
 
 use mocap_cli::render::{Orbit, StageView};
 use mocap_render::Scene;
+use mocap_viewer::Command;
 
 fn walk() -> Vec<u8> {
     std::fs::read(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/walk.bvh")).expect("data/walk.bvh")
@@ -17,9 +18,11 @@ fn mocap_render_and_the_page_frame_a_clip_alike_wide_and_tall() {
         let stage = StageView::new(vec![("walk.bvh".to_owned(), clip.into())]);
         let cli = stage.orbit_camera(Orbit::default(), size);
         let mut page = mocap_viewer::Viewer::default();
-        page.camera.aspect = size[0] as f32 / size[1] as f32;
+        let camera =
+            mocap_viewer::OrbitCamera { aspect: size[0] as f32 / size[1] as f32, ..page.state().camera.clone() };
+        page.apply(Command::SetCamera(camera)).unwrap();
         page.load("walk.bvh", &bytes).unwrap();
-        let page = &page.camera;
+        let page = &page.state().camera;
         assert!((cli.target - page.target).length() < 1e-5, "{size:?}: {} vs {}", cli.target, page.target);
         assert!((cli.distance - page.distance).abs() < 1e-4 * page.distance, "{size:?}: distance");
         assert!((cli.yaw - page.yaw).abs() < 1e-6 && (cli.pitch - page.pitch).abs() < 1e-6, "{size:?}: angles");
@@ -38,8 +41,8 @@ fn mocap_render_and_the_page_draw_the_same_primitives() {
     stage.scene_at(0.0, &mut cli);
     let mut page = mocap_viewer::Viewer::default();
     page.load("walk.bvh", &bytes).unwrap();
-    page.set_playing(false);
-    page.seek(0);
+    page.apply(Command::SetPlaying(false)).unwrap();
+    page.apply(Command::Seek(0)).unwrap();
     page.pose();
     let page = page.scene();
     assert!(!cli.capsules.is_empty());

@@ -122,7 +122,7 @@ impl eframe::App for ViewerApp {
             let mut requests = viewer.ui(ui, frame.wgpu_render_state());
             // Requests made by commands from the JS API between frames, too.
             requests.extend(viewer.take_requests());
-            let view = self.on_view_change.is_some().then(|| viewer.view_fragment());
+            let view = self.on_view_change.is_some().then(|| viewer.state().view_fragment());
             (requests, viewer.viewport.reduced, view)
         };
         self.update_render_scale(ui.ctx(), reduced);

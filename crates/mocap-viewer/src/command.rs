@@ -41,6 +41,10 @@ pub enum HostRequest {
 pub enum Command {
     /// Play or pause.
     TogglePlay,
+    /// Play (`true`) or pause.
+    SetPlaying(bool),
+    /// Move the playhead to a time in seconds (clamped to the timeline).
+    SetTime(f64),
     /// Step frames (pauses).
     Step(isize),
     /// Go to the first frame of the range.
@@ -63,6 +67,11 @@ pub enum Command {
     Waypoint(Waypoint),
     /// Frame the whole motion again from the default angles.
     ResetCamera,
+    /// Put the camera here.
+    SetCamera(mocap_scene::OrbitCamera),
+    /// Apply the view a URL fragment describes (see [`crate::view_state`];
+    /// unknown parts are ignored).
+    ApplyFragment(String),
     /// Toggle following the root.
     ToggleFollow,
     /// Toggle bone axes.
@@ -82,6 +91,14 @@ pub enum Command {
         /// Joint index.
         joint: Option<usize>,
     },
+    /// Select the first joint called `name` of character `character` (refused
+    /// when it has none).
+    SelectNamed {
+        /// Character index.
+        character: usize,
+        /// Joint name.
+        name: String,
+    },
     /// Show or hide a character.
     SetVisible(usize, bool),
     /// Play a model's animation by name (`all`: every frame).
@@ -92,6 +109,8 @@ pub enum Command {
     Close(usize),
     /// Close a character at once, edits or not.
     CloseNow(usize),
+    /// Close every character.
+    CloseAll,
     /// Keep the character the close question was about open.
     KeepOpen,
     /// Turn the dragged pose corrections into keys.
@@ -155,10 +174,14 @@ pub enum Command {
         /// The joint whose subtree is layered.
         joint: String,
     },
+    /// Change what the Layer window is set to (the window edited a copy).
+    SetLayerDialog(crate::layer_dialog::LayerDialog),
     /// Close the Layer window.
     CloseLayerDialog,
     /// Start capturing the skeletal motion of model `index`.
     StartCapture(usize),
+    /// Do the rest of the capture in progress now.
+    FinishCapture,
     /// Fit a skeleton in model `model`'s first frame to set up by hand (the
     /// humanoid, or the first pose of clip `template`).
     FitRig {
@@ -178,6 +201,9 @@ pub enum Command {
     BindRig,
     /// Keep the rig for the next capture and stop setting it up.
     FinishRigEdit,
+    /// Change the tentacle demo's settings (its panel edited a copy); the skin
+    /// is rebuilt when the softness changed.
+    SetTentacle(crate::tentacle::Tentacle),
     /// Rebuild the tentacle's skin (its softness changed).
     RefreshTentacleSkin,
     /// Give the tentacle this many bones, keeping its other settings.

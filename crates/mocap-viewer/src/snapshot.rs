@@ -1,7 +1,7 @@
 //! A plain copy of what the viewer shows, for scripting and tests (`window.mocapViewer.state()`).
 
 use crate::character::Character;
-use crate::viewer::Viewer;
+use crate::state::AppState;
 
 /// Summary of one open character.
 #[derive(Clone, Debug, PartialEq)]
@@ -152,8 +152,9 @@ pub struct Snapshot {
 }
 
 impl Snapshot {
-    /// The state of `v`, with what only the viewer's private parts know passed in.
-    pub fn of(v: &Viewer, tree_labels: Vec<String>, frames_rendered: u64, backend: Option<String>) -> Snapshot {
+    /// The state `v` shows; what only the 3D view knows (frames drawn, backend,
+    /// samples) is left at its default for the viewer to fill in.
+    pub fn of(v: &AppState, tree_labels: Vec<String>) -> Snapshot {
         Snapshot {
             clips: v
                 .stage
@@ -177,16 +178,11 @@ impl Snapshot {
             shadows: v.settings.shadows,
             pose_mode: v.settings.pose_mode,
             quality: v.settings.quality.name(),
-            reduced: v.viewport.reduced,
-            samples: v.viewport.samples,
-            floor_copied: v.viewport.floor_copied,
-            error: v.error.as_ref().map(|n| n.message.clone()),
-            error_note: v.error.as_ref().and_then(|n| n.note(!v.stage.actors.is_empty())),
+            error: v.notice.as_ref().map(|n| n.message.clone()),
+            error_note: v.notice.as_ref().and_then(|n| n.note(!v.stage.actors.is_empty())),
             tree_labels,
-            frames_rendered,
             view: v.view_fragment(),
             embed: v.panels.embed,
-            backend,
             undo: v.history.next_undo().map(str::to_owned),
             redo: v.history.next_redo().map(str::to_owned),
             demo: v.tentacle.as_ref().map(|t| DemoSummary {
@@ -197,6 +193,7 @@ impl Snapshot {
                 target: t.target.to_array(),
                 tip: t.tip.to_array(),
             }),
+            ..Snapshot::default()
         }
     }
 }

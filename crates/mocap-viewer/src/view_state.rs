@@ -21,7 +21,7 @@
 //! values are ignored; missing keys leave the viewer as it is.
 
 use crate::layout::Layout;
-use crate::viewer::Viewer;
+use crate::state::AppState;
 use mocap::glam::Vec3;
 
 /// A parsed fragment: every field is optional (absent = leave as is).
@@ -108,7 +108,7 @@ impl ViewState {
     }
 
     /// Everything the viewer shows, as a fragment (no leading `#`).
-    pub fn format(viewer: &Viewer) -> String {
+    pub fn format(viewer: &AppState) -> String {
         let p = &viewer.playback;
         let c = &viewer.camera;
         let st = &viewer.settings;
@@ -167,102 +167,6 @@ impl ViewState {
         parts.push(format!("panels={}", join_flags(panels, PANEL_NAMES)));
         parts.join("&")
     }
-
-    /// Applies the present fields to `viewer` (the clips should be open already).
-    pub fn apply(&self, viewer: &mut Viewer) {
-        if let Some(layout) = self.layout
-            && layout != viewer.stage.layout
-        {
-            viewer.stage.set_layout(layout);
-        }
-        if let Some(up) = &self.up {
-            for (i, &axis) in up.iter().enumerate() {
-                if viewer.stage.actors.get(i).is_some_and(|c| c.clip().is_some() && c.up != axis) {
-                    viewer.set_up_axis(i, axis);
-                }
-            }
-        }
-        if let Some(hidden) = &self.hidden {
-            for (i, c) in viewer.stage.actors.iter_mut().enumerate() {
-                c.visible = !hidden.contains(&i);
-            }
-        }
-        if let Some(offsets) = &self.offsets {
-            for (i, c) in viewer.stage.actors.iter_mut().enumerate() {
-                c.offset = offsets.iter().find(|(n, _)| *n == i).map_or(Vec3::ZERO, |(_, o)| *o);
-            }
-        }
-        if let Some(animations) = &self.animations {
-            for i in 0..viewer.stage.actors.len() {
-                let name = animations.iter().find(|(n, _)| *n == i).map_or("all", |(_, a)| a.as_str());
-                viewer.set_animation(i, name);
-            }
-        }
-        if let Some(speed) = self.speed {
-            viewer.playback.speed =
-                speed.clamp(*crate::playback::SPEED_RANGE.start(), *crate::playback::SPEED_RANGE.end());
-        }
-        if let Some(looping) = self.looping {
-            viewer.playback.looping = looping;
-        }
-        if let Some(range) = self.range {
-            viewer.playback.range = range;
-        }
-        if let Some([joints, axes, follow, interp, weights, pose, footlock]) = self.draw {
-            viewer.settings.pose_mode = pose;
-            viewer.settings.foot_lock = footlock;
-            viewer.settings.show_joints = joints;
-            viewer.settings.show_axes = axes;
-            viewer.settings.follow_root = follow;
-            viewer.settings.interpolate = interp;
-            viewer.settings.show_weights = weights;
-        }
-        if let Some(mode) = self.mode {
-            viewer.settings.mode = mode;
-        }
-        if let Some(shadows) = self.shadows {
-            viewer.settings.shadows = shadows;
-        }
-        if let Some(quality) = self.quality {
-            viewer.settings.quality = quality;
-        }
-        if let Some([tree, inspector]) = self.panels {
-            viewer.panels.hierarchy = tree;
-            viewer.panels.inspector = inspector;
-        }
-        if let Some((yaw, pitch, distance, target)) = self.camera {
-            viewer.camera.yaw = yaw;
-            viewer.camera.pitch = pitch;
-            viewer.camera.distance = distance;
-            viewer.camera.target = target;
-        }
-        match &self.selected {
-            Some(Some((character, name))) => {
-                // `sel=2%3AHead` (the whole value encoded once more, as URLSearchParams
-                // does) names no joint of character 1: then it is read as `sel=2:Head`.
-                let numbered = || split_numbered(name).filter(|_| *character == 0);
-                if !viewer.select_named(*character, name)
-                    && let Some((c, n)) = numbered()
-                {
-                    viewer.select_named(c, &percent_decode(n));
-                }
-            }
-            Some(None) => viewer.selected = None,
-            None => {}
-        }
-        if let Some(playing) = self.playing {
-            viewer.playback.playing = playing;
-        }
-        if let Some(timing) = viewer.timing() {
-            let end = timing.time_of(timing.last());
-            if let Some(t) = self.time {
-                viewer.playback.time = t.min(end);
-            } else if let Some(f) = self.frame {
-                viewer.playback.seek(f, timing);
-            }
-        }
-        viewer.restart_clock();
-    }
 }
 
 fn flag(v: &str) -> Option<bool> {
@@ -294,7 +198,7 @@ fn parse_selection(raw: &str) -> Option<(usize, String)> {
 }
 
 /// `n:rest` with `n` a 1-based number: `(n - 1, rest)`.
-fn split_numbered(s: &str) -> Option<(usize, &str)> {
+pub(crate) fn split_numbered(s: &str) -> Option<(usize, &str)> {
     let (n, rest) = s.split_once(':')?;
     Some((n.parse::<usize>().ok()?.checked_sub(1)?, rest))
 }

@@ -12,32 +12,32 @@ const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
 fn body_mode_draws_a_skinned_body_instead_of_capsules() {
     let mut v = Viewer::default();
     v.load("walk.bvh", WALK).unwrap();
-    v.set_playing(false);
+    v.apply(Command::SetPlaying(false)).unwrap();
     v.apply_fragment("mode=body&draw=joints,weights");
-    assert_eq!(v.settings.mode, DrawMode::Body);
-    assert!(v.settings.show_weights);
+    assert_eq!(v.state().settings.mode, DrawMode::Body);
+    assert!(v.state().settings.show_weights);
     v.pose();
     let scene = v.scene();
     assert_eq!(scene.skinned.len(), 1);
     assert!(scene.capsules.is_empty(), "no capsules in body mode");
     let body = &scene.skinned[0];
-    let joints = v.stage.actors[0].clip().unwrap().skeleton().len();
+    let joints = v.state().stage.actors[0].clip().unwrap().skeleton().len();
     assert_eq!(body.matrices.len(), joints);
     assert_eq!(body.mesh.joint_count() as usize, joints);
     assert!(body.weights_view);
     // The matrices follow the pose: at the bind frame (0) each matrix maps a joint's
     // bind position to where it is drawn.
-    let pose = &v.stage.actors[0].extra.pose;
-    let bind = v.stage.actors[0].clip().unwrap().bind_pose();
+    let pose = &v.state().stage.actors[0].extra.pose;
+    let bind = v.state().stage.actors[0].clip().unwrap().bind_pose();
     for (j, m) in body.matrices.iter().enumerate() {
         let at = m.transform_point3(bind[j].translation);
         assert!(at.distance(pose[j].translation) < 1e-3, "joint {j}: {at} vs {}", pose[j].translation);
     }
-    let fragment = v.view_fragment();
+    let fragment = v.state().view_fragment();
     assert!(fragment.contains("mode=body") && fragment.contains("weights"), "{fragment}");
     // Another frame moves the matrices.
     let at_zero = body.matrices.clone();
-    v.seek(20);
+    v.apply(Command::Seek(20)).unwrap();
     v.pose();
     assert_ne!(v.scene().skinned[0].matrices, at_zero);
 }
@@ -48,8 +48,8 @@ fn m_cycles_capsules_sticks_body() {
     v.load("walk.bvh", WALK).unwrap();
     let mut seen = Vec::new();
     for _ in 0..3 {
-        v.apply(Command::ToggleDrawMode);
-        seen.push(v.settings.mode);
+        v.apply(Command::ToggleDrawMode).unwrap();
+        seen.push(v.state().settings.mode);
     }
     assert_eq!(seen, [DrawMode::Sticks, DrawMode::Body, DrawMode::Capsules]);
 }
@@ -68,7 +68,9 @@ fn a_skeleton_too_big_for_a_body_keeps_its_capsules() {
     text.push('\n');
     let mut v = Viewer::default();
     v.load("deep.bvh", text.as_bytes()).unwrap();
-    v.settings.mode = DrawMode::Body;
+    let mut edited = v.state().settings.clone();
+    edited.mode = DrawMode::Body;
+    v.apply(Command::SetSettings(edited)).unwrap();
     v.pose();
     assert!(v.scene().skinned.is_empty());
     assert!(v.scene().capsules.len() > 100, "drawn as capsules instead");
@@ -82,12 +84,12 @@ fn the_bodys_bounds_hold_the_posed_body_where_it_is_drawn() {
     // without its shadow.
     let mut v = Viewer::default();
     v.load("walk.bvh", WALK).unwrap();
-    v.set_playing(false);
+    v.apply(Command::SetPlaying(false)).unwrap();
     v.apply_fragment("mode=body");
-    let c = &v.stage.actors[0];
+    let c = &v.state().stage.actors[0];
     let skin = mocap_scene::body_skin(c.clip().unwrap(), c.extent).expect("a body");
     for frame in [0, 20, 40, 60] {
-        v.seek(frame);
+        v.apply(Command::Seek(frame)).unwrap();
         v.pose();
         let draw = &v.scene().skinned[0];
         let (lo, hi) = draw.world_bounds().expect("bounds");
@@ -101,7 +103,7 @@ fn the_bodys_bounds_hold_the_posed_body_where_it_is_drawn() {
             );
             (vlo, vhi) = (vlo.min(*p), vhi.max(*p));
         }
-        for t in v.stage.actors[0].extra.pose.iter() {
+        for t in v.state().stage.actors[0].extra.pose.iter() {
             assert!(
                 t.translation.cmpge(lo).all() && t.translation.cmple(hi).all(),
                 "frame {frame}: joint {} outside",

@@ -24,9 +24,9 @@ fn requests_to_the_page_are_returned_by_the_frame_once() {
     let mut v = Viewer::default();
     v.load("walk.bvh", WALK).unwrap();
     frame(&ctx, &mut v, 0.0);
-    v.apply(Command::Open(OpenMode::Add));
-    v.apply(Command::Share);
-    v.apply(Command::SaveBvh);
+    v.apply(Command::Open(OpenMode::Add)).unwrap();
+    v.apply(Command::Share).unwrap();
+    v.apply(Command::SaveBvh).unwrap();
     let requests = frame(&ctx, &mut v, 0.1);
     assert_eq!(requests.len(), 3, "{requests:?}");
     assert_eq!(requests[0], HostRequest::PickFiles(OpenMode::Add));
@@ -34,7 +34,7 @@ fn requests_to_the_page_are_returned_by_the_frame_once() {
     match &requests[2] {
         HostRequest::Save { name, text } => {
             assert_eq!(name, "walk.bvh");
-            assert_eq!(text, &mocap::formats::bvh::write(v.stage.actors[0].clip().unwrap()));
+            assert_eq!(text, &mocap::formats::bvh::write(v.state().stage.actors[0].clip().unwrap()));
         }
         other => panic!("expected a save, got {other:?}"),
     }
@@ -46,22 +46,23 @@ fn a_refused_command_says_why_and_changes_nothing() {
     let mut v = Viewer::default();
     v.load("walk.bvh", WALK).unwrap();
     let before = v.snapshot();
-    v.apply(Command::SetAnimation(0, "run".to_owned()));
-    let notice = v.error.clone().expect("a notice");
+    v.apply(Command::SetAnimation(0, "run".to_owned())).unwrap_err();
+    let notice = v.state().notice.clone().expect("a notice");
     assert!(notice.headline().contains("no animation `run`"), "{}", notice.headline());
-    v.apply(Command::GrowBone("Tail".to_owned()));
-    assert!(v.error.as_ref().unwrap().headline().contains("select a joint"), "{:?}", v.error);
+    v.apply(Command::GrowBone("Tail".to_owned())).unwrap_err();
+    assert!(v.state().notice.as_ref().unwrap().headline().contains("select a joint"), "{:?}", v.state().notice);
     v.apply(Command::Edit {
         character: 0,
         edit: mocap::ops::edit::Edit::Trim { first: 50, last: 10 },
         label: "Trim".into(),
-    });
-    assert!(v.error.as_ref().unwrap().headline().starts_with("Could not do that: "), "{:?}", v.error);
+    })
+    .unwrap_err();
+    assert!(v.state().notice.as_ref().unwrap().headline().starts_with("Could not do that: "), "{:?}", v.state().notice);
     let after = v.snapshot();
     assert_eq!(after.clips, before.clips, "nothing changed");
     assert!(v.take_requests().is_empty());
-    v.apply(Command::DismissNotice);
-    assert!(v.error.is_none());
+    v.apply(Command::DismissNotice).unwrap();
+    assert!(v.state().notice.is_none());
 }
 
 #[test]

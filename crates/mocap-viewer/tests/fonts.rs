@@ -2,6 +2,7 @@
 //! glyph for every character the viewer, the page's JS API and the core's
 //! messages write, and the whole UI draws without falling back to a box.
 
+use mocap_viewer::Command;
 use mocap_viewer::Viewer;
 use std::path::{Path, PathBuf};
 
@@ -104,7 +105,7 @@ fn the_whole_ui_draws_without_a_missing_glyph() {
     frame(&ctx, Some(&mut v), 0.1);
     v.load("walk.bvh", WALK).expect("walk.bvh");
     v.add("again.bvh", WALK).expect("second character");
-    v.select(Some(7));
+    v.apply(Command::Select { character: v.state().current(), joint: Some(7) }).unwrap();
     frame(&ctx, Some(&mut v), 0.2);
     frame(&ctx, Some(&mut v), 0.3);
     let _ = v.load("bad.bvh", b"HIERARCHY\nJOINT");

@@ -3,6 +3,7 @@
 //! whole UI drawing a model. Reads the corpus (`../shared/corpus`; a failure when
 //! missing unless `MOCAP_SKIP_CORPUS=1`).
 
+use mocap_viewer::Command;
 use mocap_viewer::{OpenMode, Viewer};
 use std::path::{Path, PathBuf};
 
@@ -32,7 +33,7 @@ fn faerie() -> Option<Viewer> {
     let mut v = Viewer::default();
     let errors = v.open_files(&[("faerie.md2", &model), ("faerie2.bmp", &skin)], OpenMode::Replace);
     assert!(errors.is_empty(), "{errors:?}");
-    v.set_playing(false);
+    v.apply(Command::SetPlaying(false)).unwrap();
     Some(v)
 }
 
@@ -51,14 +52,17 @@ fn a_model_opens_with_its_skin_and_animations() {
 #[test]
 fn choosing_an_animation_sets_the_timeline_and_the_fragment() {
     let Some(mut v) = faerie() else { return };
-    assert!(v.set_animation(0, "run"));
-    assert!(!v.set_animation(0, "fly") && !v.set_animation(3, "run"));
+    assert!(v.try_apply(Command::SetAnimation(0, "run".into())).is_ok());
+    assert!(
+        !v.try_apply(Command::SetAnimation(0, "fly".into())).is_ok()
+            && !v.try_apply(Command::SetAnimation(3, "run".into())).is_ok()
+    );
     let s = v.snapshot();
     assert_eq!((s.clips[0].frames, s.clips[0].animation.as_deref()), (6, Some("run")));
-    v.seek(2);
+    v.apply(Command::Seek(2)).unwrap();
     v.pose();
     assert_eq!(v.snapshot().clips[0].model_frame, Some((42, "run3".to_owned())));
-    let fragment = v.view_fragment();
+    let fragment = v.state().view_fragment();
     assert!(fragment.contains("anim=1:run"), "{fragment}");
     let Some(mut again) = faerie() else { return };
     again.apply_fragment(&fragment);
@@ -73,10 +77,12 @@ fn choosing_an_animation_sets_the_timeline_and_the_fragment() {
 #[test]
 fn the_renderer_gets_two_frames_and_a_blend_or_the_nearest_frame() {
     let Some(mut v) = faerie() else { return };
-    v.set_animation(0, "run");
-    v.playback.time = 0.15;
-    v.playback.playing = true;
-    v.settings.interpolate = true;
+    v.try_apply(Command::SetAnimation(0, "run".into())).unwrap();
+    v.apply(Command::SetTime(0.15)).unwrap();
+    v.apply(Command::SetPlaying(true)).unwrap();
+    let mut edited = v.state().settings.clone();
+    edited.interpolate = true;
+    v.apply(Command::SetSettings(edited)).unwrap();
     v.pose();
     let mesh = &v.scene().meshes;
     assert_eq!(mesh.len(), 1);
@@ -84,10 +90,12 @@ fn the_renderer_gets_two_frames_and_a_blend_or_the_nearest_frame() {
     assert_eq!(mesh[0].tint, [255; 4], "textured: the skin's own colours");
     assert!(v.scene().capsules.is_empty() && v.scene().grid.is_some());
     // Interpolation off: switch at the halfway point (frame 1.5 of run shows 42).
-    v.settings.interpolate = false;
+    let mut edited = v.state().settings.clone();
+    edited.interpolate = false;
+    v.apply(Command::SetSettings(edited)).unwrap();
     v.pose();
     assert_eq!((v.scene().meshes[0].frames, v.scene().meshes[0].blend), ([42, 42], 0.0));
-    v.set_visible(0, false);
+    v.try_apply(Command::SetVisible(0, false)).unwrap();
     v.pose();
     assert!(v.scene().meshes.is_empty());
 }
@@ -97,7 +105,7 @@ fn a_model_and_a_bvh_stand_side_by_side_at_one_scale() {
     let Some(mut v) = faerie() else { return };
     v.add("walk.bvh", WALK).unwrap();
     v.pose();
-    let stage = &v.stage;
+    let stage = &v.state().stage;
     let model = stage.actors[0].world_bounds();
     let walk = stage.actors[1].world_bounds();
     assert!(model.max.x < walk.min.x, "separate lanes");
@@ -136,7 +144,7 @@ fn the_ui_draws_a_model_with_its_panels() {
         });
         output.textures_delta.clear();
         if i == 0 {
-            v.set_playing(true);
+            v.apply(Command::SetPlaying(true)).unwrap();
         }
     }
     let s = v.snapshot();
@@ -147,15 +155,15 @@ fn the_ui_draws_a_model_with_its_panels() {
 #[test]
 fn capture_skeleton_adds_a_clip_inside_the_model_and_its_rig_can_be_saved_and_dropped_back() {
     let Some(mut v) = faerie() else { return };
-    assert!(v.start_capture(0).is_ok());
-    let (done, total) = v.capture_progress().unwrap();
+    assert!(v.try_apply(Command::StartCapture(0)).is_ok());
+    let (done, total) = v.state().capture_progress().unwrap();
     assert!(done == 0 && total > 198, "joints then frames: {total} steps");
     // A few budgets of work: progress moves, nothing is added yet.
     v.step_capture();
-    let (later, _) = v.capture_progress().unwrap_or((total, total));
+    let (later, _) = v.state().capture_progress().unwrap_or((total, total));
     assert!(later > 0);
-    v.finish_capture_now();
-    assert!(v.capture_progress().is_none());
+    v.apply(Command::FinishCapture).unwrap();
+    assert!(v.state().capture_progress().is_none());
     let s = v.snapshot();
     assert_eq!(s.clips.len(), 2);
     assert_eq!(s.clips[1].name, "faerie-capture.bvh");
@@ -166,30 +174,30 @@ fn capture_skeleton_adds_a_clip_inside_the_model_and_its_rig_can_be_saved_and_dr
     v.pose();
     let (lo, hi) = v.scene().meshes[0].world_bounds().expect("the model is drawn");
     let grow = (hi - lo) * 0.05;
-    for t in v.stage.actors[1].extra.pose.iter() {
+    for t in v.state().stage.actors[1].extra.pose.iter() {
         let p = t.translation;
         assert!(p.cmpge(lo - grow).all() && p.cmple(hi + grow).all(), "joint at {p} outside the model's {lo}..{hi}");
     }
-    let result = v.capture_result.clone().unwrap();
+    let result = v.state().capture_result.clone().unwrap();
     assert!(result.report.joints.iter().filter(|j| j.tracked.is_ok()).count() > 15);
     assert!(result.animations.iter().any(|(n, a, b)| n == "run" && b - a == 5));
     // Save rig downloads JSON; dropped back, the next capture uses it.
     let (name, json) = v.rig_download().unwrap();
     assert_eq!(name, "faerie-rig.json");
     assert!(v.open_files(&[("faerie-rig.json", json.as_bytes())], OpenMode::Add).is_empty());
-    assert!(v.capture_rig.is_some() && v.snapshot().clips.len() == 2, "a rig is kept, not opened");
-    v.start_capture(0).unwrap();
-    v.finish_capture_now();
+    assert!(v.state().capture_rig.is_some() && v.snapshot().clips.len() == 2, "a rig is kept, not opened");
+    v.try_apply(Command::StartCapture(0)).unwrap();
+    v.apply(Command::FinishCapture).unwrap();
     assert_eq!(v.snapshot().clips.len(), 3);
-    assert_eq!(v.capture_result.as_ref().unwrap().rig, result.rig, "the dropped rig was used");
+    assert_eq!(v.state().capture_result.as_ref().unwrap().rig, result.rig, "the dropped rig was used");
     // A bad rig, a rig for another model, a clip: clear errors, nothing lost.
     let errors = v.open_files(&[("bad.json", b"{\"format\": 1}")], OpenMode::Add);
     assert!(errors[0].starts_with("bad.json: rig:"), "{errors:?}");
     let mut other = result.rig.clone();
     other.binding.truncate(10);
-    v.capture_rig = Some(other);
-    assert!(v.start_capture(0).unwrap_err().contains("binds 10 vertices"));
-    assert!(v.start_capture(1).unwrap_err().contains("only a model"));
+    assert!(v.open_files(&[("other-rig.json", other.to_json().as_bytes())], OpenMode::Add).is_empty());
+    assert!(v.try_apply(Command::StartCapture(0)).unwrap_err().contains("binds 10 vertices"));
+    assert!(v.try_apply(Command::StartCapture(1)).unwrap_err().contains("only a model"));
     assert_eq!(v.snapshot().clips.len(), 3);
 }
 
@@ -198,39 +206,39 @@ fn a_rig_is_set_up_by_hand_and_used_by_the_capture() {
     use mocap::glam::Vec3;
     use mocap_viewer::rig_edit::{RIG_JOINT, RIG_SPIN};
     let Some(mut v) = faerie() else { return };
-    v.start_rig_edit(0, None).unwrap();
+    v.try_apply(Command::FitRig { model: 0, template: None }).unwrap();
     let handles = v.rig_handles();
-    let joints = v.rig_edit.as_ref().unwrap().rig.joints.len();
+    let joints = v.state().rig_edit.as_ref().unwrap().rig.joints.len();
     assert_eq!(handles.iter().filter(|h| h.character == RIG_JOINT).count(), joints);
     assert!(handles.iter().any(|h| h.character == RIG_SPIN));
     assert_eq!(v.handles().len(), handles.len(), "while a rig is set up, its handles are the ones grabbed");
     // Drag the left hand 5 cm up: the rig joint follows (file units).
-    let hand = v.rig_edit.as_ref().unwrap().rig.joints.iter().position(|j| j.name == "LeftHand").unwrap();
+    let hand = v.state().rig_edit.as_ref().unwrap().rig.joints.iter().position(|j| j.name == "LeftHand").unwrap();
     let h = *handles.iter().find(|h| h.character == RIG_JOINT && h.joint == hand).unwrap();
-    let before = Vec3::from_array(v.rig_edit.as_ref().unwrap().rig.joints[hand].position);
+    let before = Vec3::from_array(v.state().rig_edit.as_ref().unwrap().rig.joints[hand].position);
     v.drag_rig(h, h.world + Vec3::new(0.0, 0.05, 0.0), egui::Pos2::ZERO);
-    let after = Vec3::from_array(v.rig_edit.as_ref().unwrap().rig.joints[hand].position);
+    let after = Vec3::from_array(v.state().rig_edit.as_ref().unwrap().rig.joints[hand].position);
     assert!((after - before - Vec3::new(0.0, 0.05 / 0.0254, 0.0)).length() < 1e-3, "{before} → {after}");
-    assert_eq!(v.rig_edit.as_ref().unwrap().selected, Some(hand));
+    assert_eq!(v.state().rig_edit.as_ref().unwrap().selected, Some(hand));
     // A spin handle turns the bone's spin, kept across it.
     let s = *handles.iter().find(|h| h.character == RIG_SPIN).unwrap();
     v.drag_rig(s, s.world + Vec3::new(0.0, 0.0, 0.1), egui::Pos2::ZERO);
-    let rig = v.rig_edit.as_ref().unwrap().rig.clone();
+    let rig = v.state().rig_edit.as_ref().unwrap().rig.clone();
     let j = &rig.joints[s.joint];
     let child = rig.children()[s.joint][0];
     let axis = (Vec3::from_array(rig.joints[child].position) - Vec3::from_array(j.position)).normalize();
     assert!(Vec3::from_array(j.spin.unwrap()).dot(axis).abs() < 1e-4);
-    v.bind_rig();
-    v.finish_rig_edit();
-    assert!(v.rig_edit.is_none());
-    v.start_capture(0).unwrap();
-    v.finish_capture_now();
+    v.apply(Command::BindRig).unwrap();
+    v.apply(Command::FinishRigEdit).unwrap();
+    assert!(v.state().rig_edit.is_none());
+    v.try_apply(Command::StartCapture(0)).unwrap();
+    v.apply(Command::FinishCapture).unwrap();
     assert_eq!(
-        v.capture_result.as_ref().unwrap().rig.joints[hand].position,
+        v.state().capture_result.as_ref().unwrap().rig.joints[hand].position,
         after.to_array(),
         "the capture used the rig set up"
     );
-    assert!(v.start_rig_edit(1, None).unwrap_err().contains("on a model"));
+    assert!(v.try_apply(Command::FitRig { model: 1, template: None }).unwrap_err().contains("on a model"));
 }
 
 #[test]
@@ -240,12 +248,12 @@ fn closing_characters_keeps_the_rig_and_the_capture_on_their_model() {
     // Model second: close the walk before it, the rig follows the model.
     let dir = corpus_dir().unwrap().join("md2/irrlicht_faerie");
     v.add("faerie.md2", &std::fs::read(dir.join("faerie.md2")).unwrap()).unwrap();
-    v.start_rig_edit(2, None).unwrap();
-    v.start_capture(0).unwrap();
-    assert!(v.remove(1));
-    assert_eq!(v.rig_edit.as_ref().map(|e| e.model), Some(1));
-    assert!(v.remove(0), "closing the model being captured ends the capture");
-    assert!(v.capture_job.is_none() && v.rig_edit.as_ref().map(|e| e.model) == Some(0));
+    v.try_apply(Command::FitRig { model: 2, template: None }).unwrap();
+    v.try_apply(Command::StartCapture(0)).unwrap();
+    assert!(v.try_apply(Command::CloseNow(1)).is_ok());
+    assert_eq!(v.state().rig_edit.as_ref().map(|e| e.model), Some(1));
+    assert!(v.try_apply(Command::CloseNow(0)).is_ok(), "closing the model being captured ends the capture");
+    assert!(v.state().capture_job.is_none() && v.state().rig_edit.as_ref().map(|e| e.model) == Some(0));
     v.load("walk.bvh", WALK).unwrap();
-    assert!(v.rig_edit.is_none(), "opening files in place of everything ends the set-up");
+    assert!(v.state().rig_edit.is_none(), "opening files in place of everything ends the set-up");
 }

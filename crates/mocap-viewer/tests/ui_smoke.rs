@@ -1,6 +1,7 @@
 //! Runs the whole egui UI headlessly (no GPU) for a few frames: panels, tree,
 //! inspector plot, error banner and keyboard shortcuts must not panic.
 
+use mocap_viewer::Command;
 use mocap_viewer::Viewer;
 
 const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
@@ -28,20 +29,20 @@ fn ui_runs_plays_and_reacts_to_keys() {
     let mut v = Viewer::default();
     frame(&ctx, &mut v, 0.0, vec![]);
     v.load("walk.bvh", WALK).unwrap();
-    v.select(Some(7));
+    v.apply(Command::Select { character: v.state().current(), joint: Some(7) }).unwrap();
     frame(&ctx, &mut v, 0.0, vec![]);
     frame(&ctx, &mut v, 0.2, vec![]);
-    assert_eq!(v.frame(), 6, "0.2 s at 30 fps");
+    assert_eq!(v.state().frame(), 6, "0.2 s at 30 fps");
     frame(&ctx, &mut v, 0.3, vec![key(egui::Key::Space)]);
-    assert!(!v.playback.playing);
-    let f = v.frame();
+    assert!(!v.state().playback.playing);
+    let f = v.state().frame();
     frame(&ctx, &mut v, 0.4, vec![key(egui::Key::ArrowRight)]);
-    assert_eq!(v.frame(), f + 1);
+    assert_eq!(v.state().frame(), f + 1);
     frame(&ctx, &mut v, 0.5, vec![key(egui::Key::End)]);
-    assert_eq!(v.frame(), 66);
+    assert_eq!(v.state().frame(), 66);
     frame(&ctx, &mut v, 0.6, vec![key(egui::Key::Home), key(egui::Key::A), key(egui::Key::F), key(egui::Key::Num3)]);
-    assert_eq!(v.frame(), 0);
-    assert!(v.settings.show_axes && v.settings.follow_root);
+    assert_eq!(v.state().frame(), 0);
+    assert!(v.state().settings.show_axes && v.state().settings.follow_root);
     let _ = v.load("bad.bvh", b"HIERARCHY\nJOINT");
     frame(&ctx, &mut v, 0.7, vec![]);
     let s = v.snapshot();
@@ -55,8 +56,8 @@ fn ui_draws_several_characters() {
     let mut v = Viewer::default();
     v.load("walk.bvh", WALK).unwrap();
     v.add("again.bvh", WALK).unwrap();
-    v.set_visible(0, false);
-    v.select_in(1, Some(4));
+    v.try_apply(Command::SetVisible(0, false)).unwrap();
+    v.apply(Command::Select { character: 1, joint: Some(4) }).unwrap();
     frame(&ctx, &mut v, 0.0, vec![]);
     frame(&ctx, &mut v, 0.1, vec![key(egui::Key::Space), key(egui::Key::ArrowRight)]);
     let s = v.snapshot();
@@ -64,7 +65,7 @@ fn ui_draws_several_characters() {
     let hips = s.tree_labels.iter().filter(|l| *l == "Hips").count();
     assert_eq!(hips, 2, "one joint tree per character: {:?}", s.tree_labels);
     assert_eq!((s.selected_character, s.selected_joint.as_deref()), (Some(1), Some("Head")));
-    v.remove(0);
+    v.try_apply(Command::CloseNow(0)).unwrap();
     frame(&ctx, &mut v, 0.2, vec![]);
     assert_eq!(v.snapshot().tree_labels.iter().filter(|l| *l == "Hips").count(), 1);
 }
@@ -90,7 +91,7 @@ fn a_200000_level_deep_skeleton_opens_draws_and_a_good_file_follows() {
         let ctx = egui::Context::default();
         let mut v = Viewer::default();
         v.load("deep.bvh", &deep_bvh(200_000)).expect("a deep file is valid");
-        v.select_named(0, "j199999");
+        v.try_apply(Command::SelectNamed { character: 0, name: "j199999".into() }).unwrap();
         frame(&ctx, &mut v, 0.0, vec![]);
         frame(&ctx, &mut v, 0.1, vec![key(egui::Key::ArrowRight)]);
         let s = v.snapshot();
@@ -119,7 +120,7 @@ fn a_held_view_keeps_its_playhead_and_asks_for_no_frames() {
     };
     assert!(asks_for_frames(&ctx, &mut v, 0.0), "playing asks for the next frame");
     assert!(asks_for_frames(&ctx, &mut v, 0.1));
-    let f = v.frame();
+    let f = v.state().frame();
     assert_eq!(f, 3, "0.1 s at 30 fps");
     v.hold(true);
     assert!(v.is_held());
@@ -127,10 +128,10 @@ fn a_held_view_keeps_its_playhead_and_asks_for_no_frames() {
     asks_for_frames(&ctx, &mut v, 0.2);
     assert!(!asks_for_frames(&ctx, &mut v, 0.3), "held: no frame asked for");
     assert!(!asks_for_frames(&ctx, &mut v, 0.4));
-    assert_eq!(v.frame(), f, "held: the playhead stays");
+    assert_eq!(v.state().frame(), f, "held: the playhead stays");
     v.hold(false);
     assert!(asks_for_frames(&ctx, &mut v, 0.5), "let go: frames again");
-    assert_eq!(v.frame(), f, "no jump over the hold");
+    assert_eq!(v.state().frame(), f, "no jump over the hold");
     asks_for_frames(&ctx, &mut v, 0.6);
-    assert_eq!(v.frame(), f + 3, "then real time again");
+    assert_eq!(v.state().frame(), f + 3, "then real time again");
 }

@@ -2,7 +2,10 @@
 //! can set it (Clip panel, fragment, API), and dragging a joint by IK and reading
 //! a root's rotation work in its turned axes.
 
+mod support;
+
 use mocap::glam::{Quat, Vec3};
+use mocap_viewer::Command;
 use mocap_viewer::Viewer;
 
 /// A 2 m figure standing along +Z (legs down to z = 0, arms along X), walking
@@ -30,22 +33,22 @@ fn z_up_bvh() -> String {
 }
 
 fn height(v: &Viewer) -> f32 {
-    v.stage.actors[0].world_bounds().size().y
+    v.state().stage.actors[0].world_bounds().size().y
 }
 
 #[test]
 fn a_z_up_clip_stands_up_and_the_axis_can_be_set() {
     let mut v = Viewer::default();
     v.load("zup.bvh", z_up_bvh().as_bytes()).unwrap();
-    v.set_playing(false);
+    v.apply(Command::SetPlaying(false)).unwrap();
     v.pose();
     let s = v.snapshot();
     assert_eq!(s.clips[0].up, "z", "guessed from the motion");
     assert!((height(&v) - 2.0).abs() < 0.05, "it stands 2 m tall: {}", height(&v));
-    assert!((v.stage.actors[0].world_ground() - v.stage.floor_height()).abs() < 1e-4, "on the floor");
-    assert!(v.view_fragment().contains("up=z"), "{}", v.view_fragment());
+    assert!((v.state().stage.actors[0].world_ground() - v.state().stage.floor_height()).abs() < 1e-4, "on the floor");
+    assert!(v.state().view_fragment().contains("up=z"), "{}", v.state().view_fragment());
     // Read as Y-up it lies on its back.
-    assert!(v.set_up_axis(0, mocap::UpAxis::Y));
+    assert!(v.try_apply(Command::SetUpAxis(0, mocap::UpAxis::Y)).is_ok());
     assert_eq!(v.snapshot().clips[0].up, "y");
     assert!(height(&v) < 0.5, "lying: {} m high", height(&v));
     // The fragment sets it back.
@@ -60,10 +63,10 @@ fn a_z_up_clip_stands_up_and_the_axis_can_be_set() {
 fn joints_are_dragged_and_read_in_the_turned_axes() {
     let mut v = Viewer::default();
     v.load("zup.bvh", z_up_bvh().as_bytes()).unwrap();
-    v.set_playing(false);
-    v.seek(0);
+    v.apply(Command::SetPlaying(false)).unwrap();
+    v.apply(Command::Seek(0)).unwrap();
     v.pose();
-    let c = &v.stage.actors[0];
+    let c = &v.state().stage.actors[0];
     // The root's local rotation (none in the file) reads as none, not as the turn.
     let root = mocap_viewer::character::drawn_local_rotation(c, 0).unwrap();
     assert!(root.angle_between(Quat::IDENTITY) < 1e-4, "{root:?}");
@@ -74,9 +77,9 @@ fn joints_are_dragged_and_read_in_the_turned_axes() {
     let solve = v.drag_joint(0, hand, target).unwrap();
     assert!(solve.reached, "{solve:?}");
     assert!(
-        v.stage.actors[0].extra.pose[hand].translation.distance(target) < 1e-3,
+        v.state().stage.actors[0].extra.pose[hand].translation.distance(target) < 1e-3,
         "{} vs {target}",
-        v.stage.actors[0].extra.pose[hand].translation
+        v.state().stage.actors[0].extra.pose[hand].translation
     );
 }
 
@@ -84,16 +87,22 @@ fn joints_are_dragged_and_read_in_the_turned_axes() {
 fn edits_keep_an_axis_set_by_hand_and_standing_the_file_up_guesses_again() {
     let mut v = Viewer::default();
     v.load("zup.bvh", z_up_bvh().as_bytes()).unwrap();
-    v.set_playing(false);
+    v.apply(Command::SetPlaying(false)).unwrap();
     // The Edit menu's "Stand up a Z-up file" rewrites the data Y-up: still standing.
-    v.edit(0, &mocap::ops::edit::Edit::UpAxis { from: 2, negative: false }, "Stand up").unwrap();
+    v.try_apply(Command::Edit {
+        character: 0,
+        edit: mocap::ops::edit::Edit::UpAxis { from: 2, negative: false },
+        label: "Stand up".into(),
+    })
+    .unwrap();
     v.pose();
     assert_eq!(v.snapshot().clips[0].up, "y", "the rewritten file is guessed Y-up");
     assert!((height(&v) - 2.0).abs() < 0.05, "{}", height(&v));
-    v.undo();
+    support::undo(&mut v);
     assert_eq!(v.snapshot().clips[0].up, "z");
     // An axis set by hand survives an edit.
-    assert!(v.set_up_axis(0, mocap::UpAxis::Y));
-    v.edit(0, &mocap::ops::edit::Edit::Reverse, "Reverse").unwrap();
+    assert!(v.try_apply(Command::SetUpAxis(0, mocap::UpAxis::Y)).is_ok());
+    v.try_apply(Command::Edit { character: 0, edit: mocap::ops::edit::Edit::Reverse, label: "Reverse".into() })
+        .unwrap();
     assert_eq!(v.snapshot().clips[0].up, "y");
 }

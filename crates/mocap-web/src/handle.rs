@@ -2,7 +2,7 @@
 //! `remove()`, `setLayout()`, `seek()`, `play()`, `pause()`, ...
 
 use eframe::egui;
-use mocap_viewer::Viewer;
+use mocap_viewer::{Command, OpenMode, Viewer};
 use std::cell::RefCell;
 use std::rc::Rc;
 use wasm_bindgen::prelude::*;
@@ -103,10 +103,10 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = jointPosition)]
     pub fn joint_position(&self, character: u32, name: &str) -> Option<Vec<f32>> {
         let v = self.viewer.try_borrow().ok()?;
-        let c = v.stage.actors.get(character as usize)?;
+        let c = v.state().stage.actors.get(character as usize)?;
         let clip = c.clip()?;
         let joint = clip.skeleton().find(name)?;
-        let frame = c.frame_at(v.playback.time);
+        let frame = c.frame_at(v.state().playback.time);
         clip.world_positions(frame).get(joint).map(|p| p.to_array().to_vec())
     }
 
@@ -132,7 +132,7 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = dragJoint)]
     pub fn drag_joint(&self, character: u32, name: &str, x: f32, y: f32, z: f32) -> bool {
         self.with_viewer(|v| {
-            let joint = v.stage.actors.get(character as usize)?.clip()?.skeleton().find(name)?;
+            let joint = v.state().stage.actors.get(character as usize)?.clip()?.skeleton().find(name)?;
             v.drag_joint(character as usize, joint, mocap::glam::Vec3::new(x, y, z)).map(|s| s.reached)
         })
         .flatten()
@@ -146,7 +146,7 @@ impl MocapViewer {
         if name != "tentacle" {
             return false;
         }
-        self.with_viewer(|v| v.open_tentacle(bones.unwrap_or(2) as usize)).is_some()
+        self.with_viewer(|v| v.apply(Command::OpenTentacle(bones.unwrap_or(2) as usize))).is_some()
     }
 
     /// Sets the tentacle demo: its target (world, metres), whether the tip follows
@@ -161,7 +161,7 @@ impl MocapViewer {
         soft: Option<bool>,
     ) -> bool {
         self.with_viewer(|v| {
-            let Some(t) = &mut v.tentacle else { return false };
+            let Some(mut t) = v.state().tentacle.clone() else { return false };
             if let Some([x, y, z]) = target.as_deref().and_then(|p| <[f32; 3]>::try_from(p).ok()) {
                 t.target = mocap::glam::Vec3::new(x, y, z);
             }
@@ -174,14 +174,10 @@ impl MocapViewer {
                     None => return false,
                 }
             }
-            let skin_changed = soft.is_some_and(|s| s != t.soft);
             if let Some(s) = soft {
                 t.soft = s;
             }
-            if skin_changed {
-                v.refresh_tentacle_skin();
-            }
-            true
+            v.try_apply(Command::SetTentacle(t)).is_ok()
         })
         .unwrap_or(false)
     }
@@ -191,7 +187,7 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = demoTargetScreenPosition)]
     pub fn demo_target_screen_position(&self) -> Option<Vec<f32>> {
         let v = self.viewer.try_borrow().ok()?;
-        let target = v.tentacle.as_ref()?.target;
+        let target = v.state().tentacle.as_ref()?.target;
         let p = v.screen_position(target)?;
         Some(vec![p.x, p.y])
     }
@@ -202,7 +198,7 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = saveBvh)]
     pub fn save_bvh(&self, index: Option<u32>) -> Option<Vec<String>> {
         let v = self.viewer.try_borrow().ok()?;
-        let index = index.map_or(v.current(), |i| i as usize);
+        let index = index.map_or(v.state().current(), |i| i as usize);
         v.save_bvh(index).map(|(name, text)| vec![name, text])
     }
 
@@ -220,9 +216,9 @@ impl MocapViewer {
     /// error message, or `undefined` when started.
     pub fn capture(&self, index: u32, now: Option<bool>) -> Option<String> {
         self.with_viewer(|v| {
-            let started = v.start_capture(index as usize);
+            let started = v.try_apply(Command::StartCapture(index as usize));
             if started.is_ok() && now.unwrap_or(false) {
-                v.finish_capture_now();
+                let _ = v.apply(Command::FinishCapture);
             }
             started.err()
         })
@@ -234,7 +230,10 @@ impl MocapViewer {
     /// Returns the error message, or `undefined`.
     #[wasm_bindgen(js_name = fitSkeleton)]
     pub fn fit_skeleton(&self, index: u32, template: Option<u32>) -> Option<String> {
-        self.with_viewer(|v| v.start_rig_edit(index as usize, template.map(|t| t as usize)).err()).flatten()
+        self.with_viewer(|v| {
+            v.try_apply(Command::FitRig { model: index as usize, template: template.map(|t| t as usize) }).err()
+        })
+        .flatten()
     }
 
     /// Where rig joint `name` (of the rig being set up) is on the page (`[x, y]`,
@@ -242,9 +241,10 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = rigJointScreenPosition)]
     pub fn rig_joint_screen_position(&self, name: &str) -> Option<Vec<f32>> {
         let v = self.viewer.try_borrow().ok()?;
-        let e = v.rig_edit.as_ref()?;
+        let e = v.state().rig_edit.as_ref()?;
         let j = e.rig.joints.iter().position(|j| j.name == name)?;
         let world = v
+            .state()
             .stage
             .actors
             .get(e.model)?
@@ -258,40 +258,40 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = rigJson)]
     pub fn rig_json(&self) -> Option<String> {
         let v = self.viewer.try_borrow().ok()?;
-        v.rig_edit.as_ref().map(|e| &e.rig).or(v.capture_rig.as_ref()).map(|r| r.to_json())
+        v.state().rig_edit.as_ref().map(|e| &e.rig).or(v.state().capture_rig.as_ref()).map(|r| r.to_json())
     }
 
     /// Binds every vertex of the rig being set up to its nearest bone.
     #[wasm_bindgen(js_name = bindRig)]
     pub fn bind_rig(&self) {
-        self.with_viewer(|v| v.bind_rig());
+        self.with_viewer(|v| v.apply(Command::BindRig));
     }
 
     /// Ends the rig set-up, keeping the rig for the next capture.
     #[wasm_bindgen(js_name = finishRig)]
     pub fn finish_rig(&self) {
-        self.with_viewer(|v| v.finish_rig_edit());
+        self.with_viewer(|v| v.apply(Command::FinishRigEdit));
     }
 
     /// `[stepsDone, stepsInAll]` while a capture runs, else `undefined`.
     #[wasm_bindgen(js_name = captureProgress)]
     pub fn capture_progress(&self) -> Option<Vec<u32>> {
         let v = self.viewer.try_borrow().ok()?;
-        v.capture_progress().map(|(a, b)| vec![a as u32, b as u32])
+        v.state().capture_progress().map(|(a, b)| vec![a as u32, b as u32])
     }
 
     /// The last capture's per-joint report (text), or `undefined`.
     #[wasm_bindgen(js_name = captureReport)]
     pub fn capture_report(&self) -> Option<String> {
         let v = self.viewer.try_borrow().ok()?;
-        v.capture_result.as_ref().map(|r| r.report.text())
+        v.state().capture_result.as_ref().map(|r| r.report.text())
     }
 
     /// Keeps a capture rig (JSON text, as `mocap capture --save-rig` or Save rig
     /// writes it) for the next capture; returns the error message, or `undefined`.
     #[wasm_bindgen(js_name = useRig)]
     pub fn use_rig(&self, name: &str, text: &str) -> Option<String> {
-        self.with_viewer(|v| v.use_rig(name, text).err()).flatten()
+        self.with_viewer(|v| v.open_files(&[(name, text.as_bytes())], OpenMode::Add).into_iter().next()).flatten()
     }
 
     /// Applies a clip edit to character `index`, one undoable step: `'reverse'`,
@@ -336,7 +336,10 @@ impl MocapViewer {
             _ => None,
         };
         let Some(edit) = edit else { return Some(format!("{spec}: not an edit this viewer makes")) };
-        self.with_viewer(|v| v.edit(index as usize, &edit, spec).err()).flatten()
+        self.with_viewer(|v| {
+            v.try_apply(Command::Edit { character: index as usize, edit, label: spec.to_owned() }).err()
+        })
+        .flatten()
     }
 
     /// Layers character `source`'s clip on the subtree of joint `subtree` of
@@ -370,7 +373,10 @@ impl MocapViewer {
             map: pairs,
             ..mocap::ops::layer::Layer::on(subtree)
         };
-        self.with_viewer(|v| v.add_layer(index as usize, source as usize, &layer).err()).flatten()
+        self.with_viewer(|v| {
+            v.try_apply(Command::AddLayer { character: index as usize, source: source as usize, layer }).err()
+        })
+        .flatten()
     }
 
     /// Keys the poses corrected by dragging (Edit mode) at their frames: fading over
@@ -380,7 +386,7 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = setKey)]
     pub fn set_key(&self, window: Option<u32>, between: Option<bool>) -> Option<String> {
         self.with_viewer(|v| {
-            let mut settings = v.settings.clone();
+            let mut settings = v.state().settings.clone();
             if let Some(w) = window {
                 settings.key_window = w as usize;
                 settings.key_between = false;
@@ -388,8 +394,7 @@ impl MocapViewer {
             if let Some(b) = between {
                 settings.key_between = b;
             }
-            v.apply(mocap_viewer::Command::SetSettings(settings));
-            v.set_key().err()
+            v.try_apply(Command::SetSettings(settings)).and_then(|()| v.try_apply(Command::SetKey)).err()
         })
         .flatten()
     }
@@ -398,30 +403,38 @@ impl MocapViewer {
     /// everything open, in Edit mode.
     #[wasm_bindgen(js_name = newCharacter)]
     pub fn new_character(&self) {
-        self.with_viewer(|v| v.new_character());
+        self.with_viewer(|v| v.apply(Command::NewCharacter));
     }
 
     /// Deletes the key at `frame` of the current character (later edits are made
     /// again); returns the error message, or `undefined` when done.
     #[wasm_bindgen(js_name = deleteKey)]
     pub fn delete_key(&self, frame: u32) -> Option<String> {
-        self.with_viewer(|v| v.delete_key(frame as usize).err()).flatten()
+        self.with_viewer(|v| v.try_apply(Command::DeleteKey(frame as usize)).err()).flatten()
     }
 
     /// Moves the key at `from` of the current character to frame `to`.
     #[wasm_bindgen(js_name = moveKey)]
     pub fn move_key(&self, from: u32, to: u32) -> Option<String> {
-        self.with_viewer(|v| v.move_key(from as usize, to as usize).err()).flatten()
+        self.with_viewer(|v| v.try_apply(Command::MoveKey { from: from as usize, to: to as usize }).err()).flatten()
     }
 
     /// Takes back the last clip edit; returns its label (`undefined` when none).
     pub fn undo(&self) -> Option<String> {
-        self.with_viewer(|v| v.undo()).flatten()
+        self.with_viewer(|v| {
+            let label = v.state().history.next_undo().map(str::to_owned);
+            v.try_apply(Command::Undo).ok().and(label)
+        })
+        .flatten()
     }
 
     /// Makes the last undone edit again; returns its label.
     pub fn redo(&self) -> Option<String> {
-        self.with_viewer(|v| v.redo()).flatten()
+        self.with_viewer(|v| {
+            let label = v.state().history.next_redo().map(str::to_owned);
+            v.try_apply(Command::Redo).ok().and(label)
+        })
+        .flatten()
     }
 
     /// Edit mode by typing: sets joint `name` of character `character` to the local
@@ -431,9 +444,9 @@ impl MocapViewer {
     pub fn rotate_joint(&self, character: u32, name: &str, z: f32, x: f32, y: f32) -> bool {
         use mocap::glam::{EulerRot, Quat};
         self.with_viewer(|v| {
-            let joint = v.stage.actors.get(character as usize)?.clip()?.skeleton().find(name)?;
+            let joint = v.state().stage.actors.get(character as usize)?.clip()?.skeleton().find(name)?;
             let q = Quat::from_euler(EulerRot::ZXY, z.to_radians(), x.to_radians(), y.to_radians());
-            Some(v.rotate_joint(character as usize, joint, q))
+            Some(v.try_apply(Command::RotateJoint { character: character as usize, joint, rotation: q }).is_ok())
         })
         .flatten()
         .unwrap_or(false)
@@ -442,7 +455,7 @@ impl MocapViewer {
     /// Forgets every pose corrected by dragging.
     #[wasm_bindgen(js_name = resetPose)]
     pub fn reset_pose(&self) {
-        self.with_viewer(|v| v.reset_pose());
+        self.with_viewer(|v| v.apply(Command::ResetPose));
     }
 
     /// Where joint `name` of character `character` was last drawn, in CSS pixels
@@ -450,7 +463,7 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = jointScreenPosition)]
     pub fn joint_screen_position(&self, character: u32, name: &str) -> Option<Vec<f32>> {
         let v = self.viewer.try_borrow().ok()?;
-        let joint = v.stage.actors.get(character as usize)?.clip()?.skeleton().find(name)?;
+        let joint = v.state().stage.actors.get(character as usize)?.clip()?.skeleton().find(name)?;
         let p = v.joint_on_screen(character as usize, joint)?;
         Some(vec![p.x, p.y])
     }
@@ -460,7 +473,7 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = jointWorldPosition)]
     pub fn joint_world_position(&self, character: u32, name: &str) -> Option<Vec<f32>> {
         let v = self.viewer.try_borrow().ok()?;
-        let c = v.stage.actors.get(character as usize)?;
+        let c = v.state().stage.actors.get(character as usize)?;
         let joint = c.clip()?.skeleton().find(name)?;
         c.extra.pose.get(joint).map(|t| t.translation.to_array().to_vec())
     }
@@ -469,7 +482,8 @@ impl MocapViewer {
     /// that is character `index` (0-based); returns whether that model has it.
     #[wasm_bindgen(js_name = setAnimation)]
     pub fn set_animation(&self, index: u32, name: &str) -> bool {
-        self.with_viewer(|v| v.set_animation(index as usize, name)).unwrap_or(false)
+        self.with_viewer(|v| v.try_apply(Command::SetAnimation(index as usize, name.to_owned())).is_ok())
+            .unwrap_or(false)
     }
 
     /// Stands clip `index` (0-based) up along its file's `'y'` or `'z'` axis (the
@@ -478,18 +492,18 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = setUpAxis)]
     pub fn set_up_axis(&self, index: u32, up: &str) -> bool {
         let Some(up) = mocap::UpAxis::from_name(up) else { return false };
-        self.with_viewer(|v| v.set_up_axis(index as usize, up)).unwrap_or(false)
+        self.with_viewer(|v| v.try_apply(Command::SetUpAxis(index as usize, up)).is_ok()).unwrap_or(false)
     }
 
     /// Shows or hides character `index` (0-based, as in `state().clips`); returns whether it exists.
     #[wasm_bindgen(js_name = setVisible)]
     pub fn set_visible(&self, index: u32, visible: bool) -> bool {
-        self.with_viewer(|v| v.set_visible(index as usize, visible)).unwrap_or(false)
+        self.with_viewer(|v| v.try_apply(Command::SetVisible(index as usize, visible)).is_ok()).unwrap_or(false)
     }
 
     /// Closes character `index` (0-based); returns whether it existed.
     pub fn remove(&self, index: u32) -> bool {
-        self.with_viewer(|v| v.remove(index as usize)).unwrap_or(false)
+        self.with_viewer(|v| v.try_apply(Command::CloseNow(index as usize)).is_ok()).unwrap_or(false)
     }
 
     /// Places the characters `'spread'` (side by side) or `'overlay'` (on top of each
@@ -497,29 +511,29 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = setLayout)]
     pub fn set_layout(&self, #[wasm_bindgen(unchecked_param_type = "'spread' | 'overlay'")] layout: &str) -> bool {
         let Some(layout) = mocap_viewer::Layout::parse(layout) else { return false };
-        self.with_viewer(|v| v.set_layout(layout)).is_some()
+        self.with_viewer(|v| v.apply(Command::SetLayout(layout))).is_some()
     }
 
     /// Moves to a frame (clamped).
     pub fn seek(&self, frame: u32) {
-        self.with_viewer(|v| v.seek(frame as usize));
+        self.with_viewer(|v| v.apply(Command::Seek(frame as usize)));
     }
 
     /// Starts playback.
     pub fn play(&self) {
-        self.with_viewer(|v| v.set_playing(true));
+        self.with_viewer(|v| v.apply(Command::SetPlaying(true)));
     }
 
     /// Pauses playback (on an exact frame).
     pub fn pause(&self) {
-        self.with_viewer(|v| v.set_playing(false));
+        self.with_viewer(|v| v.apply(Command::SetPlaying(false)));
     }
 
     /// The view state as a URL fragment (no leading `#`): time, play state, speed,
     /// loop range, camera, selection, draw flags and panels.
     #[wasm_bindgen(js_name = viewState)]
     pub fn view_state(&self) -> String {
-        self.viewer.try_borrow().map(|v| v.view_fragment()).unwrap_or_default()
+        self.viewer.try_borrow().map(|v| v.state().view_fragment()).unwrap_or_default()
     }
 
     /// Restores a view state written by [`MocapViewer::view_state`] (a `#` is optional).
@@ -535,28 +549,32 @@ impl MocapViewer {
     #[wasm_bindgen(js_name = showError)]
     pub fn show_error(&self, message: &str, opened: Option<bool>) {
         let notice = mocap_viewer::Notice::open_failed(message.to_owned(), opened.unwrap_or(false));
-        self.with_viewer(|v| v.apply(mocap_viewer::Command::Notify(notice)));
+        self.with_viewer(|v| v.apply(Command::Notify(notice)));
     }
 
     /// Switches the embed layout (3D view and a minimal timeline) on or off.
     #[wasm_bindgen(js_name = setEmbed)]
     pub fn set_embed(&self, embed: bool) {
         self.with_viewer(|v| {
-            let panels = mocap_viewer::Panels { embed, ..v.panels.clone() };
-            v.apply(mocap_viewer::Command::SetPanels(panels));
+            let panels = mocap_viewer::Panels { embed, ..v.state().panels.clone() };
+            let _ = v.apply(Command::SetPanels(panels));
         });
     }
 
     /// Closes every character (the view shows a drop hint).
     pub fn clear(&self) {
-        self.with_viewer(Viewer::clear);
+        self.with_viewer(|v| v.apply(Command::CloseAll));
     }
 
     /// Selects a joint by name in character `character` (0-based; the first when
     /// omitted); returns whether it exists.
     #[wasm_bindgen(js_name = selectJoint)]
     pub fn select_joint(&self, name: &str, character: Option<u32>) -> bool {
-        self.with_viewer(|v| v.select_named(character.unwrap_or(0) as usize, name)).unwrap_or(false)
+        self.with_viewer(|v| {
+            v.try_apply(Command::SelectNamed { character: character.unwrap_or(0) as usize, name: name.to_owned() })
+                .is_ok()
+        })
+        .unwrap_or(false)
     }
 
     /// Runs `f` on the viewer and asks for a repaint.

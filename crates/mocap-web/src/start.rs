@@ -63,7 +63,7 @@ async fn start_on(
     embed: bool,
 ) -> Result<MocapViewer, JsValue> {
     let mut viewer = Viewer::default();
-    viewer.panels.embed = embed;
+    let _ = viewer.apply(mocap_viewer::Command::SetPanels(mocap_viewer::Panels { embed, ..Default::default() }));
     if default_clip && let Err(e) = viewer.load(crate::DEFAULT_CLIP_NAME, crate::DEFAULT_CLIP) {
         web_sys::console::error_1(&format!("default clip: {e}").into());
     }

@@ -4,23 +4,23 @@
 //! animations as frame ranges), and Save rig.
 
 use crate::command::Command;
-use crate::viewer::Viewer;
+use crate::state::AppState;
 
 /// Shows the capture section for model `index`; what the user does comes back
 /// as commands in `out`.
-pub fn show(ui: &mut egui::Ui, viewer: &Viewer, index: usize, out: &mut Vec<Command>) {
+pub fn show(ui: &mut egui::Ui, state: &AppState, index: usize, out: &mut Vec<Command>) {
     ui.separator();
     ui.heading("Skeleton capture");
-    if let Some((done, total)) = viewer.capture_progress() {
+    if let Some((done, total)) = state.capture_progress() {
         let share = done as f32 / total.max(1) as f32;
         ui.add(egui::ProgressBar::new(share).show_percentage().text(format!("capturing: step {done} of {total}")));
         return;
     }
-    rig_setup(ui, viewer, index, out);
-    let rig_note = if viewer.rig_edit.as_ref().is_some_and(|e| e.model == index) {
+    rig_setup(ui, state, index, out);
+    let rig_note = if state.rig_edit.as_ref().is_some_and(|e| e.model == index) {
         Some("with the rig being set up".to_owned())
     } else {
-        viewer.capture_rig.as_ref().map(|r| format!("with the rig set up or dropped ({} joints)", r.joints.len()))
+        state.capture_rig.as_ref().map(|r| format!("with the rig set up or dropped ({} joints)", r.joints.len()))
     };
     let hint = "Turn the model's vertex animation into skeletal motion: a humanoid fitted in its first frame (or a rig dropped as JSON), four tracked vertices per joint";
     if ui.button("Capture skeleton").on_hover_text(hint).clicked() {
@@ -30,7 +30,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, index: usize, out: &mut Vec<Comm
         egui::RichText::new(rig_note.unwrap_or_else(|| "automatic fit (drop a rig .json to use yours)".to_owned()))
             .weak(),
     );
-    let Some(result) = &viewer.capture_result else { return };
+    let Some(result) = &state.capture_result else { return };
     last_capture(ui, result);
     if ui
         .button("Save rig")
@@ -43,10 +43,10 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, index: usize, out: &mut Vec<Comm
 
 /// Fit skeleton, and while a rig is set up on this model: Bind, painting, the
 /// binding view, Save rig and Done.
-fn rig_setup(ui: &mut egui::Ui, viewer: &Viewer, index: usize, out: &mut Vec<Command>) {
-    let editing = viewer.rig_edit.as_ref().is_some_and(|e| e.model == index);
+fn rig_setup(ui: &mut egui::Ui, state: &AppState, index: usize, out: &mut Vec<Command>) {
+    let editing = state.rig_edit.as_ref().is_some_and(|e| e.model == index);
     if !editing {
-        let clips: Vec<(usize, String)> = viewer
+        let clips: Vec<(usize, String)> = state
             .stage
             .actors
             .iter()
@@ -67,7 +67,7 @@ fn rig_setup(ui: &mut egui::Ui, viewer: &Viewer, index: usize, out: &mut Vec<Com
         });
         return;
     }
-    let Some(e) = viewer.rig_edit.as_ref() else { return };
+    let Some(e) = state.rig_edit.as_ref() else { return };
     let (mut show_binding, mut painting) = (e.show_binding, e.painting);
     let selected = e.selected.and_then(|j| e.rig.joints.get(j)).map(|j| j.name.clone());
     ui.label(egui::RichText::new("Drag the crosses (joints) to where they belong and the cyan handles to turn each bone's up; the model shows its set-up frame.").weak());

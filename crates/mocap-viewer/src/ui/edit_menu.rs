@@ -2,19 +2,19 @@
 //! and redo, and Save as BVH.
 
 use crate::command::{Command, button};
-use crate::viewer::Viewer;
+use crate::state::AppState;
 use mocap::ops::edit::Edit;
 
 /// Shows the Edit menu's entries (inside the toolbar's menu button); what the
 /// user picks comes back as commands in `out`.
-pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
+pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
     if button(ui, Command::NewCharacter, out) {
         ui.close();
         return;
     }
     ui.separator();
-    let index = viewer.current();
-    let Some(c) = viewer.stage.actors.get(index) else {
+    let index = state.current();
+    let Some(c) = state.stage.actors.get(index) else {
         ui.label("No clip open");
         return;
     };
@@ -23,7 +23,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
         return;
     };
     let (name, fps, units) = (c.name.clone(), 1.0 / clip.frame_time(), c.units);
-    let selected = viewer
+    let selected = state
         .selected
         .filter(|s| s.character == index)
         .and_then(|s| clip.skeleton().joints().get(s.joint))
@@ -31,7 +31,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
     ui.label(egui::RichText::new(format!("Editing {name}")).weak());
     let mut edit: Option<(Edit, String)> = None;
     let mut grow: Option<String> = None;
-    if let Some((a, b)) = viewer.playback.range {
+    if let Some((a, b)) = state.playback.range {
         if ui.button(format!("Trim to the loop range ({a}–{b})")).clicked() {
             edit = Some((Edit::Trim { first: a.min(b), last: a.max(b) }, format!("Trim {a}–{b}")));
         }
@@ -39,7 +39,7 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
         ui.add_enabled(false, egui::Button::new("Trim to the loop range"))
             .on_disabled_hover_text("Set a loop range under the timeline first");
     }
-    ui.menu_button("Resample", |ui| {
+    super::menu(ui, "Resample", &mut |ui| {
         for target in [24.0, 30.0, 60.0, 120.0] {
             if ui.button(format!("{target} fps")).clicked() {
                 edit = Some((Edit::Resample { fps: target }, format!("Resample to {target} fps")));
@@ -87,8 +87,8 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
         }
     }
     ui.separator();
-    history_entry(ui, Command::Undo, viewer.history.next_undo(), out);
-    history_entry(ui, Command::Redo, viewer.history.next_redo(), out);
+    history_entry(ui, Command::Undo, state.history.next_undo(), out);
+    history_entry(ui, Command::Redo, state.history.next_redo(), out);
     ui.separator();
     if button(ui, Command::SaveBvh, out) {
         ui.close();
@@ -115,7 +115,7 @@ fn layer_menu(ui: &mut egui::Ui, index: usize, joint: &str, out: &mut Vec<Comman
 /// Adds a child joint to the selected joint: its name and offset, or dragged out
 /// in the view (`grow` gets the name).
 fn add_child(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>, grow: &mut Option<String>) {
-    ui.menu_button(format!("Add a child to {joint}"), |ui| {
+    super::menu(ui, &format!("Add a child to {joint}"), &mut |ui| {
         let id = egui::Id::unique("add-child");
         let (mut name, mut xyz): (String, [f32; 3]) =
             ui.ctx().data(|d| d.get_temp(id)).unwrap_or_else(|| ("Joint".to_owned(), [0.0, 0.3, 0.0]));
@@ -151,7 +151,7 @@ fn add_child(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>, 
 
 /// Sets the selected joint's offset from its parent.
 fn set_offset(ui: &mut egui::Ui, joint: &str, current: mocap::glam::Vec3, edit: &mut Option<(Edit, String)>) {
-    ui.menu_button(format!("Offset of {joint}"), |ui| {
+    super::menu(ui, &format!("Offset of {joint}"), &mut |ui| {
         let id = egui::Id::unique(("offset", joint));
         let mut xyz: [f32; 3] = ui.ctx().data(|d| d.get_temp(id)).unwrap_or(current.to_array());
         ui.horizontal(|ui| {
@@ -171,7 +171,7 @@ fn set_offset(ui: &mut egui::Ui, joint: &str, current: mocap::glam::Vec3, edit: 
 
 /// Sets the selected joint's channels: position or not, and the rotation order.
 fn channels(ui: &mut egui::Ui, joint: &str, edit: &mut Option<(Edit, String)>) {
-    ui.menu_button(format!("Channels of {joint}"), |ui| {
+    super::menu(ui, &format!("Channels of {joint}"), &mut |ui| {
         for order in ["ZXY", "XYZ", "XZY", "YXZ", "YZX", "ZYX"] {
             for position in [false, true] {
                 let label = if position { format!("position + {order} rotation") } else { format!("{order} rotation") };

@@ -10,7 +10,7 @@
 use crate::character::Character;
 use crate::command::Command;
 use crate::selection::Selection;
-use crate::viewer::Viewer;
+use crate::state::AppState;
 use std::collections::HashSet;
 
 /// Indentation stops growing past this depth (the depth is shown as a number).
@@ -41,21 +41,21 @@ struct Folded {
 }
 
 /// Shows the hierarchy panel; records the label of every listed joint in `labels`.
-pub fn show(ui: &mut egui::Ui, viewer: &Viewer, labels: &mut Vec<String>, out: &mut Vec<Command>) {
+pub fn show(ui: &mut egui::Ui, state: &AppState, labels: &mut Vec<String>, out: &mut Vec<Command>) {
     egui::Panel::left("hierarchy").resizable(true).default_size(240.0).show(ui, |ui| {
         ui.heading("Characters");
         let folded_id = egui::Id::unique("hierarchy-folded");
         let mut folded: Folded = ui.ctx().data(|d| d.get_temp(folded_id)).unwrap_or_default();
-        let mut selected = viewer.selected;
+        let mut selected = state.selected;
         // A selection made elsewhere (a link, JavaScript) is unfolded and scrolled to once.
         let shown_id = egui::Id::unique("hierarchy-shown-selection");
         let shown: Option<Selection> = ui.ctx().data(|d| d.get_temp(shown_id)).flatten();
         let reveal = selected.filter(|s| Some(*s) != shown);
         if let Some(s) = reveal {
-            unfold_to(&mut folded, &viewer.stage.actors, s);
+            unfold_to(&mut folded, &state.stage.actors, s);
         }
-        let rows = rows(&viewer.stage.actors, &folded);
-        record_labels(&rows, &viewer.stage.actors, labels);
+        let rows = rows(&state.stage.actors, &folded);
+        record_labels(&rows, &state.stage.actors, labels);
         let row_height = ui.spacing().interact_size.y;
         let mut area = egui::ScrollArea::both().auto_shrink([false, false]);
         if let Some(index) = reveal.and_then(|s| row_of(&rows, s)) {
@@ -64,33 +64,33 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, labels: &mut Vec<String>, out: &
         }
         let mut remove = None;
         let mut animation = None;
-        if viewer.stage.actors.is_empty() {
+        if state.stage.actors.is_empty() {
             ui.label("No clip open");
         }
         area.show_rows(ui, row_height, rows.len(), |ui, range| {
             for row in rows.get(range).unwrap_or(&[]) {
                 match *row {
                     Row::Header(c) => {
-                        if let Some(character) = viewer.stage.actors.get(c) {
+                        if let Some(character) = state.stage.actors.get(c) {
                             if header_row(ui, c, character, &mut folded, out) {
                                 remove = Some(c);
                             }
                         }
                     }
                     Row::Offset(c) => {
-                        if let Some(character) = viewer.stage.actors.get(c) {
+                        if let Some(character) = state.stage.actors.get(c) {
                             offset_row(ui, c, character, out);
                         }
                     }
                     Row::Animation(c) => {
-                        if let Some(model) = viewer.stage.actors.get(c).and_then(|a| a.model()) {
+                        if let Some(model) = state.stage.actors.get(c).and_then(|a| a.model()) {
                             if let Some(name) = animation_row(ui, c, model) {
                                 animation = Some((c, name));
                             }
                         }
                     }
                     Row::Joint { character, joint, depth } => {
-                        if let Some(c) = viewer.stage.actors.get(character) {
+                        if let Some(c) = state.stage.actors.get(character) {
                             joint_row(ui, c, Selection { character, joint }, depth, &mut selected, &mut folded);
                         }
                     }
@@ -101,8 +101,8 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, labels: &mut Vec<String>, out: &
             d.insert_temp(shown_id, selected);
             d.insert_temp(folded_id, folded);
         });
-        if selected != viewer.selected {
-            let (character, joint) = selected.map_or((viewer.current(), None), |s| (s.character, Some(s.joint)));
+        if selected != state.selected {
+            let (character, joint) = selected.map_or((state.current(), None), |s| (s.character, Some(s.joint)));
             out.push(Command::Select { character, joint });
         }
         if let Some((index, name)) = animation {

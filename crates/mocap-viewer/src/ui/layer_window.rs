@@ -4,55 +4,9 @@
 //! changeable (or left out) joint by joint. "Layer" makes it one undoable edit.
 
 use crate::command::Command;
+use crate::layer_dialog::LayerDialog;
 use crate::stage::Stage;
-use mocap::ops::layer::{self, Blend, Layer};
-
-/// What the Layer window is set to.
-#[derive(Clone, Debug)]
-pub struct LayerDialog {
-    /// The base character.
-    pub character: usize,
-    /// The base joint whose subtree the layer drives.
-    pub joint: String,
-    /// The character whose clip is layered (None until one is chosen).
-    pub source: Option<usize>,
-    /// 0 (base only) to 1 (layer only).
-    pub weight: f32,
-    /// Seconds of fade in and out.
-    pub fades: (f64, f64),
-    /// Additive (else override).
-    pub additive: bool,
-    /// Explicit matches (base joint, layer joint; empty: left out).
-    pub map: Vec<(String, String)>,
-}
-
-impl LayerDialog {
-    /// A full-weight override layer on `joint` of `character`, names matched.
-    pub fn new(character: usize, joint: &str) -> LayerDialog {
-        LayerDialog {
-            character,
-            joint: joint.to_owned(),
-            source: None,
-            weight: 1.0,
-            fades: (0.0, 0.0),
-            additive: false,
-            map: Vec::new(),
-        }
-    }
-
-    /// The core layer these settings make.
-    pub fn layer(&self) -> Layer {
-        let blend = if self.additive { Blend::Additive } else { Blend::Override };
-        Layer {
-            weight: self.weight,
-            fade_in: self.fades.0,
-            fade_out: self.fades.1,
-            blend,
-            map: self.map.clone(),
-            ..Layer::on(&self.joint)
-        }
-    }
-}
+use mocap::ops::layer;
 
 /// One row of the mapping table: a base joint and the layer joint that plays it.
 struct Row {
@@ -61,7 +15,10 @@ struct Row {
 }
 
 /// Shows the Layer window while it is open.
-pub fn show(ctx: &egui::Context, dialog: &mut LayerDialog, stage: &Stage, out: &mut Vec<Command>) {
+/// Its settings are `shown`; a change comes back as [`Command::SetLayerDialog`].
+pub fn show(ctx: &egui::Context, shown: &LayerDialog, stage: &Stage, out: &mut Vec<Command>) {
+    let mut edited = shown.clone();
+    let dialog = &mut edited;
     let Some(base_name) = stage.actors.get(dialog.character).filter(|c| c.clip().is_some()).map(|c| c.name.clone())
     else {
         out.push(Command::CloseLayerDialog);
@@ -136,6 +93,8 @@ pub fn show(ctx: &egui::Context, dialog: &mut LayerDialog, stage: &Stage, out: &
         });
     if apply && let Some(source) = dialog.source {
         out.push(Command::AddLayer { character: dialog.character, source, layer: dialog.layer() });
+    } else if *dialog != *shown {
+        out.push(Command::SetLayerDialog(edited));
     }
     if !open {
         out.push(Command::CloseLayerDialog);

@@ -5,9 +5,9 @@
 use crate::command::Command;
 use crate::tentacle::{Solver, Tentacle};
 
-/// Shows the demo window, editing `demo` (the demo's own state) in place; what
-/// reaches outside it (its skin, the weights view, closing) comes back in `out`.
-pub fn show(ui: &mut egui::Ui, demo: &mut Tentacle, show_weights: bool, out: &mut Vec<Command>) {
+/// Shows the demo window for `shown`; what it changes comes back in `out`.
+pub fn show(ui: &mut egui::Ui, shown: &Tentacle, show_weights: bool, out: &mut Vec<Command>) {
+    let mut demo = shown.clone();
     let mut weights = show_weights;
     let mut open = true;
     let mut rebuild = None;
@@ -27,7 +27,6 @@ pub fn show(ui: &mut egui::Ui, demo: &mut Tentacle, show_weights: bool, out: &mu
                     ui.selectable_value(&mut demo.solver, s, s.name());
                 }
             });
-            let soft = demo.soft;
             ui.horizontal(|ui| {
                 ui.selectable_value(&mut demo.soft, true, "Soft skin")
                     .on_hover_text("Vertices blended across each joint: a smooth bend");
@@ -35,9 +34,6 @@ pub fn show(ui: &mut egui::Ui, demo: &mut Tentacle, show_weights: bool, out: &mu
                     .on_hover_text("Each vertex on one bone: a crease at each joint");
                 ui.checkbox(&mut weights, "Weights");
             });
-            if soft != demo.soft {
-                rebuild = rebuild.or(Some(0));
-            }
             ui.separator();
             ui.label(if demo.follow { "Bones (the pose IK starts from):" } else { "Bones (forward kinematics):" });
             egui::Grid::new("tentacle-angles").num_columns(3).show(ui, |ui| {
@@ -53,8 +49,8 @@ pub fn show(ui: &mut egui::Ui, demo: &mut Tentacle, show_weights: bool, out: &mu
         },
     );
     match rebuild {
-        Some(0) => out.push(Command::RefreshTentacleSkin),
         Some(bones) => out.push(Command::ResizeTentacle(bones)),
+        None if demo != *shown => out.push(Command::SetTentacle(demo)),
         None => {}
     }
     if weights != show_weights {

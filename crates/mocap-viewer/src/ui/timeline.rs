@@ -3,37 +3,37 @@
 
 use crate::command::{Command, button, button_with};
 use crate::playback::SPEED_RANGE;
-use crate::viewer::Viewer;
+use crate::state::AppState;
 
 /// Shows the timeline panel; what the user does comes back as commands in `out`.
-pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
+pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
     egui::Panel::bottom("timeline").show(ui, |ui| {
         ui.add_space(4.0);
-        let Some(timing) = viewer.timing() else {
+        let Some(timing) = state.timing() else {
             ui.label("No clip open");
             return;
         };
-        let frame = viewer.playback.frame(timing);
-        let play = if viewer.playback.playing { "Pause" } else { "Play" };
-        if viewer.panels.embed {
+        let frame = state.playback.frame(timing);
+        let play = if state.playback.playing { "Pause" } else { "Play" };
+        if state.panels.embed {
             minimal(ui, play, frame, timing, out);
             return;
         }
-        let mut settings = viewer.settings.clone();
+        let mut settings = state.settings.clone();
         ui.horizontal(|ui| {
             button(ui, Command::First, out);
             button(ui, Command::Step(-1), out);
             button_with(ui, play, Command::TogglePlay, out);
             button(ui, Command::Step(1), out);
             button(ui, Command::Last, out);
-            if viewer.has_corrections() {
+            if state.has_corrections() {
                 // Keying sits here, on the timeline's row, so the view above never moves.
                 ui.separator();
                 button(ui, Command::SetKey, out);
                 key_mode(ui, &mut settings);
                 button(ui, Command::ResetPose, out);
             }
-            if !viewer.history.keys(viewer.current()).is_empty() {
+            if !state.history.keys(state.current()).is_empty() {
                 ui.separator();
                 if ui.button("◀ key").on_hover_text("Previous keyed frame").clicked() {
                     out.push(Command::StepKey(false));
@@ -41,8 +41,8 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
                 if ui.button("key ▶").on_hover_text("Next keyed frame").clicked() {
                     out.push(Command::StepKey(true));
                 }
-                let here = viewer.frame();
-                if viewer.history.keys(viewer.current()).contains(&here) {
+                let here = state.frame();
+                if state.history.keys(state.current()).contains(&here) {
                     if ui.button("← move").on_hover_text("Move this key one frame earlier").clicked() && here > 0 {
                         out.push(Command::MoveKey { from: here, to: here - 1 });
                     }
@@ -55,19 +55,19 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
                 }
             }
         });
-        if settings != viewer.settings {
+        if settings != state.settings {
             out.push(Command::SetSettings(settings));
         }
         ui.horizontal(|ui| {
-            let counted_in = viewer.current_character().map_or(String::new(), |d| format!("Frames of {} ({:.2} fps)", d.name, 1.0 / d.asset.timeline().frame_time()));
-            ui.monospace(format!("frame {frame:>5} / {}   {:>8.3} s", timing.last(), viewer.playback.time))
+            let counted_in = state.current_character().map_or(String::new(), |d| format!("Frames of {} ({:.2} fps)", d.name, 1.0 / d.asset.timeline().frame_time()));
+            ui.monospace(format!("frame {frame:>5} / {}   {:>8.3} s", timing.last(), state.playback.time))
                 .on_hover_text(format!("{counted_in}: the selected joint's character, else the first. The timeline spans the longest clip; shorter ones hold their last pose."));
             ui.separator();
-            let mut looping = viewer.playback.looping;
+            let mut looping = state.playback.looping;
             if ui.checkbox(&mut looping, "Loop").changed() {
                 out.push(Command::SetLooping(looping));
             }
-            let mut speed = viewer.playback.speed;
+            let mut speed = state.playback.speed;
             let slider = egui::Slider::new(&mut speed, SPEED_RANGE)
                 .logarithmic(true)
                 .text("speed")
@@ -84,17 +84,17 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
             if slider.changed() {
                 out.push(Command::Seek(f));
             }
-            if viewer.settings.foot_lock {
-                contact_marks(ui, viewer, &slider, timing);
+            if state.settings.foot_lock {
+                contact_marks(ui, state, &slider, timing);
             }
-            key_marks(ui, viewer, &slider, timing, out);
+            key_marks(ui, state, &slider, timing, out);
         });
         ui.horizontal(|ui| {
-            let mut on = viewer.playback.range.is_some();
+            let mut on = state.playback.range.is_some();
             if ui.checkbox(&mut on, "Loop range").changed() {
                 out.push(Command::SetRange(on.then_some((frame, timing.last()))));
             }
-            if let Some((mut a, mut b)) = viewer.playback.range {
+            if let Some((mut a, mut b)) = state.playback.range {
                 let from = ui.add(egui::DragValue::new(&mut a).range(0..=timing.last()).prefix("from "));
                 let to = ui.add(egui::DragValue::new(&mut b).range(0..=timing.last()).prefix("to "));
                 if from.changed() || to.changed() {
@@ -108,8 +108,8 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
 
 /// Foot contacts of the current character under the scrub bar: one row of marks
 /// per foot at the frames where it rests on the floor.
-fn contact_marks(ui: &egui::Ui, viewer: &Viewer, slider: &egui::Response, timing: crate::playback::Timing) {
-    let Some(c) = viewer.current_character() else { return };
+fn contact_marks(ui: &egui::Ui, state: &AppState, slider: &egui::Response, timing: crate::playback::Timing) {
+    let Some(c) = state.current_character() else { return };
     let (Some(lock), Some(clip)) = (&c.extra.foot_lock, c.clip()) else { return };
     // The slider's rail: its width less the value box.
     let rail =
@@ -133,16 +133,16 @@ fn contact_marks(ui: &egui::Ui, viewer: &Viewer, slider: &egui::Response, timing
 /// frames, and the key moves there (one undoable step) where it is let go.
 fn key_marks(
     ui: &egui::Ui,
-    viewer: &Viewer,
+    state: &AppState,
     slider: &egui::Response,
     timing: crate::playback::Timing,
     out: &mut Vec<Command>,
 ) {
-    let keys = viewer.history.keys(viewer.current());
+    let keys = state.history.keys(state.current());
     if keys.is_empty() {
         return;
     }
-    let Some(timeline) = viewer.current_character().map(|c| c.asset.timeline()) else { return };
+    let Some(timeline) = state.current_character().map(|c| c.asset.timeline()) else { return };
     let rail =
         egui::Rect::from_min_max(slider.rect.left_top(), egui::pos2(slider.rect.right() - 60.0, slider.rect.bottom()));
     let span = timing.duration().max(1e-9);

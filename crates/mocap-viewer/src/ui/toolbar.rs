@@ -5,19 +5,19 @@ use crate::command::{Command, OpenMode, button, menu_entry};
 use crate::layout::Layout;
 use crate::panels::Panels;
 use crate::settings::{DrawMode, ViewSettings};
-use crate::viewer::Viewer;
+use crate::state::AppState;
 use mocap_scene::Waypoint;
 
 /// Shows the top panel; what the user does comes back as commands in `out`.
-pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
-    let mut settings = viewer.settings.clone();
-    let mut panels = viewer.panels.clone();
+pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
+    let mut settings = state.settings.clone();
+    let mut panels = state.panels.clone();
     egui::Panel::top("toolbar").show(ui, |ui| {
         ui.horizontal_wrapped(|ui| {
             button(ui, Command::Open(OpenMode::Replace), out);
             button(ui, Command::Open(OpenMode::Add), out);
             button(ui, Command::Share, out);
-            match viewer.stage.actors.as_slice() {
+            match state.stage.actors.as_slice() {
                 [] => {}
                 [one] => {
                     ui.strong(&one.name);
@@ -27,18 +27,18 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
                 }
             }
             ui.separator();
-            layout_choice(ui, viewer.stage.layout, out);
+            layout_choice(ui, state.stage.layout, out);
             ui.separator();
             draw_mode_choice(ui, &mut settings.mode);
-            ui.menu_button("View", |ui| view_menu(ui, &mut settings, &mut panels));
+            super::menu(ui, "View", &mut |ui| view_menu(ui, &mut settings, &mut panels));
             ui.separator();
             ui.checkbox(&mut settings.foot_lock, "Foot lock").on_hover_text("Pin each foot to the floor while it is in contact (legs solved by IK); contacts show on the timeline");
-            let editing = viewer.current_character().map_or(String::new(), |c| format!("Editing {}. ", c.name));
+            let editing = state.current_character().map_or(String::new(), |c| format!("Editing {}. ", c.name));
             ui.checkbox(&mut settings.pose_mode, "Edit mode").on_hover_text(format!("{editing}Edit mode acts on the selected joint's character: drag a joint and its chain follows by IK, or turn it with its rotation rings; the clip's own pose shows as a ghost. A press on another character's joint switches to it."));
             ui.separator();
-            ui.menu_button("Camera", |ui| camera_menu(ui, out));
-            ui.menu_button("Edit", |ui| super::edit_menu::show(ui, viewer, out));
-            ui.menu_button("Demos", |ui| {
+            super::menu(ui, "Camera", &mut |ui| camera_menu(ui, out));
+            super::menu(ui, "Edit", &mut |ui| super::edit_menu::show(ui, state, out));
+            super::menu(ui, "Demos", &mut |ui| {
                 if button(ui, Command::OpenTentacle(2), out) {
                     ui.close();
                 }
@@ -46,10 +46,10 @@ pub fn show(ui: &mut egui::Ui, viewer: &Viewer, out: &mut Vec<Command>) {
             ui.label("Keys (?)").on_hover_text(crate::keys::help());
         });
     });
-    if settings != viewer.settings {
+    if settings != state.settings {
         out.push(Command::SetSettings(settings));
     }
-    if panels != viewer.panels {
+    if panels != state.panels {
         out.push(Command::SetPanels(panels));
     }
 }

@@ -3,7 +3,6 @@
 use super::Viewer;
 use crate::command::{Command, HostRequest};
 use crate::selection::Selection;
-use crate::ui;
 
 impl Viewer {
     /// Requests for the page made outside [`Viewer::ui`] (by commands applied
@@ -12,54 +11,73 @@ impl Viewer {
         std::mem::take(&mut self.requests)
     }
 
-    /// Applies one command (see [`crate::command`]). A refused one shows its
-    /// reason in the banner and changes nothing.
-    pub fn apply(&mut self, command: Command) {
-        if let Err(message) = self.run(command) {
-            self.refuse(message);
-        }
+    /// Applies one command (see [`crate::command`]): the one way the state
+    /// changes. A refused one shows its reason in the banner, changes nothing
+    /// and gives the reason back.
+    pub fn apply(&mut self, command: Command) -> Result<(), String> {
+        self.try_apply(command).inspect_err(|message| self.refuse(message.clone()))
     }
 
-    /// Executes `command`; `Err` when it was refused.
-    fn run(&mut self, command: Command) -> Result<(), String> {
-        let timing = self.timing();
+    /// Applies one command as [`Viewer::apply`] does, but a refusal is only
+    /// returned, not shown (the JS API gives it to its caller).
+    pub fn try_apply(&mut self, command: Command) -> Result<(), String> {
+        let timing = self.state.timing();
         match (command, timing) {
-            (Command::TogglePlay, _) => self.set_playing(!self.playback.playing),
-            (Command::Step(d), Some(t)) => self.playback.step(d, t),
-            (Command::First, Some(t)) => {
-                let (a, _) = self.playback.frame_range(t);
-                self.playback.seek(a, t);
-            }
-            (Command::Last, Some(t)) => {
-                let (_, b) = self.playback.frame_range(t);
-                self.playback.playing = false;
-                self.playback.seek(b, t);
-            }
-            (Command::Seek(frame), _) => self.seek(frame),
-            (Command::SetLooping(on), _) => self.playback.looping = on,
-            (Command::SetSpeed(speed), _) => {
-                if speed.is_finite() && speed > 0.0 {
-                    self.playback.speed = speed;
+            (Command::TogglePlay, _) => self.set_playing(!self.state.playback.playing),
+            (Command::SetPlaying(on), _) => self.set_playing(on),
+            (Command::SetTime(time), Some(t)) => {
+                if time.is_finite() {
+                    self.state.playback.time = time.clamp(0.0, t.duration());
                 }
             }
-            (Command::SetRange(range), _) => self.playback.range = range,
-            (Command::Zoom(f), _) => self.camera.zoom(f),
-            (Command::Orbit(px), _) if px > 0.0 && self.settings.pose_mode && self.has_corrections() => {
+            (Command::SetTime(_), None) => {}
+            (Command::Step(d), Some(t)) => self.state.playback.step(d, t),
+            (Command::First, Some(t)) => {
+                let (a, _) = self.state.playback.frame_range(t);
+                self.state.playback.seek(a, t);
+            }
+            (Command::Last, Some(t)) => {
+                let (_, b) = self.state.playback.frame_range(t);
+                self.state.playback.playing = false;
+                self.state.playback.seek(b, t);
+            }
+            (Command::Seek(frame), _) => self.seek(frame),
+            (Command::SetLooping(on), _) => self.state.playback.looping = on,
+            (Command::SetSpeed(speed), _) => {
+                if speed.is_finite() && speed > 0.0 {
+                    self.state.playback.speed = speed;
+                }
+            }
+            (Command::SetRange(range), _) => self.state.playback.range = range,
+            (Command::Zoom(f), _) => self.state.camera.zoom(f),
+            (Command::Orbit(px), _) if px > 0.0 && self.state.settings.pose_mode && self.state.has_corrections() => {
                 // In Edit mode with a correction, k sets the key instead of orbiting.
                 self.set_key()?;
             }
-            (Command::Orbit(px), _) => self.camera.orbit(px, 0.0),
-            (Command::Waypoint(w), _) => self.camera.waypoint(w),
-            (Command::ToggleFollow, _) => self.settings.follow_root = !self.settings.follow_root,
-            (Command::ToggleAxes, _) => self.settings.show_axes = !self.settings.show_axes,
-            (Command::ToggleDrawMode, _) => self.settings.mode = self.settings.mode.next(),
-            (Command::SetSettings(settings), _) => self.settings = settings,
-            (Command::SetPanels(panels), _) => self.panels = panels,
+            (Command::Orbit(px), _) => self.state.camera.orbit(px, 0.0),
+            (Command::Waypoint(w), _) => self.state.camera.waypoint(w),
+            (Command::ToggleFollow, _) => self.state.settings.follow_root = !self.state.settings.follow_root,
+            (Command::ToggleAxes, _) => self.state.settings.show_axes = !self.state.settings.show_axes,
+            (Command::ToggleDrawMode, _) => self.state.settings.mode = self.state.settings.mode.next(),
+            (Command::SetSettings(settings), _) => self.state.settings = settings,
+            (Command::SetPanels(panels), _) => self.state.panels = panels,
             (Command::SetLayout(layout), _) => self.set_layout(layout),
             (Command::ResetCamera, _) => self.reset_camera(),
+            (Command::SetCamera(camera), _) => self.state.camera = camera,
+            (Command::ApplyFragment(fragment), _) => {
+                self.apply_view(&crate::view_state::ViewState::parse(&fragment));
+            }
+            (Command::SelectNamed { character, name }, _) => {
+                if !self.select_named(character, &name) {
+                    return Err(format!("no joint `{name}` in character {}", character + 1));
+                }
+            }
+            (Command::CloseAll, _) => self.clear(),
             (Command::Select { character, joint }, _) => self.select_in(character, joint),
             (Command::SetVisible(index, on), _) => {
-                self.set_visible(index, on);
+                if !self.set_visible(index, on) {
+                    return Err(no_character(index));
+                }
             }
             (Command::SetAnimation(index, name), _) => {
                 if !self.set_animation(index, &name) {
@@ -67,20 +85,24 @@ impl Viewer {
                 }
             }
             (Command::SetUpAxis(index, up), _) => {
-                self.set_up_axis(index, up);
+                if !self.set_up_axis(index, up) {
+                    return Err(format!("character {} is not a clip", index + 1));
+                }
             }
             (Command::Close(index), _) => {
-                if self.history.edited(index) {
-                    self.pending_close = Some(index);
+                if self.state.history.edited(index) {
+                    self.state.pending_close = Some(index);
                 } else {
                     self.remove(index);
                 }
             }
             (Command::CloseNow(index), _) => {
-                self.pending_close = None;
-                self.remove(index);
+                self.state.pending_close = None;
+                if !self.remove(index) {
+                    return Err(no_character(index));
+                }
             }
-            (Command::KeepOpen, _) => self.pending_close = None,
+            (Command::KeepOpen, _) => self.state.pending_close = None,
             (Command::SetKey, _) => {
                 self.set_key()?;
             }
@@ -103,10 +125,12 @@ impl Viewer {
             (Command::Edit { character, edit, label }, _) => self.edit(character, &edit, &label)?,
             (Command::AddLayer { character, source, layer }, _) => {
                 self.add_layer(character, source, &layer)?;
-                self.layer_dialog = None;
+                self.state.layer_dialog = None;
             }
             (Command::RotateJoint { character, joint, rotation }, _) => {
-                self.rotate_joint(character, joint, rotation);
+                if !self.rotate_joint(character, joint, rotation) {
+                    return Err(format!("character {} has no joint {joint} to turn", character + 1));
+                }
             }
             (Command::NewCharacter, _) => self.new_character(),
             (Command::GrowBone(name), _) => {
@@ -115,35 +139,48 @@ impl Viewer {
                 }
             }
             (Command::RefreshTentacleSkin, _) => self.refresh_tentacle_skin(),
+            (Command::SetTentacle(demo), _) => {
+                let Some(old) = &self.state.tentacle else { return Err("the tentacle demo is not open".into()) };
+                if demo.bones != old.bones {
+                    return Err("resize the tentacle with its bones control".into());
+                }
+                let soft_changed = demo.soft != old.soft;
+                self.state.tentacle = Some(demo);
+                if soft_changed {
+                    self.refresh_tentacle_skin();
+                }
+            }
             (Command::ResizeTentacle(bones), _) => {
-                if let Some(demo) = self.tentacle.clone() {
+                if let Some(demo) = self.state.tentacle.clone() {
                     self.open_tentacle(bones);
-                    if let Some(t) = &mut self.tentacle {
+                    if let Some(t) = &mut self.state.tentacle {
                         (t.follow, t.solver, t.soft, t.target) = (demo.follow, demo.solver, demo.soft, demo.target);
                     }
                     self.refresh_tentacle_skin();
                 }
             }
             (Command::CloseTentacle, _) => {
-                self.tentacle = None;
+                self.state.tentacle = None;
                 self.reset_pose();
             }
             (Command::SetOffset(index, offset), _) => {
-                if let Some(c) = self.stage.actors.get_mut(index)
+                if let Some(c) = self.state.stage.actors.get_mut(index)
                     && offset.is_finite()
                 {
                     c.offset = offset;
                 }
             }
-            (Command::ShowWeights(on), _) => self.settings.show_weights = on,
+            (Command::ShowWeights(on), _) => self.state.settings.show_weights = on,
             (Command::OpenLayerDialog { character, joint }, _) => {
-                self.layer_dialog = Some(ui::layer_window::LayerDialog::new(character, &joint));
+                self.state.layer_dialog = Some(crate::layer_dialog::LayerDialog::new(character, &joint));
             }
-            (Command::CloseLayerDialog, _) => self.layer_dialog = None,
+            (Command::SetLayerDialog(dialog), _) => self.state.layer_dialog = Some(dialog),
+            (Command::CloseLayerDialog, _) => self.state.layer_dialog = None,
             (Command::StartCapture(index), _) => self.start_capture(index)?,
+            (Command::FinishCapture, _) => self.finish_capture_now(),
             (Command::FitRig { model, template }, _) => self.start_rig_edit(model, template)?,
             (Command::SetRigView { show_binding, painting }, _) => {
-                if let Some(e) = &mut self.rig_edit {
+                if let Some(e) = &mut self.state.rig_edit {
                     (e.show_binding, e.painting) = (show_binding, painting);
                 }
             }
@@ -152,11 +189,11 @@ impl Viewer {
             (Command::OpenTentacle(bones), _) => self.open_tentacle(bones),
             (Command::Open(mode), _) => self.requests.push(HostRequest::PickFiles(mode)),
             (Command::Share, _) => self.requests.push(HostRequest::Share),
-            (Command::SaveBvh, _) => self.request_save(self.current())?,
+            (Command::SaveBvh, _) => self.request_save(self.state.current())?,
             (Command::SaveCharacter(index), _) => {
                 // Saving saves the current character: make it this one.
-                if self.current() != index {
-                    self.selected = Some(Selection { character: index, joint: 0 });
+                if self.state.current() != index {
+                    self.state.selected = Some(Selection { character: index, joint: 0 });
                 }
                 self.request_save(index)?;
             }
@@ -164,8 +201,8 @@ impl Viewer {
                 let (name, text) = self.rig_download().ok_or("no capture rig to save")?;
                 self.requests.push(HostRequest::Save { name, text });
             }
-            (Command::DismissNotice, _) => self.error = None,
-            (Command::Notify(notice), _) => self.error = Some(notice),
+            (Command::DismissNotice, _) => self.state.notice = None,
+            (Command::Notify(notice), _) => self.state.notice = Some(notice),
             (Command::Step(_) | Command::First | Command::Last, None) => {}
         }
         Ok(())
@@ -177,4 +214,9 @@ impl Viewer {
         self.requests.push(HostRequest::Save { name, text });
         Ok(())
     }
+}
+
+/// The refusal for a character index that is not open.
+fn no_character(index: usize) -> String {
+    format!("no character {}", index + 1)
 }

@@ -46,20 +46,20 @@ impl Viewer {
         {
             self.drag_rig(d.handle, d.target, d.pointer);
         } else if d.handle.character == crate::drag::TARGET {
-            if let Some(t) = &mut self.tentacle {
+            if let Some(t) = &mut self.state.tentacle {
                 t.target = d.target;
             }
         } else {
             let switching = match self.grab {
                 Some((press, switching)) if press == d.press => switching,
                 _ => {
-                    let switching = d.handle.character != self.current();
+                    let switching = d.handle.character != self.state.current();
                     self.grab = Some((d.press, switching));
                     switching
                 }
             };
             self.set_playing(false);
-            self.selected = Some(Selection { character: d.handle.character, joint: d.handle.joint });
+            self.state.selected = Some(Selection { character: d.handle.character, joint: d.handle.joint });
             if !switching {
                 self.drag_joint(d.handle.character, d.handle.joint, d.target);
             }
@@ -71,17 +71,17 @@ impl Viewer {
     /// was last drawn. Empty outside Edit mode.
     pub fn handles(&self) -> Vec<crate::drag::Handle> {
         let mut out = Vec::new();
-        if let Some(t) = &self.tentacle {
+        if let Some(t) = &self.state.tentacle {
             out.push(crate::drag::Handle { character: crate::drag::TARGET, joint: 0, world: t.target, ring: None });
         }
-        if self.rig_edit.is_some() {
+        if self.state.rig_edit.is_some() {
             out.extend(self.rig_handles());
             return out;
         }
-        if !self.settings.pose_mode {
+        if !self.state.settings.pose_mode {
             return out;
         }
-        for (character, c) in self.stage.visible().filter(|(_, c)| c.clip().is_some()) {
+        for (character, c) in self.state.stage.visible().filter(|(_, c)| c.clip().is_some()) {
             out.extend(c.extra.pose.iter().enumerate().map(|(joint, t)| crate::drag::Handle {
                 character,
                 joint,
@@ -105,8 +105,8 @@ impl Viewer {
         joint: usize,
         world: mocap::glam::Vec3,
     ) -> Option<mocap::runtime::ik::Solve> {
-        let time = self.playback.time;
-        let c = self.stage.actors.get_mut(character)?;
+        let time = self.state.playback.time;
+        let c = self.state.stage.actors.get_mut(character)?;
         let solve = character::drag_joint(c, joint, world, time, &mut self.pose_scratch);
         self.pose();
         solve
@@ -115,16 +115,17 @@ impl Viewer {
     /// Arms the creator's drag: the next drag from the selected joint in the view
     /// pulls out a new child bone named `name`, added (one undoable edit) where
     /// the pointer lets go. Returns false without a selected clip joint.
-    pub fn grow_bone(&mut self, name: &str) -> bool {
-        let Some(s) = self.selected else { return false };
+    pub(crate) fn grow_bone(&mut self, name: &str) -> bool {
+        let Some(s) = self.state.selected else { return false };
         let ok = self
+            .state
             .stage
             .actors
             .get(s.character)
             .and_then(|c| c.clip())
             .is_some_and(|clip| !clip.skeleton().is_end_site(s.joint));
         if ok {
-            self.settings.pose_mode = true;
+            self.state.settings.pose_mode = true;
             self.grow = Some(Grow { character: s.character, parent: s.joint, name: name.trim().to_owned(), end: None });
         }
         ok
@@ -139,7 +140,7 @@ impl Viewer {
     pub(super) fn finish_new_bone(&mut self) {
         let Some(Grow { character, parent, name, end: Some(end) }) = self.grow.clone() else { return };
         self.grow = None;
-        let Some(c) = self.stage.actors.get(character) else { return };
+        let Some(c) = self.state.stage.actors.get(character) else { return };
         let (Some(clip), Some(at)) = (c.clip(), c.extra.pose.get(parent)) else { return };
         // The offset in the parent joint's frame and the file's units.
         let offset = at.rotation.inverse() * (end - at.translation) / (at.scale.x.abs().max(1e-9));
@@ -147,8 +148,8 @@ impl Viewer {
         let edit = mocap::ops::edit::Edit::AddJoint { parent: parent_name, name: name.clone(), offset };
         match self.edit(character, &edit, &format!("Add {name}")) {
             Ok(()) => {
-                let joint = self.stage.actors.get(character).and_then(|c| c.clip()?.skeleton().find(&name));
-                self.selected = joint.map(|joint| Selection { character, joint });
+                let joint = self.state.stage.actors.get(character).and_then(|c| c.clip()?.skeleton().find(&name));
+                self.state.selected = joint.map(|joint| Selection { character, joint });
                 self.pose();
             }
             Err(message) => self.refuse(message),
@@ -161,11 +162,11 @@ impl Viewer {
     pub(super) fn rings(
         &self,
     ) -> Option<(Vec<crate::drag::Handle>, Vec<(mocap::glam::Vec3, mocap::glam::Vec3, usize)>)> {
-        if !self.settings.pose_mode {
+        if !self.state.settings.pose_mode {
             return None;
         }
-        let s = self.selected?;
-        let c = self.stage.actors.get(s.character)?;
+        let s = self.state.selected?;
+        let c = self.state.stage.actors.get(s.character)?;
         if c.clip()?.skeleton().is_end_site(s.joint) || !c.visible {
             return None;
         }
@@ -177,7 +178,7 @@ impl Viewer {
     /// around the ring since the press turns the joint about that axis.
     fn drag_ring(&mut self, d: crate::drag::JointDrag, axis: mocap::glam::Vec3) {
         let Some(view) = self.viewport.geometry else { return };
-        let Some(c) = self.stage.actors.get(d.handle.character) else { return };
+        let Some(c) = self.state.stage.actors.get(d.handle.character) else { return };
         let Some(t) = c.extra.pose.get(d.handle.joint).copied() else { return };
         let fresh = self
             .ring_drag
@@ -212,7 +213,7 @@ impl Viewer {
     /// the selected joint's rotation rings in Edit mode.
     pub(super) fn drag_overlay(&mut self) {
         if let Some(Grow { character, parent, end: Some(end), .. }) = &self.grow {
-            if let Some(from) = self.stage.actors.get(*character).and_then(|c| c.extra.pose.get(*parent)) {
+            if let Some(from) = self.state.stage.actors.get(*character).and_then(|c| c.extra.pose.get(*parent)) {
                 self.scene.overlay_lines.push(mocap_render::Line {
                     a: from.translation,
                     b: *end,

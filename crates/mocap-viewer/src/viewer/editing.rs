@@ -7,8 +7,8 @@ use crate::character::{self, Character};
 impl Viewer {
     /// Applies a clip edit ([`mocap::ops::edit`]) to character `character`, as one step
     /// that [`Viewer::undo`] takes back. Returns why not when it cannot be made.
-    pub fn edit(&mut self, character: usize, edit: &mocap::ops::edit::Edit, label: &str) -> Result<(), String> {
-        let c = self.stage.actors.get(character).ok_or_else(|| format!("no character {}", character + 1))?;
+    pub(crate) fn edit(&mut self, character: usize, edit: &mocap::ops::edit::Edit, label: &str) -> Result<(), String> {
+        let c = self.state.stage.actors.get(character).ok_or_else(|| format!("no character {}", character + 1))?;
         let clip = c.clip().ok_or_else(|| format!("{}: a model has no motion to edit", c.name))?;
         let edited = mocap::ops::edit::apply(clip, edit).map_err(|e| format!("{}: {e}", c.name))?;
         use mocap::ops::edit::Edit;
@@ -21,22 +21,23 @@ impl Viewer {
     /// Deletes the key at `frame` of the current character (not only the last one):
     /// the clip is rebuilt from before that key with every later edit made again,
     /// as one undoable step.
-    pub fn delete_key(&mut self, frame: usize) -> Result<(), String> {
+    pub(crate) fn delete_key(&mut self, frame: usize) -> Result<(), String> {
         self.rekey(frame, None)
     }
 
     /// Moves the key at `from` of the current character to frame `to` (the same
     /// pose, at another time), as one undoable step.
-    pub fn move_key(&mut self, from: usize, to: usize) -> Result<(), String> {
+    pub(crate) fn move_key(&mut self, from: usize, to: usize) -> Result<(), String> {
         self.rekey(from, Some(to))
     }
 
     fn rekey(&mut self, frame: usize, to: Option<usize>) -> Result<(), String> {
-        let character = self.current();
-        if !self.history.keys(character).contains(&frame) {
+        let character = self.state.current();
+        if !self.state.history.keys(character).contains(&frame) {
             return Err(format!("no key at frame {frame}"));
         }
-        let (base, mut edits) = self.history.effective(character).ok_or_else(|| format!("no key at frame {frame}"))?;
+        let (base, mut edits) =
+            self.state.history.effective(character).ok_or_else(|| format!("no key at frame {frame}"))?;
         let at = edits
             .iter()
             .rposition(|e| e.key_frame() == Some(frame))
@@ -66,9 +67,9 @@ impl Viewer {
 
     /// Moves the playhead to the next (`forward`) or previous keyed frame of the
     /// current character; returns the frame, if there is one that way.
-    pub fn step_key(&mut self, forward: bool) -> Option<usize> {
-        let keys = self.history.keys(self.current());
-        let now = self.frame();
+    pub(crate) fn step_key(&mut self, forward: bool) -> Option<usize> {
+        let keys = self.state.history.keys(self.state.current());
+        let now = self.state.frame();
         let next =
             if forward { keys.into_iter().find(|&k| k > now) } else { keys.into_iter().rev().find(|&k| k < now) }?;
         self.set_playing(false);
@@ -78,21 +79,27 @@ impl Viewer {
 
     /// Layers character `source`'s clip on the subtree of `layer.subtree` in
     /// character `character` ([`mocap::ops::layer::apply`]), as one undoable step.
-    pub fn add_layer(
+    pub(crate) fn add_layer(
         &mut self,
         character: usize,
         source: usize,
         layer: &mocap::ops::layer::Layer,
     ) -> Result<(), String> {
         let base = self
+            .state
             .stage
             .actors
             .get(character)
             .and_then(|c| c.clip())
             .ok_or_else(|| format!("no clip {}", character + 1))?;
-        let other =
-            self.stage.actors.get(source).and_then(|c| c.clip()).ok_or_else(|| format!("no clip {}", source + 1))?;
-        let name = self.stage.actors.get(source).map_or(String::new(), |c| c.name.clone());
+        let other = self
+            .state
+            .stage
+            .actors
+            .get(source)
+            .and_then(|c| c.clip())
+            .ok_or_else(|| format!("no clip {}", source + 1))?;
+        let name = self.state.stage.actors.get(source).map_or(String::new(), |c| c.name.clone());
         let out = mocap::ops::layer::apply(base, other, layer).map_err(|e| e.to_string())?;
         self.commit(character, out, &format!("Layer {name} on {}", layer.subtree), None, false, None, None);
         Ok(())
@@ -110,9 +117,9 @@ impl Viewer {
         edit: Option<mocap::ops::edit::Edit>,
         unkey: Option<usize>,
     ) {
-        let Some(before) = self.stage.actors.get(character).map(|c| c.asset.clone()) else { return };
+        let Some(before) = self.state.stage.actors.get(character).map(|c| c.asset.clone()) else { return };
         let after = mocap::Asset::Clip(edited);
-        self.history.push(crate::history::Change {
+        self.state.history.push(crate::history::Change {
             character,
             label: label.to_owned(),
             before,
@@ -126,15 +133,15 @@ impl Viewer {
     }
 
     /// Takes back the last edit; returns its label.
-    pub fn undo(&mut self) -> Option<String> {
-        let change = self.history.undo()?.clone();
+    pub(crate) fn undo(&mut self) -> Option<String> {
+        let change = self.state.history.undo()?.clone();
         self.replace_asset(change.character, change.before);
         Some(change.label)
     }
 
     /// Makes the last undone edit again; returns its label.
-    pub fn redo(&mut self) -> Option<String> {
-        let change = self.history.redo()?.clone();
+    pub(crate) fn redo(&mut self) -> Option<String> {
+        let change = self.state.history.redo()?.clone();
         self.replace_asset(change.character, change.after);
         Some(change.label)
     }
@@ -142,7 +149,7 @@ impl Viewer {
     /// Puts `asset` in character `index`'s place, keeping its name, colour,
     /// visibility and placement; the timeline and the selection follow.
     fn replace_asset(&mut self, index: usize, asset: mocap::Asset) {
-        let Some(old) = self.stage.actors.get(index) else { return };
+        let Some(old) = self.state.stage.actors.get(index) else { return };
         let others: Vec<Character> = Vec::new();
         let mut c = character::new_character(&old.name, asset, &others);
         c.extra.color = old.extra.color;
@@ -156,29 +163,29 @@ impl Viewer {
         // The character stays where it stands (an edit does not move it to a new
         // lane centre; changing the layout arranges again).
         c.layout_offset = old.layout_offset;
-        if let Some(slot) = self.stage.actors.get_mut(index) {
+        if let Some(slot) = self.state.stage.actors.get_mut(index) {
             *slot = c;
         }
-        if let Some(s) = self.selected.filter(|s| s.character == index) {
-            let joints = self.stage.actors.get(index).and_then(|c| c.clip()).map_or(0, |c| c.skeleton().len());
+        if let Some(s) = self.state.selected.filter(|s| s.character == index) {
+            let joints = self.state.stage.actors.get(index).and_then(|c| c.clip()).map_or(0, |c| c.skeleton().len());
             if s.joint >= joints {
-                self.selected = None;
+                self.state.selected = None;
             }
         }
-        self.playback.range = None;
-        if let Some(t) = self.timing() {
-            self.playback.time = self.playback.time.min(t.duration());
+        self.state.playback.range = None;
+        if let Some(t) = self.state.timing() {
+            self.state.playback.time = self.state.playback.time.min(t.duration());
         }
     }
 
     /// Character `index` as a BVH file: (file name, text), every edit baked in;
     /// an edited clip's name says so (`walk-edited.bvh`). `None` for a model.
     pub fn save_bvh(&self, index: usize) -> Option<(String, String)> {
-        let c = self.stage.actors.get(index)?;
+        let c = self.state.stage.actors.get(index)?;
         let clip = c.clip()?;
         let stem = character::file_stem(&c.name);
         let stem = stem.strip_suffix("-edited").unwrap_or(stem);
-        let name = if self.history.edited(index) { format!("{stem}-edited.bvh") } else { format!("{stem}.bvh") };
+        let name = if self.state.history.edited(index) { format!("{stem}-edited.bvh") } else { format!("{stem}.bvh") };
         Some((name, mocap::formats::bvh::write(clip)))
     }
 
@@ -189,19 +196,19 @@ impl Viewer {
     /// [`crate::settings::ViewSettings::key_between`] a key of key-frame animation
     /// interpolated to and from the character's other keys ([`mocap::ops::edit::Edit::Key`]).
     /// Returns how many characters were keyed.
-    pub fn set_key(&mut self) -> Result<usize, String> {
-        let window = self.settings.key_window;
+    pub(crate) fn set_key(&mut self) -> Result<usize, String> {
+        let window = self.state.settings.key_window;
         let mut keyed = 0;
-        for index in 0..self.stage.actors.len() {
-            let Some(c) = self.stage.actors.get(index) else { continue };
+        for index in 0..self.state.stage.actors.len() {
+            let Some(c) = self.state.stage.actors.get(index) else { continue };
             let Some(correction) = c.extra.correction.clone().filter(|k| k.ghost) else { continue };
             let Some(clip) = c.clip() else { continue };
             let name = |j: usize| clip.skeleton().joints().get(j).map(|x| x.name.clone());
             let rotations = correction.rotations.iter().filter_map(|&(j, q)| Some((name(j)?, q))).collect();
             let translations = correction.translations.iter().filter_map(|&(j, t)| Some((name(j)?, t))).collect();
             let frame = correction.frame;
-            let edit = if self.settings.key_between {
-                let keys = self.history.keys(index).into_iter().filter(|k| *k != frame).collect();
+            let edit = if self.state.settings.key_between {
+                let keys = self.state.history.keys(index).into_iter().filter(|k| *k != frame).collect();
                 mocap::ops::edit::Edit::Key { frame, rotations, translations, keys }
             } else {
                 mocap::ops::edit::Edit::Correct { frame, rotations, translations, window }

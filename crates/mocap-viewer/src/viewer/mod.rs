@@ -6,18 +6,20 @@ use crate::command::{Command, HostRequest, OpenMode};
 use crate::keys;
 use crate::layout::Layout;
 use crate::notice::Notice;
-use crate::panels::Panels;
-use crate::playback::{Playback, Timing};
+
 use crate::selection::Selection;
-use crate::settings::{DrawMode, ViewSettings};
+use crate::settings::DrawMode;
 use crate::snapshot::Snapshot;
-use crate::stage::Stage;
+use crate::state::AppState;
 use crate::viewport::Viewport;
 use crate::{pose_scene, ui};
 
 mod apply;
+mod capture;
 mod drag;
 mod editing;
+mod rig;
+mod view;
 use mocap_render::Scene;
 use mocap_scene::OrbitCamera;
 
@@ -28,39 +30,10 @@ const MAX_STEP: f64 = 0.5;
 /// The whole viewer. Plain state is public; GPU and scratch state is private.
 #[derive(Default)]
 pub struct Viewer {
-    /// The open characters and their layout.
-    pub stage: Stage,
-    /// Playback settings and playhead (one clock for every character).
-    pub playback: Playback,
-    /// Camera (world units are metres).
-    pub camera: OrbitCamera,
-    /// View settings.
-    pub settings: ViewSettings,
-    /// Selected joint and its character.
-    pub selected: Option<Selection>,
-    /// The banner's message: the last failure to open files or refused action, and
-    /// what became of what was open.
-    pub error: Option<Notice>,
-    /// Which panels are shown.
-    pub panels: Panels,
+    /// Everything shown and edited, changed only by [`Viewer::apply`].
+    state: AppState,
     /// Reads dropped files; remembers the last Acclaim skeleton for motions dropped alone.
-    pub loader: mocap::Loader,
-    /// The bendy-tentacle demo, when it is open (its tentacle is character 1).
-    pub tentacle: Option<crate::tentacle::Tentacle>,
-    /// Clip edits, for undo and redo.
-    pub history: crate::history::History,
-    /// The Layer window, while it is open.
-    pub layer_dialog: Option<ui::layer_window::LayerDialog>,
-    /// A model capture in progress.
-    pub capture_job: Option<crate::capture::CaptureJob>,
-    /// What the last capture gave.
-    pub capture_result: Option<crate::capture::CaptureResult>,
-    /// A rig dropped (JSON) or set up for the next capture.
-    pub capture_rig: Option<mocap::capture::Rig>,
-    /// A capture rig being set up on a model.
-    pub rig_edit: Option<crate::rig_edit::RigEdit>,
-    /// A character with unsaved edits the user asked to close: the viewer asks first.
-    pub pending_close: Option<usize>,
+    loader: mocap::Loader,
     ring_drag: Option<drag::RingDrag>,
     /// The press of the joint grab in progress, and whether it only switched the
     /// character being edited (a press on another character's joint selects it;
@@ -112,7 +85,7 @@ impl Viewer {
         }
         if files.is_empty() {
             if !errors.is_empty() {
-                self.error = Some(Notice::open_failed(errors.join("\n"), false));
+                self.state.notice = Some(Notice::open_failed(errors.join("\n"), false));
             }
             return errors;
         }
@@ -156,56 +129,56 @@ impl Viewer {
             }
         }
         if !errors.is_empty() {
-            self.error = Some(Notice::open_failed(errors.join("\n"), opened_any));
+            self.state.notice = Some(Notice::open_failed(errors.join("\n"), opened_any));
         }
         errors
     }
 
     /// Shows `message` in the banner as an action that was refused (nothing changed).
-    pub fn refuse(&mut self, message: String) {
-        self.error = Some(Notice::refused(message));
+    pub(crate) fn refuse(&mut self, message: String) {
+        self.state.notice = Some(Notice::refused(message));
     }
 
     /// Replaces everything open with `assets` (name, clip or model): time 0, play
     /// state kept, no loop range or selection, camera framed on the motion. The first
     /// frame drawn afterwards shows frame 0 (the clock restarts).
     pub fn open_assets(&mut self, assets: Vec<(String, mocap::Asset)>) {
-        self.tentacle = None;
-        self.rig_edit = None;
-        self.capture_job = None;
-        self.history.clear();
-        self.playback.time = 0.0;
+        self.state.tentacle = None;
+        self.state.rig_edit = None;
+        self.state.capture_job = None;
+        self.state.history.clear();
+        self.state.playback.time = 0.0;
         self.last_time = None;
-        self.playback.range = None;
-        self.selected = None;
-        self.error = None;
+        self.state.playback.range = None;
+        self.state.selected = None;
+        self.state.notice = None;
         let mut characters: Vec<Character> = Vec::with_capacity(assets.len());
         for (name, asset) in assets {
             let c = character::new_character(&name, asset, &characters);
             characters.push(c);
         }
-        self.stage.replace(characters);
-        self.camera.frame(self.stage.bounds());
+        self.state.stage.replace(characters);
+        self.state.camera.frame(self.state.stage.bounds());
     }
 
     /// Adds a character, keeping the playhead, selection and play state; the
     /// camera frames everything visible.
     pub fn add_asset(&mut self, name: &str, asset: impl Into<mocap::Asset>) {
-        self.error = None;
-        let c = character::new_character(name, asset.into(), &self.stage.actors);
-        self.stage.add(c);
-        self.camera.frame(self.stage.bounds());
+        self.state.notice = None;
+        let c = character::new_character(name, asset.into(), &self.state.stage.actors);
+        self.state.stage.add(c);
+        self.state.camera.frame(self.state.stage.bounds());
     }
 
     /// Plays animation `name` (`all`: every frame) on model `index`; returns whether
     /// that model has it. The playhead stays where it is, within the new timeline.
-    pub fn set_animation(&mut self, index: usize, name: &str) -> bool {
-        if !self.stage.set_animation(index, name) {
+    pub(crate) fn set_animation(&mut self, index: usize, name: &str) -> bool {
+        if !self.state.stage.set_animation(index, name) {
             return false;
         }
-        self.playback.range = None;
-        if let Some(t) = self.timing() {
-            self.playback.time = self.playback.time.min(t.duration());
+        self.state.playback.range = None;
+        if let Some(t) = self.state.timing() {
+            self.state.playback.time = self.state.playback.time.min(t.duration());
         }
         true
     }
@@ -213,27 +186,27 @@ impl Viewer {
     /// Stands clip `index` up along its file's `up` axis (the unit is guessed again
     /// from the height along it; foot contacts are found again); the camera frames
     /// the stage. False (no change) for a model or no such character.
-    pub fn set_up_axis(&mut self, index: usize, up: mocap::UpAxis) -> bool {
-        if !self.stage.set_up_axis(index, up) {
+    pub(crate) fn set_up_axis(&mut self, index: usize, up: mocap::UpAxis) -> bool {
+        if !self.state.stage.set_up_axis(index, up) {
             return false;
         }
-        if let Some(c) = self.stage.actors.get_mut(index) {
+        if let Some(c) = self.state.stage.actors.get_mut(index) {
             c.extra.foot_lock = None;
         }
-        self.camera.frame(self.stage.bounds());
+        self.state.camera.frame(self.state.stage.bounds());
         true
     }
 
     /// Closes character `index` (0-based); returns whether it existed.
-    pub fn remove(&mut self, index: usize) -> bool {
-        if !self.stage.remove(index) {
+    pub(crate) fn remove(&mut self, index: usize) -> bool {
+        if !self.state.stage.remove(index) {
             return false;
         }
         if index == 0 {
-            self.tentacle = None;
+            self.state.tentacle = None;
         }
-        self.history.clear();
-        self.selected = match self.selected {
+        self.state.history.clear();
+        self.state.selected = match self.state.selected {
             Some(s) if s.character == index => None,
             Some(s) if s.character > index => Some(Selection { character: s.character - 1, ..s }),
             other => other,
@@ -244,13 +217,13 @@ impl Viewer {
             std::cmp::Ordering::Greater => Some(model - 1),
             std::cmp::Ordering::Less => Some(model),
         };
-        self.rig_edit = self.rig_edit.take().and_then(|mut e| {
+        self.state.rig_edit = self.state.rig_edit.take().and_then(|mut e| {
             shift(e.model).map(|m| {
                 e.model = m;
                 e
             })
         });
-        self.capture_job = self.capture_job.take().and_then(|mut j| {
+        self.state.capture_job = self.state.capture_job.take().and_then(|mut j| {
             shift(j.model).map(|m| {
                 j.model = m;
                 j
@@ -260,72 +233,56 @@ impl Viewer {
     }
 
     /// Closes every character.
-    pub fn clear(&mut self) {
-        self.tentacle = None;
-        self.history.clear();
-        self.stage.replace(Vec::new());
-        self.selected = None;
+    pub(crate) fn clear(&mut self) {
+        self.state.tentacle = None;
+        self.state.history.clear();
+        self.state.stage.replace(Vec::new());
+        self.state.selected = None;
     }
 
     /// Shows or hides character `index`; returns whether it exists.
-    pub fn set_visible(&mut self, index: usize, visible: bool) -> bool {
-        self.stage.set_visible(index, visible)
+    pub(crate) fn set_visible(&mut self, index: usize, visible: bool) -> bool {
+        self.state.stage.set_visible(index, visible)
     }
 
     /// Switches the layout and frames the result.
-    pub fn set_layout(&mut self, layout: Layout) {
-        self.stage.set_layout(layout);
-        self.camera.frame(self.stage.bounds());
-    }
-
-    /// Index of the current character: the selection's, else the first. The
-    /// timeline counts frames in its frame time and the info panel shows it.
-    pub fn current(&self) -> usize {
-        self.selected.map_or(0, |s| s.character)
-    }
-
-    /// The current character (see [`Viewer::current`]), if any is open.
-    pub fn current_character(&self) -> Option<&Character> {
-        let stage = &self.stage.actors;
-        stage.get(self.current()).or(stage.first())
-    }
-
-    /// The shared timeline: the longest clip, in frames of the current character.
-    pub fn timing(&self) -> Option<Timing> {
-        self.stage.timeline(self.current())
+    pub(crate) fn set_layout(&mut self, layout: Layout) {
+        self.state.stage.set_layout(layout);
+        self.state.camera.frame(self.state.stage.bounds());
     }
 
     /// Moves to a frame of the timeline (clamped); keeps the play state.
-    pub fn seek(&mut self, frame: usize) {
-        if let Some(t) = self.timing() {
-            self.playback.seek(frame, t);
+    pub(crate) fn seek(&mut self, frame: usize) {
+        if let Some(t) = self.state.timing() {
+            self.state.playback.seek(frame, t);
         }
     }
 
     /// Starts or stops playback.
-    pub fn set_playing(&mut self, playing: bool) {
-        match self.timing() {
-            Some(t) => self.playback.set_playing(playing, t),
-            None => self.playback.playing = playing,
+    pub(crate) fn set_playing(&mut self, playing: bool) {
+        match self.state.timing() {
+            Some(t) => self.state.playback.set_playing(playing, t),
+            None => self.state.playback.playing = playing,
         }
     }
 
-    /// Selects a joint by index in the current character (see [`Viewer::current`]).
-    pub fn select(&mut self, joint: Option<usize>) {
-        self.select_in(self.current(), joint);
-    }
-
     /// Selects joint `joint` of character `character`, or nothing when either is out of range.
-    pub fn select_in(&mut self, character: usize, joint: Option<usize>) {
+    pub(crate) fn select_in(&mut self, character: usize, joint: Option<usize>) {
         let valid = |j: &usize| {
-            self.stage.actors.get(character).and_then(|c| c.clip()).is_some_and(|c| *j < c.skeleton().joints().len())
+            self.state
+                .stage
+                .actors
+                .get(character)
+                .and_then(|c| c.clip())
+                .is_some_and(|c| *j < c.skeleton().joints().len())
         };
-        self.selected = joint.filter(valid).map(|joint| Selection { character, joint });
+        self.state.selected = joint.filter(valid).map(|joint| Selection { character, joint });
     }
 
     /// Selects the first joint called `name` in character `character`; returns whether one exists.
-    pub fn select_named(&mut self, character: usize, name: &str) -> bool {
+    pub(crate) fn select_named(&mut self, character: usize, name: &str) -> bool {
         let joint = self
+            .state
             .stage
             .actors
             .get(character)
@@ -334,25 +291,13 @@ impl Viewer {
         joint.is_some()
     }
 
-    /// The selected joint's name.
-    pub fn selected_name(&self) -> Option<&str> {
-        let s = self.selected?;
-        let joint = self.stage.actors.get(s.character)?.clip()?.skeleton().joints().get(s.joint)?;
-        Some(joint.name.as_str())
-    }
-
-    /// The view state as a URL fragment (see [`crate::view_state`]).
-    pub fn view_fragment(&self) -> String {
-        crate::view_state::ViewState::format(self)
-    }
-
     /// Applies a URL fragment (see [`crate::view_state`]); unknown parts are ignored.
     pub fn apply_fragment(&mut self, fragment: &str) {
-        crate::view_state::ViewState::parse(fragment).apply(self);
+        let _refused_is_shown = self.apply(Command::ApplyFragment(fragment.to_owned()));
     }
 
     /// Forgets the last frame time so the next frame advances playback by nothing.
-    pub fn restart_clock(&mut self) {
+    pub(crate) fn restart_clock(&mut self) {
         self.last_time = None;
     }
 
@@ -373,14 +318,21 @@ impl Viewer {
         self.held
     }
 
-    /// Current frame of the timeline (0 without a clip).
-    pub fn frame(&self) -> usize {
-        self.timing().map_or(0, |t| self.playback.frame(t))
+    /// Everything shown and edited (change it with [`Viewer::apply`]).
+    pub fn state(&self) -> &AppState {
+        &self.state
     }
 
     /// A plain copy of the observable state.
     pub fn snapshot(&self) -> Snapshot {
-        Snapshot::of(self, self.tree_labels.clone(), self.viewport.frames_rendered, self.viewport.backend.clone())
+        Snapshot {
+            reduced: self.viewport.reduced,
+            samples: self.viewport.samples,
+            floor_copied: self.viewport.floor_copied,
+            frames_rendered: self.viewport.frames_rendered,
+            backend: self.viewport.backend.clone(),
+            ..Snapshot::of(&self.state, self.tree_labels.clone())
+        }
     }
 
     /// Draws the whole UI for one frame and advances playback. Panels and keys
@@ -393,20 +345,20 @@ impl Viewer {
         keys::read_commands(ui.ctx(), &mut commands);
         // Keys act before the panels are drawn, as they always did.
         for c in commands.drain(..) {
-            self.apply(c);
+            let _refused_is_shown = self.apply(c);
         }
 
-        if !self.panels.embed {
-            ui::toolbar::show(ui, self, &mut commands);
+        if !self.state.panels.embed {
+            ui::toolbar::show(ui, &self.state, &mut commands);
         }
-        ui::timeline::show(ui, self, &mut commands);
-        if self.panels.show_inspector() {
-            ui::side::show(ui, self, &mut commands);
+        ui::timeline::show(ui, &self.state, &mut commands);
+        if self.state.panels.show_inspector() {
+            ui::side::show(ui, &self.state, &mut commands);
         }
         let mut labels = std::mem::take(&mut self.tree_labels);
         labels.clear();
-        if self.panels.show_hierarchy() {
-            ui::hierarchy::show(ui, self, &mut labels, &mut commands);
+        if self.state.panels.show_hierarchy() {
+            ui::hierarchy::show(ui, &self.state, &mut labels, &mut commands);
         }
         self.tree_labels = labels;
 
@@ -417,14 +369,14 @@ impl Viewer {
             let (_, dragged) = self.viewport.show(
                 ui,
                 render_state,
-                &mut self.camera,
+                &mut self.state.camera,
                 &self.scene,
                 &handles,
-                self.settings.quality,
-                self.playback.playing && !self.stage.actors.is_empty(),
+                self.state.settings.quality,
+                self.state.playback.playing && !self.state.stage.actors.is_empty(),
             );
             joint_drag = dragged;
-            if ui::overlay::show(ui, self.error.as_ref(), !self.stage.actors.is_empty()) {
+            if ui::overlay::show(ui, self.state.notice.as_ref(), !self.state.stage.actors.is_empty()) {
                 commands.push(Command::DismissNotice);
             }
         });
@@ -437,37 +389,37 @@ impl Viewer {
             self.drag(d);
             ui.ctx().request_repaint();
         }
-        if let Some(tentacle) = &mut self.tentacle {
-            ui::tentacle::show(ui, tentacle, self.settings.show_weights, &mut commands);
+        if let Some(tentacle) = &self.state.tentacle {
+            ui::tentacle::show(ui, tentacle, self.state.settings.show_weights, &mut commands);
         }
-        if let Some(dialog) = &mut self.layer_dialog {
-            ui::layer_window::show(ui.ctx(), dialog, &self.stage, &mut commands);
+        if let Some(dialog) = &self.state.layer_dialog {
+            ui::layer_window::show(ui.ctx(), dialog, &self.state.stage, &mut commands);
         }
         if self.step_capture() {
             ui.ctx().request_repaint();
         }
-        if let Some(index) = self.pending_close {
-            let name = self.stage.actors.get(index).map(|c| c.name.as_str());
+        if let Some(index) = self.state.pending_close {
+            let name = self.state.stage.actors.get(index).map(|c| c.name.as_str());
             confirm_close(ui.ctx(), index, name, &mut commands);
         }
         let applied = !commands.is_empty();
         for c in commands.drain(..) {
-            self.apply(c);
+            let _refused_is_shown = self.apply(c);
         }
         self.commands = commands;
         if applied {
             ui.ctx().request_repaint();
         }
-        if self.playback.playing && !self.stage.actors.is_empty() && !self.held {
+        if self.state.playback.playing && !self.state.stage.actors.is_empty() && !self.held {
             ui.ctx().request_repaint();
         }
         std::mem::take(&mut self.requests)
     }
 
     /// Back to the default view angles, framing every visible character's motion.
-    pub fn reset_camera(&mut self) {
-        self.camera = OrbitCamera::default();
-        self.camera.frame(self.stage.bounds());
+    pub(crate) fn reset_camera(&mut self) {
+        self.state.camera = OrbitCamera::default();
+        self.state.camera.frame(self.state.stage.bounds());
     }
 
     fn advance_clock(&mut self, ctx: &egui::Context) {
@@ -477,41 +429,47 @@ impl Viewer {
         let now = ctx.input(|i| i.time);
         let dt = self.last_time.map_or(0.0, |t| (now - t).clamp(0.0, MAX_STEP));
         self.last_time = Some(now);
-        if let Some(t) = self.timing() {
-            self.playback.advance(dt, t);
+        if let Some(t) = self.state.timing() {
+            self.state.playback.advance(dt, t);
         }
     }
 
     /// Poses every visible character at the playhead and rebuilds the scene primitives.
     pub fn pose(&mut self) {
-        let smooth = self.playback.playing && self.settings.interpolate;
-        let body = self.settings.mode == DrawMode::Body;
-        if let (Some(demo), Some(c)) = (&self.tentacle, self.stage.actors.first_mut()) {
+        let smooth = self.state.playback.playing && self.state.settings.interpolate;
+        let body = self.state.settings.mode == DrawMode::Body;
+        if let (Some(demo), Some(c)) = (&self.state.tentacle, self.state.stage.actors.first_mut()) {
             demo.pose(c);
         }
-        for c in self.stage.actors.iter_mut().filter(|c| c.visible) {
-            character::pose_at(c, self.playback.time, smooth, self.settings.foot_lock, &mut self.pose_scratch);
+        for c in self.state.stage.actors.iter_mut().filter(|c| c.visible) {
+            character::pose_at(
+                c,
+                self.state.playback.time,
+                smooth,
+                self.state.settings.foot_lock,
+                &mut self.pose_scratch,
+            );
             if body {
                 c.extra.drawable.ensure_body(c.asset.clip(), c.extent);
             }
         }
-        let current = self.stage.actors.get(self.current()).filter(|c| c.visible);
-        if self.settings.follow_root
+        let current = self.state.stage.actors.get(self.state.current()).filter(|c| c.visible);
+        if self.state.settings.follow_root
             && let Some(root) = current.and_then(|c| c.extra.pose.first())
         {
-            self.camera.target.x = root.translation.x;
-            self.camera.target.z = root.translation.z;
+            self.state.camera.target.x = root.translation.x;
+            self.state.camera.target.z = root.translation.z;
         }
-        pose_scene::build_scene(&self.stage, &self.settings, self.selected, &mut self.scene);
+        pose_scene::build_scene(&self.state.stage, &self.state.settings, self.state.selected, &mut self.scene);
         self.drag_overlay();
         self.rig_overlay();
-        if let Some(demo) = &mut self.tentacle {
+        if let Some(demo) = &mut self.state.tentacle {
             self.scene.spheres.push(mocap_render::Sphere {
                 center: demo.target,
                 radius: 0.07,
                 color: [235, 70, 60, 255],
             });
-            if let Some(tip) = self.stage.actors.first().and_then(|c| c.extra.pose.last()) {
+            if let Some(tip) = self.state.stage.actors.first().and_then(|c| c.extra.pose.last()) {
                 demo.tip = tip.translation;
             }
         }
@@ -519,70 +477,65 @@ impl Viewer {
 
     /// Opens the bendy-tentacle demo with `bones` bones in place of everything open:
     /// its skin drawn in body mode, the tip following the target sphere.
-    pub fn open_tentacle(&mut self, bones: usize) {
+    pub(crate) fn open_tentacle(&mut self, bones: usize) {
         let demo = crate::tentacle::Tentacle::new(bones);
         let clip = mocap::build::demo::tentacle(demo.bones);
         self.open_assets(vec![("tentacle".to_owned(), mocap::Asset::Clip(clip))]);
-        self.settings.mode = DrawMode::Body;
+        self.state.settings.mode = DrawMode::Body;
         self.set_playing(false);
-        if let Some(c) = self.stage.actors.first_mut() {
+        if let Some(c) = self.state.stage.actors.first_mut() {
             c.extra.drawable.body = Some(c.clip().and_then(|clip| demo.body(clip)));
         }
-        self.tentacle = Some(demo);
-        self.camera.pitch = 0.15;
-        self.camera.yaw = 0.3;
-        let length = self.tentacle.as_ref().map_or(1.0, |t| t.bones as f32 * mocap::build::demo::BONE_LENGTH);
-        self.camera.target = mocap::glam::Vec3::new(0.0, length * 0.5, 0.0)
-            + self.stage.actors.first().map_or(mocap::glam::Vec3::ZERO, |c| c.placement());
-        self.camera.distance = length * 2.6;
+        self.state.tentacle = Some(demo);
+        self.state.camera.pitch = 0.15;
+        self.state.camera.yaw = 0.3;
+        let length = self.state.tentacle.as_ref().map_or(1.0, |t| t.bones as f32 * mocap::build::demo::BONE_LENGTH);
+        self.state.camera.target = mocap::glam::Vec3::new(0.0, length * 0.5, 0.0)
+            + self.state.stage.actors.first().map_or(mocap::glam::Vec3::ZERO, |c| c.placement());
+        self.state.camera.distance = length * 2.6;
     }
 
     /// Starts a new character for the creator (a root joint, 60 frames at 30 fps)
     /// in place of everything open, selected and in Edit mode: add joints from the
     /// Edit menu, pose them by dragging and Set key, then Save as BVH.
-    pub fn new_character(&mut self) {
+    pub(crate) fn new_character(&mut self) {
         let clip = mocap::ops::edit::new_character(60, 30.0);
         self.open_assets(vec![("character.bvh".to_owned(), mocap::Asset::Clip(clip))]);
         self.set_playing(false);
-        self.settings.pose_mode = true;
-        self.settings.key_between = true;
-        self.selected = Some(Selection { character: 0, joint: 0 });
-        self.camera.target = mocap::glam::Vec3::new(0.0, 1.0, 0.0);
-        self.camera.distance = 4.0;
+        self.state.settings.pose_mode = true;
+        self.state.settings.key_between = true;
+        self.state.selected = Some(Selection { character: 0, joint: 0 });
+        self.state.camera.target = mocap::glam::Vec3::new(0.0, 1.0, 0.0);
+        self.state.camera.distance = 4.0;
     }
 
     /// Rebuilds the tentacle's skin after the demo's softness changed.
-    pub fn refresh_tentacle_skin(&mut self) {
-        let (Some(demo), Some(c)) = (&self.tentacle, self.stage.actors.first_mut()) else { return };
+    pub(crate) fn refresh_tentacle_skin(&mut self) {
+        let (Some(demo), Some(c)) = (&self.state.tentacle, self.state.stage.actors.first_mut()) else { return };
         c.extra.drawable.body = Some(c.clip().and_then(|clip| demo.body(clip)));
     }
 
     /// Sets joint `joint` of character `character` to a local rotation at the frame
     /// shown (typed values in Edit mode): a correction like a drag, keyed by Set key.
-    pub fn rotate_joint(&mut self, character: usize, joint: usize, rotation: mocap::glam::Quat) -> bool {
-        let time = self.playback.time;
-        let Some(c) = self.stage.actors.get_mut(character) else { return false };
+    pub(crate) fn rotate_joint(&mut self, character: usize, joint: usize, rotation: mocap::glam::Quat) -> bool {
+        let time = self.state.playback.time;
+        let Some(c) = self.state.stage.actors.get_mut(character) else { return false };
         let done = character::rotate_joint(c, joint, rotation, time, &mut self.pose_scratch).is_some();
         self.pose();
         done
     }
 
     /// Forgets every pose correction made by dragging.
-    pub fn reset_pose(&mut self) {
-        for c in &mut self.stage.actors {
+    pub(crate) fn reset_pose(&mut self) {
+        for c in &mut self.state.stage.actors {
             c.extra.correction = None;
         }
-    }
-
-    /// Whether any character has a pose correction.
-    pub fn has_corrections(&self) -> bool {
-        self.stage.actors.iter().any(|c| c.extra.correction.as_ref().is_some_and(|k| k.ghost))
     }
 
     /// Where a joint was last drawn on screen (points), if the view has been drawn
     /// and the joint is in front of the camera.
     pub fn joint_on_screen(&self, character: usize, joint: usize) -> Option<egui::Pos2> {
-        let world = self.stage.actors.get(character)?.extra.pose.get(joint)?.translation;
+        let world = self.state.stage.actors.get(character)?.extra.pose.get(joint)?.translation;
         self.screen_position(world)
     }
 
