@@ -99,6 +99,16 @@ pub enum Command {
         /// Joint name.
         name: String,
     },
+    /// Fold (hide the rows under) or unfold a character (`joint: None`) or a
+    /// joint in the hierarchy.
+    Fold {
+        /// Character index.
+        character: usize,
+        /// The joint, or the character's own row.
+        joint: Option<usize>,
+        /// Folded, or open.
+        folded: bool,
+    },
     /// Show or hide a character.
     SetVisible(usize, bool),
     /// Play a model's animation by name (`all`: every frame).

@@ -133,7 +133,8 @@ pub struct Snapshot {
     /// ("What was open is still open.", "The other files opened.", "Nothing was
     /// changed."), or `None`.
     pub error_note: Option<&'static str>,
-    /// Joint labels the hierarchy panel drew in its last frame.
+    /// The joint names the hierarchy panel lists, in order (none while it is
+    /// hidden; at most [`crate::tree::MAX_LABELS`]).
     pub tree_labels: Vec<String>,
     /// Frames the 3D view has rendered.
     pub frames_rendered: u64,
@@ -154,7 +155,7 @@ pub struct Snapshot {
 impl Snapshot {
     /// The state `v` shows; what only the 3D view knows (frames drawn, backend,
     /// samples) is left at its default for the viewer to fill in.
-    pub fn of(v: &AppState, tree_labels: Vec<String>) -> Snapshot {
+    pub fn of(v: &AppState) -> Snapshot {
         Snapshot {
             clips: v
                 .stage
@@ -180,7 +181,11 @@ impl Snapshot {
             quality: v.settings.quality.name(),
             error: v.notice.as_ref().map(|n| n.message.clone()),
             error_note: v.notice.as_ref().and_then(|n| n.note(!v.stage.actors.is_empty())),
-            tree_labels,
+            tree_labels: if v.panels.show_hierarchy() {
+                crate::tree::listed_joints(&v.stage.actors, &v.folds)
+            } else {
+                Vec::new()
+            },
             view: v.view_fragment(),
             embed: v.panels.embed,
             undo: v.history.next_undo().map(str::to_owned),

@@ -14,6 +14,7 @@ use crate::selection::Selection;
 use crate::settings::ViewSettings;
 use crate::stage::Stage;
 use crate::tentacle::Tentacle;
+use crate::tree::Folds;
 use mocap_scene::OrbitCamera;
 
 /// The viewer's state: the document (stage and history), playback, camera,
@@ -35,8 +36,10 @@ pub struct AppState {
     /// The banner's message: the last failure to open files or refused action, and
     /// what became of what was open.
     pub notice: Option<Notice>,
-    /// Which panels are shown, and what the hierarchy has folded.
+    /// Which panels are shown.
     pub panels: Panels,
+    /// What the hierarchy has folded.
+    pub folds: Folds,
     /// The bendy-tentacle demo, when it is open (its tentacle is character 1).
     pub tentacle: Option<Tentacle>,
     /// The Layer window, while it is open.

@@ -261,7 +261,7 @@ fn the_edit_menu_draws_for_clips_models_and_nothing() {
         let mut commands = Vec::new();
         let mut out = ctx.run_ui(input, |ui| {
             egui::CentralPanel::default()
-                .show(ui, |ui| mocap_viewer::ui::edit_menu::show(ui, v.state(), &mut commands));
+                .show(ui, |ui| mocap_viewer::ui::edit_menu::show(ui, &v.edit_menu_view(), &mut commands));
         });
         out.textures_delta.clear();
         assert!(commands.is_empty(), "drawing the menu sends nothing: {commands:?}");

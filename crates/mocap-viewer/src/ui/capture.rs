@@ -3,24 +3,40 @@
 //! the last capture gave (joints tracked, residuals, joints without vertices, the
 //! animations as frame ranges), and Save rig.
 
+use crate::capture::CaptureResult;
+use crate::character::Character;
 use crate::command::Command;
-use crate::state::AppState;
+use crate::rig_edit::RigEdit;
+
+/// What the capture section shows.
+pub struct CaptureView<'a> {
+    /// The open characters (a clip's skeleton can be fitted instead of the humanoid).
+    pub characters: &'a [Character],
+    /// The capture's progress (steps done, steps in all), while one runs.
+    pub progress: Option<(usize, usize)>,
+    /// A rig being set up on a model.
+    pub rig_edit: Option<&'a RigEdit>,
+    /// A rig dropped or set up for the next capture.
+    pub capture_rig: Option<&'a mocap::capture::Rig>,
+    /// What the last capture gave.
+    pub result: Option<&'a CaptureResult>,
+}
 
 /// Shows the capture section for model `index`; what the user does comes back
 /// as commands in `out`.
-pub fn show(ui: &mut egui::Ui, state: &AppState, index: usize, out: &mut Vec<Command>) {
+pub fn show(ui: &mut egui::Ui, view: &CaptureView, index: usize, out: &mut Vec<Command>) {
     ui.separator();
     ui.heading("Skeleton capture");
-    if let Some((done, total)) = state.capture_progress() {
+    if let Some((done, total)) = view.progress {
         let share = done as f32 / total.max(1) as f32;
         ui.add(egui::ProgressBar::new(share).show_percentage().text(format!("capturing: step {done} of {total}")));
         return;
     }
-    rig_setup(ui, state, index, out);
-    let rig_note = if state.rig_edit.as_ref().is_some_and(|e| e.model == index) {
+    rig_setup(ui, view, index, out);
+    let rig_note = if view.rig_edit.is_some_and(|e| e.model == index) {
         Some("with the rig being set up".to_owned())
     } else {
-        state.capture_rig.as_ref().map(|r| format!("with the rig set up or dropped ({} joints)", r.joints.len()))
+        view.capture_rig.map(|r| format!("with the rig set up or dropped ({} joints)", r.joints.len()))
     };
     let hint = "Turn the model's vertex animation into skeletal motion: a humanoid fitted in its first frame (or a rig dropped as JSON), four tracked vertices per joint";
     if ui.button("Capture skeleton").on_hover_text(hint).clicked() {
@@ -30,7 +46,7 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, index: usize, out: &mut Vec<Com
         egui::RichText::new(rig_note.unwrap_or_else(|| "automatic fit (drop a rig .json to use yours)".to_owned()))
             .weak(),
     );
-    let Some(result) = &state.capture_result else { return };
+    let Some(result) = view.result else { return };
     last_capture(ui, result);
     if ui
         .button("Save rig")
@@ -43,12 +59,11 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, index: usize, out: &mut Vec<Com
 
 /// Fit skeleton, and while a rig is set up on this model: Bind, painting, the
 /// binding view, Save rig and Done.
-fn rig_setup(ui: &mut egui::Ui, state: &AppState, index: usize, out: &mut Vec<Command>) {
-    let editing = state.rig_edit.as_ref().is_some_and(|e| e.model == index);
+fn rig_setup(ui: &mut egui::Ui, view: &CaptureView, index: usize, out: &mut Vec<Command>) {
+    let editing = view.rig_edit.is_some_and(|e| e.model == index);
     if !editing {
-        let clips: Vec<(usize, String)> = state
-            .stage
-            .actors
+        let clips: Vec<(usize, String)> = view
+            .characters
             .iter()
             .enumerate()
             .filter(|(_, c)| c.clip().is_some())
@@ -67,7 +82,7 @@ fn rig_setup(ui: &mut egui::Ui, state: &AppState, index: usize, out: &mut Vec<Co
         });
         return;
     }
-    let Some(e) = state.rig_edit.as_ref() else { return };
+    let Some(e) = view.rig_edit else { return };
     let (mut show_binding, mut painting) = (e.show_binding, e.painting);
     let selected = e.selected.and_then(|j| e.rig.joints.get(j)).map(|j| j.name.clone());
     ui.label(egui::RichText::new("Drag the crosses (joints) to where they belong and the cyan handles to turn each bone's up; the model shows its set-up frame.").weak());

@@ -1,20 +1,33 @@
 //! The Edit menu: clip edits on the current character (each one undoable), undo
 //! and redo, and Save as BVH.
 
+use crate::character::Character;
 use crate::command::{Command, button};
-use crate::state::AppState;
 use mocap::ops::edit::Edit;
+
+/// What the Edit menu acts on.
+pub struct EditMenuView<'a> {
+    /// The current character and its index, if any is open.
+    pub character: Option<(usize, &'a Character)>,
+    /// The selected joint, when it is the current character's.
+    pub joint: Option<usize>,
+    /// The loop range (what Trim keeps).
+    pub range: Option<(usize, usize)>,
+    /// The edit Undo would take back.
+    pub undo: Option<&'a str>,
+    /// The edit Redo would make again.
+    pub redo: Option<&'a str>,
+}
 
 /// Shows the Edit menu's entries (inside the toolbar's menu button); what the
 /// user picks comes back as commands in `out`.
-pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
+pub fn show(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
     if button(ui, Command::NewCharacter, out) {
         ui.close();
         return;
     }
     ui.separator();
-    let index = state.current();
-    let Some(c) = state.stage.actors.get(index) else {
+    let Some((index, c)) = view.character else {
         ui.label("No clip open");
         return;
     };
@@ -23,15 +36,11 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
         return;
     };
     let (name, fps, units) = (c.name.clone(), 1.0 / clip.frame_time(), c.units);
-    let selected = state
-        .selected
-        .filter(|s| s.character == index)
-        .and_then(|s| clip.skeleton().joints().get(s.joint))
-        .map(|j| j.name.clone());
+    let selected = view.joint.and_then(|j| clip.skeleton().joints().get(j)).map(|j| j.name.clone());
     ui.label(egui::RichText::new(format!("Editing {name}")).weak());
     let mut edit: Option<(Edit, String)> = None;
     let mut grow: Option<String> = None;
-    if let Some((a, b)) = state.playback.range {
+    if let Some((a, b)) = view.range {
         if ui.button(format!("Trim to the loop range ({a}–{b})")).clicked() {
             edit = Some((Edit::Trim { first: a.min(b), last: a.max(b) }, format!("Trim {a}–{b}")));
         }
@@ -87,8 +96,8 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
         }
     }
     ui.separator();
-    history_entry(ui, Command::Undo, state.history.next_undo(), out);
-    history_entry(ui, Command::Redo, state.history.next_redo(), out);
+    history_entry(ui, Command::Undo, view.undo, out);
+    history_entry(ui, Command::Redo, view.redo, out);
     ui.separator();
     if button(ui, Command::SaveBvh, out) {
         ui.close();

@@ -10,52 +10,36 @@
 use crate::character::Character;
 use crate::command::Command;
 use crate::selection::Selection;
-use crate::state::AppState;
-use std::collections::HashSet;
+use crate::tree::{self, Folds, Row};
+
+/// What the hierarchy panel shows.
+pub struct TreeView<'a> {
+    /// The open characters.
+    pub characters: &'a [Character],
+    /// What is folded.
+    pub folds: &'a Folds,
+    /// The selected joint.
+    pub selected: Option<Selection>,
+    /// The current character's index.
+    pub current: usize,
+}
 
 /// Indentation stops growing past this depth (the depth is shown as a number).
 pub const MAX_INDENT_LEVELS: usize = 12;
-/// At most this many joint names are recorded for [`crate::Snapshot::tree_labels`].
-pub const MAX_LABELS: usize = 10_000;
 /// Pixels per indentation level.
 const INDENT: f32 = 10.0;
 
-/// One row of the panel.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Row {
-    /// A character's header: colour, visibility, name, remove.
-    Header(usize),
-    /// A character's hand-set offset.
-    Offset(usize),
-    /// A model's animation chooser.
-    Animation(usize),
-    /// A joint of a character at a depth (roots are 0).
-    Joint { character: usize, joint: usize, depth: usize },
-}
-
-/// What is folded: characters and joints (per character) whose rows are hidden.
-#[derive(Clone, Debug, Default)]
-struct Folded {
-    characters: HashSet<usize>,
-    joints: HashSet<(usize, usize)>,
-}
-
-/// Shows the hierarchy panel; records the label of every listed joint in `labels`.
-pub fn show(ui: &mut egui::Ui, state: &AppState, labels: &mut Vec<String>, out: &mut Vec<Command>) {
+/// Shows the hierarchy panel.
+pub fn show(ui: &mut egui::Ui, view: &TreeView, out: &mut Vec<Command>) {
     egui::Panel::left("hierarchy").resizable(true).default_size(240.0).show(ui, |ui| {
         ui.heading("Characters");
-        let folded_id = egui::Id::unique("hierarchy-folded");
-        let mut folded: Folded = ui.ctx().data(|d| d.get_temp(folded_id)).unwrap_or_default();
-        let mut selected = state.selected;
-        // A selection made elsewhere (a link, JavaScript) is unfolded and scrolled to once.
+        let mut selected = view.selected;
+        // A selection made elsewhere (a link, JavaScript) is scrolled to once
+        // (selecting unfolds its ancestors).
         let shown_id = egui::Id::unique("hierarchy-shown-selection");
         let shown: Option<Selection> = ui.ctx().data(|d| d.get_temp(shown_id)).flatten();
         let reveal = selected.filter(|s| Some(*s) != shown);
-        if let Some(s) = reveal {
-            unfold_to(&mut folded, &state.stage.actors, s);
-        }
-        let rows = rows(&state.stage.actors, &folded);
-        record_labels(&rows, &state.stage.actors, labels);
+        let rows = tree::rows(view.characters, view.folds);
         let row_height = ui.spacing().interact_size.y;
         let mut area = egui::ScrollArea::both().auto_shrink([false, false]);
         if let Some(index) = reveal.and_then(|s| row_of(&rows, s)) {
@@ -64,45 +48,43 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, labels: &mut Vec<String>, out: 
         }
         let mut remove = None;
         let mut animation = None;
-        if state.stage.actors.is_empty() {
+        if view.characters.is_empty() {
             ui.label("No clip open");
         }
         area.show_rows(ui, row_height, rows.len(), |ui, range| {
             for row in rows.get(range).unwrap_or(&[]) {
                 match *row {
                     Row::Header(c) => {
-                        if let Some(character) = state.stage.actors.get(c) {
-                            if header_row(ui, c, character, &mut folded, out) {
+                        if let Some(character) = view.characters.get(c) {
+                            if header_row(ui, c, character, view.folds.is_folded(c, None), out) {
                                 remove = Some(c);
                             }
                         }
                     }
                     Row::Offset(c) => {
-                        if let Some(character) = state.stage.actors.get(c) {
+                        if let Some(character) = view.characters.get(c) {
                             offset_row(ui, c, character, out);
                         }
                     }
                     Row::Animation(c) => {
-                        if let Some(model) = state.stage.actors.get(c).and_then(|a| a.model()) {
+                        if let Some(model) = view.characters.get(c).and_then(|a| a.model()) {
                             if let Some(name) = animation_row(ui, c, model) {
                                 animation = Some((c, name));
                             }
                         }
                     }
                     Row::Joint { character, joint, depth } => {
-                        if let Some(c) = state.stage.actors.get(character) {
-                            joint_row(ui, c, Selection { character, joint }, depth, &mut selected, &mut folded);
+                        if let Some(c) = view.characters.get(character) {
+                            let folded = view.folds.is_folded(character, Some(joint));
+                            joint_row(ui, c, Selection { character, joint }, depth, &mut selected, folded, out);
                         }
                     }
                 }
             }
         });
-        ui.ctx().data_mut(|d| {
-            d.insert_temp(shown_id, selected);
-            d.insert_temp(folded_id, folded);
-        });
-        if selected != state.selected {
-            let (character, joint) = selected.map_or((state.current(), None), |s| (s.character, Some(s.joint)));
+        ui.ctx().data_mut(|d| d.insert_temp(shown_id, selected));
+        if selected != view.selected {
+            let (character, joint) = selected.map_or((view.current, None), |s| (s.character, Some(s.joint)));
             out.push(Command::Select { character, joint });
         }
         if let Some((index, name)) = animation {
@@ -121,60 +103,6 @@ fn row_of(rows: &[Row], s: Selection) -> Option<usize> {
         .position(|r| matches!(*r, Row::Joint { character, joint, .. } if character == s.character && joint == s.joint))
 }
 
-/// Every row shown, in order: per character its header, then (unless folded) its
-/// offset and its joints depth-first, skipping the children of folded joints.
-fn rows(characters: &[Character], folded: &Folded) -> Vec<Row> {
-    let mut rows = Vec::new();
-    let mut stack: Vec<(usize, usize)> = Vec::new();
-    for (c, character) in characters.iter().enumerate() {
-        rows.push(Row::Header(c));
-        if folded.characters.contains(&c) {
-            continue;
-        }
-        rows.push(Row::Offset(c));
-        let Some(clip) = character.clip() else {
-            rows.push(Row::Animation(c));
-            continue;
-        };
-        let children = &character.extra.children;
-        stack.clear();
-        stack.extend(clip.skeleton().roots().collect::<Vec<_>>().into_iter().rev().map(|r| (r, 0)));
-        while let Some((joint, depth)) = stack.pop() {
-            rows.push(Row::Joint { character: c, joint, depth });
-            if folded.joints.contains(&(c, joint)) {
-                continue;
-            }
-            if let Some(kids) = children.get(joint) {
-                stack.extend(kids.iter().rev().map(|&k| (k, depth + 1)));
-            }
-        }
-    }
-    rows
-}
-
-/// Unfolds the character and every ancestor of the selected joint.
-fn unfold_to(folded: &mut Folded, characters: &[Character], s: Selection) {
-    folded.characters.remove(&s.character);
-    let Some(clip) = characters.get(s.character).and_then(|c| c.clip()) else { return };
-    let joints = clip.skeleton().joints();
-    let mut at = joints.get(s.joint).and_then(|j| j.parent);
-    while let Some(p) = at {
-        folded.joints.remove(&(s.character, p));
-        at = joints.get(p).and_then(|j| j.parent).filter(|&q| q < p);
-    }
-}
-
-/// Names of the listed joints, in row order (at most [`MAX_LABELS`]).
-fn record_labels(rows: &[Row], characters: &[Character], labels: &mut Vec<String>) {
-    let names = rows.iter().filter_map(|r| match *r {
-        Row::Joint { character, joint, .. } => {
-            characters.get(character)?.clip()?.skeleton().joints().get(joint).map(|j| j.name.clone())
-        }
-        _ => None,
-    });
-    labels.extend(names.take(MAX_LABELS));
-}
-
 /// A small triangle that folds or unfolds; returns whether it was clicked.
 fn fold_toggle(ui: &mut egui::Ui, open: bool) -> bool {
     let (rect, response) = ui.allocate_exact_size(egui::vec2(12.0, 12.0), egui::Sense::click());
@@ -190,12 +118,11 @@ fn fold_toggle(ui: &mut egui::Ui, open: bool) -> bool {
 }
 
 /// One character's header row. Returns whether "remove" was pressed.
-fn header_row(ui: &mut egui::Ui, index: usize, c: &Character, folded: &mut Folded, out: &mut Vec<Command>) -> bool {
+fn header_row(ui: &mut egui::Ui, index: usize, c: &Character, folded: bool, out: &mut Vec<Command>) -> bool {
     let mut remove = false;
     ui.horizontal(|ui| {
-        let open = !folded.characters.contains(&index);
-        if fold_toggle(ui, open) && !folded.characters.remove(&index) {
-            folded.characters.insert(index);
+        if fold_toggle(ui, !folded) {
+            out.push(Command::Fold { character: index, joint: None, folded: !folded });
         }
         swatch(ui, c.extra.color);
         let mut visible = c.visible;
@@ -262,7 +189,8 @@ fn joint_row(
     here: Selection,
     depth: usize,
     selected: &mut Option<Selection>,
-    folded: &mut Folded,
+    folded: bool,
+    out: &mut Vec<Command>,
 ) {
     let Some(joint) = c.clip().and_then(|clip| clip.skeleton().joints().get(here.joint)) else { return };
     let has_children = c.extra.children.get(here.joint).is_some_and(|k| !k.is_empty());
@@ -271,11 +199,9 @@ fn joint_row(
         if depth > MAX_INDENT_LEVELS {
             ui.label(egui::RichText::new(format!("{depth}")).weak().small()).on_hover_text("Depth in the tree");
         }
-        let key = (here.character, here.joint);
         if has_children {
-            let open = !folded.joints.contains(&key);
-            if fold_toggle(ui, open) && !folded.joints.remove(&key) {
-                folded.joints.insert(key);
+            if fold_toggle(ui, !folded) {
+                out.push(Command::Fold { character: here.character, joint: Some(here.joint), folded: !folded });
             }
         } else {
             ui.add_space(12.0 + ui.spacing().item_spacing.x);

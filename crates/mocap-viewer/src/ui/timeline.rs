@@ -1,39 +1,58 @@
 //! Bottom panel: transport buttons, scrub bar, loop, speed and loop range, over
 //! the longest clip, counted in frames of the current character.
 
+use crate::character::Character;
 use crate::command::{Command, button, button_with};
-use crate::playback::SPEED_RANGE;
-use crate::state::AppState;
+use crate::playback::{Playback, SPEED_RANGE, Timing};
+use crate::settings::ViewSettings;
+
+/// What the timeline shows.
+pub struct TimelineView<'a> {
+    /// The playhead, speed, loop and loop range.
+    pub playback: &'a Playback,
+    /// The shared timeline, when a clip is open.
+    pub timing: Option<Timing>,
+    /// The view settings (key mode, foot lock).
+    pub settings: &'a ViewSettings,
+    /// The current character: frames are counted in its frame time; its foot contacts.
+    pub character: Option<&'a Character>,
+    /// The current character's keyed frames.
+    pub keys: Vec<usize>,
+    /// Whether a pose corrected by dragging waits to be keyed.
+    pub corrections: bool,
+    /// The embed layout's minimal timeline.
+    pub embed: bool,
+}
 
 /// Shows the timeline panel; what the user does comes back as commands in `out`.
-pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
+pub fn show(ui: &mut egui::Ui, view: &TimelineView, out: &mut Vec<Command>) {
     egui::Panel::bottom("timeline").show(ui, |ui| {
         ui.add_space(4.0);
-        let Some(timing) = state.timing() else {
+        let Some(timing) = view.timing else {
             ui.label("No clip open");
             return;
         };
-        let frame = state.playback.frame(timing);
-        let play = if state.playback.playing { "Pause" } else { "Play" };
-        if state.panels.embed {
+        let frame = view.playback.frame(timing);
+        let play = if view.playback.playing { "Pause" } else { "Play" };
+        if view.embed {
             minimal(ui, play, frame, timing, out);
             return;
         }
-        let mut settings = state.settings.clone();
+        let mut settings = view.settings.clone();
         ui.horizontal(|ui| {
             button(ui, Command::First, out);
             button(ui, Command::Step(-1), out);
             button_with(ui, play, Command::TogglePlay, out);
             button(ui, Command::Step(1), out);
             button(ui, Command::Last, out);
-            if state.has_corrections() {
+            if view.corrections {
                 // Keying sits here, on the timeline's row, so the view above never moves.
                 ui.separator();
                 button(ui, Command::SetKey, out);
                 key_mode(ui, &mut settings);
                 button(ui, Command::ResetPose, out);
             }
-            if !state.history.keys(state.current()).is_empty() {
+            if !view.keys.is_empty() {
                 ui.separator();
                 if ui.button("◀ key").on_hover_text("Previous keyed frame").clicked() {
                     out.push(Command::StepKey(false));
@@ -41,8 +60,8 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
                 if ui.button("key ▶").on_hover_text("Next keyed frame").clicked() {
                     out.push(Command::StepKey(true));
                 }
-                let here = state.frame();
-                if state.history.keys(state.current()).contains(&here) {
+                let here = frame;
+                if view.keys.contains(&here) {
                     if ui.button("← move").on_hover_text("Move this key one frame earlier").clicked() && here > 0 {
                         out.push(Command::MoveKey { from: here, to: here - 1 });
                     }
@@ -55,19 +74,19 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
                 }
             }
         });
-        if settings != state.settings {
+        if settings != *view.settings {
             out.push(Command::SetSettings(settings));
         }
         ui.horizontal(|ui| {
-            let counted_in = state.current_character().map_or(String::new(), |d| format!("Frames of {} ({:.2} fps)", d.name, 1.0 / d.asset.timeline().frame_time()));
-            ui.monospace(format!("frame {frame:>5} / {}   {:>8.3} s", timing.last(), state.playback.time))
+            let counted_in = view.character.map_or(String::new(), |d| format!("Frames of {} ({:.2} fps)", d.name, 1.0 / d.asset.timeline().frame_time()));
+            ui.monospace(format!("frame {frame:>5} / {}   {:>8.3} s", timing.last(), view.playback.time))
                 .on_hover_text(format!("{counted_in}: the selected joint's character, else the first. The timeline spans the longest clip; shorter ones hold their last pose."));
             ui.separator();
-            let mut looping = state.playback.looping;
+            let mut looping = view.playback.looping;
             if ui.checkbox(&mut looping, "Loop").changed() {
                 out.push(Command::SetLooping(looping));
             }
-            let mut speed = state.playback.speed;
+            let mut speed = view.playback.speed;
             let slider = egui::Slider::new(&mut speed, SPEED_RANGE)
                 .logarithmic(true)
                 .text("speed")
@@ -84,17 +103,17 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
             if slider.changed() {
                 out.push(Command::Seek(f));
             }
-            if state.settings.foot_lock {
-                contact_marks(ui, state, &slider, timing);
+            if view.settings.foot_lock {
+                contact_marks(ui, view, &slider, timing);
             }
-            key_marks(ui, state, &slider, timing, out);
+            key_marks(ui, view, &slider, timing, out);
         });
         ui.horizontal(|ui| {
-            let mut on = state.playback.range.is_some();
+            let mut on = view.playback.range.is_some();
             if ui.checkbox(&mut on, "Loop range").changed() {
                 out.push(Command::SetRange(on.then_some((frame, timing.last()))));
             }
-            if let Some((mut a, mut b)) = state.playback.range {
+            if let Some((mut a, mut b)) = view.playback.range {
                 let from = ui.add(egui::DragValue::new(&mut a).range(0..=timing.last()).prefix("from "));
                 let to = ui.add(egui::DragValue::new(&mut b).range(0..=timing.last()).prefix("to "));
                 if from.changed() || to.changed() {
@@ -108,8 +127,8 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
 
 /// Foot contacts of the current character under the scrub bar: one row of marks
 /// per foot at the frames where it rests on the floor.
-fn contact_marks(ui: &egui::Ui, state: &AppState, slider: &egui::Response, timing: crate::playback::Timing) {
-    let Some(c) = state.current_character() else { return };
+fn contact_marks(ui: &egui::Ui, view: &TimelineView, slider: &egui::Response, timing: Timing) {
+    let Some(c) = view.character else { return };
     let (Some(lock), Some(clip)) = (&c.extra.foot_lock, c.clip()) else { return };
     // The slider's rail: its width less the value box.
     let rail =
@@ -131,25 +150,19 @@ fn contact_marks(ui: &egui::Ui, state: &AppState, slider: &egui::Response, timin
 /// The current character's keyed frames as small diamonds on the scrub bar. A
 /// diamond can be dragged along the bar: a ghost follows the pointer, snapped to
 /// frames, and the key moves there (one undoable step) where it is let go.
-fn key_marks(
-    ui: &egui::Ui,
-    state: &AppState,
-    slider: &egui::Response,
-    timing: crate::playback::Timing,
-    out: &mut Vec<Command>,
-) {
-    let keys = state.history.keys(state.current());
+fn key_marks(ui: &egui::Ui, view: &TimelineView, slider: &egui::Response, timing: Timing, out: &mut Vec<Command>) {
+    let keys = &view.keys;
     if keys.is_empty() {
         return;
     }
-    let Some(timeline) = state.current_character().map(|c| c.asset.timeline()) else { return };
+    let Some(timeline) = view.character.map(|c| c.asset.timeline()) else { return };
     let rail =
         egui::Rect::from_min_max(slider.rect.left_top(), egui::pos2(slider.rect.right() - 60.0, slider.rect.bottom()));
     let span = timing.duration().max(1e-9);
     let x_of = |frame: usize| rail.left() + (timeline.time_of(frame) / span) as f32 * rail.width();
     let y = rail.center().y;
     let mut moved = None;
-    for k in keys {
+    for &k in keys {
         let x = x_of(k);
         if x > rail.right() {
             continue;

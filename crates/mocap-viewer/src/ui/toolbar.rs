@@ -1,23 +1,39 @@
 //! Top bar: Open, Add and Share buttons, layout, draw mode, the View menu (panels
 //! and view toggles), foot lock and Edit mode, and the Camera, Edit and Demos menus.
 
+use crate::character::Character;
 use crate::command::{Command, OpenMode, button, menu_entry};
 use crate::layout::Layout;
 use crate::panels::Panels;
 use crate::settings::{DrawMode, ViewSettings};
-use crate::state::AppState;
 use mocap_scene::Waypoint;
 
+/// What the top bar shows.
+pub struct ToolbarView<'a> {
+    /// The open characters.
+    pub characters: &'a [Character],
+    /// Side by side or overlaid.
+    pub layout: Layout,
+    /// The view settings (draw mode, foot lock, Edit mode, the View menu's toggles).
+    pub settings: &'a ViewSettings,
+    /// Which panels are shown.
+    pub panels: &'a Panels,
+    /// The current character's name (what Edit mode edits).
+    pub current: Option<&'a str>,
+    /// What the Edit menu acts on.
+    pub edit: super::edit_menu::EditMenuView<'a>,
+}
+
 /// Shows the top panel; what the user does comes back as commands in `out`.
-pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
-    let mut settings = state.settings.clone();
-    let mut panels = state.panels.clone();
+pub fn show(ui: &mut egui::Ui, view: &ToolbarView, out: &mut Vec<Command>) {
+    let mut settings = view.settings.clone();
+    let mut panels = view.panels.clone();
     egui::Panel::top("toolbar").show(ui, |ui| {
         ui.horizontal_wrapped(|ui| {
             button(ui, Command::Open(OpenMode::Replace), out);
             button(ui, Command::Open(OpenMode::Add), out);
             button(ui, Command::Share, out);
-            match state.stage.actors.as_slice() {
+            match view.characters {
                 [] => {}
                 [one] => {
                     ui.strong(&one.name);
@@ -27,17 +43,17 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
                 }
             }
             ui.separator();
-            layout_choice(ui, state.stage.layout, out);
+            layout_choice(ui, view.layout, out);
             ui.separator();
             draw_mode_choice(ui, &mut settings.mode);
             super::menu(ui, "View", &mut |ui| view_menu(ui, &mut settings, &mut panels));
             ui.separator();
             ui.checkbox(&mut settings.foot_lock, "Foot lock").on_hover_text("Pin each foot to the floor while it is in contact (legs solved by IK); contacts show on the timeline");
-            let editing = state.current_character().map_or(String::new(), |c| format!("Editing {}. ", c.name));
+            let editing = view.current.map_or(String::new(), |name| format!("Editing {name}. "));
             ui.checkbox(&mut settings.pose_mode, "Edit mode").on_hover_text(format!("{editing}Edit mode acts on the selected joint's character: drag a joint and its chain follows by IK, or turn it with its rotation rings; the clip's own pose shows as a ghost. A press on another character's joint switches to it."));
             ui.separator();
             super::menu(ui, "Camera", &mut |ui| camera_menu(ui, out));
-            super::menu(ui, "Edit", &mut |ui| super::edit_menu::show(ui, state, out));
+            super::menu(ui, "Edit", &mut |ui| super::edit_menu::show(ui, &view.edit, out));
             super::menu(ui, "Demos", &mut |ui| {
                 if button(ui, Command::OpenTentacle(2), out) {
                     ui.close();
@@ -46,10 +62,10 @@ pub fn show(ui: &mut egui::Ui, state: &AppState, out: &mut Vec<Command>) {
             ui.label("Keys (?)").on_hover_text(crate::keys::help());
         });
     });
-    if settings != state.settings {
+    if settings != *view.settings {
         out.push(Command::SetSettings(settings));
     }
-    if panels != state.panels {
+    if panels != *view.panels {
         out.push(Command::SetPanels(panels));
     }
 }

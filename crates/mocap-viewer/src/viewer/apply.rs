@@ -74,6 +74,7 @@ impl Viewer {
             }
             (Command::CloseAll, _) => self.clear(),
             (Command::Select { character, joint }, _) => self.select_in(character, joint),
+            (Command::Fold { character, joint, folded }, _) => self.state.folds.set(character, joint, folded),
             (Command::SetVisible(index, on), _) => {
                 if !self.set_visible(index, on) {
                     return Err(no_character(index));

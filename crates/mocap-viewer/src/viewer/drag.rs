@@ -4,37 +4,13 @@
 
 use super::Viewer;
 use crate::character;
-use crate::selection::Selection;
-
-/// A rotation ring being dragged: the joint, the ring's axis and centre, where the
-/// press was (as a vector in the ring's plane and its angle), and the joint's world
-/// rotation then.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct RingDrag {
-    character: usize,
-    joint: usize,
-    axis: mocap::glam::Vec3,
-    center: mocap::glam::Vec3,
-    from: mocap::glam::Vec3,
-    start: f32,
-    world: mocap::glam::Quat,
-}
-
-/// A new bone being dragged out of a joint (the creator): its parent, and where
-/// its end is (world) while the pointer holds it.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) struct Grow {
-    character: usize,
-    parent: usize,
-    name: String,
-    end: Option<mocap::glam::Vec3>,
-}
+use crate::gesture::{Grab, Grow, RingDrag};
 
 impl Viewer {
     /// A joint, ring, rig handle or the tentacle's target dragged in the view.
     pub(super) fn drag(&mut self, d: crate::drag::JointDrag) {
         if let Some(grow) =
-            self.grow.as_mut().filter(|g| g.character == d.handle.character && g.parent == d.handle.joint)
+            self.gesture.grow.as_mut().filter(|g| g.character == d.handle.character && g.parent == d.handle.joint)
         {
             // Growing a new bone: its end follows the pointer until release.
             grow.end = Some(d.target);
@@ -50,16 +26,16 @@ impl Viewer {
                 t.target = d.target;
             }
         } else {
-            let switching = match self.grab {
-                Some((press, switching)) if press == d.press => switching,
+            let switching = match self.gesture.grab {
+                Some(grab) if grab.press == d.press => grab.switching,
                 _ => {
                     let switching = d.handle.character != self.state.current();
-                    self.grab = Some((d.press, switching));
+                    self.gesture.grab = Some(Grab { press: d.press, switching });
                     switching
                 }
             };
             self.set_playing(false);
-            self.state.selected = Some(Selection { character: d.handle.character, joint: d.handle.joint });
+            self.select_in(d.handle.character, Some(d.handle.joint));
             if !switching {
                 self.drag_joint(d.handle.character, d.handle.joint, d.target);
             }
@@ -126,20 +102,21 @@ impl Viewer {
             .is_some_and(|clip| !clip.skeleton().is_end_site(s.joint));
         if ok {
             self.state.settings.pose_mode = true;
-            self.grow = Some(Grow { character: s.character, parent: s.joint, name: name.trim().to_owned(), end: None });
+            self.gesture.grow =
+                Some(Grow { character: s.character, parent: s.joint, name: name.trim().to_owned(), end: None });
         }
         ok
     }
 
     /// Whether a new bone is being dragged out (armed or held).
     pub fn growing(&self) -> bool {
-        self.grow.is_some()
+        self.gesture.grow.is_some()
     }
 
     /// At the release of a bone drag: adds the joint where its end was let go.
     pub(super) fn finish_new_bone(&mut self) {
-        let Some(Grow { character, parent, name, end: Some(end) }) = self.grow.clone() else { return };
-        self.grow = None;
+        let Some(Grow { character, parent, name, end: Some(end) }) = self.gesture.grow.clone() else { return };
+        self.gesture.grow = None;
         let Some(c) = self.state.stage.actors.get(character) else { return };
         let (Some(clip), Some(at)) = (c.clip(), c.extra.pose.get(parent)) else { return };
         // The offset in the parent joint's frame and the file's units.
@@ -149,7 +126,7 @@ impl Viewer {
         match self.edit(character, &edit, &format!("Add {name}")) {
             Ok(()) => {
                 let joint = self.state.stage.actors.get(character).and_then(|c| c.clip()?.skeleton().find(&name));
-                self.state.selected = joint.map(|joint| Selection { character, joint });
+                self.select_in(character, joint);
                 self.pose();
             }
             Err(message) => self.refuse(message),
@@ -181,13 +158,14 @@ impl Viewer {
         let Some(c) = self.state.stage.actors.get(d.handle.character) else { return };
         let Some(t) = c.extra.pose.get(d.handle.joint).copied() else { return };
         let fresh = self
-            .ring_drag
+            .gesture
+            .ring
             .is_none_or(|r| r.joint != d.handle.joint || r.character != d.handle.character || r.axis != axis);
         if fresh {
             let from = d.handle.world - t.translation;
             // From the press, not from where the drag was first noticed.
             let Some(start) = crate::drag::ring_angle(&view, d.press, t.translation, axis, from) else { return };
-            self.ring_drag = Some(RingDrag {
+            self.gesture.ring = Some(RingDrag {
                 character: d.handle.character,
                 joint: d.handle.joint,
                 axis,
@@ -197,7 +175,7 @@ impl Viewer {
                 world: t.rotation,
             });
         }
-        let Some(r) = self.ring_drag else { return };
+        let Some(r) = self.gesture.ring else { return };
         let Some(angle) = crate::drag::ring_angle(&view, d.pointer, r.center, r.axis, r.from) else { return };
         let turned = mocap::glam::Quat::from_axis_angle(r.axis, angle - r.start) * r.world;
         // A root's parent frame is the file's axes turned up (Actor::place).
@@ -212,7 +190,7 @@ impl Viewer {
     /// Draws the drag tools over the scene: the new bone being pulled out, and
     /// the selected joint's rotation rings in Edit mode.
     pub(super) fn drag_overlay(&mut self) {
-        if let Some(Grow { character, parent, end: Some(end), .. }) = &self.grow {
+        if let Some(Grow { character, parent, end: Some(end), .. }) = &self.gesture.grow {
             if let Some(from) = self.state.stage.actors.get(*character).and_then(|c| c.extra.pose.get(*parent)) {
                 self.scene.overlay_lines.push(mocap_render::Line {
                     a: from.translation,

@@ -20,6 +20,7 @@ mod drag;
 mod editing;
 mod rig;
 mod view;
+mod views;
 use mocap_render::Scene;
 use mocap_scene::OrbitCamera;
 
@@ -34,13 +35,8 @@ pub struct Viewer {
     state: AppState,
     /// Reads dropped files; remembers the last Acclaim skeleton for motions dropped alone.
     loader: mocap::Loader,
-    ring_drag: Option<drag::RingDrag>,
-    /// The press of the joint grab in progress, and whether it only switched the
-    /// character being edited (a press on another character's joint selects it;
-    /// Edit mode acts on one character at a time).
-    grab: Option<(egui::Pos2, bool)>,
-    /// The creator's "drag out a new bone" from a joint, while it is armed or held.
-    grow: Option<drag::Grow>,
+    /// The drags in progress in the 3D view.
+    gesture: crate::gesture::Gestures,
     pub(crate) viewport: Viewport,
     pub(crate) scene: Scene,
     pose_scratch: mocap::stage::PoseScratch,
@@ -51,7 +47,6 @@ pub struct Viewer {
     commands: Vec<Command>,
     /// What the page is asked to do, returned by [`Viewer::ui`].
     requests: Vec<HostRequest>,
-    tree_labels: Vec<String>,
 }
 
 impl Viewer {
@@ -147,6 +142,7 @@ impl Viewer {
         self.state.rig_edit = None;
         self.state.capture_job = None;
         self.state.history.clear();
+        self.state.folds = Default::default();
         self.state.playback.time = 0.0;
         self.last_time = None;
         self.state.playback.range = None;
@@ -202,6 +198,7 @@ impl Viewer {
         if !self.state.stage.remove(index) {
             return false;
         }
+        self.state.folds.remove_character(index);
         if index == 0 {
             self.state.tentacle = None;
         }
@@ -277,6 +274,9 @@ impl Viewer {
                 .is_some_and(|c| *j < c.skeleton().joints().len())
         };
         self.state.selected = joint.filter(valid).map(|joint| Selection { character, joint });
+        if let Some(s) = self.state.selected {
+            self.state.folds.unfold_to(&self.state.stage.actors, s);
+        }
     }
 
     /// Selects the first joint called `name` in character `character`; returns whether one exists.
@@ -331,7 +331,7 @@ impl Viewer {
             floor_copied: self.viewport.floor_copied,
             frames_rendered: self.viewport.frames_rendered,
             backend: self.viewport.backend.clone(),
-            ..Snapshot::of(&self.state, self.tree_labels.clone())
+            ..Snapshot::of(&self.state)
         }
     }
 
@@ -349,18 +349,15 @@ impl Viewer {
         }
 
         if !self.state.panels.embed {
-            ui::toolbar::show(ui, &self.state, &mut commands);
+            ui::toolbar::show(ui, &self.toolbar_view(), &mut commands);
         }
-        ui::timeline::show(ui, &self.state, &mut commands);
+        ui::timeline::show(ui, &self.timeline_view(), &mut commands);
         if self.state.panels.show_inspector() {
-            ui::side::show(ui, &self.state, &mut commands);
+            ui::side::show(ui, &self.side_view(), &mut commands);
         }
-        let mut labels = std::mem::take(&mut self.tree_labels);
-        labels.clear();
         if self.state.panels.show_hierarchy() {
-            ui::hierarchy::show(ui, &self.state, &mut labels, &mut commands);
+            ui::hierarchy::show(ui, &self.tree_view(), &mut commands);
         }
-        self.tree_labels = labels;
 
         self.pose();
         let handles = self.handles();
@@ -381,8 +378,7 @@ impl Viewer {
             }
         });
         if joint_drag.is_none() {
-            self.ring_drag = None;
-            self.grab = None;
+            self.gesture.release();
             self.finish_new_bone();
         }
         if let Some(d) = joint_drag {
