@@ -8,6 +8,7 @@
 //! - `test`                `cargo test --workspace`, then the headless browser tests
 //! - `bench-web`           drop-to-first-frame, frame time and transfer size in the browser
 //! - `setup`               install what the web build and browser tests need
+//! - `shape`               the code's shape: import circles, file lengths, shared runs (limits in `shape.rs`)
 //!
 //! Missing tools are installed on first use (apt-get packages, wasm-bindgen-cli,
 //! chromium, npm `playwright-core`).
@@ -17,6 +18,7 @@ mod dist;
 mod fonts;
 mod serve;
 mod setup;
+mod shape;
 mod util;
 mod walk;
 
@@ -32,7 +34,8 @@ fn main() -> ExitCode {
         Some("test") => browser::test_all(&args[1..]),
         Some("bench-web") => browser::bench(),
         Some("setup") => setup::setup_all(),
-        _ => Err("usage: cargo xtask <gen-walk | gen-fonts | dist [--fast|--opt] | serve [--port P] | test | bench-web | setup>".to_string()),
+        Some("shape") => shape::report(&util::root()),
+        _ => Err("usage: cargo xtask <gen-walk | gen-fonts | dist [--fast|--opt] | serve [--port P] | test | bench-web | setup | shape>".to_string()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
