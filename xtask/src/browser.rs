@@ -119,6 +119,14 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
     if let Err(e) = run(node("nogpu.mjs").arg(&url).arg(&out).arg(&chromium)) {
         failures.push(format!("no-gpu message: {e}"));
     }
+    match crate::gltf_files::write(&out.join("gltf"), corpus.as_deref()) {
+        Ok(dir) => {
+            if let Err(e) = run(node("gltf.mjs").arg(&dir).arg(&chromium)) {
+                failures.push(format!("glTF written (validator, three.js): {e}"));
+            }
+        }
+        Err(e) => failures.push(format!("glTF files: {e}")),
+    }
     if !fast {
         if let Err(e) = crate::dist::check_download_size(&dist) {
             failures.push(e);

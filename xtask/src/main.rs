@@ -16,6 +16,7 @@
 mod browser;
 mod dist;
 mod fonts;
+mod gltf_files;
 mod serve;
 mod setup;
 mod shape;

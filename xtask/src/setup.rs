@@ -109,15 +109,19 @@ pub fn chromium() -> Result<String, String> {
     Ok("/usr/bin/chromium".to_owned())
 }
 
-/// Node.js, playwright-core, three (for the benchmark's comparison page) and
-/// esbuild (minifies the page's JavaScript in `cargo xtask dist`) under
+/// Node.js, playwright-core, three (the benchmark's comparison page and the
+/// glTF check's loader), gltf-validator (Khronos) and esbuild (minifies the
+/// page's JavaScript in `cargo xtask dist`) under
 /// `tests/browser/node_modules` (never downloads browsers).
 pub fn playwright() -> Result<(), String> {
     if !have("node") || !have("npm") {
         apt_install(&["nodejs", "npm"])?;
     }
     let dir = root().join("tests/browser");
-    if ["playwright-core", "three", "esbuild"].iter().any(|p| !dir.join("node_modules").join(p).is_dir()) {
+    if ["playwright-core", "three", "esbuild", "gltf-validator"]
+        .iter()
+        .any(|p| !dir.join("node_modules").join(p).is_dir())
+    {
         run(Command::new("npm")
             .args(["install", "--no-audit", "--no-fund"])
             .current_dir(&dir)

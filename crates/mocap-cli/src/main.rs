@@ -186,7 +186,7 @@ enum Command {
         /// Input file(s): one motion file, or an Acclaim skeleton and motion (`SKEL.asf TAKE.amc`).
         #[arg(required = true, num_args = 1..=2)]
         inputs: Vec<PathBuf>,
-        /// Output file (.bvh or .bva).
+        /// Output file (.bvh, .bva, .glb or .gltf).
         #[arg(short, long)]
         output: PathBuf,
     },

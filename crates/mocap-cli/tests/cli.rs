@@ -136,6 +136,26 @@ fn convert_round_trips() {
 }
 
 #[test]
+fn convert_writes_glb_and_gltf() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_temp(dir.path(), "s.bvh", SIMPLE);
+    for name in ["out.glb", "out.gltf"] {
+        let out_file = dir.path().join(name);
+        let out = mocap(&["convert", file.to_str().unwrap(), "-o", out_file.to_str().unwrap()]);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let bytes = std::fs::read(&out_file).unwrap();
+        if name.ends_with(".glb") {
+            assert_eq!(&bytes[..4], b"glTF");
+            assert_eq!(u32::from_le_bytes(bytes[8..12].try_into().unwrap()) as usize, bytes.len());
+        } else {
+            let json: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+            assert_eq!(json["asset"]["version"], "2.0");
+            assert_eq!(json["animations"][0]["name"], "s", "the animation is named after the input");
+        }
+    }
+}
+
+#[test]
 fn validate_walks_directories_and_fails_on_any_bad_file() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("sub")).unwrap();

@@ -2,11 +2,27 @@
 
 use super::*;
 
-/// `mocap convert`: to BVH (general clips baked, every position kept) or BVA (each
-/// joint's world transform a segment). What the target cannot keep is said on stderr.
+/// `mocap convert`: to BVH (general clips baked, every position kept), BVA (each
+/// joint's world transform a segment) or glTF (`.glb`, `.gltf`: skeleton, skin,
+/// generated body and animation, metres and Y up). What the target cannot keep
+/// is said on stderr.
 pub fn convert(inputs: &[PathBuf], output: &Path) -> Result<ExitCode, String> {
     let ext = output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let clip = read_clip(inputs)?;
+    if let Some(kind @ ("glb" | "gltf")) = ext.as_deref() {
+        let name = inputs
+            .last()
+            .and_then(|p| p.file_stem())
+            .map_or_else(|| "motion".to_owned(), |s| s.to_string_lossy().into_owned());
+        let options = mocap::formats::gltf::Options { name, body: true };
+        let bytes = match kind {
+            "glb" => mocap::formats::gltf::to_glb(&clip, &options),
+            _ => mocap::formats::gltf::to_gltf(&clip, &options).map(String::into_bytes),
+        }
+        .map_err(|e| format!("{}: {e}", output.display()))?;
+        std::fs::write(output, bytes).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+        return Ok(ExitCode::SUCCESS);
+    }
     let (text, warnings) = match ext.as_deref() {
         Some("bvh") => {
             let (baked, warnings) = mocap::ops::bake::to_bvh(&clip);
@@ -16,7 +32,7 @@ pub fn convert(inputs: &[PathBuf], output: &Path) -> Result<ExitCode, String> {
             let (bva, warnings) = mocap::formats::bva::from_clip(&clip);
             (mocap::formats::bva::write(&bva), warnings)
         }
-        _ => return Err(format!("{}: can write .bvh or .bva files", output.display())),
+        _ => return Err(format!("{}: can write .bvh, .bva, .glb or .gltf files", output.display())),
     };
     for w in warnings {
         eprintln!("{}: warning: {w}", output.display());

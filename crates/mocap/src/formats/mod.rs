@@ -1,6 +1,6 @@
 //! One folder per file format, each with a pure `parse(bytes)` into the
 //! [`model`](crate::model) and, where it writes, `write`: [`bvh`], [`bva`],
-//! [`acclaim`] (ASF/AMC), [`md2`] (Quake 2 models) and [`image`] (skins: PCX,
+//! [`acclaim`] (ASF/AMC), [`md2`] (Quake 2 models), [`gltf`] (written) and [`image`] (skins: PCX,
 //! BMP, PNG, JPEG). [`load`] picks the reader for a set of named files. Formats
 //! depend on the model, never the reverse.
 
@@ -8,6 +8,7 @@ pub mod acclaim;
 pub mod bva;
 pub mod bvh;
 mod decimal;
+pub mod gltf;
 pub mod image;
 pub mod load;
 pub mod md2;

@@ -1,0 +1,491 @@
+//! Writes a clip as glTF 2.0 (`.glb`, or `.gltf` with its buffer inline): one
+//! node per joint (its name, its rest transform), a skin over them, a body mesh
+//! skinned to it ([`crate::build::body`], so an importer shows an armature with
+//! a visible body rather than bare empties), and one animation at the clip's
+//! frame times.
+//!
+//! Lengths are metres (from the clip's unit, [`Clip::units`]) and Y is up (a
+//! Z-up clip is turned, [`Clip::up_axis`]). Each node's animated transform is
+//! derived from the core's own world transforms ([`Clip::world_transforms_into`]),
+//! so every joint's world position in the written file is ours at every frame,
+//! whatever the channels do (stretch, scale, rest rotations). Rotations are unit
+//! quaternions, sampled `LINEAR`, each the same hemisphere as the one before (so
+//! importers slerp the short way); translations are written for the joints that
+//! move them, scales for the joints that scale.
+//!
+//! Inputs: a clip and [`Options`]. Output: the file's bytes (or text). One pass
+//! over the frames, no recursion; a clip without frames writes the rest pose and
+//! no animation.
+
+use crate::build::body;
+use crate::model::clip::Clip;
+use crate::runtime::fk::{Transform, local_to_model};
+use crate::runtime::pose::LocalPose;
+use crate::runtime::skin::MAX_INFLUENCES;
+use glam::{Mat4, Quat, Vec3};
+use serde_json::{Value, json};
+
+/// What to write besides the skeleton and its animation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// The animation's (and the scene's) name, e.g. the file stem.
+    pub name: String,
+    /// Write the generated body mesh skinned to the skeleton.
+    pub body: bool,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options { name: "motion".to_owned(), body: true }
+    }
+}
+
+/// Why a clip could not be written.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum WriteError {
+    /// A joint's transform at a frame is not finite (a NaN in the motion).
+    #[error("joint `{joint}` at frame {frame}: the transform is not finite")]
+    NotFinite {
+        /// The joint's name.
+        joint: String,
+        /// The frame.
+        frame: usize,
+    },
+    /// The binary chunk would pass glTF's 4 GiB limit.
+    #[error("{0} bytes of data: more than a glTF buffer can hold")]
+    TooLarge(usize),
+}
+
+/// The clip as a binary glTF (`.glb`).
+pub fn to_glb(clip: &Clip, options: &Options) -> Result<Vec<u8>, WriteError> {
+    let (json, bin) = document(clip, options, None)?;
+    let mut text = serde_json::to_vec(&json).unwrap_or_default();
+    while text.len() % 4 != 0 {
+        text.push(b' ');
+    }
+    let mut bin = bin;
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let total = 12 + 8 + text.len() + 8 + bin.len();
+    let length = u32::try_from(total).map_err(|_| WriteError::TooLarge(total))?;
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&length.to_le_bytes());
+    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&text);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    Ok(out)
+}
+
+/// The clip as a text glTF (`.gltf`), its buffer inline as a `data:` URI.
+pub fn to_gltf(clip: &Clip, options: &Options) -> Result<String, WriteError> {
+    let (json, _) = document(clip, options, Some(()))?;
+    Ok(serde_json::to_string_pretty(&json).unwrap_or_default())
+}
+
+/// The JSON document and its binary buffer (inline as base64 when `inline`).
+fn document(clip: &Clip, options: &Options, inline: Option<()>) -> Result<(Value, Vec<u8>), WriteError> {
+    let joints = clip.skeleton().joints();
+    let n = joints.len();
+    let convert = Convert::of(clip);
+    let mut bin = Binary::default();
+    let mut accessors = Vec::new();
+
+    // Rest pose: the nodes' own transforms.
+    let mut world = Vec::new();
+    local_to_model(clip.skeleton(), &LocalPose::rest(clip.skeleton()), &mut world);
+    let world: Vec<Transform> = world.iter().map(|w| convert.world(*w)).collect();
+    let rest = convert.locals(clip, &world, 0)?;
+
+    // The bind pose (frame 0, as the viewer's body) for the skin and the mesh.
+    let bind: Vec<Transform> = clip.bind_pose().iter().map(|t| convert.world(*t)).collect();
+    let mut nodes: Vec<Value> = joints
+        .iter()
+        .enumerate()
+        .map(|(i, j)| {
+            let mut node = json!({ "name": j.name });
+            let (t, r, s) = rest[i];
+            if t != Vec3::ZERO {
+                node["translation"] = json!(t.to_array());
+            }
+            if r != Quat::IDENTITY {
+                node["rotation"] = json!(r.to_array());
+            }
+            if s != Vec3::ONE {
+                node["scale"] = json!(s.to_array());
+            }
+            let children: Vec<usize> = (0..n).filter(|&c| parent_of(clip, c) == Some(i)).collect();
+            if !children.is_empty() {
+                node["children"] = json!(children);
+            }
+            node
+        })
+        .collect();
+    let mut roots: Vec<usize> = (0..n).filter(|&i| parent_of(clip, i).is_none()).collect();
+
+    let inverse_bind: Vec<f32> = bind.iter().flat_map(|t| inverse_bind_matrix(t).to_cols_array()).collect();
+    let ibm = accessor(&mut accessors, &mut bin, &inverse_bind, "MAT4", 5126, n, None);
+    let mut document = json!({
+        "asset": { "version": "2.0", "generator": "mocap (motion-capture viewer and editor)" },
+        "scene": 0,
+        "scenes": [{ "name": options.name, "nodes": [] }],
+        "skins": [{ "name": options.name, "joints": (0..n).collect::<Vec<_>>(), "inverseBindMatrices": ibm }],
+    });
+    if let Some(root) = roots.first() {
+        document["skins"][0]["skeleton"] = json!(root);
+    }
+
+    if options.body
+        && let Some(mesh) = body_mesh(clip, &bind, &convert)
+    {
+        let positions: Vec<f32> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
+        let (min, max) = bounds(&mesh.positions);
+        let normals: Vec<f32> = mesh.normals.iter().flat_map(|p| p.to_array()).collect();
+        let position =
+            vertex_accessor(&mut accessors, &mut bin, &positions, "VEC3", mesh.positions.len(), Some((min, max)));
+        let normal = vertex_accessor(&mut accessors, &mut bin, &normals, "VEC3", mesh.normals.len(), None);
+        let joints_at = bin.u16s(&mesh.joints.concat());
+        let joints_0 = push_accessor(&mut accessors, joints_at, "VEC4", 5123, mesh.joints.len(), None);
+        let weights: Vec<f32> = mesh.weights.concat();
+        let weights_0 = vertex_accessor(&mut accessors, &mut bin, &weights, "VEC4", mesh.weights.len(), None);
+        let indices_at = bin.u32s(&mesh.indices);
+        let indices = push_accessor(&mut accessors, indices_at, "SCALAR", 5125, mesh.indices.len(), None);
+        document["meshes"] = json!([{
+            "name": format!("{} body", options.name),
+            "primitives": [{
+                "attributes": { "POSITION": position, "NORMAL": normal, "JOINTS_0": joints_0, "WEIGHTS_0": weights_0 },
+                "indices": indices,
+                "material": 0,
+            }],
+        }]);
+        document["materials"] = json!([{ "name": "body", "pbrMetallicRoughness": { "baseColorFactor": [0.8, 0.8, 0.82, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.7 } }]);
+        nodes.push(json!({ "name": format!("{} body", options.name), "mesh": 0, "skin": 0 }));
+        roots.push(nodes.len() - 1);
+    }
+    document["scenes"][0]["nodes"] = json!(roots);
+    document["nodes"] = Value::Array(nodes);
+
+    if clip.frame_count() > 0 {
+        document["animations"] = json!([animation(clip, options, &convert, &rest, &mut accessors, &mut bin)?]);
+    }
+    document["accessors"] = Value::Array(accessors);
+    document["bufferViews"] = Value::Array(bin.views.clone());
+    let length = bin.data.len();
+    u32::try_from(length).map_err(|_| WriteError::TooLarge(length))?;
+    document["buffers"] = match inline {
+        Some(()) => {
+            json!([{ "byteLength": length, "uri": format!("data:application/octet-stream;base64,{}", base64(&bin.data)) }])
+        }
+        None => json!([{ "byteLength": length }]),
+    };
+    Ok((document, bin.data))
+}
+
+/// The clip's parent of joint `i` (only a parent listed before it counts).
+fn parent_of(clip: &Clip, i: usize) -> Option<usize> {
+    clip.skeleton().joints().get(i)?.parent.filter(|&p| p < i)
+}
+
+/// The one animation: every joint's rotation, and translations and scales where
+/// they leave the rest pose's (`rest`, the nodes' own transforms).
+fn animation(
+    clip: &Clip,
+    options: &Options,
+    convert: &Convert,
+    rest: &[(Vec3, Quat, Vec3)],
+    accessors: &mut Vec<Value>,
+    bin: &mut Binary,
+) -> Result<Value, WriteError> {
+    let n = clip.skeleton().len();
+    let frames = clip.frame_count();
+    let timeline = clip.timeline();
+    let times: Vec<f32> = (0..frames).map(|f| timeline.time_of(f) as f32).collect();
+    let (first, last) = (times.first().copied().unwrap_or(0.0), times.last().copied().unwrap_or(0.0));
+    let input = accessor(accessors, bin, &times, "SCALAR", 5126, frames, Some((vec![first], vec![last])));
+    // Frame-major locals, gathered joint-major for the samplers.
+    let (mut t, mut r, mut s) =
+        (vec![Vec3::ZERO; n * frames], vec![Quat::IDENTITY; n * frames], vec![Vec3::ONE; n * frames]);
+    let mut world = Vec::new();
+    for f in 0..frames {
+        clip.world_transforms_into(f, &mut world);
+        let world: Vec<Transform> = world.iter().map(|w| convert.world(*w)).collect();
+        for (j, (tj, rj, sj)) in convert.locals(clip, &world, f)?.into_iter().enumerate() {
+            t[j * frames + f] = tj;
+            s[j * frames + f] = sj;
+            let previous = if f > 0 { r[j * frames + f - 1] } else { Quat::IDENTITY };
+            r[j * frames + f] = if previous.dot(rj) < 0.0 { -rj } else { rj };
+        }
+    }
+    let (mut samplers, mut channels) = (Vec::new(), Vec::new());
+    let mut add =
+        |path: &str, joint: usize, values: Vec<f32>, kind: &str, accessors: &mut Vec<Value>, bin: &mut Binary| {
+            let output = accessor(accessors, bin, &values, kind, 5126, frames, None);
+            samplers.push(json!({ "input": input, "output": output, "interpolation": "LINEAR" }));
+            channels.push(json!({ "sampler": samplers.len() - 1, "target": { "node": joint, "path": path } }));
+        };
+    for j in 0..n {
+        let span = j * frames..(j + 1) * frames;
+        let rotations: Vec<f32> = r[span.clone()].iter().flat_map(|q| q.to_array()).collect();
+        add("rotation", j, rotations, "VEC4", accessors, bin);
+        let (rest_t, _, rest_s) = rest.get(j).copied().unwrap_or((Vec3::ZERO, Quat::IDENTITY, Vec3::ONE));
+        let moves = t[span.clone()].iter().any(|x| (*x - rest_t).abs().max_element() > 1e-7);
+        if moves {
+            add("translation", j, t[span.clone()].iter().flat_map(|x| x.to_array()).collect(), "VEC3", accessors, bin);
+        }
+        if s[span.clone()].iter().any(|x| *x != rest_s) {
+            add("scale", j, s[span].iter().flat_map(|x| x.to_array()).collect(), "VEC3", accessors, bin);
+        }
+    }
+    Ok(json!({ "name": options.name, "samplers": samplers, "channels": channels }))
+}
+
+/// The file's lengths in metres and its up along +Y.
+struct Convert {
+    up: Quat,
+    meters: f32,
+}
+
+impl Convert {
+    fn of(clip: &Clip) -> Convert {
+        Convert { up: clip.up_axis().rotation(), meters: clip.units().meters_per_unit() }
+    }
+
+    /// A world transform of the file, in the written world.
+    fn world(&self, t: Transform) -> Transform {
+        Transform {
+            rotation: (self.up * t.rotation).normalize(),
+            translation: self.up * t.translation * self.meters,
+            scale: t.scale,
+        }
+    }
+
+    /// Each joint's transform relative to its parent's, from the world transforms
+    /// (the parent's rotation and uniform scale undone; roots are their world).
+    fn locals(&self, clip: &Clip, world: &[Transform], frame: usize) -> Result<Vec<(Vec3, Quat, Vec3)>, WriteError> {
+        let joints = clip.skeleton().joints();
+        let mut out = Vec::with_capacity(world.len());
+        for (i, w) in world.iter().enumerate() {
+            let local = match parent_of(clip, i).and_then(|p| world.get(p)) {
+                None => (w.translation, w.rotation, w.scale),
+                Some(p) => {
+                    let inv = p.rotation.inverse();
+                    let ps = p.scale;
+                    let safe = |x: f32| if x.abs() > 1e-12 { x } else { 1.0 };
+                    let per = Vec3::new(safe(ps.x), safe(ps.y), safe(ps.z));
+                    ((inv * (w.translation - p.translation)) / per, (inv * w.rotation).normalize(), w.scale / per)
+                }
+            };
+            let finite = local.0.is_finite() && local.1.is_finite() && local.2.is_finite();
+            if !finite {
+                let joint = joints.get(i).map_or_else(String::new, |j| j.name.clone());
+                return Err(WriteError::NotFinite { joint, frame });
+            }
+            out.push(local);
+        }
+        Ok(out)
+    }
+}
+
+/// The inverse of a bind transform, its last row exactly `0 0 0 1` (glTF requires
+/// an affine inverse bind matrix; a general inverse rounds it).
+fn inverse_bind_matrix(t: &Transform) -> Mat4 {
+    let mut m = Mat4::from_scale_rotation_translation(t.scale, t.rotation, t.translation).inverse();
+    m.x_axis.w = 0.0;
+    m.y_axis.w = 0.0;
+    m.z_axis.w = 0.0;
+    m.w_axis.w = 1.0;
+    m
+}
+
+/// The generated body around the bind pose, in the written world, with each
+/// vertex's joints unique (repeats merged) and its weights summing to 1.
+struct BodyMesh {
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    indices: Vec<u32>,
+    joints: Vec<[u16; MAX_INFLUENCES]>,
+    weights: Vec<[f32; MAX_INFLUENCES]>,
+}
+
+/// The body mesh, or none when the skeleton has too many bones for one (or more
+/// joints than 16-bit joint indices reach).
+fn body_mesh(clip: &Clip, bind: &[Transform], convert: &Convert) -> Option<BodyMesh> {
+    if clip.skeleton().len() > usize::from(u16::MAX) {
+        return None;
+    }
+    let extent = clip.pose_extent() * convert.meters;
+    let radius = |_: usize, l: f32| (l * 0.2).clamp(extent * 0.008, extent * 0.04) * 1.8;
+    let skin = body::build(clip.skeleton(), bind, radius).ok()?;
+    let mut joints = Vec::with_capacity(skin.joints().len());
+    let mut weights = Vec::with_capacity(skin.weights().len());
+    for (js, ws) in skin.joints().iter().zip(skin.weights()) {
+        let mut j = [0u16; MAX_INFLUENCES];
+        let mut w = [0f32; MAX_INFLUENCES];
+        let mut used = 0;
+        for (&joint, &weight) in js.iter().zip(ws) {
+            if weight <= 0.0 {
+                continue;
+            }
+            let joint = u16::try_from(joint).ok()?;
+            match j[..used].iter().position(|&x| x == joint) {
+                Some(k) => w[k] += weight,
+                None => {
+                    j[used] = joint;
+                    w[used] = weight;
+                    used += 1;
+                }
+            }
+        }
+        let sum: f32 = w.iter().sum();
+        if used == 0 || sum <= 0.0 {
+            w[0] = 1.0;
+        } else {
+            w.iter_mut().for_each(|x| *x /= sum);
+        }
+        joints.push(j);
+        weights.push(w);
+    }
+    Some(BodyMesh {
+        positions: skin.positions().to_vec(),
+        normals: skin.normals().iter().map(|n| n.normalize_or(Vec3::Y)).collect(),
+        indices: skin.indices().to_vec(),
+        joints,
+        weights,
+    })
+}
+
+/// Per-component minimum and maximum of `points`.
+fn bounds(points: &[Vec3]) -> (Vec<f32>, Vec<f32>) {
+    let min = points.iter().fold(Vec3::splat(f32::INFINITY), |a, p| a.min(*p));
+    let max = points.iter().fold(Vec3::splat(f32::NEG_INFINITY), |a, p| a.max(*p));
+    (min.to_array().to_vec(), max.to_array().to_vec())
+}
+
+/// A buffer view of vertex attributes.
+const ARRAY_BUFFER: u32 = 34962;
+/// A buffer view of vertex indices.
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+
+/// The binary buffer and its views, each 4-byte aligned.
+#[derive(Default)]
+struct Binary {
+    data: Vec<u8>,
+    views: Vec<Value>,
+}
+
+impl Binary {
+    /// Appends bytes as one buffer view; its index.
+    fn view(&mut self, bytes: &[u8], target: Option<u32>) -> usize {
+        while self.data.len() % 4 != 0 {
+            self.data.push(0);
+        }
+        let mut view = json!({ "buffer": 0, "byteOffset": self.data.len(), "byteLength": bytes.len() });
+        if let Some(target) = target {
+            view["target"] = json!(target);
+        }
+        self.views.push(view);
+        self.data.extend_from_slice(bytes);
+        self.views.len() - 1
+    }
+
+    fn f32s(&mut self, values: &[f32], target: Option<u32>) -> usize {
+        let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+        self.view(&bytes, target)
+    }
+
+    fn u16s(&mut self, values: &[u16]) -> usize {
+        let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+        self.view(&bytes, Some(ARRAY_BUFFER))
+    }
+
+    fn u32s(&mut self, values: &[u32]) -> usize {
+        let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+        self.view(&bytes, Some(ELEMENT_ARRAY_BUFFER))
+    }
+}
+
+/// A float accessor over new data; its index.
+fn accessor(
+    accessors: &mut Vec<Value>,
+    bin: &mut Binary,
+    values: &[f32],
+    kind: &str,
+    component: u32,
+    count: usize,
+    min_max: Option<(Vec<f32>, Vec<f32>)>,
+) -> usize {
+    let view = bin.f32s(values, None);
+    push_accessor(accessors, view, kind, component, count, min_max)
+}
+
+/// A float vertex-attribute accessor over new data; its index.
+fn vertex_accessor(
+    accessors: &mut Vec<Value>,
+    bin: &mut Binary,
+    values: &[f32],
+    kind: &str,
+    count: usize,
+    min_max: Option<(Vec<f32>, Vec<f32>)>,
+) -> usize {
+    let view = bin.f32s(values, Some(ARRAY_BUFFER));
+    push_accessor(accessors, view, kind, 5126, count, min_max)
+}
+
+/// An accessor over buffer view `view`; its index.
+fn push_accessor(
+    accessors: &mut Vec<Value>,
+    view: usize,
+    kind: &str,
+    component: u32,
+    count: usize,
+    min_max: Option<(Vec<f32>, Vec<f32>)>,
+) -> usize {
+    let mut a = json!({ "bufferView": view, "componentType": component, "count": count, "type": kind });
+    if let Some((min, max)) = min_max {
+        a["min"] = json!(min);
+        a["max"] = json!(max);
+    }
+    accessors.push(a);
+    accessors.len() - 1
+}
+
+/// Standard base64 with padding (RFC 4648), for the inline buffer of a `.gltf`.
+fn base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [chunk[0], chunk.get(1).copied().unwrap_or(0), chunk.get(2).copied().unwrap_or(0)];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                out.push(char::from(ALPHABET[((n >> (18 - 6 * k)) & 63) as usize]));
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn base64_matches_the_rfc_examples() {
+        for (raw, coded) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(super::base64(raw.as_bytes()), coded);
+        }
+    }
+}

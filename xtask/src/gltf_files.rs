@@ -1,0 +1,78 @@
+//! The glTF files the browser suite checks (`tests/browser/gltf.mjs`): the core's
+//! writer on the generated walk (`.glb` and `.gltf`, a Z-up copy, the skeleton
+//! alone) and on corpus clips (BVH and Acclaim), with the joint positions we
+//! compute (metres, Y up) at a few frames in `expected.json`.
+
+use mocap::formats::gltf::{Options, to_glb, to_gltf};
+use mocap::ops::edit::{Edit, apply};
+use mocap::{Asset, Clip, Input};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Corpus clips written as glTF: (files read together, name).
+const CORPUS: &[(&[&str], &str)] = &[
+    (&["bvh/bandai_namco/dataset-1_bow_active_001.bvh"], "bandai-bow"),
+    (&["asf_amc/cmu/02.asf", "asf_amc/cmu/02_01.amc"], "cmu-02_01"),
+];
+
+/// Writes the files and `expected.json` into `dir`; returns `dir`.
+pub fn write(dir: &Path, corpus: Option<&Path>) -> Result<PathBuf, String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let walk = mocap::formats::bvh::parse(include_bytes!("../../data/walk.bvh")).map_err(|e| e.to_string())?;
+    let lying = apply(&walk, &Edit::UpAxis { from: 1, negative: true }).map_err(|e| e.to_string())?;
+    let mut clips: Vec<(String, Clip, bool, bool)> = vec![
+        ("walk.glb".into(), walk.clone(), true, false),
+        ("walk.gltf".into(), walk.clone(), true, true),
+        ("walk-z-up.glb".into(), lying, true, false),
+        ("walk-bones.glb".into(), walk, false, false),
+    ];
+    if let Some(corpus) = corpus {
+        for (files, name) in CORPUS {
+            let bytes: Vec<Vec<u8>> = files
+                .iter()
+                .map(|f| std::fs::read(corpus.join(f)).map_err(|e| format!("{f}: {e}")))
+                .collect::<Result<_, _>>()?;
+            let inputs: Vec<Input> = files.iter().zip(&bytes).map(|(name, bytes)| Input { name, bytes }).collect();
+            let clip = mocap::load(&inputs)
+                .into_iter()
+                .find_map(|r| match r.map(|l| l.asset) {
+                    Ok(Asset::Clip(c)) => Some(c),
+                    _ => None,
+                })
+                .ok_or_else(|| format!("{name}: no clip read"))?;
+            clips.push((format!("{name}.glb"), clip, true, false));
+        }
+    }
+    let mut entries = Vec::new();
+    for (file, clip, body, text) in &clips {
+        let options = Options { name: file.split('.').next().unwrap_or("motion").to_owned(), body: *body };
+        let bytes = if *text { to_gltf(clip, &options).map(String::into_bytes) } else { to_glb(clip, &options) }
+            .map_err(|e| format!("{file}: {e}"))?;
+        std::fs::write(dir.join(file), bytes).map_err(|e| format!("{file}: {e}"))?;
+        entries.push(expected(file, clip, *body));
+    }
+    std::fs::write(dir.join("expected.json"), format!("[{}]", entries.join(",\n"))).map_err(|e| e.to_string())?;
+    Ok(dir.to_path_buf())
+}
+
+/// One file's entry: its joints' positions at the first, middle and last frames.
+fn expected(file: &str, clip: &Clip, body: bool) -> String {
+    let (up, m) = (clip.up_axis().rotation(), clip.units().meters_per_unit());
+    let last = clip.frame_count().saturating_sub(1);
+    let mut frames = Vec::new();
+    for f in [0, last / 2, last] {
+        let mut positions = String::new();
+        for (i, p) in clip.world_positions(f).into_iter().enumerate() {
+            let p = up * p * m;
+            let _ = write!(positions, "{}[{},{},{}]", if i > 0 { "," } else { "" }, p.x, p.y, p.z);
+        }
+        frames.push(format!("{{\"time\":{},\"positions\":[{positions}]}}", clip.timeline().time_of(f)));
+    }
+    let tolerance = (1e-4 * clip.pose_height() * m).max(1e-4);
+    format!(
+        "{{\"file\":{file:?},\"joints\":{},\"body\":{body},\"animated\":{},\"tolerance\":{tolerance},\"frames\":[{}]}}",
+        clip.skeleton().len(),
+        clip.frame_count() > 0,
+        frames.join(",")
+    )
+}
