@@ -236,14 +236,15 @@ function wireFiles(viewer) {
   });
 }
 
-// Downloads the current character as BVH (Edit ▸ Save as BVH): the text comes from
-// the viewer; the page only hands it to the browser as a file.
+// Downloads the file the viewer asked to save (Save as BVH or glTF, Save rig): the
+// bytes come from the viewer; the page only hands them to the browser as a file.
 function saveFile(viewer) {
-  // A file the viewer asked for (Save rig), else the current character as BVH.
+  // A file the viewer asked for, else the current character as BVH.
   const saved = viewer.takeDownload() ?? viewer.saveBvh();
   if (!saved) return;
   const [name, text] = saved;
-  const url = URL.createObjectURL(new Blob([text], { type: 'text/plain' }));
+  const type = name.endsWith('.glb') ? 'model/gltf-binary' : 'text/plain';
+  const url = URL.createObjectURL(new Blob([text], { type }));
   const a = document.createElement('a');
   a.href = url;
   a.download = name;

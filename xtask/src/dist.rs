@@ -186,10 +186,10 @@ fn wasm_opt_version(wasm_opt: &Path) -> u32 {
         .unwrap_or(0)
 }
 
-/// Most the page may weigh, gzipped: 2.0 MB (issue 14's aim for the download),
-/// read as the stricter decimal 2,000,000 bytes, which is also under 2.0 MiB
-/// (2,097,152), the unit of the issue's "today 2.32 MiB".
-pub const DOWNLOAD_AIM: u64 = 2_000_000;
+/// Most the page may weigh, gzipped: 2.5 MB (issue 34's limit once glTF and
+/// retargeting are in the page; 2.0 MB before), read as the stricter decimal
+/// 2,500,000 bytes.
+pub const DOWNLOAD_AIM: u64 = 2_500_000;
 
 /// The page's download, gzipped (`gzip -9 -n`): every wasm, JavaScript, HTML and CSS
 /// file in `dist` (the API examples' pages too). `bench-web` prints it and

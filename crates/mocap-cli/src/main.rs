@@ -143,6 +143,29 @@ enum Command {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// Puts a motion on another skeleton (retargeting): every mapped bone points
+    /// where its source bone points, the root's path scaled by the legs; writes
+    /// BVH or glTF on exactly the target's skeleton.
+    Retarget {
+        /// The motion: one file, or an Acclaim skeleton and motion (`SKEL.asf TAKE.amc`).
+        #[arg(required = true, num_args = 1..=2)]
+        source: Vec<PathBuf>,
+        /// The skeleton that receives it: a motion file (or `SKEL.asf [TAKE.amc]`).
+        #[arg(long, required = true, num_args = 1..=2)]
+        onto: Vec<PathBuf>,
+        /// Joint pairs by hand: a JSON object `{"TARGET": "SOURCE", …}` ("" leaves a joint out).
+        #[arg(long, value_name = "MAP.json")]
+        map: Option<PathBuf>,
+        /// Save the pairs used, in the same form.
+        #[arg(long, value_name = "MAP.json")]
+        save_map: Option<PathBuf>,
+        /// The pose the two skeletons are matched in: `first-frame` or `rest`.
+        #[arg(long, default_value = "first-frame")]
+        reference: String,
+        /// Output file (.bvh, .glb or .gltf).
+        #[arg(short, long)]
+        output: PathBuf,
+    },
     /// Captures skeletal motion from a Quake 2 MD2 model's vertex animation:
     /// joints where four tracked vertices' spheres meet, bone spins from tracked
     /// triangles; prints each joint's residuals; writes BVH.
@@ -290,6 +313,16 @@ fn main() -> ExitCode {
         Command::Info { files, json } => commands::info(&files, json),
         Command::Pose { files, frame, json: _ } => commands::pose(&files, frame),
         Command::Convert { inputs, output } => commands::convert(&inputs, &output),
+        Command::Retarget { source, onto, map, save_map, reference, output } => {
+            commands::retarget(&commands::RetargetRequest {
+                source: &source,
+                onto: &onto,
+                map: map.as_deref(),
+                save_map: save_map.as_deref(),
+                reference: &reference,
+                output: &output,
+            })
+        }
         Command::Layer { base, subtree, layer, weight, additive, fade_in, fade_out, map, output } => {
             let request = commands::LayerRequest { subtree: &subtree, weight, additive, fade_in, fade_out, map: &map };
             commands::layer(&base, &layer, &request, &output)

@@ -156,6 +156,47 @@ fn convert_writes_glb_and_gltf() {
 }
 
 #[test]
+fn retarget_maps_saves_its_map_and_reads_one_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let walk = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bvh");
+    let (out_file, map_file) = (dir.path().join("out.bvh"), dir.path().join("map.json"));
+    let args = |extra: &[&str]| -> Vec<String> {
+        let mut a: Vec<String> = ["retarget", walk.to_str().unwrap(), "--onto", walk.to_str().unwrap(), "-o"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        a.push(out_file.to_str().unwrap().to_owned());
+        a.extend(extra.iter().map(|s| s.to_string()));
+        a
+    };
+    let run = |a: Vec<String>| mocap(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    let out = run(args(&["--save-map", map_file.to_str().unwrap()]));
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(stderr(&out).contains("mapped 21 of 21 target joints"), "{}", stderr(&out));
+    let map: serde_json::Value = serde_json::from_slice(&std::fs::read(&map_file).unwrap()).unwrap();
+    assert_eq!(map["LeftForeArm"], "LeftForeArm");
+    let a = mocap::formats::bvh::parse(&std::fs::read(&walk).unwrap()).unwrap();
+    let b = mocap::formats::bvh::parse(&std::fs::read(&out_file).unwrap()).unwrap();
+    for (p, q) in a.world_positions(20).iter().zip(b.world_positions(20)) {
+        assert!(p.distance(q) < 0.2, "onto itself: the same motion ({p} vs {q})");
+    }
+    // A map leaving a joint out, and a bad one named with its place.
+    std::fs::write(&map_file, r#"{"LeftArm": ""}"#).unwrap();
+    let out = run(args(&["--map", map_file.to_str().unwrap()]));
+    assert!(stderr(&out).contains("mapped 20 of 21"), "{}", stderr(&out));
+    std::fs::write(&map_file, r#"{"LeftArm": 3}"#).unwrap();
+    let out = run(args(&["--map", map_file.to_str().unwrap()]));
+    assert!(!out.status.success() && stderr(&out).contains("/LeftArm: expected a joint name"), "{}", stderr(&out));
+    std::fs::write(&map_file, r#"{"LeftArm": "Wing"}"#).unwrap();
+    let out = run(args(&["--map", map_file.to_str().unwrap()]));
+    assert!(
+        !out.status.success() && stderr(&out).contains("`Wing`, which is not a joint of the source"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
 fn validate_walks_directories_and_fails_on_any_bad_file() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::create_dir(dir.path().join("sub")).unwrap();

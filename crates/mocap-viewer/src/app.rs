@@ -10,7 +10,7 @@ pub struct ViewerApp {
     viewer: Rc<RefCell<Viewer>>,
     on_open_requested: Box<dyn FnMut(OpenMode)>,
     on_share_requested: Box<dyn FnMut()>,
-    on_save_requested: Box<dyn FnMut(String, String)>,
+    on_save_requested: Box<dyn FnMut(String, Vec<u8>)>,
     /// The panels' colour, which the window is cleared to (see [`ViewerApp::new`]).
     panel_fill: egui::Color32,
     /// Applies a render scale to the whole window (see [`ViewerApp::on_render_scale`]).
@@ -99,7 +99,7 @@ impl ViewerApp {
 
     /// Sets what runs when the viewer asks to save a file ([`HostRequest::Save`]:
     /// Save as BVH, Save rig): `f` gets the file's name and contents.
-    pub fn on_save(mut self, f: Box<dyn FnMut(String, String)>) -> ViewerApp {
+    pub fn on_save(mut self, f: Box<dyn FnMut(String, Vec<u8>)>) -> ViewerApp {
         self.on_save_requested = f;
         self
     }
@@ -129,7 +129,7 @@ impl eframe::App for ViewerApp {
         self.update_view(view);
         for request in requests {
             match request {
-                HostRequest::Save { name, text } => (self.on_save_requested)(name, text),
+                HostRequest::Save { name, bytes } => (self.on_save_requested)(name, bytes),
                 HostRequest::PickFiles(mode) => (self.on_open_requested)(mode),
                 HostRequest::Share => (self.on_share_requested)(),
             }

@@ -27,12 +27,12 @@ pub enum HostRequest {
     PickFiles(OpenMode),
     /// Build a link that reproduces this view and offer it.
     Share,
-    /// Save a file: the current character as BVH, or a capture rig.
+    /// Save a file: the current character as BVH or glTF, or a capture rig.
     Save {
         /// File name (`walk-edited.bvh`).
         name: String,
-        /// Its contents.
-        text: String,
+        /// Its contents (UTF-8 text for BVH and JSON).
+        bytes: Vec<u8>,
     },
 }
 
@@ -228,6 +228,8 @@ pub enum Command {
     Share,
     /// Save the current character as BVH.
     SaveBvh,
+    /// Save the current character as binary glTF (`.glb`).
+    SaveGltf,
     /// Save character `index` as BVH (from the close question; it becomes current).
     SaveCharacter(usize),
     /// Save the capture rig as JSON.
@@ -265,6 +267,7 @@ impl Command {
             Command::Open(OpenMode::Add) => "Add…",
             Command::Share => "Share",
             Command::SaveBvh => "Save as BVH",
+            Command::SaveGltf => "Save as glTF",
             Command::NewCharacter => "New character",
             Command::OpenTentacle(_) => "Bendy tentacle",
             _ => "",
@@ -318,6 +321,9 @@ impl Command {
             Command::Open(OpenMode::Add) => "Add motion files or models to what is open (or drop them with Shift held)",
             Command::Share => "Copy a link that reproduces this view",
             Command::SaveBvh => "Download the current character as BVH, every edit baked in",
+            Command::SaveGltf => {
+                "Download the current character as glTF (.glb) for Blender, three.js or a game engine: skeleton, skin, a body and the animation, in metres, Y up"
+            }
             Command::NewCharacter => {
                 "Start a skeleton from one root joint: add joints here, pose them by dragging (Edit mode) and Set key"
             }

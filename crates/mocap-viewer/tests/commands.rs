@@ -32,9 +32,9 @@ fn requests_to_the_page_are_returned_by_the_frame_once() {
     assert_eq!(requests[0], HostRequest::PickFiles(OpenMode::Add));
     assert_eq!(requests[1], HostRequest::Share);
     match &requests[2] {
-        HostRequest::Save { name, text } => {
+        HostRequest::Save { name, bytes } => {
             assert_eq!(name, "walk.bvh");
-            assert_eq!(text, &mocap::formats::bvh::write(v.state().stage.actors[0].clip().unwrap()));
+            assert_eq!(bytes, mocap::formats::bvh::write(v.state().stage.actors[0].clip().unwrap()).as_bytes());
         }
         other => panic!("expected a save, got {other:?}"),
     }
@@ -73,4 +73,22 @@ fn the_keys_help_lists_every_binding_from_the_one_table() {
         assert!(b.command.tooltip().contains(b.written), "{:?}: {}", b.command, b.command.tooltip());
     }
     assert!(help.contains("k in Edit mode"));
+}
+
+#[test]
+fn save_as_gltf_asks_the_page_to_save_the_edited_clip_as_glb() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::default();
+    v.load("walk.bvh", WALK).unwrap();
+    v.try_apply(Command::Edit { character: 0, edit: mocap::ops::edit::Edit::Reverse, label: "Reverse".into() })
+        .unwrap();
+    frame(&ctx, &mut v, 0.0);
+    v.apply(Command::SaveGltf).unwrap();
+    let requests = frame(&ctx, &mut v, 0.1);
+    let [HostRequest::Save { name, bytes }] = requests.as_slice() else { panic!("one save: {requests:?}") };
+    assert_eq!(name, "walk-edited.glb");
+    let clip = v.state().stage.actors[0].clip().unwrap();
+    let options = mocap::formats::gltf::Options { name: "walk-edited".into(), body: true };
+    assert_eq!(bytes, &mocap::formats::gltf::to_glb(clip, &options).unwrap(), "the edited clip, as the core writes it");
+    assert_eq!(&bytes[..4], b"glTF");
 }

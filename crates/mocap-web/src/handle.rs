@@ -12,7 +12,7 @@ use wasm_bindgen::prelude::*;
 pub struct MocapViewer {
     pub(crate) viewer: Rc<RefCell<Viewer>>,
     /// The last file the viewer asked to save (`HostRequest::Save`), until the page takes it.
-    pub(crate) saved: Rc<RefCell<Option<(String, String)>>>,
+    pub(crate) saved: Rc<RefCell<Option<(String, Vec<u8>)>>>,
     pub(crate) ctx: Rc<RefCell<Option<egui::Context>>>,
     pub(crate) _runner: eframe::WebRunner,
 }
@@ -203,10 +203,22 @@ impl MocapViewer {
     }
 
     /// The file the viewer asked to save with its last `mocap-save` event (Save
-    /// as BVH, Save rig): `[fileName, text]`, taken (asked once), or `undefined`.
+    /// as BVH, Save as glTF, Save rig): `[fileName, bytes]` (a `Uint8Array`),
+    /// taken (asked once), or `undefined`.
     #[wasm_bindgen(js_name = takeDownload)]
-    pub fn take_download(&self) -> Option<Vec<String>> {
-        self.saved.try_borrow_mut().ok()?.take().map(|(name, text)| vec![name, text])
+    pub fn take_download(&self) -> Option<js_sys::Array> {
+        let (name, bytes) = self.saved.try_borrow_mut().ok()?.take()?;
+        Some(js_sys::Array::of2(&name.into(), &js_sys::Uint8Array::from(bytes.as_slice())))
+    }
+
+    /// Character `index` (the current one by default) as a binary glTF (`.glb`):
+    /// skeleton, skin, a generated body and the animation, every edit baked in,
+    /// metres and Y up. Returns the bytes; throws the reason for a model.
+    #[wasm_bindgen(js_name = saveGltf)]
+    pub fn save_gltf(&self, index: Option<u32>) -> Result<Vec<u8>, JsError> {
+        let v = self.viewer.try_borrow().map_err(|_| JsError::new("viewer busy"))?;
+        let index = index.map_or(v.state().current(), |i| i as usize);
+        v.save_gltf(index).map(|(_, bytes)| bytes).map_err(|e| JsError::new(&e))
     }
 
     /// Captures the skeletal motion of model `index` (an MD2): with the rig given
@@ -294,50 +306,27 @@ impl MocapViewer {
         self.with_viewer(|v| v.open_files(&[(name, text.as_bytes())], OpenMode::Add).into_iter().next()).flatten()
     }
 
-    /// Applies a clip edit to character `index`, one undoable step: `'reverse'`,
-    /// `'ping-pong'`, `'in-place'`, `'in-place-turning'`, `'up-z'`, `'trim:A:B'`,
-    /// `'fps:N'`, `'knit:N'`, `'scale:F'`, `'rename:OLD:NEW'`, `'remove:JOINT'` or
-    /// `'drop:JOINT'`, and for the creator `'add:PARENT:NAME:x,y,z'`,
-    /// `'offset:NAME:x,y,z'`, `'channels:NAME:ZXY[:position]'`. Returns the error
-    /// message, or `undefined` when done.
+    /// Applies a clip edit to character `index`, one undoable step, written as
+    /// the CLI's specs are (one grammar, `mocap::ops::edit::EditSpec`):
+    /// `'reverse'`, `'ping-pong'`, `'in-place'`, `'in-place-turning'`, `'up:z'`
+    /// (`'up-z'`), `'trim:A:B'`, `'fps:N'`, `'knit:N'`, `'scale:F'`, `'units:cm'`,
+    /// `'rename:OLD:NEW'`, `'remove:JOINT'`, `'drop:JOINT'`,
+    /// `'add:PARENT:NAME:x,y,z'`, `'offset:NAME:x,y,z'`,
+    /// `'channels:NAME:ZXY[:position]'`, `'correct:FRAME:WINDOW:POSE'`,
+    /// `'key:FRAME:KEYS:POSE'`. Returns the error message, or `undefined` when done.
     pub fn edit(&self, index: u32, spec: &str) -> Option<String> {
-        use mocap::ops::edit::Edit;
-        let parts: Vec<&str> = spec.split(':').collect();
-        let number = |s: Option<&&str>| s.and_then(|v| v.trim().parse::<f64>().ok());
-        let vec3 = |s: &str| -> Option<mocap::glam::Vec3> {
-            let v: Vec<f32> = s.split(',').map(|x| x.trim().parse().ok()).collect::<Option<_>>()?;
-            <[f32; 3]>::try_from(v).ok().map(mocap::glam::Vec3::from_array)
-        };
-        let edit = match parts.as_slice() {
-            ["reverse"] => Some(Edit::Reverse),
-            ["ping-pong"] => Some(Edit::PingPong),
-            ["in-place"] => Some(Edit::InPlace { remove_turning: false }),
-            ["in-place-turning"] => Some(Edit::InPlace { remove_turning: true }),
-            ["up-z"] => Some(Edit::UpAxis { from: 2, negative: false }),
-            ["trim", a, b] => a.parse().ok().zip(b.parse().ok()).map(|(first, last)| Edit::Trim { first, last }),
-            ["fps", _] => number(parts.get(1)).map(|fps| Edit::Resample { fps }),
-            ["knit", n] => n.parse().ok().map(|frames| Edit::LoopKnit { frames }),
-            ["scale", _] => number(parts.get(1)).map(|f| Edit::Scale { factor: f as f32 }),
-            ["rename", from, to] => Some(Edit::Rename { from: (*from).to_owned(), to: (*to).to_owned() }),
-            ["remove", joint] => Some(Edit::RemoveJoint { name: (*joint).to_owned(), fold: true }),
-            ["add", parent, name, xyz] => vec3(xyz).map(|offset| Edit::AddJoint {
-                parent: (*parent).to_owned(),
-                name: (*name).to_owned(),
-                offset,
-            }),
-            ["offset", name, xyz] => vec3(xyz).map(|offset| Edit::SetOffset { name: (*name).to_owned(), offset }),
-            ["channels", name, order] => {
-                Some(Edit::SetChannels { name: (*name).to_owned(), position: false, order: (*order).to_owned() })
-            }
-            ["channels", name, order, "position"] => {
-                Some(Edit::SetChannels { name: (*name).to_owned(), position: true, order: (*order).to_owned() })
-            }
-            ["drop", joint] => Some(Edit::RemoveJoint { name: (*joint).to_owned(), fold: false }),
-            _ => None,
-        };
-        let Some(edit) = edit else { return Some(format!("{spec}: not an edit this viewer makes")) };
+        // The one edit grammar (`mocap::ops::edit::EditSpec`), as the CLI reads it.
+        let read = spec.parse::<mocap::ops::edit::EditSpec>();
         self.with_viewer(|v| {
-            v.try_apply(Command::Edit { character: index as usize, edit, label: spec.to_owned() }).err()
+            let character = index as usize;
+            let clip = v.state().stage.actors.get(character).and_then(|c| c.clip());
+            let edit = match (read, clip) {
+                (Err(e), _) => return Some(e.to_string()),
+                (Ok(spec), Some(clip)) => spec.resolve(clip),
+                (Ok(mocap::ops::edit::EditSpec::Edit(edit)), None) => edit,
+                (Ok(_), None) => return Some(format!("{spec}: character {} is not a clip", character + 1)),
+            };
+            v.try_apply(Command::Edit { character, edit, label: spec.to_owned() }).err()
         })
         .flatten()
     }

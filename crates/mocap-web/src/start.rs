@@ -68,11 +68,11 @@ async fn start_on(
         web_sys::console::error_1(&format!("default clip: {e}").into());
     }
     let viewer = Rc::new(RefCell::new(viewer));
-    let saved: Rc<RefCell<Option<(String, String)>>> = Rc::default();
+    let saved: Rc<RefCell<Option<(String, Vec<u8>)>>> = Rc::default();
     let app_saved = saved.clone();
-    let save = move |name: String, text: String| {
+    let save = move |name: String, bytes: Vec<u8>| {
         if let Ok(mut slot) = app_saved.try_borrow_mut() {
-            *slot = Some((name, text));
+            *slot = Some((name, bytes));
         }
         save_event();
     };

@@ -12,12 +12,14 @@ mod convert;
 mod edit;
 mod info;
 mod render;
+mod retarget;
 
 pub use capture::{CaptureRequest, IkRequest, capture, ik};
 pub use convert::{convert, validate};
 pub use edit::{LayerRequest, edit, flag_spec, layer};
 pub use info::{info, pose};
 pub use render::{RenderOptions, Shot, render};
+pub use retarget::{RetargetRequest, retarget};
 
 fn read(path: &Path) -> Result<Vec<u8>, String> {
     std::fs::read(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))

@@ -102,6 +102,9 @@ pub fn show(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
     if button(ui, Command::SaveBvh, out) {
         ui.close();
     }
+    if button(ui, Command::SaveGltf, out) {
+        ui.close();
+    }
     if let Some(name) = grow {
         out.push(Command::GrowBone(name));
         ui.close();

@@ -198,9 +198,13 @@ impl Viewer {
                 }
                 self.request_save(index)?;
             }
+            (Command::SaveGltf, _) => {
+                let (name, bytes) = self.save_gltf(self.state.current())?;
+                self.requests.push(HostRequest::Save { name, bytes });
+            }
             (Command::SaveRig, _) => {
                 let (name, text) = self.rig_download().ok_or("no capture rig to save")?;
-                self.requests.push(HostRequest::Save { name, text });
+                self.requests.push(HostRequest::Save { name, bytes: text.into_bytes() });
             }
             (Command::DismissNotice, _) => self.state.notice = None,
             (Command::Notify(notice), _) => self.state.notice = Some(notice),
@@ -212,7 +216,7 @@ impl Viewer {
     /// Asks the page to save character `index` as BVH ([`Viewer::save_bvh`]).
     fn request_save(&mut self, index: usize) -> Result<(), String> {
         let (name, text) = self.save_bvh(index).ok_or("a model has no motion to save as BVH")?;
-        self.requests.push(HostRequest::Save { name, text });
+        self.requests.push(HostRequest::Save { name, bytes: text.into_bytes() });
         Ok(())
     }
 }

@@ -181,12 +181,33 @@ impl Viewer {
     /// Character `index` as a BVH file: (file name, text), every edit baked in;
     /// an edited clip's name says so (`walk-edited.bvh`). `None` for a model.
     pub fn save_bvh(&self, index: usize) -> Option<(String, String)> {
-        let c = self.state.stage.actors.get(index)?;
-        let clip = c.clip()?;
-        let stem = character::file_stem(&c.name);
+        let clip = self.state.stage.actors.get(index)?.clip()?;
+        Some((self.save_name(index, "bvh"), mocap::formats::bvh::write(clip)))
+    }
+
+    /// Character `index` as a binary glTF ([`mocap::formats::gltf`]): its file
+    /// name and bytes, every edit baked in; why not for a model or a clip that
+    /// cannot be written.
+    pub fn save_gltf(&self, index: usize) -> Result<(String, Vec<u8>), String> {
+        let c = self.state.stage.actors.get(index).ok_or_else(|| format!("no character {}", index + 1))?;
+        let clip = c.clip().ok_or("a model has no skeleton to save as glTF")?;
+        let name = self.save_name(index, "glb");
+        let options = mocap::formats::gltf::Options { name: name.trim_end_matches(".glb").to_owned(), body: true };
+        let bytes = mocap::formats::gltf::to_glb(clip, &options).map_err(|e| e.to_string())?;
+        Ok((name, bytes))
+    }
+
+    /// The file name character `index` saves under: its stem, `-edited` when
+    /// edited, and `extension`.
+    fn save_name(&self, index: usize, extension: &str) -> String {
+        let name = self.state.stage.actors.get(index).map_or("motion", |c| c.name.as_str());
+        let stem = character::file_stem(name);
         let stem = stem.strip_suffix("-edited").unwrap_or(stem);
-        let name = if self.state.history.edited(index) { format!("{stem}-edited.bvh") } else { format!("{stem}.bvh") };
-        Some((name, mocap::formats::bvh::write(clip)))
+        if self.state.history.edited(index) {
+            format!("{stem}-edited.{extension}")
+        } else {
+            format!("{stem}.{extension}")
+        }
     }
 
     /// Turns the pose corrections made by dragging into keys: each character's

@@ -99,11 +99,14 @@ pub fn canonical_name(name: &str) -> String {
         && (s.chars().nth(1) == Some('_') || name.chars().nth(1).is_some_and(|n| n.is_ascii_uppercase()))
     {
         ("right", compact[1..].to_owned())
+    } else if let Some(side) = one_letter_side(&compact) {
+        // CMU's Acclaim names: `lfemur`, `rhumerus`, `lwrist`.
+        (side, compact[1..].to_owned())
     } else {
         ("", compact.clone())
     };
     let part = match rest.as_str() {
-        "hips" | "pelvis" | "hip" if side.is_empty() => "hips",
+        "hips" | "pelvis" | "hip" | "root" if side.is_empty() => "hips",
         "shoulder" | "collar" | "clavicle" => "clavicle",
         "arm" | "upperarm" | "shldr" | "uparm" | "humerus" => "upperarm",
         "forearm" | "lowerarm" | "elbow" | "radius" => "forearm",
@@ -119,6 +122,22 @@ pub fn canonical_name(name: &str) -> String {
         other => other,
     };
     format!("{side}{part}")
+}
+
+/// `left` or `right` for a name that is `l` or `r` and then a limb part written
+/// in full (`lfemur`, `rhand`).
+fn one_letter_side(compact: &str) -> Option<&'static str> {
+    const PARTS: [&str; 25] = [
+        "shoulder", "collar", "clavicle", "upperarm", "shldr", "uparm", "humerus", "forearm", "lowerarm", "elbow",
+        "radius", "hand", "wrist", "upleg", "thigh", "upperleg", "femur", "shin", "knee", "lowerleg", "calf", "tibia",
+        "foot", "ankle", "toes",
+    ];
+    let side = match compact.as_bytes().first() {
+        Some(b'l') => "left",
+        Some(b'r') => "right",
+        _ => return None,
+    };
+    PARTS.contains(&compact.get(1..)?).then_some(side)
 }
 
 /// Matches the base joints of the subtree rooted at `root` to layer joints:
