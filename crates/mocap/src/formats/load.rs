@@ -23,15 +23,17 @@ pub enum Format {
     Amc,
     /// Quake 2 model (`.md2`): mesh and vertex frames; its skin comes as an image.
     Md2,
+    /// glTF 2.0 (`.glb`, or `.gltf` with its `.bin` and images): a character.
+    Gltf,
 }
 
 impl Format {
     /// Every format, in the order content sniffing tries them.
-    pub const ALL: [Format; 5] = [Format::Md2, Format::Bvh, Format::Bva, Format::Asf, Format::Amc];
+    pub const ALL: [Format; 6] = [Format::Md2, Format::Gltf, Format::Bvh, Format::Bva, Format::Asf, Format::Amc];
 
     /// File extensions of the formats (for file pickers), without the dot; skins
     /// add [`ImageFormat::EXTENSIONS`].
-    pub const EXTENSIONS: [&'static str; 5] = ["bvh", "bva", "asf", "amc", "md2"];
+    pub const EXTENSIONS: [&'static str; 7] = ["bvh", "bva", "asf", "amc", "md2", "glb", "gltf"];
 
     /// The usual extension.
     pub fn extension(self) -> &'static str {
@@ -41,6 +43,7 @@ impl Format {
             Format::Asf => "asf",
             Format::Amc => "amc",
             Format::Md2 => "md2",
+            Format::Gltf => "glb",
         }
     }
 
@@ -52,6 +55,7 @@ impl Format {
             Format::Asf => acclaim::sniff_asf(bytes),
             Format::Amc => acclaim::sniff_amc(bytes),
             Format::Md2 => crate::formats::md2::sniff(bytes),
+            Format::Gltf => crate::formats::gltf::sniff(bytes),
         }
     }
 
@@ -62,6 +66,9 @@ impl Format {
             return Some(format);
         }
         let ext = file_name.rsplit_once('.').map(|(_, e)| e.to_ascii_lowercase());
+        if ext.as_deref() == Some("gltf") {
+            return Some(Format::Gltf);
+        }
         Format::ALL.into_iter().find(|f| ext.as_deref() == Some(f.extension()))
     }
 }
@@ -131,6 +138,16 @@ pub struct Loader {
     skeleton: Option<(String, AcclaimSkeleton)>,
 }
 
+/// The part of a file name after its last folder.
+fn base_name(name: &str) -> &str {
+    name.rsplit(['/', '\\']).next().unwrap_or(name)
+}
+
+/// True for a glTF buffer file (`.bin`).
+fn is_buffer(name: &str) -> bool {
+    name.rsplit_once('.').is_some_and(|(_, e)| e.eq_ignore_ascii_case("bin"))
+}
+
 /// The part of a file name before its last dot and after its last folder.
 fn stem(name: &str) -> &str {
     let base = name.rsplit(['/', '\\']).next().unwrap_or(name);
@@ -179,9 +196,12 @@ impl Loader {
             }
         }
         let mut used = vec![false; files.len()];
+        let has_gltf = formats.contains(&Some(Format::Gltf));
         let mut results: Vec<(usize, Result<Loaded, LoadError>)> = Vec::new();
         for (i, (file, format)) in files.iter().zip(&formats).enumerate() {
             let result: Result<Asset, LoadError> = match format {
+                // A glTF's buffers and images come in the same set.
+                None if has_gltf && (is_buffer(file.name) || matches!(kinds.get(i), Some(Kind::Image(_)))) => continue,
                 None => match kinds.get(i) {
                     Some(Kind::Image(_)) => match skins.lone_image_error(i) {
                         Some(e) => Err(e),
@@ -201,6 +221,14 @@ impl Loader {
                     None => continue,
                 },
                 Some(Format::Asf) => continue,
+                Some(Format::Gltf) => {
+                    let resources = |name: &str| {
+                        files.iter().find(|f| base_name(f.name) == name).map(|f| f.bytes.to_vec())
+                    };
+                    crate::formats::gltf::parse(file.bytes, &resources, None)
+                        .map(Asset::from)
+                        .map_err(|e| parse_error(file, e))
+                }
                 Some(Format::Amc) => {
                     let chosen = self.skeleton_for(file.name, files, &skeletons);
                     if let Some(index) = chosen.index {

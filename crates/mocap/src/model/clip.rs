@@ -4,6 +4,7 @@
 use std::cell::RefCell;
 
 use crate::error::Warning;
+use crate::model::character::{Character, Take};
 use crate::model::motion::Motion;
 use crate::model::skeleton::Skeleton;
 use crate::model::time::Timeline;
@@ -160,6 +161,11 @@ pub struct Clip {
     /// What the file says about itself (name, version, units, documentation…), as
     /// `(key, value)` pairs in file order, for the inspector.
     pub metadata: Vec<(String, String)>,
+    /// The look and other animations of a character file (glTF); `None` for
+    /// motion-only formats.
+    pub character: Option<std::sync::Arc<Character>>,
+    /// Which of the character's takes the motion is.
+    take: usize,
 }
 
 impl Clip {
@@ -169,7 +175,38 @@ impl Clip {
         if motion.channel_count() != skeleton.channel_count() {
             return Err(ClipError { motion: motion.channel_count(), skeleton: skeleton.channel_count() });
         }
-        Ok(Clip { skeleton, motion, warnings: Vec::new(), metadata: Vec::new() })
+        Ok(Clip { skeleton, motion, warnings: Vec::new(), metadata: Vec::new(), character: None, take: 0 })
+    }
+
+    /// The same clip carrying `character` (its look and takes, whose motions must
+    /// fit this skeleton); the motion stays as it is.
+    pub fn with_character(mut self, character: std::sync::Arc<Character>) -> Clip {
+        self.character = Some(character);
+        self
+    }
+
+    /// The character's animations (empty for motion-only formats).
+    pub fn takes(&self) -> &[Take] {
+        self.character.as_deref().map_or(&[], |c| c.takes.as_slice())
+    }
+
+    /// The name of the take the motion is, when the clip has takes.
+    pub fn take_name(&self) -> Option<&str> {
+        self.takes().get(self.take).map(|t| t.name.as_str())
+    }
+
+    /// Makes the take named `name` the clip's motion; false (and no change) when
+    /// there is none of that name or its motion does not fit the skeleton.
+    pub fn set_take(&mut self, name: &str) -> bool {
+        let Some((index, take)) = self.takes().iter().enumerate().find(|(_, t)| t.name == name) else {
+            return false;
+        };
+        if take.motion.channel_count() != self.skeleton.channel_count() {
+            return false;
+        }
+        self.motion = take.motion.clone();
+        self.take = index;
+        true
     }
 
     /// The same clip with these warnings.
@@ -350,11 +387,17 @@ impl Clip {
 
     /// Which file axis points up, guessed from the motion ([`UpAxis::guess`]).
     pub fn up_axis(&self) -> UpAxis {
+        if self.character.is_some() {
+            return UpAxis::Y;
+        }
         UpAxis::guess(self)
     }
 
     /// Guess of the file's length unit from the height of the first pose.
     pub fn units(&self) -> Units {
+        if self.character.is_some() {
+            return Units::Meters;
+        }
         Units::guess(self.pose_height())
     }
 

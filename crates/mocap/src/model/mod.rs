@@ -2,9 +2,10 @@
 //! [`skeleton`] (joints in parent-before-child order), its [`channel`]s, the
 //! [`motion`] table, a [`clip`] (skeleton + motion + units), [`time`], the
 //! [`up`] axis, the format-free [`mesh`] model (vertex frames and skins), and
-//! an [`asset`] (a clip or a model). Nothing here depends on a file format.
+//! an [`asset`] (a clip or a model), and a clip's [`character`] (a glTF look and takes). Nothing here depends on a file format.
 
 pub mod asset;
+pub mod character;
 pub mod channel;
 pub mod clip;
 pub mod mesh;

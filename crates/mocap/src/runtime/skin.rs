@@ -92,6 +92,27 @@ impl Skin {
         weights: Vec<[f32; MAX_INFLUENCES]>,
         bind: &[Transform],
     ) -> Result<Skin, SkinError> {
+        let mut inverse_bind = Vec::with_capacity(bind.len());
+        for (j, t) in bind.iter().enumerate() {
+            let m = matrix(t);
+            if m.determinant().abs() < 1e-12 || !m.is_finite() {
+                return Err(SkinError::Bind(j));
+            }
+            inverse_bind.push(m.inverse());
+        }
+        Skin::with_inverse_bind(positions, normals, indices, joints, weights, inverse_bind)
+    }
+
+    /// [`Skin::new`] with the inverse bind matrices given (one per joint, as glTF
+    /// stores them) rather than computed from a bind pose.
+    pub fn with_inverse_bind(
+        positions: Vec<Vec3>,
+        normals: Vec<Vec3>,
+        indices: Vec<u32>,
+        joints: Vec<[u32; MAX_INFLUENCES]>,
+        weights: Vec<[f32; MAX_INFLUENCES]>,
+        inverse_bind: Vec<Mat4>,
+    ) -> Result<Skin, SkinError> {
         let n = positions.len();
         if normals.len() != n || joints.len() != n || weights.len() != n {
             return Err(SkinError::Lengths {
@@ -106,6 +127,9 @@ impl Skin {
         if let Some((corner, &vertex)) = indices.iter().enumerate().find(|(_, v)| **v as usize >= n) {
             return Err(SkinError::Index { corner, vertex, count: n });
         }
+        if let Some(j) = inverse_bind.iter().position(|m| !m.is_finite()) {
+            return Err(SkinError::Bind(j));
+        }
         let mut normalised = weights;
         for (vertex, (w, js)) in normalised.iter_mut().zip(&joints).enumerate() {
             let sum: f32 = w.iter().sum();
@@ -113,19 +137,11 @@ impl Skin {
                 return Err(SkinError::Weights { vertex, weights: *w });
             }
             for (k, weight) in w.iter_mut().enumerate() {
-                if *weight > 0.0 && js[k] as usize >= bind.len() {
-                    return Err(SkinError::Joint { vertex, joint: js[k], joints: bind.len() });
+                if *weight > 0.0 && js[k] as usize >= inverse_bind.len() {
+                    return Err(SkinError::Joint { vertex, joint: js[k], joints: inverse_bind.len() });
                 }
                 *weight /= sum;
             }
-        }
-        let mut inverse_bind = Vec::with_capacity(bind.len());
-        for (j, t) in bind.iter().enumerate() {
-            let m = matrix(t);
-            if m.determinant().abs() < 1e-12 || !m.is_finite() {
-                return Err(SkinError::Bind(j));
-            }
-            inverse_bind.push(m.inverse());
         }
         Ok(Skin { positions, normals, indices, joints, weights: normalised, inverse_bind })
     }

@@ -1,0 +1,277 @@
+//! Reads a glTF 2.0 file (`.glb`, or `.gltf` with its `.bin` and images) into a
+//! clip that carries a [`Character`]: the skeleton is the joints of the scene's
+//! skins (every node when there is no skin) with their names, parents and rest
+//! transforms; every animation becomes a [`Take`] sampled on that skeleton at its
+//! own key rate; the meshes become the character's [`crate::model::character::Look`].
+//!
+//! Inputs: bytes, a [`Resources`] lookup, and the animation to start with.
+//! Output: the clip (its motion the chosen take, or the rest pose when the file
+//! has no animation), in the file's own world space: the nodes above the
+//! skeleton are folded into its roots, no unit conversion (glTF is metres, Y up).
+//! Stages: [`super::document`] (bytes → checked document and buffers),
+//! [`super::graph`] (nodes → joints), [`super::animation`] (channels → tracks),
+//! [`super::look`] (meshes → skinned look).
+
+use super::animation::{Path, Track, tracks};
+use super::document::{self, Resources};
+use super::graph::{Graph, Trs};
+use crate::error::{ParseError, Warning};
+use crate::model::channel::Channel;
+use crate::model::character::{Character, Source, Summary, Take};
+use crate::model::clip::Clip;
+use crate::model::motion::Motion;
+use crate::model::skeleton::{EulerConvention, Joint, Skeleton};
+use glam::{EulerRot, Quat, Vec3};
+use std::sync::Arc;
+
+/// Most values (frames × channels) one animation may be sampled into.
+const MAX_VALUES: usize = 1 << 26;
+
+/// Reads a glTF file; `animation` picks the take the clip starts on (the first
+/// when `None`; an unknown name is an error that lists the names).
+pub fn parse(bytes: &[u8], resources: Resources<'_>, animation: Option<&str>) -> Result<Clip, ParseError> {
+    let parsed = document::parse(bytes, resources)?;
+    let graph = Graph::new(&parsed.document)?;
+    if graph.joints.is_empty() {
+        return Err(ParseError::new(0, 0, "the scene has no nodes: nothing to show"));
+    }
+    let mut warnings = Vec::new();
+    let mut all = Vec::new();
+    let mut morph_channels = 0;
+    for a in parsed.document.animations() {
+        let (t, weights) = tracks(&a, &parsed.buffers)?;
+        morph_channels += weights;
+        let name = a.name().map_or_else(|| format!("animation {}", a.index()), str::to_owned);
+        all.push((name, t));
+    }
+    if morph_channels > 0 {
+        warnings.push(Warning {
+            line: None,
+            message: format!("{morph_channels} morph-target weight channels are not played"),
+        });
+    }
+    let layout = Layout::new(&graph, &all);
+    let skeleton = skeleton(&parsed.document, &graph, &layout)?;
+    let mut takes = Vec::new();
+    for (name, t) in &all {
+        warn_outside(&graph, name, t, &mut warnings);
+        takes.push(Take { name: name.clone(), motion: sample_take(&graph, &layout, &skeleton, t, name)? });
+    }
+    let start = match animation {
+        None => 0,
+        Some(wanted) => takes.iter().position(|t| t.name == wanted).ok_or_else(|| {
+            let names: Vec<&str> = takes.iter().map(|t| t.name.as_str()).collect();
+            ParseError::new(0, 0, format!("no animation named `{wanted}`; the file has: {}", names.join(", ")))
+        })?,
+    };
+    let motion = match takes.get(start) {
+        Some(take) => take.motion.clone(),
+        None => sample_take(&graph, &layout, &skeleton, &[], "rest")?,
+    };
+    let look = super::look::build(&parsed, &graph, resources, &mut warnings)?;
+    let summary = summary(&parsed, &all);
+    let source = Source {
+        json: parsed.json.clone(),
+        bin: if parsed.buffers.len() == 1 { parsed.buffers[0].clone() } else { Vec::new() },
+        nodes: graph.joints.clone(),
+    };
+    let character = Character { look, takes, summary, source: Some(Arc::new(source)) };
+    let mut clip = Clip::new(skeleton, motion)
+        .map_err(|e| ParseError::new(0, 0, format!("internal: {e}")))?
+        .with_warnings(warnings)
+        .with_character(Arc::new(character));
+    let first = clip.takes().get(start).map(|t| t.name.clone());
+    if let Some(name) = first {
+        clip.set_take(&name);
+    }
+    clip.metadata.push(("format".into(), "glTF 2.0".into()));
+    if let Some(generator) = parsed.document.as_json().asset.generator.clone() {
+        clip.metadata.push(("generator".into(), generator));
+    }
+    Ok(clip)
+}
+
+/// Which channels each joint gets: rotations always; translations for roots and
+/// for joints some animation translates; scales for joints some animation scales
+/// or whose rest scale is not 1.
+struct Layout {
+    translate: Vec<bool>,
+    scale: Vec<bool>,
+}
+
+impl Layout {
+    fn new(graph: &Graph, all: &[(String, Vec<Track>)]) -> Layout {
+        let n = graph.joints.len();
+        let mut translate: Vec<bool> = (0..n).map(|j| graph.joint_parent[j].is_none()).collect();
+        let mut scale: Vec<bool> = (0..n).map(|j| !graph.joint_rest(j).s.abs_diff_eq(Vec3::ONE, 1e-5)).collect();
+        for track in all.iter().flat_map(|(_, t)| t) {
+            if let Some(j) = graph.joint_of.get(track.node).copied().flatten() {
+                match track.path {
+                    Path::Translation => translate[j] = true,
+                    Path::Scale => scale[j] = true,
+                    Path::Rotation => {}
+                }
+            }
+        }
+        Layout { translate, scale }
+    }
+}
+
+/// The skeleton: one joint per graph joint, rest transform `between · TRS`.
+fn skeleton(document: &gltf::Document, graph: &Graph, layout: &Layout) -> Result<Skeleton, ParseError> {
+    let nodes: Vec<gltf::Node<'_>> = document.nodes().collect();
+    let mut joints = Vec::with_capacity(graph.joints.len());
+    for (j, &n) in graph.joints.iter().enumerate() {
+        let rest = graph.joint_rest(j);
+        let mut channels = Vec::with_capacity(9);
+        if layout.translate[j] {
+            channels.extend([Channel::Xposition, Channel::Yposition, Channel::Zposition]);
+        }
+        channels.extend([Channel::Zrotation, Channel::Xrotation, Channel::Yrotation]);
+        if layout.scale[j] {
+            channels.extend([Channel::Xscale, Channel::Yscale, Channel::Zscale]);
+        }
+        let name = nodes.get(n).and_then(|node| node.name()).map_or_else(|| format!("node {n}"), str::to_owned);
+        if !rest.t.is_finite() || !rest.r.is_finite() || !rest.s.is_finite() {
+            return Err(ParseError::new(0, 0, format!("nodes[{n}]: its transform is not finite")));
+        }
+        joints.push(Joint::new(name, graph.joint_parent[j], rest.t, channels).with_rest_rotation(rest.r));
+    }
+    Skeleton::new(joints, EulerConvention::Intrinsic).map_err(|e| ParseError::new(0, 0, e.to_string()))
+}
+
+/// Warns once per animation about tracks on nodes that are not joints.
+fn warn_outside(graph: &Graph, name: &str, tracks: &[Track], warnings: &mut Vec<Warning>) {
+    let outside = tracks.iter().filter(|t| graph.joint_of.get(t.node).copied().flatten().is_none()).count();
+    if outside > 0 {
+        warnings.push(Warning {
+            line: None,
+            message: format!("animation `{name}`: {outside} channels move nodes outside the skeleton and are not played"),
+        });
+    }
+}
+
+/// The frame time and count of an animation: its densest track's mean key
+/// interval (within 1/240–1/24 s; a common frame rate when within 0.1% of one,
+/// as f32 key times drift), adjusted so that the last key falls on the last frame.
+fn frames_of(tracks: &[Track]) -> (f64, usize) {
+    let end = tracks.iter().map(Track::end).fold(0.0f32, f32::max) as f64;
+    let mean = tracks
+        .iter()
+        .filter(|t| t.times.len() >= 2)
+        .map(|t| (t.end() as f64 - t.times[0] as f64) / (t.times.len() - 1) as f64)
+        .filter(|d| *d > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let mut step = if mean.is_finite() { mean.clamp(1.0 / 240.0, 1.0 / 24.0) } else { 1.0 / 30.0 };
+    if let Some(fps) = [24.0, 25.0, 30.0, 48.0, 50.0, 60.0, 90.0, 100.0, 120.0, 240.0]
+        .into_iter()
+        .find(|fps: &f64| ((1.0 / step) / fps - 1.0).abs() < 1e-3)
+    {
+        step = 1.0 / fps;
+    }
+    if !(end > 0.0) {
+        return (1.0 / 30.0, 1);
+    }
+    let intervals = (end / step).round().max(1.0);
+    (end / intervals, intervals as usize + 1)
+}
+
+/// Samples one animation (no tracks: the rest pose, one frame) into motion.
+fn sample_take(
+    graph: &Graph,
+    layout: &Layout,
+    skeleton: &Skeleton,
+    tracks: &[Track],
+    name: &str,
+) -> Result<Motion, ParseError> {
+    let (frame_time, frames) = frames_of(tracks);
+    let width = skeleton.channel_count();
+    if frames.saturating_mul(width) > MAX_VALUES {
+        return Err(ParseError::new(
+            0,
+            0,
+            format!("animation `{name}`: {frames} frames × {width} channels is more than this reader holds"),
+        ));
+    }
+    let mut by_joint: Vec<Vec<&Track>> = vec![Vec::new(); graph.joints.len()];
+    for t in tracks {
+        if let Some(j) = graph.joint_of.get(t.node).copied().flatten() {
+            by_joint[j].push(t);
+        }
+    }
+    let mut data = Vec::with_capacity(frames * width);
+    let mut previous: Vec<[f32; 3]> = vec![[0.0; 3]; graph.joints.len()];
+    for f in 0..frames {
+        let time = (f as f64 * frame_time) as f32;
+        for (j, joint_tracks) in by_joint.iter().enumerate() {
+            let n = graph.joints[j];
+            let mut trs = graph.rest[n];
+            let mut value = [0.0f32; 4];
+            for track in joint_tracks {
+                track.sample(time, &mut value);
+                match track.path {
+                    Path::Translation => trs.t = Vec3::new(value[0], value[1], value[2]),
+                    Path::Rotation => trs.r = Quat::from_array(value),
+                    Path::Scale => trs.s = Vec3::new(value[0], value[1], value[2]),
+                }
+            }
+            let local: Trs = trs.after(&graph.between[n]);
+            let rest_rotation = skeleton.joints().get(j).map_or(Quat::IDENTITY, |joint| joint.rest_rotation);
+            if layout.translate[j] {
+                data.extend(local.t.to_array());
+            }
+            let (z, x, y) = (rest_rotation.inverse() * local.r).normalize().to_euler(EulerRot::ZXY);
+            let angles = unwrap([z.to_degrees(), x.to_degrees(), y.to_degrees()], previous[j], f > 0);
+            previous[j] = angles;
+            data.extend(angles);
+            if layout.scale[j] {
+                data.extend(local.s.to_array());
+            }
+        }
+    }
+    if let Some(k) = data.iter().position(|v| !v.is_finite()) {
+        return Err(ParseError::new(0, 0, format!("animation `{name}`: frame {} is not finite", k / width.max(1))));
+    }
+    Motion::new(frame_time, width, frames, data)
+        .ok_or_else(|| ParseError::new(0, 0, format!("animation `{name}`: the motion does not fit its channels")))
+}
+
+/// Each angle moved by whole turns to the one nearest the previous frame's, so
+/// that interpolating between frames never goes the long way round.
+fn unwrap(angles: [f32; 3], previous: [f32; 3], has_previous: bool) -> [f32; 3] {
+    if !has_previous {
+        return angles;
+    }
+    let mut out = angles;
+    for (a, p) in out.iter_mut().zip(previous) {
+        *a += ((p - *a) / 360.0).round() * 360.0;
+    }
+    out
+}
+
+/// What the file holds, for `mocap info`.
+fn summary(parsed: &document::Parsed, all: &[(String, Vec<Track>)]) -> Summary {
+    let d = &parsed.document;
+    let name = |n: Option<&str>, kind: &str, i: usize| n.map_or_else(|| format!("{kind} {i}"), str::to_owned);
+    Summary {
+        nodes: d.nodes().len(),
+        scenes: d.scenes().len(),
+        meshes: d
+            .meshes()
+            .map(|m| {
+                let vertices = m
+                    .primitives()
+                    .filter_map(|p| p.get(&gltf::Semantic::Positions).map(|a| a.count()))
+                    .sum::<usize>();
+                (name(m.name(), "mesh", m.index()), m.primitives().len(), vertices)
+            })
+            .collect(),
+        skins: d.skins().map(|s| (name(s.name(), "skin", s.index()), s.joints().len())).collect(),
+        animations: all
+            .iter()
+            .map(|(n, t)| (n.clone(), t.iter().map(Track::end).fold(0.0f32, f32::max) as f64, t.len()))
+            .collect(),
+        extensions_used: d.extensions_used().map(str::to_owned).collect(),
+        extensions_required: d.extensions_required().map(str::to_owned).collect(),
+    }
+}

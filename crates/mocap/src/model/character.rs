@@ -1,0 +1,75 @@
+//! A character: what a clip carries besides its skeleton and motion when it was
+//! read from a file that also holds a look and several animations (glTF): the
+//! mesh skinned to the clip's skeleton, the file's animations ("takes") on that
+//! skeleton, and the source bytes (so a write can keep what the file had).
+//!
+//! The clip's own motion is always one of the takes ([`crate::Clip::set_take`]).
+//! Lengths are metres and Y is up, as glTF says.
+
+use crate::model::motion::Motion;
+use crate::runtime::skin::Skin;
+use std::sync::Arc;
+
+/// One animation of the file, sampled on the clip's skeleton.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Take {
+    /// Its name in the file (or `animation N` when it has none).
+    pub name: String,
+    /// Its frames on the clip's skeleton.
+    pub motion: Motion,
+}
+
+/// A mesh bound to the clip's skeleton, with a colour per vertex.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Look {
+    /// Positions, normals, triangles, influences and inverse bind matrices, one
+    /// inverse bind matrix per joint of the clip's skeleton.
+    pub skin: Skin,
+    /// One sRGB colour per vertex: the material's base colour times its
+    /// base-colour texture sampled at the vertex.
+    pub colors: Vec<[u8; 4]>,
+}
+
+/// A character's look, takes and source.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Character {
+    /// Its mesh, when the file has one (a bare skin shows as a skeleton).
+    pub look: Option<Look>,
+    /// Every animation of the file, in file order (may be empty: a posed character).
+    pub takes: Vec<Take>,
+    /// What the file holds, for `mocap info` and the inspector.
+    pub summary: Summary,
+    /// The file's bytes (a `.glb`, or a `.gltf` whose resources are all inline once
+    /// read) and the joint → node index map, for writing it back with a new animation.
+    pub source: Option<Arc<Source>>,
+}
+
+/// The file a character was read from, kept to write it again.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Source {
+    /// The JSON document.
+    pub json: Vec<u8>,
+    /// The binary chunk of a `.glb` (or the bytes of the first buffer).
+    pub bin: Vec<u8>,
+    /// For each joint of the clip's skeleton, its node index in the file.
+    pub nodes: Vec<usize>,
+}
+
+/// Counts and names of what a glTF file holds.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Summary {
+    /// Nodes in the file.
+    pub nodes: usize,
+    /// Scenes in the file.
+    pub scenes: usize,
+    /// Meshes: name, primitives and vertices.
+    pub meshes: Vec<(String, usize, usize)>,
+    /// Skins: name and joint count.
+    pub skins: Vec<(String, usize)>,
+    /// Animations: name, duration in seconds and channel count.
+    pub animations: Vec<(String, f64, usize)>,
+    /// Extensions the file uses.
+    pub extensions_used: Vec<String>,
+    /// Extensions the file requires.
+    pub extensions_required: Vec<String>,
+}

@@ -1,0 +1,331 @@
+//! The glTF reader: our own GLB and glTF files of every corpus BVH and Acclaim
+//! clip read back to the same world positions; the sampling rules of the
+//! specification (STEP, LINEAR slerp, CUBICSPLINE Hermite) on hand-made files;
+//! external buffers, data URIs, quantized attributes, a matrix node, nodes above
+//! the skeleton; and every kind of damaged file refused with a located message.
+
+mod common;
+
+use base64::Engine as _;
+use mocap::formats::gltf::{Options, to_glb, to_gltf};
+use mocap::glam::{Quat, Vec3};
+use mocap::{Clip, Input};
+
+const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
+
+/// Reads one file (and its companions) through the loader, as the page and the CLI do.
+fn read(files: &[(&str, &[u8])]) -> Result<Clip, String> {
+    let inputs: Vec<Input> = files.iter().map(|(name, bytes)| Input { name, bytes }).collect();
+    let mut results = mocap::load(&inputs);
+    assert_eq!(results.len(), 1, "one asset from the set");
+    match results.pop().unwrap() {
+        Ok(loaded) => loaded.into_clip().ok_or_else(|| "not a clip".to_owned()),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+/// `clip`'s world positions at `frame`, in metres, Y up (what the writer writes).
+fn ours(clip: &Clip, frame: usize) -> Vec<Vec3> {
+    let (up, m) = (clip.up_axis().rotation(), clip.units().meters_per_unit());
+    clip.world_positions(frame).into_iter().map(|p| up * p * m).collect()
+}
+
+/// Writes `clip` as GLB, reads it back, and compares every joint on up to 60
+/// frames spread over the clip; the look skinned at frame 0 is its bind mesh.
+fn round_trip(name: &str, clip: &Clip) {
+    let glb = to_glb(clip, &Options { name: "take".into(), body: true }).unwrap();
+    let back = read(&[("x.glb", &glb)]).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let names: Vec<&str> = back.skeleton().joints().iter().map(|j| j.name.as_str()).collect();
+    let expected: Vec<&str> = clip.skeleton().joints().iter().map(|j| j.name.as_str()).collect();
+    assert_eq!(names, expected, "{name}: one joint per node, same names");
+    assert_eq!(back.frame_count(), clip.frame_count().max(1), "{name}: frames");
+    if clip.frame_count() > 1 {
+        assert!((back.frame_time() - clip.frame_time()).abs() < 1e-6, "{name}: frame time");
+    }
+    if clip.frame_count() > 1 {
+        assert_eq!(back.take_name(), Some("take"), "{name}");
+    }
+    let height = clip.pose_height() * clip.units().meters_per_unit();
+    let tolerance = 1e-4 * height.max(0.01);
+    let step = (clip.frame_count() / 60).max(1);
+    let mut worst = 0.0f32;
+    for f in (0..clip.frame_count()).step_by(step) {
+        for (a, b) in ours(clip, f).iter().zip(back.world_positions(f)) {
+            worst = worst.max(a.distance(b));
+        }
+    }
+    assert!(worst <= tolerance, "{name}: a joint is {worst} m off (tolerance {tolerance})");
+    let look = back.character.as_ref().and_then(|c| c.look.as_ref()).expect("the body comes back as the look");
+    let mut model = Vec::new();
+    back.world_transforms_into(0, &mut model);
+    let mut matrices = Vec::new();
+    mocap::runtime::skin::skinning_matrices(&model, look.skin.inverse_bind(), &mut matrices);
+    let (mut p, mut n) = (Vec::new(), Vec::new());
+    mocap::runtime::skin::skin_vertices(&look.skin, &matrices, &mut p, &mut n);
+    let off = p.iter().zip(look.skin.positions()).map(|(a, b)| a.distance(*b)).fold(0.0f32, f32::max);
+    assert!(off <= tolerance * 10.0, "{name}: the skinned look at frame 0 is its bind mesh ({off} m off)");
+}
+
+#[test]
+fn the_walk_reads_back_as_glb_and_as_gltf_text() {
+    let clip = mocap::formats::bvh::parse(WALK).unwrap();
+    round_trip("walk", &clip);
+    let text = to_gltf(&clip, &Options::default()).unwrap();
+    let back = read(&[("walk.gltf", text.as_bytes())]).unwrap();
+    assert_eq!(back.frame_count(), clip.frame_count());
+    let (a, b) = (ours(&clip, 17), back.world_positions(17));
+    assert!(a.iter().zip(&b).all(|(a, b)| a.distance(*b) < 1e-4));
+    assert_eq!(back.units(), mocap::Units::Meters);
+}
+
+#[test]
+fn every_corpus_bvh_and_acclaim_clip_reads_back() {
+    let Some(dir) = common::corpus_dir() else { return };
+    let mut done = 0;
+    let mut stack = vec![dir.join("bvh")];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("bvh")) {
+                let bytes = std::fs::read(&path).unwrap();
+                if let Ok(clip) = mocap::formats::bvh::parse(&bytes) {
+                    round_trip(&path.display().to_string(), &clip);
+                    done += 1;
+                }
+            }
+        }
+    }
+    let asf = std::fs::read(dir.join("asf_amc/cmu/02.asf")).unwrap();
+    let amc = std::fs::read(dir.join("asf_amc/cmu/02_01.amc")).unwrap();
+    let inputs = [Input { name: "02.asf", bytes: &asf }, Input { name: "02_01.amc", bytes: &amc }];
+    for loaded in mocap::load(&inputs) {
+        round_trip("02_01.amc", &loaded.unwrap().into_clip().unwrap());
+        done += 1;
+    }
+    assert!(done >= 10, "{done} corpus clips");
+}
+
+/// A little glTF by hand: `json` with `bin` as its one buffer (a data URI).
+fn gltf_with(json: serde_json::Value, bin: &[u8]) -> Vec<u8> {
+    let mut json = json;
+    let uri = format!("data:application/octet-stream;base64,{}", base64::engine::general_purpose::STANDARD.encode(bin));
+    json["buffers"] = serde_json::json!([{ "byteLength": bin.len(), "uri": uri }]);
+    json["asset"] = serde_json::json!({ "version": "2.0" });
+    serde_json::to_vec(&json).unwrap()
+}
+
+fn floats(values: &[f32]) -> Vec<u8> {
+    values.iter().flat_map(|v| v.to_le_bytes()).collect()
+}
+
+/// Two nodes (hips → spine) and one rotation channel on the spine about Z, keys
+/// at 0, 1 and 3 s (90° then 180° about Z), with `interpolation`; for cubic, the
+/// tangents are given in `tangents` (in, out per key).
+fn turning(interpolation: &str, tangents: Option<[[f32; 4]; 6]>) -> Vec<u8> {
+    let times = [0.0f32, 1.0, 3.0];
+    let half = std::f32::consts::FRAC_1_SQRT_2;
+    let keys = [[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, half, half], [0.0, 0.0, 1.0, 0.0]];
+    let mut values = Vec::new();
+    for (k, q) in keys.iter().enumerate() {
+        match tangents {
+            Some(t) => {
+                values.extend(t[2 * k]);
+                values.extend(q);
+                values.extend(t[2 * k + 1]);
+            }
+            None => values.extend(q),
+        }
+    }
+    let mut bin = floats(&times);
+    let values_at = bin.len();
+    bin.extend(floats(&values));
+    let json = serde_json::json!({
+        "scene": 0,
+        "scenes": [{ "nodes": [0] }],
+        "nodes": [
+            { "name": "hips", "children": [1], "translation": [0.0, 1.0, 0.0] },
+            { "name": "spine", "translation": [0.0, 0.5, 0.0], "children": [2] },
+            { "name": "head", "translation": [0.0, 0.25, 0.0] }
+        ],
+        "bufferViews": [
+            { "buffer": 0, "byteOffset": 0, "byteLength": 12 },
+            { "buffer": 0, "byteOffset": values_at, "byteLength": values.len() * 4 }
+        ],
+        "accessors": [
+            { "bufferView": 0, "componentType": 5126, "count": 3, "type": "SCALAR", "min": [0.0], "max": [3.0] },
+            { "bufferView": 1, "componentType": 5126, "count": values.len() / 4, "type": "VEC4" }
+        ],
+        "animations": [{
+            "name": "turn",
+            "samplers": [{ "input": 0, "output": 1, "interpolation": interpolation }],
+            "channels": [{ "sampler": 0, "target": { "node": 1, "path": "rotation" } }]
+        }]
+    });
+    gltf_with(json, &bin)
+}
+
+/// The spine's world rotation at time `t`.
+fn spine_at(clip: &Clip, t: f64) -> Quat {
+    let mut out = Vec::new();
+    clip.sample_world_transforms_into(t, mocap::Interpolation::Linear, &mut out);
+    out[1].rotation
+}
+
+fn angle(a: Quat, b: Quat) -> f32 {
+    a.angle_between(b).to_degrees()
+}
+
+#[test]
+fn linear_rotations_slerp_step_holds_and_cubic_is_hermite() {
+    let linear = read(&[("turn.gltf", &turning("LINEAR", None))]).unwrap();
+    // Keys at 0, 1, 3 s → a frame every 1/24 s at most; 1.5 s is a quarter of the way from 90° to 180°.
+    assert!(angle(spine_at(&linear, 0.5), Quat::from_rotation_z(45f32.to_radians())) < 0.05);
+    assert!(angle(spine_at(&linear, 1.5), Quat::from_rotation_z(112.5f32.to_radians())) < 0.05);
+    assert!(angle(spine_at(&linear, 5.0), Quat::from_rotation_z(180f32.to_radians())) < 0.05, "holds after the last key");
+    let head = linear.world_positions(0)[2];
+    assert!(head.distance(Vec3::new(0.0, 1.75, 0.0)) < 1e-5);
+
+    let step = read(&[("turn.gltf", &turning("STEP", None))]).unwrap();
+    assert!(angle(spine_at(&step, 0.9), Quat::IDENTITY) < 0.05, "STEP holds the key before");
+    assert!(angle(spine_at(&step, 2.9), Quat::from_rotation_z(90f32.to_radians())) < 0.05);
+
+    // Cubic with zero tangents: s' = 3s² − 2s³ of the way (componentwise on the
+    // quaternion, then normalised).
+    let cubic = read(&[("turn.gltf", &turning("CUBICSPLINE", Some([[0.0; 4]; 6])))]).unwrap();
+    let s: f32 = 0.25;
+    let h = 3.0 * s * s - 2.0 * s * s * s;
+    let half = std::f32::consts::FRAC_1_SQRT_2;
+    let q = Quat::from_xyzw(0.0, 0.0, half + (1.0 - half) * h, half * (1.0 - h)).normalize();
+    assert!(angle(spine_at(&cubic, 1.5), q) < 0.05, "Hermite with zero tangents");
+    // With tangents, the in/out-tangent of each key moves the curve (by dt-scaled tangents).
+    let mut t = [[0.0; 4]; 6];
+    t[3] = [0.0, 0.0, 0.2, -0.2]; // key 1's out-tangent
+    let bent = read(&[("turn.gltf", &turning("CUBICSPLINE", Some(t)))]).unwrap();
+    let m0 = 0.2 * 2.0; // tangent × dt
+    let hm = s * s * s - 2.0 * s * s + s;
+    let q = Quat::from_xyzw(0.0, 0.0, half + (1.0 - half) * h + m0 * hm, half * (1.0 - h) - m0 * hm).normalize();
+    assert!(angle(spine_at(&bent, 1.5), q) < 0.05, "Hermite with the out-tangent");
+}
+
+/// One node with a mesh of one triangle, its POSITION as normalized i16
+/// (`KHR_mesh_quantization`), the node placed by a matrix and under a scaled parent.
+fn quantized_triangle(required: &[&str]) -> serde_json::Value {
+    let positions: Vec<u8> =
+        [[0i16, 0, 0], [32767, 0, 0], [0, 32767, 0]].iter().flatten().flat_map(|v| v.to_le_bytes()).collect();
+    let mut bin = positions;
+    bin.extend([0u8, 0]); // padding to 4
+    let mut json = serde_json::json!({
+        "extensionsUsed": ["KHR_mesh_quantization"],
+        "extensionsRequired": required,
+        "scenes": [{ "nodes": [0] }],
+        "nodes": [
+            { "name": "root", "scale": [2.0, 2.0, 2.0], "children": [1] },
+            { "name": "part", "mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 1,0,0,1] }
+        ],
+        "meshes": [{ "primitives": [{ "attributes": { "POSITION": 0 } }] }],
+        "bufferViews": [{ "buffer": 0, "byteLength": 18, "byteStride": 6 }],
+        "accessors": [{ "bufferView": 0, "componentType": 5122, "normalized": true, "count": 3, "type": "VEC3",
+                        "min": [0, 0, 0], "max": [32767, 32767, 0] }]
+    });
+    let bytes = gltf_with(json.clone(), &bin);
+    json = serde_json::from_slice(&bytes).unwrap();
+    json
+}
+
+#[test]
+fn quantized_positions_matrix_nodes_and_parents_above_are_read() {
+    let bytes = serde_json::to_vec(&quantized_triangle(&["KHR_mesh_quantization"])).unwrap();
+    let clip = read(&[("tri.gltf", &bytes)]).unwrap();
+    // No skin: every node is a joint; the part is rigid on itself.
+    assert_eq!(clip.skeleton().len(), 2);
+    let world = clip.world_positions(0);
+    assert!(world[1].distance(Vec3::new(2.0, 0.0, 0.0)) < 1e-5, "the matrix's translation under the parent's scale");
+    let look = clip.character.as_ref().unwrap().look.as_ref().unwrap();
+    let mut model = Vec::new();
+    clip.world_transforms_into(0, &mut model);
+    let mut m = Vec::new();
+    mocap::runtime::skin::skinning_matrices(&model, look.skin.inverse_bind(), &mut m);
+    let (mut p, mut n) = (Vec::new(), Vec::new());
+    mocap::runtime::skin::skin_vertices(&look.skin, &m, &mut p, &mut n);
+    // (1, 0, 0) normalized → 1.0, moved by the matrix (+1 x) and scaled by 2.
+    assert!(p[1].distance(Vec3::new(4.0, 0.0, 0.0)) < 1e-3, "{:?}", p[1]);
+    assert!(p[2].distance(Vec3::new(2.0, 2.0, 0.0)) < 1e-3, "{:?}", p[2]);
+    assert!(n.iter().all(|n| (n.z.abs() - 1.0).abs() < 1e-4), "normals computed from the triangle");
+}
+
+#[test]
+fn an_external_buffer_comes_from_the_same_set_of_files() {
+    let clip = mocap::formats::bvh::parse(WALK).unwrap();
+    let text = to_gltf(&clip, &Options::default()).unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let uri = json["buffers"][0]["uri"].as_str().unwrap().to_owned();
+    let data = base64::engine::general_purpose::STANDARD.decode(uri.split_once(',').unwrap().1).unwrap();
+    json["buffers"][0]["uri"] = "walk%20data.bin".into();
+    let gltf = serde_json::to_vec(&json).unwrap();
+    let back = read(&[("walk.gltf", &gltf), ("walk data.bin", &data)]).unwrap();
+    assert_eq!(back.frame_count(), clip.frame_count());
+    let e = read(&[("walk.gltf", &gltf)]).unwrap_err();
+    assert!(e.contains("walk.gltf") && e.contains("buffers[0]") && e.contains("walk data.bin"), "{e}");
+}
+
+#[test]
+fn damaged_and_unsupported_files_get_located_messages() {
+    let clip = mocap::formats::bvh::parse(WALK).unwrap();
+    let glb = to_glb(&clip, &Options::default()).unwrap();
+    let fails = |files: &[(&str, &[u8])], wants: &[&str]| {
+        let e = read(files).unwrap_err();
+        for w in wants {
+            assert!(e.contains(w), "`{e}` should say `{w}`");
+        }
+    };
+    // Truncated anywhere: never a panic, always the file's name.
+    for cut in [3, 11, 12, 19, 20, 100, glb.len() / 2, glb.len() - 1] {
+        fails(&[("cut.glb", &glb[..cut])], &["cut.glb"]);
+    }
+    fails(&[("cut.glb", &glb[..glb.len() / 2])], &["byte 8", "bytes"]);
+    // A chunk longer than the file.
+    let mut long = glb.clone();
+    long[12..16].copy_from_slice(&u32::MAX.to_le_bytes());
+    fails(&[("long.glb", &long)], &["byte 12", "past the end"]);
+    // Draco required: refused by name.
+    let mut draco = quantized_triangle(&["KHR_draco_mesh_compression"]);
+    draco["extensionsUsed"] = serde_json::json!(["KHR_draco_mesh_compression"]);
+    fails(&[("d.gltf", &serde_json::to_vec(&draco).unwrap())], &["extensionsRequired[0]", "KHR_draco_mesh_compression"]);
+    // An accessor past its view, a stride smaller than an element, a huge count.
+    let mut json = quantized_triangle(&[]);
+    json["accessors"][0]["count"] = 4.into();
+    fails(&[("a.gltf", &serde_json::to_vec(&json).unwrap())], &["accessors[0]", "count 4", "bufferViews[0]"]);
+    let mut json = quantized_triangle(&[]);
+    json["bufferViews"][0]["byteStride"] = 4.into();
+    fails(&[("s.gltf", &serde_json::to_vec(&json).unwrap())], &["bufferViews[0].byteStride is 4"]);
+    let mut json = quantized_triangle(&[]);
+    json["accessors"][0]["count"] = 4_000_000_000u64.into();
+    fails(&[("h.gltf", &serde_json::to_vec(&json).unwrap())], &["accessors[0]", "count 4000000000"]);
+    // A view outside its buffer.
+    let mut json = quantized_triangle(&[]);
+    json["bufferViews"][0]["byteOffset"] = 1000.into();
+    fails(&[("v.gltf", &serde_json::to_vec(&json).unwrap())], &["bufferViews[0]", "outside its buffer"]);
+    // An index out of range is the crate's check, with its JSON path.
+    let mut json = quantized_triangle(&[]);
+    json["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 7.into();
+    fails(&[("i.gltf", &serde_json::to_vec(&json).unwrap())], &["meshes[0].primitives[0].attributes"]);
+    // Two parents, and a cycle.
+    let mut json = quantized_triangle(&[]);
+    json["nodes"][1]["children"] = serde_json::json!([1]);
+    fails(&[("c.gltf", &serde_json::to_vec(&json).unwrap())], &["nodes[1]"]);
+    let mut json = quantized_triangle(&[]);
+    json["nodes"] = serde_json::json!([{ "children": [2] }, { "children": [2] }, {}]);
+    json["scenes"] = serde_json::json!([{ "nodes": [0, 1] }]);
+    fails(&[("p.gltf", &serde_json::to_vec(&json).unwrap())], &["nodes[2]", "both"]);
+    // Not finite.
+    let mut json = quantized_triangle(&[]);
+    json["nodes"][0]["translation"] = serde_json::json!([1e39, 0, 0]);
+    let e = read(&[("n.gltf", &serde_json::to_vec(&json).unwrap())]);
+    assert!(e.is_err() || e.unwrap().world_positions(0).iter().all(|p| p.is_finite()));
+    // Broken JSON: its line and column.
+    fails(&[("j.gltf", b"{\"asset\": {\"version\": \"2.0\"},\n  \"nodes\": [ }")], &["j.gltf:2:"]);
+    // Not glTF at all, named .glb.
+    fails(&[("not.glb", b"hello, this is not a model")], &["not.glb"]);
+}
