@@ -30,12 +30,18 @@ enum Command {
     },
     /// World positions of every joint (End Sites included) at one frame.
     Pose {
-        /// The motion file (an AMC finds its .asf, or give both).
+        /// The motion file (an AMC finds its .asf, or give both; a .gltf finds its .bin).
         #[arg(required = true, num_args = 1..=2)]
         files: Vec<PathBuf>,
         /// Frame index, 0-based.
-        #[arg(long, default_value_t = 0)]
+        #[arg(long, default_value_t = 0, conflicts_with = "time")]
         frame: usize,
+        /// Time in seconds instead of a frame (sampled between frames).
+        #[arg(long)]
+        time: Option<f64>,
+        /// The animation of a glTF file (default: its first).
+        #[arg(long)]
+        animation: Option<String>,
         /// Print JSON (the only output form; accepted for clarity).
         #[arg(long)]
         json: bool,
@@ -162,6 +168,9 @@ enum Command {
         /// The pose the two skeletons are matched in: `first-frame` or `rest`.
         #[arg(long, default_value = "first-frame")]
         reference: String,
+        /// The source's animation, when it is a glTF file with several (default: its first).
+        #[arg(long)]
+        animation: Option<String>,
         /// Output file (.bvh, .glb or .gltf).
         #[arg(short, long)]
         output: PathBuf,
@@ -212,6 +221,9 @@ enum Command {
         /// Output file (.bvh, .bva, .glb or .gltf).
         #[arg(short, long)]
         output: PathBuf,
+        /// The animation of a glTF file to write (default: its first).
+        #[arg(long)]
+        animation: Option<String>,
     },
     /// Renders clips and models to PNG headlessly (wgpu on Vulkan; Mesa lavapipe without a GPU).
     Render {
@@ -311,10 +323,13 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Info { files, json } => commands::info(&files, json),
-        Command::Pose { files, frame, json: _ } => commands::pose(&files, frame),
-        Command::Convert { inputs, output } => commands::convert(&inputs, &output),
-        Command::Retarget { source, onto, map, save_map, reference, output } => {
+        Command::Pose { files, frame, time, animation, json: _ } => {
+            commands::pose(&files, frame, time, animation.as_deref())
+        }
+        Command::Convert { inputs, output, animation } => commands::convert(&inputs, &output, animation.as_deref()),
+        Command::Retarget { source, onto, map, save_map, reference, animation, output } => {
             commands::retarget(&commands::RetargetRequest {
+                animation: animation.as_deref(),
                 source: &source,
                 onto: &onto,
                 map: map.as_deref(),

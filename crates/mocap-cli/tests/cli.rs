@@ -578,3 +578,95 @@ fn capture_turns_an_md2_into_bvh_with_a_report_a_rig_and_the_frame_layout() {
     assert!(!o.status.success() && stderr(&o).contains("num_xyz is 0"), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A GLB of the walk with a second animation (the first one's channels under
+/// another name), written by `mocap convert` and edited as JSON.
+fn two_take_glb(dir: &Path) -> PathBuf {
+    let walk = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bvh");
+    let glb = dir.join("walk.glb");
+    let out = mocap(&["convert", walk.to_str().unwrap(), "-o", glb.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let bytes = std::fs::read(&glb).unwrap();
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let mut json: Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    let mut second = json["animations"][0].clone();
+    second["name"] = "walk again".into();
+    json["animations"].as_array_mut().unwrap().push(second);
+    let mut text = serde_json::to_vec(&json).unwrap();
+    while text.len() % 4 != 0 {
+        text.push(b' ');
+    }
+    let bin = &bytes[20 + json_len..];
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend(((12 + 8 + text.len() + bin.len()) as u32).to_le_bytes());
+    out.extend((text.len() as u32).to_le_bytes());
+    out.extend(b"JSON");
+    out.extend(&text);
+    out.extend(bin);
+    let path = dir.join("two.glb");
+    std::fs::write(&path, out).unwrap();
+    path
+}
+
+#[test]
+fn gltf_files_have_info_poses_by_animation_and_convert_and_retarget() {
+    let dir = tempfile::tempdir().unwrap();
+    let glb = two_take_glb(dir.path());
+    let g = glb.to_str().unwrap();
+    let out = mocap(&["info", g, "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let info: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(info["format"], "gltf");
+    let names: Vec<&str> = info["gltf"]["animations"].as_array().unwrap().iter().map(|a| a["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["walk", "walk again"]);
+    assert!((info["gltf"]["animations"][1]["duration"].as_f64().unwrap() - 2.2).abs() < 1e-3);
+    assert_eq!(info["gltf"]["skins"][0]["joints"], info["joints"]);
+    assert!(info["gltf"]["vertices"].as_u64().unwrap() > 1000);
+    assert!((info["fps"].as_f64().unwrap() - 30.0).abs() < 1e-3, "the key rate");
+
+    // A pose at a time of a named animation; an unknown name lists the names.
+    let out = mocap(&["pose", g, "--time", "0.5", "--animation", "walk again", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let pose: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(pose["animation"], "walk again");
+    assert_eq!(pose["joints"][0]["name"], "Hips");
+    let out = mocap(&["pose", g, "--animation", "run"]);
+    assert!(!out.status.success() && stderr(&out).contains("the file has: walk, walk again"), "{}", stderr(&out));
+
+    // To BVH by animation; and a BVH motion onto the GLB keeps its mesh.
+    let bvh = dir.path().join("again.bvh");
+    let out = mocap(&["convert", g, "--animation", "walk again", "-o", bvh.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(std::fs::read_to_string(&bvh).unwrap().contains("Frames: 67"));
+    let bow = dir.path().join("bow.glb");
+    let walk = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bvh");
+    let out = mocap(&["retarget", walk.to_str().unwrap(), "--onto", g, "-o", bow.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let out = mocap(&["info", bow.to_str().unwrap(), "--json"]);
+    let onto: Value = serde_json::from_str(&stdout(&out)).unwrap();
+    assert_eq!(onto["gltf"]["vertices"], info["gltf"]["vertices"], "the character's own mesh");
+    assert_eq!(onto["gltf"]["animations"][0]["name"], "walk", "named after the source");
+    assert_eq!(onto["joints"], info["joints"]);
+}
+
+#[test]
+fn a_gltf_finds_its_bin_beside_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let walk = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bvh");
+    let gltf = dir.path().join("walk.gltf");
+    assert!(mocap(&["convert", walk.to_str().unwrap(), "-o", gltf.to_str().unwrap()]).status.success());
+    let mut json: Value = serde_json::from_slice(&std::fs::read(&gltf).unwrap()).unwrap();
+    let uri = json["buffers"][0]["uri"].as_str().unwrap().to_owned();
+    use base64::Engine as _;
+    let data = base64::engine::general_purpose::STANDARD.decode(uri.split_once(',').unwrap().1).unwrap();
+    std::fs::write(dir.path().join("walk data.bin"), data).unwrap();
+    json["buffers"][0]["uri"] = "walk%20data.bin".into();
+    std::fs::write(&gltf, serde_json::to_vec(&json).unwrap()).unwrap();
+    let out = mocap(&["info", gltf.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(stdout(&out).contains("frames:     67"), "{}", stdout(&out));
+    std::fs::remove_file(dir.path().join("walk data.bin")).unwrap();
+    let out = mocap(&["info", gltf.to_str().unwrap()]);
+    assert!(!out.status.success() && stderr(&out).contains("buffers[0]") && stderr(&out).contains("walk data.bin"));
+}

@@ -31,6 +31,8 @@ pub struct SkinnedVertex {
     pub joints: [u32; 4],
     /// Weights (summing to 1).
     pub weights: [f32; 4],
+    /// sRGB colour, multiplied with the draw's tint (white for a plain body).
+    pub color: [u8; 4],
 }
 
 /// A mesh bound to joints, as the renderer draws it: closed surfaces whose
@@ -87,9 +89,22 @@ impl SkinnedMeshData {
                 normal: normals[i].to_array(),
                 joints: joints[i].map(|j| j.min(joint_count_u32.saturating_sub(1))),
                 weights: weights[i],
+                color: [255; 4],
             })
             .collect();
         Ok(SkinnedMeshData { vertices, indices, joint_count: joint_count_u32, joint_boxes })
+    }
+
+    /// The same mesh with a colour per vertex (sRGB; a character's own look:
+    /// its material's base colour and texture); refused unless one per vertex.
+    pub fn with_colors(mut self, colors: &[[u8; 4]]) -> Result<SkinnedMeshData, String> {
+        if colors.len() != self.vertices.len() {
+            return Err("one colour per vertex".into());
+        }
+        for (v, c) in self.vertices.iter_mut().zip(colors) {
+            v.color = *c;
+        }
+        Ok(self)
     }
 
     /// Joints the mesh is bound to (matrices a draw needs).
@@ -149,8 +164,8 @@ const INSTANCE_SIZE: u64 = std::mem::size_of::<Instance>() as u64;
 
 /// Vertex buffer layouts of the skinned pipeline: the mesh, then the instance.
 pub(crate) fn buffer_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
-    const VERTEX: [wgpu::VertexAttribute; 4] =
-        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32x4, 3 => Float32x4];
+    const VERTEX: [wgpu::VertexAttribute; 5] =
+        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32x4, 3 => Float32x4, 6 => Unorm8x4];
     const INSTANCE: [wgpu::VertexAttribute; 2] = wgpu::vertex_attr_array![4 => Uint32x4, 5 => Float32x4];
     [
         Some(wgpu::VertexBufferLayout {

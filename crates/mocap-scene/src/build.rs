@@ -78,7 +78,9 @@ pub fn push_actor(scene: &mut Scene, actor: &ActorDraw, style: &SceneStyle) {
         return;
     }
     // Body mode draws the skinned body; a skeleton without one keeps its capsules.
-    let body = actor.drawable.built_body().filter(|_| style.mode == DrawMode::Body);
+    // A character's own look is drawn in every mode but sticks, in place of the bones.
+    let own = actor.drawable.built_body().filter(|b| b.own && style.mode != DrawMode::Sticks);
+    let body = own.or(actor.drawable.built_body().filter(|_| style.mode == DrawMode::Body));
     let mode = if style.mode == DrawMode::Body && body.is_none() { DrawMode::Capsules } else { style.mode };
     if let Some(body) = body {
         let mut matrices = Vec::with_capacity(body.inverse_bind.len());
@@ -87,9 +89,14 @@ pub fn push_actor(scene: &mut Scene, actor: &ActorDraw, style: &SceneStyle) {
             mesh: body.mesh.clone(),
             coarse: body.coarse.clone(),
             matrices,
-            tint: actor.color,
+            tint: if body.own { [255; 4] } else { actor.color },
             weights_view: style.show_weights,
         });
+        if body.own {
+            // The look stands for the bones; joints and axes still show on request.
+            push_overlays(scene, actor, style);
+            return;
+        }
     }
     let figure_style = FigureStyle {
         mode,
@@ -100,6 +107,12 @@ pub fn push_actor(scene: &mut Scene, actor: &ActorDraw, style: &SceneStyle) {
         highlight: actor.selected.map(|j| (j, HIGHLIGHT_COLOR)),
     };
     push_figure(scene, figure, actor.pose, &figure_style);
+    push_overlays(scene, actor, style);
+}
+
+/// Each joint's axes when asked for, and a correction's ghost.
+fn push_overlays(scene: &mut Scene, actor: &ActorDraw, style: &SceneStyle) {
+    let figure = &actor.drawable.figure;
     if style.show_axes {
         // Joints the figure leaves out (End Sites, simplified huge figures) have no marker.
         for (joint, t) in figure.iter().zip(actor.pose) {

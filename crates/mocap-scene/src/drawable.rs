@@ -16,6 +16,9 @@ pub struct Body {
     pub coarse: Option<Arc<SkinnedMeshData>>,
     /// One inverse bind matrix per joint (file units).
     pub inverse_bind: Vec<Mat4>,
+    /// The character's own look (a glTF mesh, coloured per vertex), not a
+    /// generated body: drawn untinted, in every mode but sticks.
+    pub own: bool,
 }
 
 /// What one actor is drawn with.
@@ -41,7 +44,9 @@ impl Drawable {
                 let mut figure = mocap_render::figure(joints.iter().map(|j| (j.parent, !j.is_end_site())));
                 let bind: Vec<Vec3> = clip.bind_pose().iter().map(|t| t.translation).collect();
                 mocap_render::size_figure(&mut figure, &bind, extent);
-                Drawable { figure, ..Drawable::default() }
+                let look = clip.character.as_ref().and_then(|c| c.look.as_ref());
+                let body = look.map(|look| Body::from_look(look, clip.skeleton().len()));
+                Drawable { figure, body, ..Drawable::default() }
             }
             Asset::Model(model) => Drawable { mesh: mesh_data(model), ..Drawable::default() },
         }
@@ -106,7 +111,17 @@ impl Body {
         };
         let mesh = mesh_of(skin)?;
         let coarse = coarse.and_then(mesh_of).map(Arc::new);
-        Some(Body { mesh: Arc::new(mesh), coarse, inverse_bind: skin.inverse_bind().to_vec() })
+        Some(Body { mesh: Arc::new(mesh), coarse, inverse_bind: skin.inverse_bind().to_vec(), own: false })
+    }
+
+    /// The renderer's copy of a character's own look (its vertex colours kept);
+    /// `None` when the renderer cannot take it.
+    pub fn from_look(look: &mocap::model::character::Look, joints: usize) -> Option<Body> {
+        let mut body = Body::from_skin(&look.skin, None, joints)?;
+        let mesh = Arc::try_unwrap(body.mesh).ok()?.with_colors(&look.colors).ok()?;
+        body.mesh = Arc::new(mesh);
+        body.own = true;
+        Some(body)
     }
 }
 

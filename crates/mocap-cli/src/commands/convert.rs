@@ -6,14 +6,16 @@ use super::*;
 /// joint's world transform a segment) or glTF (`.glb`, `.gltf`: skeleton, skin,
 /// generated body and animation, metres and Y up). What the target cannot keep
 /// is said on stderr.
-pub fn convert(inputs: &[PathBuf], output: &Path) -> Result<ExitCode, String> {
+pub fn convert(inputs: &[PathBuf], output: &Path, animation: Option<&str>) -> Result<ExitCode, String> {
     let ext = output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    let clip = read_clip(inputs)?;
+    let clip = read_take(inputs, animation)?;
     if let Some(kind @ ("glb" | "gltf")) = ext.as_deref() {
-        let name = inputs
-            .last()
-            .and_then(|p| p.file_stem())
-            .map_or_else(|| "motion".to_owned(), |s| s.to_string_lossy().into_owned());
+        let name = clip.take_name().map(str::to_owned).unwrap_or_else(|| {
+            inputs
+                .last()
+                .and_then(|p| p.file_stem())
+                .map_or_else(|| "motion".to_owned(), |s| s.to_string_lossy().into_owned())
+        });
         let options = mocap::formats::gltf::Options { name, body: true };
         let bytes = match kind {
             "glb" => mocap::formats::gltf::to_glb(&clip, &options),

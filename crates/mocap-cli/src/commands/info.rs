@@ -65,7 +65,7 @@ pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
     let units = clip.units_along(up);
     let warnings: Vec<String> = clip.warnings.iter().map(ToString::to_string).collect();
     if as_json {
-        return print_json(&json!({
+        let mut value = json!({
             "file": path,
             "skeletons": roots.len(),
             "roots": roots,
@@ -82,10 +82,18 @@ pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
             "angle_unit": clip.motion().angle_unit().name(),
             "metadata": clip.metadata.iter().map(|(k, v)| json!([k, v])).collect::<Vec<_>>(),
             "warnings": warnings,
-        }));
+        });
+        if let Some(character) = &clip.character {
+            value["gltf"] = gltf_info(character);
+            value["format"] = json!("gltf");
+        }
+        return print_json(&value);
     }
     let mut out = std::io::stdout().lock();
     let _ = writeln!(out, "file:       {path}");
+    if let Some(character) = &clip.character {
+        gltf_lines(character, &mut out);
+    }
     let _ = writeln!(out, "skeletons:  {} ({})", roots.len(), roots.join(", "));
     let _ = writeln!(out, "joints:     {joints} (+{end_sites} End Sites)");
     let _ = writeln!(out, "channels:   {}", skeleton.channel_count());
@@ -109,18 +117,29 @@ pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// `mocap pose`.
-pub fn pose(paths: &[PathBuf], frame: usize) -> Result<ExitCode, String> {
-    let clip = read_clip(paths)?;
-    if frame >= clip.frame_count().max(1) {
-        return Err(format!(
-            "{}: frame {frame} is out of range (the clip has {} frames)",
-            shown(paths),
-            clip.frame_count()
-        ));
-    }
+/// `mocap pose`: every joint's world position at a frame, or at a time (sampled
+/// between frames), of the glTF animation named when one is.
+pub fn pose(paths: &[PathBuf], frame: usize, time: Option<f64>, animation: Option<&str>) -> Result<ExitCode, String> {
+    let clip = read_take(paths, animation)?;
     let mut positions = Vec::new();
-    clip.world_positions_into(frame, &mut positions);
+    let (frame, time) = match time {
+        Some(t) if !(t.is_finite() && t >= 0.0) => return Err(format!("--time {t}: a time in seconds, 0 or more")),
+        Some(t) => {
+            clip.sample_world_positions_into(t, mocap::Interpolation::Linear, &mut positions);
+            (clip.timeline().frame_at(t), t)
+        }
+        None => {
+            if frame >= clip.frame_count().max(1) {
+                return Err(format!(
+                    "{}: frame {frame} is out of range (the clip has {} frames)",
+                    shown(paths),
+                    clip.frame_count()
+                ));
+            }
+            clip.world_positions_into(frame, &mut positions);
+            (frame, clip.timeline().time_of(frame))
+        }
+    };
     let joints: Vec<Value> = clip
         .skeleton()
         .joints()
@@ -128,6 +147,46 @@ pub fn pose(paths: &[PathBuf], frame: usize) -> Result<ExitCode, String> {
         .zip(&positions)
         .map(|(j, p)| json!({ "name": j.name, "parent": j.parent, "end_site": j.is_end_site(), "position": vec3(*p) }))
         .collect();
-    let time = clip.timeline().time_of(frame);
-    print_json(&json!({ "frame": frame, "time": time, "joints": joints }))
+    let mut out = json!({ "frame": frame, "time": time, "joints": joints });
+    if let Some(name) = clip.take_name() {
+        out["animation"] = json!(name);
+    }
+    print_json(&out)
+}
+
+/// What `mocap info` adds for a glTF file: meshes, skins, animations, extensions.
+fn gltf_info(character: &mocap::model::character::Character) -> Value {
+    let s = &character.summary;
+    json!({
+        "nodes": s.nodes,
+        "scenes": s.scenes,
+        "meshes": s.meshes.iter().map(|(n, p, v)| json!({ "name": n, "primitives": p, "vertices": v })).collect::<Vec<_>>(),
+        "vertices": s.meshes.iter().map(|m| m.2).sum::<usize>(),
+        "skins": s.skins.iter().map(|(n, j)| json!({ "name": n, "joints": j })).collect::<Vec<_>>(),
+        "animations": s.animations.iter().map(|(n, d, c)| json!({ "name": n, "duration": d, "channels": c })).collect::<Vec<_>>(),
+        "extensions_used": s.extensions_used,
+        "extensions_required": s.extensions_required,
+        "drawn_vertices": character.look.as_ref().map_or(0, |l| l.skin.positions().len()),
+    })
+}
+
+/// The glTF lines of `mocap info`'s text.
+fn gltf_lines(character: &mocap::model::character::Character, out: &mut impl Write) {
+    let s = &character.summary;
+    let _ = writeln!(out, "format:     glTF 2.0 ({} nodes, {} scenes)", s.nodes, s.scenes);
+    for (name, primitives, vertices) in &s.meshes {
+        let _ = writeln!(out, "mesh:       {name} ({primitives} primitives, {vertices} vertices)");
+    }
+    for (name, joints) in &s.skins {
+        let _ = writeln!(out, "skin:       {name} ({joints} joints)");
+    }
+    for (name, duration, channels) in &s.animations {
+        let _ = writeln!(out, "animation:  {name} ({duration:.3} s, {channels} channels)");
+    }
+    if !s.extensions_required.is_empty() {
+        let _ = writeln!(out, "requires:   {}", s.extensions_required.join(", "));
+    }
+    if !s.extensions_used.is_empty() {
+        let _ = writeln!(out, "uses:       {}", s.extensions_used.join(", "));
+    }
 }

@@ -82,9 +82,76 @@ fn load_files(mut files: Vec<(PathBuf, Vec<u8>)>) -> Result<Vec<Loaded>, String>
             files.insert(0, (skeleton, bytes));
         }
     }
+    add_gltf_companions(&mut files);
     let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
     let inputs: Vec<Input> = files.iter().zip(&names).map(|((_, bytes), name)| Input { name, bytes }).collect();
     mocap::load(&inputs).into_iter().map(|r| r.map_err(|e| e.to_string())).collect()
+}
+
+/// [`read_clip`], on the glTF animation named `animation` when one is given.
+fn read_take(paths: &[PathBuf], animation: Option<&str>) -> Result<Clip, String> {
+    let mut clip = read_clip(paths)?;
+    if let Some(name) = animation
+        && !clip.set_take(name)
+    {
+        let names: Vec<&str> = clip.takes().iter().map(|t| t.name.as_str()).collect();
+        return Err(if names.is_empty() {
+            format!("{}: --animation {name}: only glTF files have named animations", shown(paths))
+        } else {
+            format!("{}: no animation named `{name}`; the file has: {}", shown(paths), names.join(", "))
+        });
+    }
+    Ok(clip)
+}
+
+/// The `.bin` buffers and images a `.gltf` names by relative URI, read from
+/// beside it when they are there and not given already (as an AMC finds its ASF).
+fn add_gltf_companions(files: &mut Vec<(PathBuf, Vec<u8>)>) {
+    let mut extra = Vec::new();
+    for (path, bytes) in files.iter() {
+        if bytes.starts_with(b"glTF") || !mocap::formats::gltf::sniff(bytes) {
+            continue;
+        }
+        let Ok(json) = serde_json::from_slice::<Value>(bytes) else { continue };
+        let uris = ["buffers", "images"]
+            .iter()
+            .flat_map(|k| json.get(*k).and_then(Value::as_array).cloned().unwrap_or_default())
+            .filter_map(|v| v.get("uri").and_then(Value::as_str).map(str::to_owned))
+            .filter(|u| !u.starts_with("data:"));
+        for uri in uris {
+            let decoded = percent_decode(&uri);
+            let beside = path.parent().unwrap_or(Path::new("")).join(&decoded);
+            let given = |p: &Path| p.file_name() == beside.file_name();
+            if files.iter().any(|(p, _)| given(p)) || extra.iter().any(|(p, _): &(PathBuf, Vec<u8>)| given(p)) {
+                continue;
+            }
+            if let Ok(data) = std::fs::read(&beside) {
+                extra.push((beside, data));
+            }
+        }
+    }
+    files.extend(extra);
+}
+
+/// `%20` and the like in a URI, decoded.
+fn percent_decode(uri: &str) -> String {
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = bytes.get(i + 1..i + 3).and_then(|h| std::str::from_utf8(h).ok()).and_then(|h| u8::from_str_radix(h, 16).ok());
+        match (bytes[i], hex) {
+            (b'%', Some(b)) => {
+                out.push(b);
+                i += 3;
+            }
+            (b, _) => {
+                out.push(b);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
 }
 
 /// Reads the files of one clip (a motion file, or an Acclaim skeleton with one motion).

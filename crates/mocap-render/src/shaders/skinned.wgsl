@@ -19,6 +19,8 @@ struct SkinnedVertex {
     // Instance: first matrix of this draw (x); linear tint (rgb) and 1 for the weights view (w).
     @location(4) base: vec4<u32>,
     @location(5) tint_mode: vec4<f32>,
+    // The vertex's own sRGB colour (white for a generated body).
+    @location(6) color: vec4<f32>,
 };
 
 struct Out {
@@ -90,7 +92,10 @@ fn vs_main(v: SkinnedVertex) -> Out {
         out.color = joint_color(v.joints.x) * v.weights.x + joint_color(v.joints.y) * v.weights.y
             + joint_color(v.joints.z) * v.weights.z + joint_color(v.joints.w) * v.weights.w;
     } else {
-        out.color = v.tint_mode.rgb;
+        // sRGB to linear (the tint is linear already).
+        let c = v.color.rgb;
+        let linear = select(pow((c + 0.055) / 1.055, vec3<f32>(2.4)), c / 12.92, c <= vec3<f32>(0.04045));
+        out.color = v.tint_mode.rgb * linear;
     }
     return out;
 }

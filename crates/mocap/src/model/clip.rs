@@ -185,6 +185,15 @@ impl Clip {
         self
     }
 
+    /// Keeps `other`'s character (look and takes) on this clip, an edit of it,
+    /// when the two skeletons are the same joints and channels.
+    pub fn keep_character_of(&mut self, other: &Clip) {
+        if self.skeleton == other.skeleton {
+            self.character = other.character.clone();
+            self.take = other.take;
+        }
+    }
+
     /// The character's animations (empty for motion-only formats).
     pub fn takes(&self) -> &[Take] {
         self.character.as_deref().map_or(&[], |c| c.takes.as_slice())

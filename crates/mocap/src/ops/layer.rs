@@ -243,6 +243,7 @@ pub fn apply(base: &Clip, layer_clip: &Clip, layer: &Layer) -> Result<Clip, Laye
         .with_angle_unit(unit);
     let mut out = Clip::new(skeleton.clone(), motion).map_err(|e| LayerError(e.to_string()))?;
     out.metadata = base.metadata.clone();
+    out.keep_character_of(&base);
     Ok(out)
 }
 

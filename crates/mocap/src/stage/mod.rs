@@ -288,13 +288,17 @@ impl<E> Stage<E> {
         true
     }
 
-    /// Plays animation `name` (`all`: every frame) on model `index`, with its bounds
-    /// (so the floor and lanes follow it); false (no change) when there is no such
-    /// model or animation.
+    /// Plays animation `name` on actor `index` — a model's named frames (`all`:
+    /// every frame), or one of a character clip's takes ([`crate::Clip::set_take`])
+    /// — with its bounds (so the floor and lanes follow it); false (no change)
+    /// when there is no such actor or animation.
     pub fn set_animation(&mut self, index: usize, name: &str) -> bool {
         let Some(actor) = self.actors.get_mut(index) else { return false };
-        let Some(model) = actor.asset.model_mut() else { return false };
-        if !model.set_animation_by_name(name) {
+        let done = match &mut actor.asset {
+            crate::Asset::Model(model) => model.set_animation_by_name(name),
+            crate::Asset::Clip(clip) => clip.set_take(name),
+        };
+        if !done {
             return false;
         }
         actor.bounds = actor.asset.bounds();

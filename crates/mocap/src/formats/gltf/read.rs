@@ -163,16 +163,17 @@ fn frames_of(tracks: &[Track]) -> (f64, usize) {
         .filter(|d| *d > 0.0)
         .fold(f64::INFINITY, f64::min);
     let mut step = if mean.is_finite() { mean.clamp(1.0 / 240.0, 1.0 / 24.0) } else { 1.0 / 30.0 };
-    if let Some(fps) = [24.0, 25.0, 30.0, 48.0, 50.0, 60.0, 90.0, 100.0, 120.0, 240.0]
+    let common = [24.0, 25.0, 30.0, 48.0, 50.0, 60.0, 90.0, 100.0, 120.0, 240.0]
         .into_iter()
-        .find(|fps: &f64| ((1.0 / step) / fps - 1.0).abs() < 1e-3)
-    {
+        .find(|fps: &f64| ((1.0 / step) / fps - 1.0).abs() < 1e-3);
+    if let Some(fps) = common {
         step = 1.0 / fps;
     }
     if !(end > 0.0) {
         return (1.0 / 30.0, 1);
     }
     let intervals = (end / step).round().max(1.0);
+    // The last key on the last frame: the file's own rate (0.033333 is not 1/30).
     (end / intervals, intervals as usize + 1)
 }
 

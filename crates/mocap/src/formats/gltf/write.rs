@@ -128,7 +128,13 @@ fn document(clip: &Clip, options: &Options, inline: Option<()>) -> Result<(Value
         .collect();
     let mut roots: Vec<usize> = (0..n).filter(|&i| parent_of(clip, i).is_none()).collect();
 
-    let inverse_bind: Vec<f32> = bind.iter().flat_map(|t| inverse_bind_matrix(t).to_cols_array()).collect();
+    // A character's own look is written as it was read (its file space is the
+    // written one: metres, Y up), with its own inverse bind matrices.
+    let look = own_look(clip, &convert);
+    let inverse_bind: Vec<f32> = match look {
+        Some(look) => look.skin.inverse_bind().iter().flat_map(|m| m.to_cols_array()).collect(),
+        None => bind.iter().flat_map(|t| inverse_bind_matrix(t).to_cols_array()).collect(),
+    };
     let ibm = accessor(&mut accessors, &mut bin, &inverse_bind, "MAT4", 5126, n, None);
     let mut document = json!({
         "asset": { "version": "2.0", "generator": "mocap (motion-capture viewer and editor)" },
@@ -140,8 +146,12 @@ fn document(clip: &Clip, options: &Options, inline: Option<()>) -> Result<(Value
         document["skins"][0]["skeleton"] = json!(root);
     }
 
+    let mesh = match look {
+        Some(look) => look_mesh(look),
+        None => body_mesh(clip, &bind, &convert),
+    };
     if options.body
-        && let Some(mesh) = body_mesh(clip, &bind, &convert)
+        && let Some(mesh) = mesh
     {
         let positions: Vec<f32> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
         let (min, max) = bounds(&mesh.positions);
@@ -155,15 +165,18 @@ fn document(clip: &Clip, options: &Options, inline: Option<()>) -> Result<(Value
         let weights_0 = vertex_accessor(&mut accessors, &mut bin, &weights, "VEC4", mesh.weights.len(), None);
         let indices_at = bin.u32s(&mesh.indices);
         let indices = push_accessor(&mut accessors, indices_at, "SCALAR", 5125, mesh.indices.len(), None);
+        let mut attributes =
+            json!({ "POSITION": position, "NORMAL": normal, "JOINTS_0": joints_0, "WEIGHTS_0": weights_0 });
+        if let Some(look) = look {
+            let colors: Vec<f32> = look.colors.iter().flat_map(|c| c.map(|x| srgb_to_linear(x))).collect();
+            attributes["COLOR_0"] = json!(vertex_accessor(&mut accessors, &mut bin, &colors, "VEC4", look.colors.len(), None));
+        }
         document["meshes"] = json!([{
             "name": format!("{} body", options.name),
-            "primitives": [{
-                "attributes": { "POSITION": position, "NORMAL": normal, "JOINTS_0": joints_0, "WEIGHTS_0": weights_0 },
-                "indices": indices,
-                "material": 0,
-            }],
+            "primitives": [{ "attributes": attributes, "indices": indices, "material": 0 }],
         }]);
-        document["materials"] = json!([{ "name": "body", "pbrMetallicRoughness": { "baseColorFactor": [0.8, 0.8, 0.82, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.7 } }]);
+        let factor = if look.is_some() { [1.0, 1.0, 1.0, 1.0] } else { [0.8, 0.8, 0.82, 1.0] };
+        document["materials"] = json!([{ "name": "body", "pbrMetallicRoughness": { "baseColorFactor": factor, "metallicFactor": 0.0, "roughnessFactor": 0.7 } }]);
         nodes.push(json!({ "name": format!("{} body", options.name), "mesh": 0, "skin": 0 }));
         roots.push(nodes.len() - 1);
     }
@@ -357,6 +370,33 @@ fn body_mesh(clip: &Clip, bind: &[Transform], convert: &Convert) -> Option<BodyM
         joints,
         weights,
     })
+}
+
+/// The clip's character look, when it can be written as it is: one inverse bind
+/// matrix per joint, and the clip already in metres with Y up.
+fn own_look<'c>(clip: &'c Clip, convert: &Convert) -> Option<&'c crate::model::character::Look> {
+    let look = clip.character.as_ref()?.look.as_ref()?;
+    let same_space = convert.meters == 1.0 && convert.up.abs_diff_eq(Quat::IDENTITY, 1e-6);
+    (same_space && look.skin.inverse_bind().len() == clip.skeleton().len() && clip.skeleton().len() <= 65535)
+        .then_some(look)
+}
+
+/// A character's look as the written mesh.
+fn look_mesh(look: &crate::model::character::Look) -> Option<BodyMesh> {
+    let skin = &look.skin;
+    Some(BodyMesh {
+        positions: skin.positions().to_vec(),
+        normals: skin.normals().iter().map(|n| n.normalize_or(Vec3::Y)).collect(),
+        indices: skin.indices().to_vec(),
+        joints: skin.joints().iter().map(|js| js.map(|j| u16::try_from(j).unwrap_or(0))).collect(),
+        weights: skin.weights().to_vec(),
+    })
+}
+
+/// An sRGB byte as a linear float (glTF's `COLOR_0` is linear).
+fn srgb_to_linear(c: u8) -> f32 {
+    let c = c as f32 / 255.0;
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
 }
 
 /// Per-component minimum and maximum of `points`.

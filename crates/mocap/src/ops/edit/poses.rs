@@ -34,6 +34,7 @@ pub(super) fn rebuild(
     let mut out = Clip::new(skeleton, motion.with_angle_unit(clip.motion().angle_unit()))
         .map_err(|e| EditError(e.to_string()))?;
     out.metadata = clip.metadata.clone();
+    out.keep_character_of(clip);
     Ok(out)
 }
 
