@@ -57,8 +57,14 @@ impl ClipSummary {
             visible: c.visible,
             color: c.extra.color,
             offset: c.placement().to_array(),
-            animation: model.map(|m| m.animation_name().to_owned()),
-            animations: model.map_or(Vec::new(), |m| m.mesh.animations().iter().map(|a| a.name.clone()).collect()),
+            animation: model
+                .map(|m| m.animation_name().to_owned())
+                .or_else(|| c.clip().and_then(|clip| clip.take_name().map(str::to_owned))),
+            animations: match (model, c.clip()) {
+                (Some(m), _) => m.mesh.animations().iter().map(|a| a.name.clone()).collect(),
+                (None, Some(clip)) => clip.takes().iter().map(|t| t.name.clone()).collect(),
+                _ => Vec::new(),
+            },
             model_frame: model.zip(c.extra.morph).map(|(m, at)| (at.frame0, m.frame_name(at.frame0).to_owned())),
             skin: model.and_then(|m| m.skin.as_ref()).map(|s| s.name.clone()),
             corrected: c.extra.correction.is_some(),

@@ -99,6 +99,9 @@ pub fn rows(characters: &[Character], folds: &Folds) -> Vec<Row> {
             rows.push(Row::Animation(c));
             continue;
         };
+        if clip.takes().len() > 1 {
+            rows.push(Row::Animation(c));
+        }
         let children = &character.extra.children;
         stack.clear();
         stack.extend(clip.skeleton().roots().collect::<Vec<_>>().into_iter().rev().map(|r| (r, 0)));

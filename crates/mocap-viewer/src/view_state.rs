@@ -147,9 +147,13 @@ impl ViewState {
             parts.push(format!("offset={}", moved.join(";")));
         }
         let animations: Vec<String> = (viewer.stage.actors.iter().enumerate())
-            .filter_map(|(i, c)| Some((i, c.model()?)))
-            .filter(|(_, m)| m.animation().is_some())
-            .map(|(i, m)| format!("{}:{}", i + 1, percent_encode(m.animation_name())))
+            .filter_map(|(i, c)| match (c.model(), c.clip()) {
+                (Some(m), _) => m.animation().map(|_| (i, m.animation_name())),
+                // A character's take, when it is not the file's first.
+                (None, Some(clip)) => clip.take_name().filter(|n| clip.takes().first().is_some_and(|t| t.name != *n)).map(|n| (i, n)),
+                _ => None,
+            })
+            .map(|(i, name)| format!("{}:{}", i + 1, percent_encode(name)))
             .collect();
         if !animations.is_empty() {
             parts.push(format!("anim={}", animations.join(";")));

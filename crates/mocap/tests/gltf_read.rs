@@ -329,3 +329,56 @@ fn damaged_and_unsupported_files_get_located_messages() {
     // Not glTF at all, named .glb.
     fails(&[("not.glb", b"hello, this is not a model")], &["not.glb"]);
 }
+
+#[test]
+fn the_base_colour_texture_and_factor_colour_each_vertex() {
+    // A 2×2 PNG: red, green / blue, white; a quad whose corners sit on the texel
+    // centres (through KHR_texture_transform's scale and offset); factor ½ green.
+    let mut png = Vec::new();
+    let pixels: Vec<u8> = [[255, 0, 0, 255], [0, 255, 0, 255], [0, 0, 255, 255], [255, 255, 255, 255]].concat();
+    image::ImageEncoder::write_image(
+        image::codecs::png::PngEncoder::new(&mut png),
+        &pixels,
+        2,
+        2,
+        image::ExtendedColorType::Rgba8,
+    )
+    .unwrap();
+    let positions = floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0]);
+    let uvs = floats(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0]);
+    let mut bin = positions.clone();
+    bin.extend(&uvs);
+    let png_at = bin.len();
+    bin.extend(&png);
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let json = serde_json::json!({
+        "extensionsUsed": ["KHR_texture_transform"],
+        "scenes": [{ "nodes": [0] }],
+        "nodes": [{ "name": "quad", "mesh": 0 }],
+        "meshes": [{ "primitives": [{ "attributes": { "POSITION": 0, "TEXCOORD_0": 1 }, "indices": null, "material": 0 }] }],
+        "materials": [{ "pbrMetallicRoughness": {
+            "baseColorFactor": [1.0, 0.5, 1.0, 1.0],
+            "baseColorTexture": { "index": 0, "extensions": { "KHR_texture_transform": { "offset": [0.25, 0.25], "scale": [0.5, 0.5] } } }
+        } }],
+        "textures": [{ "source": 0, "sampler": 0 }],
+        "samplers": [{ "wrapS": 33071, "wrapT": 33071 }],
+        "images": [{ "bufferView": 2, "mimeType": "image/png" }],
+        "bufferViews": [
+            { "buffer": 0, "byteOffset": 0, "byteLength": 48 },
+            { "buffer": 0, "byteOffset": 48, "byteLength": 32 },
+            { "buffer": 0, "byteOffset": png_at, "byteLength": png.len() }
+        ],
+        "accessors": [
+            { "bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0] },
+            { "bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2" }
+        ]
+    });
+    let mut json = json;
+    json["meshes"][0]["primitives"][0].as_object_mut().unwrap().remove("indices");
+    let clip = read(&[("quad.gltf", &gltf_with(json, &bin))]).unwrap();
+    let look = clip.character.as_ref().unwrap().look.as_ref().unwrap();
+    // Linear ½ on green is sRGB 188.
+    assert_eq!(look.colors, vec![[255, 0, 0, 255], [0, 188, 0, 255], [0, 0, 255, 255], [255, 188, 255, 255]]);
+}

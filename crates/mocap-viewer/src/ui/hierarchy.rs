@@ -71,6 +71,10 @@ pub fn show(ui: &mut egui::Ui, view: &TreeView, out: &mut Vec<Command>) {
                             if let Some(name) = animation_row(ui, c, model) {
                                 animation = Some((c, name));
                             }
+                        } else if let Some(clip) = view.characters.get(c).and_then(|a| a.clip()) {
+                            if let Some(name) = take_row(ui, c, clip) {
+                                animation = Some((c, name));
+                            }
                         }
                     }
                     Row::Joint { character, joint, depth } => {
@@ -175,6 +179,26 @@ fn animation_row(ui: &mut egui::Ui, index: usize, model: &mocap::Model) -> Optio
                 let label = format!("{} ({}–{})", a.name, a.first, a.last);
                 if ui.selectable_label(current == a.name, label).clicked() {
                     picked = Some(a.name.clone());
+                }
+            }
+        });
+    });
+    picked
+}
+
+/// A character's animation chooser (the takes of a glTF file, with their
+/// lengths). Returns the name picked this frame, if any.
+fn take_row(ui: &mut egui::Ui, index: usize, clip: &mocap::Clip) -> Option<String> {
+    let mut picked = None;
+    ui.horizontal(|ui| {
+        ui.add_space(INDENT);
+        ui.label("animation").on_hover_text("Which of the file's animations plays (looped on the timeline)");
+        let current = clip.take_name().unwrap_or("").to_owned();
+        egui::ComboBox::from_id_salt(("take", index)).selected_text(&current).height(400.0).show_ui(ui, |ui| {
+            for take in clip.takes() {
+                let label = format!("{} ({:.2} s)", take.name, take.motion.timeline().duration());
+                if ui.selectable_label(current == take.name, label).clicked() {
+                    picked = Some(take.name.clone());
                 }
             }
         });

@@ -6,7 +6,7 @@
 //! largest influences of sets 0 and 1, renormalised) and the skins' inverse bind
 //! matrices; a mesh on a plain node moves rigidly with its nearest joint. Normals
 //! are computed when absent. Each vertex's colour is the material's base colour
-//! factor times its base-colour texture (PNG or JPEG, through
+//! factor times its `COLOR_0` times its base-colour texture (PNG or JPEG, through
 //! `KHR_texture_transform` and the sampler's wrap modes) at the vertex.
 
 use super::accessor::{floats, integers};
@@ -166,6 +166,12 @@ fn add_primitive(
     let normals: Option<Vec<Vec3>> =
         attribute(gltf::Semantic::Normals, 3)?.map(|v| v.chunks_exact(3).map(Vec3::from_slice).collect());
     let uvs: Option<Vec<f32>> = attribute(gltf::Semantic::TexCoords(0), 2)?;
+    let vertex_colors: Option<Vec<f32>> = match primitive.get(&gltf::Semantic::Colors(0)) {
+        Some(a) if a.dimensions() == gltf::accessor::Dimensions::Vec3 => attribute(gltf::Semantic::Colors(0), 3)?
+            .map(|c| c.chunks_exact(3).flat_map(|c| [c[0], c[1], c[2], 1.0]).collect()),
+        Some(_) => attribute(gltf::Semantic::Colors(0), 4)?,
+        None => None,
+    };
     let mut influences: Vec<Vec<(u32, f32)>> = vec![Vec::new(); count];
     if let Binding::Skinned(map) = binding {
         for set in 0..2 {
@@ -228,6 +234,10 @@ fn add_primitive(
         merged.joints.push(joints);
         merged.weights.push(weights);
         let uv = uvs.as_ref().map_or(Vec2::ZERO, |u| Vec2::new(u[2 * v], u[2 * v + 1]));
+        let mut factor = factor;
+        if let Some(c) = &vertex_colors {
+            (0..4).for_each(|k| factor[k] *= c.get(4 * v + k).copied().unwrap_or(1.0));
+        }
         merged.colors.push(color(factor, texture, uv));
     }
     if unweighted > 0 {

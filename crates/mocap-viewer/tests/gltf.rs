@@ -1,0 +1,87 @@
+//! glTF characters in the viewer (no GPU): a GLB with two animations opens as
+//! one character whose own look is drawn untinted in the default look, its
+//! animations are chosen like a model's (menu, command, fragment), and sticks
+//! mode shows its skeleton.
+
+use mocap::formats::gltf::{Options, to_glb};
+use mocap_render::DrawMode;
+use mocap_viewer::{Command, OpenMode, Viewer};
+
+const WALK: &[u8] = include_bytes!("../../../data/walk.bvh");
+
+/// The walk as GLB with a second animation: the first one, turned 90° about Y
+/// at the hips (so the two differ).
+fn two_takes() -> Vec<u8> {
+    let clip = mocap::formats::bvh::parse(WALK).unwrap();
+    let glb = to_glb(&clip, &Options { name: "walk".into(), body: true }).unwrap();
+    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let mut json: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+    let mut second = json["animations"][0].clone();
+    second["name"] = "turned".into();
+    // Keep only the channels of nodes other than the hips' rotation: the hips hold their rest rotation.
+    let channels: Vec<serde_json::Value> = second["channels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| !(c["target"]["node"] == 0 && c["target"]["path"] == "rotation"))
+        .cloned()
+        .collect();
+    second["channels"] = channels.into();
+    json["animations"].as_array_mut().unwrap().push(second);
+    let mut text = serde_json::to_vec(&json).unwrap();
+    while text.len() % 4 != 0 {
+        text.push(b' ');
+    }
+    let bin = &glb[20 + json_len..];
+    let mut out = b"glTF".to_vec();
+    out.extend(2u32.to_le_bytes());
+    out.extend(((20 + text.len() + bin.len()) as u32).to_le_bytes());
+    out.extend((text.len() as u32).to_le_bytes());
+    out.extend(b"JSON");
+    out.extend(&text);
+    out.extend(bin);
+    out
+}
+
+#[test]
+fn a_glb_character_opens_with_its_look_and_its_animations() {
+    let glb = two_takes();
+    let mut v = Viewer::default();
+    let errors = v.open_files(&[("walk.glb", &glb)], OpenMode::Replace);
+    assert!(errors.is_empty(), "{errors:?}");
+    v.apply(Command::SetPlaying(false)).unwrap();
+    let s = v.snapshot();
+    assert_eq!(s.clips.len(), 1);
+    assert_eq!(s.clips[0].animations, ["walk", "turned"]);
+    assert_eq!(s.clips[0].animation.as_deref(), Some("walk"));
+    assert_eq!(s.clips[0].frames, 67);
+
+    // The default look draws the character's own mesh, untinted, and no capsules.
+    assert_eq!(v.state().settings.mode, DrawMode::default());
+    v.pose();
+    let scene = v.scene();
+    assert_eq!(scene.skinned.len(), 1, "its own look");
+    assert_eq!(scene.skinned[0].tint, [255; 4], "drawn in its own colours");
+    assert!(scene.capsules.is_empty(), "the look stands for the bones");
+    let vertices = scene.skinned[0].mesh.vertex_count();
+    assert!(vertices > 1000, "{vertices} vertices");
+    let at_walk = scene.skinned[0].matrices.clone();
+
+    // Another animation by command; the fragment carries it to a fresh page.
+    assert!(v.try_apply(Command::SetAnimation(0, "turned".into())).is_ok());
+    assert!(v.try_apply(Command::SetAnimation(0, "fly".into())).is_err());
+    v.apply(Command::Seek(10)).unwrap();
+    v.pose();
+    assert_ne!(v.scene().skinned[0].matrices, at_walk);
+    let fragment = v.state().view_fragment();
+    assert!(fragment.contains("anim=1:turned"), "{fragment}");
+    let mut again = Viewer::default();
+    again.open_files(&[("walk.glb", &glb)], OpenMode::Replace);
+    again.apply_fragment(&fragment);
+    assert_eq!(again.snapshot().clips[0].animation.as_deref(), Some("turned"));
+
+    // Sticks show the skeleton instead.
+    v.apply_fragment("mode=sticks");
+    v.pose();
+    assert!(v.scene().skinned.is_empty());
+}
