@@ -382,3 +382,22 @@ fn the_base_colour_texture_and_factor_colour_each_vertex() {
     // Linear ½ on green is sRGB 188.
     assert_eq!(look.colors, vec![[255, 0, 0, 255], [0, 188, 0, 255], [0, 0, 255, 255], [255, 188, 255, 255]]);
 }
+
+#[test]
+fn a_chain_of_200000_nodes_reads_without_recursion() {
+    let n = 200_000;
+    let nodes: Vec<serde_json::Value> = (0..n)
+        .map(|i| {
+            if i + 1 < n {
+                serde_json::json!({ "children": [i + 1], "translation": [0.0, 0.001, 0.0] })
+            } else {
+                serde_json::json!({ "translation": [0.0, 0.001, 0.0] })
+            }
+        })
+        .collect();
+    let json = serde_json::json!({ "asset": { "version": "2.0" }, "scenes": [{ "nodes": [0] }], "nodes": nodes });
+    let clip = read(&[("chain.gltf", &serde_json::to_vec(&json).unwrap())]).unwrap();
+    assert_eq!(clip.skeleton().len(), n);
+    let last = clip.world_positions(0)[n - 1];
+    assert!((last.y - 200.0).abs() < 1.0, "{last} (f32 sums drift over 200,000 joints)");
+}

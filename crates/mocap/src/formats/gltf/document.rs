@@ -60,6 +60,7 @@ pub fn parse(bytes: &[u8], resources: Resources<'_>) -> Result<Parsed, ParseErro
         ParseError::new(line, column, format!("not a glTF document: {e}"))
     })?;
     check_extensions(&root)?;
+    check_animations(&root)?;
     check_valid(&root)?;
     let document = gltf::Document::from_json_without_validation(root);
     let buffers = read_buffers(&document, blob, resources)?;
@@ -127,6 +128,40 @@ fn check_extensions(root: &json::Root) -> Result<(), ParseError> {
                      re-export it without that extension"
                 ),
             ));
+        }
+    }
+    Ok(())
+}
+
+/// What the `gltf` crate does not check of animations before its accessors
+/// unwrap them: each channel's target node and path, and each sampler's
+/// accessors and interpolation.
+fn check_animations(root: &json::Root) -> Result<(), ParseError> {
+    use json::validation::Checked;
+    let fail = |m: String| Err(ParseError::new(0, 0, m));
+    for (a, animation) in root.animations.iter().enumerate() {
+        for (c, channel) in animation.channels.iter().enumerate() {
+            let at = format!("animations[{a}].channels[{c}]");
+            if channel.sampler.value() >= animation.samplers.len() {
+                return fail(format!("{at}.sampler: sampler {} does not exist", channel.sampler.value()));
+            }
+            if channel.target.node.value() >= root.nodes.len() {
+                return fail(format!("{at}.target.node: node {} does not exist", channel.target.node.value()));
+            }
+            if matches!(channel.target.path, Checked::Invalid) {
+                return fail(format!("{at}.target.path: not translation, rotation, scale or weights"));
+            }
+        }
+        for (k, sampler) in animation.samplers.iter().enumerate() {
+            let at = format!("animations[{a}].samplers[{k}]");
+            for (what, index) in [("input", sampler.input.value()), ("output", sampler.output.value())] {
+                if index >= root.accessors.len() {
+                    return fail(format!("{at}.{what}: accessor {index} does not exist"));
+                }
+            }
+            if matches!(sampler.interpolation, Checked::Invalid) {
+                return fail(format!("{at}.interpolation: not LINEAR, STEP or CUBICSPLINE"));
+            }
         }
     }
     Ok(())
