@@ -618,7 +618,8 @@ fn gltf_files_have_info_poses_by_animation_and_convert_and_retarget() {
     assert!(out.status.success(), "{}", stderr(&out));
     let info: Value = serde_json::from_str(&stdout(&out)).unwrap();
     assert_eq!(info["format"], "gltf");
-    let names: Vec<&str> = info["gltf"]["animations"].as_array().unwrap().iter().map(|a| a["name"].as_str().unwrap()).collect();
+    let names: Vec<&str> =
+        info["gltf"]["animations"].as_array().unwrap().iter().map(|a| a["name"].as_str().unwrap()).collect();
     assert_eq!(names, ["walk", "walk again"]);
     assert!((info["gltf"]["animations"][1]["duration"].as_f64().unwrap() - 2.2).abs() < 1e-3);
     assert_eq!(info["gltf"]["skins"][0]["joints"], info["joints"]);

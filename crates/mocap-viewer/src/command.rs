@@ -188,6 +188,22 @@ pub enum Command {
     SetLayerDialog(crate::layer_dialog::LayerDialog),
     /// Close the Layer window.
     CloseLayerDialog,
+    /// Put character `source`'s motion on character `target`'s skeleton (and
+    /// look): the result opens as a new character.
+    Retarget {
+        /// The character whose motion is used.
+        source: usize,
+        /// The character that receives it.
+        target: usize,
+        /// Joint map and reference pose.
+        options: mocap::ops::retarget::Options,
+    },
+    /// Open the Retarget window for character `source`'s motion.
+    OpenRetargetDialog(usize),
+    /// Change what the Retarget window is set to (the window edited a copy).
+    SetRetargetDialog(crate::retarget_dialog::RetargetDialog),
+    /// Close the Retarget window.
+    CloseRetargetDialog,
     /// Start capturing the skeletal motion of model `index`.
     StartCapture(usize),
     /// Do the rest of the capture in progress now.

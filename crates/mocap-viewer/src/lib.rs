@@ -26,6 +26,7 @@ pub mod panels;
 pub mod playback;
 pub mod pose_scene;
 pub mod quality;
+pub mod retarget_dialog;
 pub mod rig_edit;
 pub mod selection;
 pub mod settings;

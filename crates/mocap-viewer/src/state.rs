@@ -44,6 +44,8 @@ pub struct AppState {
     pub tentacle: Option<Tentacle>,
     /// The Layer window, while it is open.
     pub layer_dialog: Option<LayerDialog>,
+    /// The Retarget window's settings, while it is open.
+    pub retarget_dialog: Option<crate::retarget_dialog::RetargetDialog>,
     /// A model capture in progress.
     pub capture_job: Option<CaptureJob>,
     /// What the last capture gave.

@@ -150,7 +150,9 @@ impl ViewState {
             .filter_map(|(i, c)| match (c.model(), c.clip()) {
                 (Some(m), _) => m.animation().map(|_| (i, m.animation_name())),
                 // A character's take, when it is not the file's first.
-                (None, Some(clip)) => clip.take_name().filter(|n| clip.takes().first().is_some_and(|t| t.name != *n)).map(|n| (i, n)),
+                (None, Some(clip)) => {
+                    clip.take_name().filter(|n| clip.takes().first().is_some_and(|t| t.name != *n)).map(|n| (i, n))
+                }
                 _ => None,
             })
             .map(|(i, name)| format!("{}:{}", i + 1, percent_encode(name)))

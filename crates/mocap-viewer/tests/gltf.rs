@@ -85,3 +85,31 @@ fn a_glb_character_opens_with_its_look_and_its_animations() {
     v.pose();
     assert!(v.scene().skinned.is_empty());
 }
+
+#[test]
+fn retarget_onto_a_glb_character_adds_it_wearing_the_look() {
+    let glb = two_takes();
+    let bow = std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bvh")).unwrap();
+    let mut v = Viewer::default();
+    assert!(v.open_files(&[("walk.glb", &glb)], OpenMode::Replace).is_empty());
+    assert!(v.open_files(&[("moves.bvh", &bow)], OpenMode::Add).is_empty());
+    v.apply(Command::SetPlaying(false)).unwrap();
+    // The Edit menu's entry opens the window on the current character (the BVH).
+    assert!(v.try_apply(Command::OpenRetargetDialog(1)).is_ok());
+    let dialog = v.state().retarget_dialog.clone().expect("the window is open");
+    assert_eq!(dialog.source, 1);
+    // A map naming no joint is refused and nothing opens.
+    let bad = mocap::ops::retarget::Options { map: vec![("Wing".into(), "Hips".into())], ..Default::default() };
+    assert!(v.try_apply(Command::Retarget { source: 1, target: 0, options: bad }).is_err());
+    assert_eq!(v.snapshot().clips.len(), 2);
+    v.try_apply(Command::Retarget { source: 1, target: 0, options: dialog.options() }).unwrap();
+    let s = v.snapshot();
+    assert_eq!(s.clips.len(), 3);
+    assert_eq!(s.clips[2].name, "moves.bvh on walk.glb");
+    assert_eq!(s.clips[2].joints, s.clips[0].joints, "exactly the target's skeleton");
+    assert_eq!(s.clips[2].frames, s.clips[1].frames, "the source's frames");
+    assert!(v.state().retarget_dialog.is_none(), "the window closes");
+    v.pose();
+    let looks = v.scene().skinned.iter().filter(|d| d.tint == [255; 4]).count();
+    assert_eq!(looks, 2, "the target and the result wear the glTF look");
+}

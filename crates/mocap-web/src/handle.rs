@@ -368,6 +368,34 @@ impl MocapViewer {
         .flatten()
     }
 
+    /// Puts character `source`'s motion on character `target`'s skeleton (and
+    /// look, for a glTF character): every mapped bone points where its source
+    /// bone points, the hips' path scaled by the legs. The result opens as a new
+    /// character (the last index). `map` lists explicit pairs as
+    /// `"Target=Source,Target2=Source2"` (an empty source leaves that target joint
+    /// out); other joints are matched by name across conventions. `reference` is
+    /// `"first-frame"` (default) or `"rest"`. Returns the error message, or
+    /// `undefined` when done.
+    pub fn retarget(&self, source: u32, target: u32, map: Option<String>, reference: Option<String>) -> Option<String> {
+        let mut pairs = Vec::new();
+        for item in map.as_deref().unwrap_or("").split(',').filter(|s| !s.trim().is_empty()) {
+            let Some((t, s)) = item.split_once('=') else {
+                return Some(format!("{item}: a map entry is Target=Source"));
+            };
+            pairs.push((t.trim().to_owned(), s.trim().to_owned()));
+        }
+        let reference = match reference.as_deref() {
+            None | Some("first-frame") => mocap::ops::retarget::Reference::FirstFrame,
+            Some("rest") => mocap::ops::retarget::Reference::Rest,
+            Some(other) => return Some(format!("reference {other}: expected first-frame or rest")),
+        };
+        let options = mocap::ops::retarget::Options { map: pairs, reference };
+        self.with_viewer(|v| {
+            v.try_apply(Command::Retarget { source: source as usize, target: target as usize, options }).err()
+        })
+        .flatten()
+    }
+
     /// Keys the poses corrected by dragging (Edit mode) at their frames: fading over
     /// `window` frames on each side (3 by default), or with `between` true
     /// interpolated from key to key (key-frame animation; the creator's default);

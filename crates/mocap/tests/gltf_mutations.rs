@@ -83,7 +83,9 @@ fn extreme_json_values_read_or_fail_cleanly() {
     while let Some((path, v)) = stack.pop() {
         match v {
             serde_json::Value::Object(m) => m.iter().for_each(|(k, v)| stack.push((format!("{path}/{k}"), v))),
-            serde_json::Value::Array(a) => a.iter().enumerate().for_each(|(i, v)| stack.push((format!("{path}/{i}"), v))),
+            serde_json::Value::Array(a) => {
+                a.iter().enumerate().for_each(|(i, v)| stack.push((format!("{path}/{i}"), v)))
+            }
             serde_json::Value::Number(_) => paths.push(path),
             serde_json::Value::String(s) if !s.starts_with("data:") => paths.push(path),
             _ => {}

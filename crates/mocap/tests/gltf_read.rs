@@ -183,7 +183,10 @@ fn linear_rotations_slerp_step_holds_and_cubic_is_hermite() {
     // Keys at 0, 1, 3 s → a frame every 1/24 s at most; 1.5 s is a quarter of the way from 90° to 180°.
     assert!(angle(spine_at(&linear, 0.5), Quat::from_rotation_z(45f32.to_radians())) < 0.05);
     assert!(angle(spine_at(&linear, 1.5), Quat::from_rotation_z(112.5f32.to_radians())) < 0.05);
-    assert!(angle(spine_at(&linear, 5.0), Quat::from_rotation_z(180f32.to_radians())) < 0.05, "holds after the last key");
+    assert!(
+        angle(spine_at(&linear, 5.0), Quat::from_rotation_z(180f32.to_radians())) < 0.05,
+        "holds after the last key"
+    );
     let head = linear.world_positions(0)[2];
     assert!(head.distance(Vec3::new(0.0, 1.75, 0.0)) < 1e-5);
 
@@ -292,7 +295,10 @@ fn damaged_and_unsupported_files_get_located_messages() {
     // Draco required: refused by name.
     let mut draco = quantized_triangle(&["KHR_draco_mesh_compression"]);
     draco["extensionsUsed"] = serde_json::json!(["KHR_draco_mesh_compression"]);
-    fails(&[("d.gltf", &serde_json::to_vec(&draco).unwrap())], &["extensionsRequired[0]", "KHR_draco_mesh_compression"]);
+    fails(
+        &[("d.gltf", &serde_json::to_vec(&draco).unwrap())],
+        &["extensionsRequired[0]", "KHR_draco_mesh_compression"],
+    );
     // An accessor past its view, a stride smaller than an element, a huge count.
     let mut json = quantized_triangle(&[]);
     json["accessors"][0]["count"] = 4.into();

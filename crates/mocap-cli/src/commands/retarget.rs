@@ -38,12 +38,6 @@ pub fn retarget(request: &RetargetRequest) -> Result<ExitCode, String> {
         let names = |p: &[PathBuf]| p.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(" ");
         format!("{} onto {}: {e}", names(request.source), names(request.onto))
     })?;
-    // Onto a glTF character, the result wears its look (written into a .glb).
-    let mut clip = clip;
-    if let Some(look) = target.character.as_ref().and_then(|c| c.look.clone()) {
-        let character = mocap::model::character::Character { look: Some(look), ..Default::default() };
-        clip = clip.with_character(std::sync::Arc::new(character));
-    }
     let (tj, sj) = (target.skeleton().joints(), source.skeleton().joints());
     let joints = tj.iter().filter(|j| !j.is_end_site()).count();
     eprintln!("mapped {} of {joints} target joints", pairs.len());

@@ -17,6 +17,8 @@ pub struct EditMenuView<'a> {
     pub undo: Option<&'a str>,
     /// The edit Redo would make again.
     pub redo: Option<&'a str>,
+    /// Other open characters with a skeleton (what a motion can be retargeted onto).
+    pub others: usize,
 }
 
 /// Shows the Edit menu's entries (inside the toolbar's menu button); what the
@@ -94,6 +96,16 @@ pub fn show(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
         None => {
             ui.label(egui::RichText::new("Select a joint to rename or remove it").weak());
         }
+    }
+    let hint = "Put this motion on another open character (a glTF character, or any skeleton): pick it and check which joint drives which";
+    if ui
+        .add_enabled(view.others > 0, egui::Button::new("Retarget onto…"))
+        .on_hover_text(hint)
+        .on_disabled_hover_text("Open (Add…) the character to put this motion on first")
+        .clicked()
+    {
+        out.push(Command::OpenRetargetDialog(index));
+        ui.close();
     }
     ui.separator();
     history_entry(ui, Command::Undo, view.undo, out);

@@ -8,11 +8,7 @@ use crate::layer_dialog::LayerDialog;
 use crate::stage::Stage;
 use mocap::ops::layer;
 
-/// One row of the mapping table: a base joint and the layer joint that plays it.
-struct Row {
-    base: String,
-    played: Option<String>,
-}
+use super::joint_map::{self, Row};
 
 /// Shows the Layer window while it is open.
 /// Its settings are `shown`; a change comes back as [`Command::SetLayerDialog`].
@@ -77,9 +73,9 @@ pub fn show(ctx: &egui::Context, shown: &LayerDialog, stage: &Stage, out: &mut V
             });
             ui.checkbox(&mut dialog.additive, "Additive (add the layer's change from its first frame)");
             ui.separator();
-            let matched = rows.iter().filter(|r| r.played.is_some()).count();
+            let matched = rows.iter().filter(|r| r.driver.is_some()).count();
             ui.label(format!("Joints: {matched} of {} played by the layer", rows.len()));
-            mapping_grid(ui, &rows, &names, &mut dialog.map);
+            joint_map::grid(ui, "layer-map", "— (keeps the base)", &rows, &names, &mut dialog.map);
             ui.separator();
             ui.horizontal(|ui| {
                 apply = ui
@@ -117,39 +113,8 @@ fn mapping(stage: &Stage, dialog: &LayerDialog, source: usize) -> (Vec<Row>, Vec
             let base = bs.joints().get(b)?.name.clone();
             let played =
                 pairs.iter().find(|(pb, _)| *pb == b).and_then(|&(_, l)| ls.joints().get(l)).map(|j| j.name.clone());
-            Some(Row { base, played })
+            Some(Row { joint: base, driver: played })
         })
         .collect();
     (rows, names)
-}
-
-/// The mapping table: a row per subtree joint with a menu of layer joints.
-fn mapping_grid(ui: &mut egui::Ui, rows: &[Row], names: &[String], map: &mut Vec<(String, String)>) {
-    const NONE: &str = "— (keeps the base)";
-    egui::ScrollArea::vertical().max_height(260.0).show(ui, |ui| {
-        egui::Grid::new("layer-map-grid").striped(true).num_columns(2).show(ui, |ui| {
-            for row in rows {
-                ui.label(&row.base);
-                let mut choice: Option<String> = None;
-                egui::ComboBox::from_id_salt(("layer-map-row", row.base.as_str()))
-                    .width(150.0)
-                    .selected_text(row.played.as_deref().unwrap_or(NONE))
-                    .show_ui(ui, |ui| {
-                        if ui.selectable_label(row.played.is_none(), NONE).clicked() {
-                            choice = Some(String::new());
-                        }
-                        for n in names {
-                            if ui.selectable_label(row.played.as_deref() == Some(n.as_str()), n).clicked() {
-                                choice = Some(n.clone());
-                            }
-                        }
-                    });
-                if let Some(choice) = choice {
-                    map.retain(|(b, _)| *b != row.base);
-                    map.push((row.base.clone(), choice));
-                }
-                ui.end_row();
-            }
-        });
-    });
 }

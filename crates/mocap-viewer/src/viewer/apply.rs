@@ -177,6 +177,18 @@ impl Viewer {
             }
             (Command::SetLayerDialog(dialog), _) => self.state.layer_dialog = Some(dialog),
             (Command::CloseLayerDialog, _) => self.state.layer_dialog = None,
+            (Command::Retarget { source, target, options }, _) => {
+                self.retarget(source, target, &options)?;
+                self.state.retarget_dialog = None;
+            }
+            (Command::OpenRetargetDialog(source), _) => {
+                if self.state.stage.actors.get(source).and_then(|c| c.clip()).is_none() {
+                    return Err(format!("character {} has no motion to retarget", source + 1));
+                }
+                self.state.retarget_dialog = Some(crate::retarget_dialog::RetargetDialog::new(source));
+            }
+            (Command::SetRetargetDialog(dialog), _) => self.state.retarget_dialog = Some(dialog),
+            (Command::CloseRetargetDialog, _) => self.state.retarget_dialog = None,
             (Command::StartCapture(index), _) => self.start_capture(index)?,
             (Command::FinishCapture, _) => self.finish_capture_now(),
             (Command::FitRig { model, template }, _) => self.start_rig_edit(model, template)?,

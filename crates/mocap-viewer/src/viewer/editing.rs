@@ -79,6 +79,25 @@ impl Viewer {
 
     /// Layers character `source`'s clip on the subtree of `layer.subtree` in
     /// character `character` ([`mocap::ops::layer::apply`]), as one undoable step.
+    /// Puts character `source`'s motion on character `target` and opens the
+    /// result as a new character named `SOURCE on TARGET` (it wears the target's
+    /// look when it has one).
+    pub(crate) fn retarget(
+        &mut self,
+        source: usize,
+        target: usize,
+        options: &mocap::ops::retarget::Options,
+    ) -> Result<(), String> {
+        let actors = &self.state.stage.actors;
+        let clip = |i: usize| actors.get(i).and_then(|c| c.clip()).ok_or_else(|| format!("no clip {}", i + 1));
+        let (from, onto) = (clip(source)?, clip(target)?);
+        let (out, _) = mocap::ops::retarget::retarget(from, onto, options).map_err(|e| e.to_string())?;
+        let name = |i: usize| actors.get(i).map_or(String::new(), |c| c.name.clone());
+        let title = format!("{} on {}", name(source), name(target));
+        self.add_asset(&title, out);
+        Ok(())
+    }
+
     pub(crate) fn add_layer(
         &mut self,
         character: usize,

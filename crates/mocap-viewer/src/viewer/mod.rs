@@ -391,6 +391,9 @@ impl Viewer {
         if let Some(dialog) = &self.state.layer_dialog {
             ui::layer_window::show(ui.ctx(), dialog, &self.state.stage, &mut commands);
         }
+        if let Some(dialog) = &self.state.retarget_dialog {
+            ui::retarget_window::show(ui.ctx(), dialog, &self.state.stage, &mut commands);
+        }
         if self.step_capture() {
             ui.ctx().request_repaint();
         }

@@ -31,7 +31,8 @@ impl Viewer {
         }
         if let Some(animations) = &view.animations {
             for i in 0..self.state.stage.actors.len() {
-                let first_take = self.state.stage.actors.get(i).and_then(|c| c.clip()?.takes().first().map(|t| t.name.clone()));
+                let first_take =
+                    self.state.stage.actors.get(i).and_then(|c| c.clip()?.takes().first().map(|t| t.name.clone()));
                 let default = first_take.as_deref().unwrap_or("all");
                 let name = animations.iter().find(|(n, _)| *n == i).map_or(default, |(_, a)| a.as_str());
                 self.set_animation(i, name);

@@ -47,6 +47,7 @@ impl Viewer {
             range: s.playback.range,
             undo: s.history.next_undo(),
             redo: s.history.next_redo(),
+            others: s.stage.actors.iter().enumerate().filter(|(i, c)| *i != index && c.clip().is_some()).count(),
         }
     }
 

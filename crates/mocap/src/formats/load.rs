@@ -222,9 +222,8 @@ impl Loader {
                 },
                 Some(Format::Asf) => continue,
                 Some(Format::Gltf) => {
-                    let resources = |name: &str| {
-                        files.iter().find(|f| base_name(f.name) == name).map(|f| f.bytes.to_vec())
-                    };
+                    let resources =
+                        |name: &str| files.iter().find(|f| base_name(f.name) == name).map(|f| f.bytes.to_vec());
                     crate::formats::gltf::parse(file.bytes, &resources, None)
                         .map(Asset::from)
                         .map_err(|e| parse_error(file, e))

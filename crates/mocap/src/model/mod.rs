@@ -5,8 +5,8 @@
 //! an [`asset`] (a clip or a model), and a clip's [`character`] (a glTF look and takes). Nothing here depends on a file format.
 
 pub mod asset;
-pub mod character;
 pub mod channel;
+pub mod character;
 pub mod clip;
 pub mod mesh;
 pub mod motion;

@@ -234,7 +234,12 @@ pub fn retarget(source: &Clip, target: &Clip, options: &Options) -> Result<(Clip
     }
     let motion = Motion::new(source.frame_time(), width, frames, data)
         .ok_or_else(|| RetargetError::Clip("the retargeted motion does not fit its channels".into()))?;
-    let clip = Clip::new(skeleton, motion).map_err(|e| RetargetError::Clip(e.to_string()))?;
+    let mut clip = Clip::new(skeleton, motion).map_err(|e| RetargetError::Clip(e.to_string()))?;
+    // Onto a character (glTF), the result wears its look: same joints, same binds.
+    if let Some(look) = target.character.as_ref().and_then(|c| c.look.clone()) {
+        let character = crate::model::character::Character { look: Some(look), ..Default::default() };
+        clip = clip.with_character(std::sync::Arc::new(character));
+    }
     Ok((clip, pairs))
 }
 

@@ -131,7 +131,9 @@ pub fn floats(accessor: &gltf::Accessor<'_>, buffers: &[Vec<u8>], width: usize) 
             let mut out = Vec::with_capacity(count * n);
             for k in 0..count {
                 let e = element(bytes, accessor.offset(), stride, size, k).ok_or_else(|| what("short data".into()))?;
-                out.extend((0..n).map(|c| component(t, accessor.normalized(), e.get(c * component_size(t)..).unwrap_or(&[]))));
+                out.extend(
+                    (0..n).map(|c| component(t, accessor.normalized(), e.get(c * component_size(t)..).unwrap_or(&[]))),
+                );
             }
             out
         }
@@ -177,8 +179,9 @@ fn sparse_indices(
         gltf::accessor::sparse::IndexType::U32 => DataType::U32,
     };
     let size = component_size(t);
-    let (bytes, _) =
-        view_run(&ix.view(), buffers, ix.offset() as usize, count, size, &|m| error(index, format!("sparse.indices: {m}")))?;
+    let (bytes, _) = view_run(&ix.view(), buffers, ix.offset() as usize, count, size, &|m| {
+        error(index, format!("sparse.indices: {m}"))
+    })?;
     let mut out = Vec::with_capacity(count);
     for k in 0..count {
         let e = element(bytes, ix.offset() as usize, size, size, k).unwrap_or(&[]);

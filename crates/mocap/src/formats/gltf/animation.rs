@@ -57,7 +57,13 @@ impl Track {
         }
         let first = self.times[0];
         let last = self.times[n - 1];
-        let held = if t <= first || n == 1 { Some(0) } else if t >= last { Some(n - 1) } else { None };
+        let held = if t <= first || n == 1 {
+            Some(0)
+        } else if t >= last {
+            Some(n - 1)
+        } else {
+            None
+        };
         if let Some(k) = held {
             (0..w).for_each(|c| out[c] = value(k, c));
             return self.finish(out);
@@ -147,7 +153,12 @@ pub fn tracks(animation: &gltf::Animation<'_>, buffers: &[Vec<u8>]) -> Result<(V
         let fail = |m: String| ParseError::new(0, 0, format!("{pointer}: {m}"));
         let times = accessor::floats(&sampler.input(), buffers, 1)?;
         if let Some(k) = times.windows(2).position(|w| !(w[1] > w[0])) {
-            return Err(fail(format!("key times must increase, but key {} is at {} after {}", k + 1, times[k + 1], times[k])));
+            return Err(fail(format!(
+                "key times must increase, but key {} is at {} after {}",
+                k + 1,
+                times[k + 1],
+                times[k]
+            )));
         }
         let width = if path == Path::Rotation { 4 } else { 3 };
         let values = accessor::floats(&sampler.output(), buffers, width)?;

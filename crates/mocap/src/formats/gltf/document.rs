@@ -80,10 +80,7 @@ fn split_glb(bytes: &[u8]) -> Result<(&[u8], Option<&[u8]>), ParseError> {
     }
     let total = word(8)? as usize;
     if total > bytes.len() || total < 12 {
-        return Err(ParseError::at_byte(
-            8,
-            format!("the GLB header says {total} bytes, the file has {}", bytes.len()),
-        ));
+        return Err(ParseError::at_byte(8, format!("the GLB header says {total} bytes, the file has {}", bytes.len())));
     }
     let (mut json, mut bin) = (None, None);
     let mut at = 12usize;

@@ -105,10 +105,13 @@ impl Graph {
         while let Some(n) = stack.pop() {
             match seen.get_mut(n) {
                 Some(s) if !*s => *s = true,
-                _ => return Err(ParseError::new(0, 0, format!("nodes[{n}]: reached twice (a cycle in the node graph)"))),
+                _ => {
+                    return Err(ParseError::new(0, 0, format!("nodes[{n}]: reached twice (a cycle in the node graph)")));
+                }
             }
             order.push(n);
-            let children: Vec<usize> = nodes.get(n).map_or(Vec::new(), |node| node.children().map(|c| c.index()).collect());
+            let children: Vec<usize> =
+                nodes.get(n).map_or(Vec::new(), |node| node.children().map(|c| c.index()).collect());
             stack.extend(children.into_iter().rev());
         }
         // A cycle not reachable from the roots leaves its nodes unvisited; those

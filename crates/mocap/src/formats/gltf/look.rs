@@ -57,7 +57,9 @@ pub fn build(
         // Where each skin joint index goes, or the one joint a rigid mesh follows
         // with the transform that puts its vertices in that joint's bind space.
         let binding = match node.skin() {
-            Some(skin) => Binding::Skinned(skin.joints().map(|j| graph.joint_of.get(j.index()).copied().flatten()).collect()),
+            Some(skin) => {
+                Binding::Skinned(skin.joints().map(|j| graph.joint_of.get(j.index()).copied().flatten()).collect())
+            }
             None => {
                 let Some(j) = graph.joint_of.get(n).copied().flatten().or(graph.above.get(n).copied().flatten()) else {
                     warnings.push(note(format!("nodes[{n}]: its mesh is outside the skeleton and is not drawn")));
@@ -191,7 +193,10 @@ fn add_primitive(
                         continue;
                     }
                     let joint = map.get(k as usize).ok_or_else(|| {
-                        at(format!("attributes.JOINTS_{set}: vertex {v} names skin joint {k}, past the skin's {}", map.len()))
+                        at(format!(
+                            "attributes.JOINTS_{set}: vertex {v} names skin joint {k}, past the skin's {}",
+                            map.len()
+                        ))
                     })?;
                     if let Some(joint) = joint {
                         slot.push((*joint as u32, weight));
@@ -337,7 +342,10 @@ fn image_bytes(parsed: &Parsed, image: &gltf::Image<'_>, resources: Resources<'_
         gltf::image::Source::View { view, .. } => {
             let buffer = parsed.buffers.get(view.buffer().index()).map_or(&[][..], Vec::as_slice);
             let end = view.offset().checked_add(view.length()).unwrap_or(usize::MAX);
-            buffer.get(view.offset()..end).map(<[u8]>::to_vec).ok_or_else(|| "its buffer view is outside its buffer".into())
+            buffer
+                .get(view.offset()..end)
+                .map(<[u8]>::to_vec)
+                .ok_or_else(|| "its buffer view is outside its buffer".into())
         }
         gltf::image::Source::Uri { uri, .. } => fetch(uri, resources),
     }
@@ -395,7 +403,9 @@ fn bilinear(image: &Rgba, modes: [WrappingMode; 2], u: f32, v: f32) -> [u8; 4] {
     let (x0, y0) = (x.floor(), y.floor());
     let (fx, fy) = (x - x0, y - y0);
     let mut out = [0f32; 4];
-    for (dx, dy, w) in [(0, 0, (1.0 - fx) * (1.0 - fy)), (1, 0, fx * (1.0 - fy)), (0, 1, (1.0 - fx) * fy), (1, 1, fx * fy)] {
+    for (dx, dy, w) in
+        [(0, 0, (1.0 - fx) * (1.0 - fy)), (1, 0, fx * (1.0 - fy)), (0, 1, (1.0 - fx) * fy), (1, 1, fx * fy)]
+    {
         let px = wrap(modes[0], x0 as i64 + dx, image.width);
         let py = wrap(modes[1], y0 as i64 + dy, image.height);
         let p = image.pixel(px, py).unwrap_or([255; 4]);

@@ -146,7 +146,9 @@ fn warn_outside(graph: &Graph, name: &str, tracks: &[Track], warnings: &mut Vec<
     if outside > 0 {
         warnings.push(Warning {
             line: None,
-            message: format!("animation `{name}`: {outside} channels move nodes outside the skeleton and are not played"),
+            message: format!(
+                "animation `{name}`: {outside} channels move nodes outside the skeleton and are not played"
+            ),
         });
     }
 }
@@ -260,10 +262,8 @@ fn summary(parsed: &document::Parsed, all: &[(String, Vec<Track>)]) -> Summary {
         meshes: d
             .meshes()
             .map(|m| {
-                let vertices = m
-                    .primitives()
-                    .filter_map(|p| p.get(&gltf::Semantic::Positions).map(|a| a.count()))
-                    .sum::<usize>();
+                let vertices =
+                    m.primitives().filter_map(|p| p.get(&gltf::Semantic::Positions).map(|a| a.count())).sum::<usize>();
                 (name(m.name(), "mesh", m.index()), m.primitives().len(), vertices)
             })
             .collect(),

@@ -169,7 +169,8 @@ fn document(clip: &Clip, options: &Options, inline: Option<()>) -> Result<(Value
             json!({ "POSITION": position, "NORMAL": normal, "JOINTS_0": joints_0, "WEIGHTS_0": weights_0 });
         if let Some(look) = look {
             let colors: Vec<f32> = look.colors.iter().flat_map(|c| c.map(|x| srgb_to_linear(x))).collect();
-            attributes["COLOR_0"] = json!(vertex_accessor(&mut accessors, &mut bin, &colors, "VEC4", look.colors.len(), None));
+            attributes["COLOR_0"] =
+                json!(vertex_accessor(&mut accessors, &mut bin, &colors, "VEC4", look.colors.len(), None));
         }
         document["meshes"] = json!([{
             "name": format!("{} body", options.name),
