@@ -124,6 +124,9 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
             if let Err(e) = run(node("gltf.mjs").arg(&dir).arg(&chromium)) {
                 failures.push(format!("glTF written (validator, three.js): {e}"));
             }
+            if let Err(e) = run(node("character.mjs").arg(&url).arg(&out).arg(&chromium).arg(&dir)) {
+                failures.push(format!("glTF characters in the page: {e}"));
+            }
         }
         Err(e) => failures.push(format!("glTF files: {e}")),
     }

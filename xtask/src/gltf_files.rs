@@ -1,6 +1,7 @@
 //! The glTF files the browser suite checks (`tests/browser/gltf.mjs`): the core's
 //! writer on the generated walk (`.glb` and `.gltf`, a Z-up copy, the skeleton
-//! alone) and on corpus clips (BVH and Acclaim), with the joint positions we
+//! alone), a glTF character read and written again, a motion retargeted onto
+//! it, and on corpus clips (BVH and Acclaim), with the joint positions we
 //! compute (metres, Y up) at a few frames in `expected.json`.
 
 use mocap::formats::gltf::{Options, to_glb, to_gltf};
@@ -43,6 +44,15 @@ pub fn write(dir: &Path, corpus: Option<&Path>) -> Result<PathBuf, String> {
             clips.push((format!("{name}.glb"), clip, true, false));
         }
     }
+    // A glTF character read back and written again (its own mesh, COLOR_0), and
+    // the walk retargeted onto it wearing its look.
+    let character_glb = to_glb(&clips[0].1, &Options { name: "walk".into(), body: true }).map_err(|e| e.to_string())?;
+    let none = |_: &str| None;
+    let character = mocap::formats::gltf::parse(&character_glb, &none, None).map_err(|e| format!("walk.glb: {e}"))?;
+    clips.push(("walk-again.glb".into(), character.clone(), true, false));
+    let source = clips[2].1.clone();
+    let (on, _) = mocap::ops::retarget::retarget(&source, &character, &Default::default()).map_err(|e| e.to_string())?;
+    clips.push(("walk-z-up-on-walk.glb".into(), on, true, false));
     let mut entries = Vec::new();
     for (file, clip, body, text) in &clips {
         let options = Options { name: file.split('.').next().unwrap_or("motion").to_owned(), body: *body };

@@ -1,0 +1,67 @@
+// glTF characters in the page: a GLB dropped with a BVH opens as a character
+// drawn in its own look, its animations listed; the BVH's motion retargeted onto
+// it (JS retarget, as Edit ▸ Retarget onto… does) opens beside it wearing the
+// look, its feet on the floor; Save as glTF gives a GLB that opens again.
+//   node character.mjs <url> <outDir> <chromium> <gltfDir>
+import fs from 'node:fs';
+import path from 'node:path';
+import { launch, state, waitState, dropFiles, changeAndRender, waitDropped, view3d, reporter } from './common.mjs';
+
+const [base, outDir, chromiumPath, gltfDir] = process.argv.slice(2);
+const shot = (name) => path.join(outDir, `webgl2-character-${name}.png`);
+const { check, step, finish } = reporter('character');
+const glb = fs.readFileSync(path.join(gltfDir, 'walk.glb'));
+const lying = fs.readFileSync(path.join(gltfDir, 'walk-z-up.glb'));
+const walk = fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url));
+
+const { page, close, errors } = await launch(chromiumPath, 'webgl2');
+try {
+  await step('a GLB opens as a character in its own look', async () => {
+    await page.goto(base);
+    await page.waitForFunction(() => window.mocapReady === true, null, { timeout: 90000 });
+    await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 2);
+    await dropFiles(page, [{ name: 'character.glb', bytes: glb }, { name: 'moves.bvh', bytes: walk }]);
+    const s = await waitDropped(page, 'moves.bvh');
+    check(s.error === null, `no error (${s.error})`);
+    check(s.clips.length === 2 && s.clips[0].name === 'character.glb', `open: ${s.clips.map((c) => c.name).join(', ')}`);
+    check(JSON.stringify(s.clips[0].animations) === '["walk"]', `its animations: ${JSON.stringify(s.clips[0].animations)}`);
+    check(s.clips[0].frames === 67, `${s.clips[0].frames} frames`);
+    await changeAndRender(page, (v) => { v.pause(); v.seek(20); });
+    await page.screenshot({ path: shot('opened') });
+  });
+
+  await step('the BVH retargeted onto it opens beside it, wearing the look', async () => {
+    const before = await view3d(page, shot('before'));
+    const error = await page.evaluate(() => window.mocapViewer.retarget(1, 0));
+    check(error === undefined, `retarget: ${error ?? 'done'}`);
+    const s = await changeAndRender(page, (v) => v.seek(30));
+    check(s.clips.length === 3 && s.clips[2].name === 'moves.bvh on character.glb', `added: ${s.clips.map((c) => c.name).join(', ')}`);
+    check(s.clips[2].joints === s.clips[0].joints, `on the character's ${s.clips[0].joints} joints`);
+    const bad = await page.evaluate(() => window.mocapViewer.retarget(1, 0, 'Wing=Hips'));
+    check(typeof bad === 'string' && bad.includes('Wing'), `a bad map is refused: ${bad}`);
+    const after = await view3d(page, shot('retargeted'));
+    check(!before.equals(after), 'the view shows the new character');
+    await page.screenshot({ path: shot('three') });
+  });
+
+  await step('Save as glTF gives a GLB that opens again', async () => {
+    const bytes = await page.evaluate(() => Array.from(window.mocapViewer.saveGltf(2).slice(0, 4)));
+    check(String.fromCharCode(...bytes) === 'glTF', `saveGltf(2) starts with ${String.fromCharCode(...bytes)}`);
+    const saved = await page.evaluate(() => {
+      const b = window.mocapViewer.saveGltf(2);
+      let s = '';
+      for (let i = 0; i < b.length; i += 0x8000) s += String.fromCharCode(...b.subarray(i, i + 0x8000));
+      return btoa(s);
+    });
+    await dropFiles(page, [{ name: 'saved.glb', bytes: Buffer.from(saved, 'base64') }, { name: 'lying.glb', bytes: lying }], true);
+    const s = await waitDropped(page, 'lying.glb');
+    check(s.error === null && s.clips.length === 5 && s.clips[3].name === 'saved.glb', `opened again: ${s.clips.map((c) => c.name).join(', ')} ${s.error ?? ''}`);
+    check(s.clips[3].joints === s.clips[0].joints && s.clips[3].frames === s.clips[1].frames, 'same joints and frames');
+    await changeAndRender(page, (v) => v.seek(40));
+    await page.screenshot({ path: shot('saved') });
+    check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
+  });
+} finally {
+  await close();
+}
+finish('glTF character checks');
