@@ -102,3 +102,22 @@ export async function fetchClip(url, { limit = DEFAULT_LIMIT, onProgress = () =>
   // What the file is, the core decides (from its content), not this page.
   return bytes;
 }
+
+/**
+ * The other files a `.gltf` (JSON) names by relative URI — its `.bin` buffers and
+ * images — resolved against the link it came from (data URIs left out); empty for
+ * anything else.
+ */
+export function gltfCompanions(name, bytes, base) {
+  if (!/\.gltf$/i.test(name)) return [];
+  let json;
+  try {
+    json = JSON.parse(new TextDecoder().decode(bytes));
+  } catch {
+    return []; // the reader reports what is wrong with it
+  }
+  const uris = [...(json.buffers ?? []), ...(json.images ?? [])]
+    .map((x) => x && x.uri)
+    .filter((u) => typeof u === 'string' && !u.startsWith('data:'));
+  return [...new Set(uris)].map((u) => new URL(u, base).href);
+}

@@ -3,7 +3,7 @@
 // (several files replace what is open; with Shift held they are added) / Open… / Add…,
 // loading message.
 import init, { FileSet, start } from '../pkg/mocap_web.js';
-import { ClipError, DEFAULT_LIMIT, fetchClip, fileNameOf, resolveClipUrl } from './fetch-clip.js';
+import { ClipError, DEFAULT_LIMIT, fetchClip, fileNameOf, gltfCompanions, resolveClipUrl } from './fetch-clip.js';
 import { followViewState, share } from './view-link.js';
 
 const status = document.getElementById('status');
@@ -89,6 +89,11 @@ async function loadUrls(viewer, urls, limit) {
   for (const raw of urls) {
     const f = await fetchUrl(viewer, raw, limit);
     if (f) fetched.push(f); else errors.push(window.mocapUrlLoad.error);
+    // A .gltf's buffers and images are fetched from beside it.
+    for (const companion of f ? gltfCompanions(f.name, f.bytes, resolveClipUrl(raw)) : []) {
+      const c = await fetchUrl(viewer, companion, limit);
+      if (c) fetched.push({ ...c, companion: true }); else errors.push(window.mocapUrlLoad.error);
+    }
   }
   if (fetched.length > 0) {
     const failures = viewer.openFiles(fetched.map((f) => f.name), fetched.map((f) => f.bytes), true);
@@ -97,7 +102,7 @@ async function loadUrls(viewer, urls, limit) {
       if (error) {
         f.record.error = error;
         errors.push(error);
-      } else {
+      } else if (!f.companion) {
         source = { kind: 'url', urls: [...source.urls, f.raw], name: f.name };
       }
     }

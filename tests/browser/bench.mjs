@@ -5,7 +5,7 @@ import path from 'node:path';
 import os from 'node:os';
 import { launch, state, waitState, dropFile } from './common.mjs';
 
-const [url, chromiumPath, bigFile] = process.argv.slice(2);
+const [url, chromiumPath, bigFile, glbFile] = process.argv.slice(2);
 
 for (const mode of ['webgl2', 'webgpu']) {
   const { page, close } = await launch(chromiumPath, mode);
@@ -156,6 +156,9 @@ function repeatRows(text, frames) {
       const cmu = path.resolve(bigFile, '../../assimp_cmu/01_01.bvh');
       if (fs.existsSync(cmu)) drops.push(['01_01x36000.bvh', repeatRows(fs.readFileSync(cmu, 'latin1'), 36000), 0.1]);
     }
+    // A GLB of about 5 MB (made by `cargo xtask bench-web` with our writer),
+    // against three.js's glTF example with GLTFLoader.
+    if (glbFile) drops.push([path.basename(glbFile), fs.readFileSync(glbFile), 0.5]);
     // Each dropped file is on disk, as a person's is: the page gets a File
     // backed by the file (through a file input the benchmark adds), not one
     // made from bytes in the page just before, which the browser would still
@@ -180,18 +183,20 @@ function repeatRows(text, frames) {
     // to the browser (the two pages may share a renderer process: one page's
     // garbage from a big drop was seen collected in the middle of the other's).
     const threeDropMs = async (name, file) => {
+      const glb = name.endsWith('.glb');
       await three.bringToFront();
-      await three.goto(`${url}bench/three/bvh.html`);
+      await three.goto(`${url}bench/three/${glb ? 'gltf' : 'bvh'}.html`);
       await three.waitForFunction(() => window.threeBench && window.threeBench.frames > 3, null, { timeout: 60000 });
       // Open for a moment before the drop, as when a person drops a file
       // (shaders compiled, the first frames out).
       await three.waitForTimeout(1500);
       // Handed the File, read by the page like a drop (as the viewer's drop is timed).
       await pickFile(three, file);
-      await three.evaluate(() => {
+      await three.evaluate((glb) => {
         window.threeBench.firstFrameMs = null;
-        window.openBvhFile(document.getElementById('bench-file').files[0], 1);
-      });
+        const file = document.getElementById('bench-file').files[0];
+        if (glb) window.openGltfFile(file); else window.openBvhFile(file, 1);
+      }, glb);
       await three.waitForFunction(() => window.threeBench.firstFrameMs !== null, null, { timeout: 120000 });
       const ms = await three.evaluate(() => window.threeBench.firstFrameMs);
       await three.goto('about:blank');

@@ -1,9 +1,11 @@
 // glTF characters in the page: a GLB dropped with a BVH opens as a character
 // drawn in its own look, its animations listed; the BVH's motion retargeted onto
 // it (JS retarget, as Edit ▸ Retarget onto… does) opens beside it wearing the
-// look, its feet on the floor; Save as glTF gives a GLB that opens again.
+// look, its feet on the floor; Save as glTF gives a GLB that opens again; a
+// `?url=` link to a .gltf fetches its .bin from beside it.
 //   node character.mjs <url> <outDir> <chromium> <gltfDir>
 import fs from 'node:fs';
+import http from 'node:http';
 import path from 'node:path';
 import { launch, state, waitState, dropFiles, changeAndRender, waitDropped, view3d, reporter } from './common.mjs';
 
@@ -60,6 +62,25 @@ try {
     await changeAndRender(page, (v) => v.seek(40));
     await page.screenshot({ path: shot('saved') });
     check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
+  });
+  await step('a ?url= link to a .gltf fetches its .bin beside it', async () => {
+    const json = JSON.parse(fs.readFileSync(path.join(gltfDir, 'walk.gltf'), 'utf8'));
+    const bin = Buffer.from(json.buffers[0].uri.split(',')[1], 'base64');
+    json.buffers[0].uri = 'walk%20data.bin';
+    const files = { '/models/walk.gltf': Buffer.from(JSON.stringify(json)), '/models/walk data.bin': bin };
+    const server = http.createServer((req, res) => {
+      const body = files[decodeURIComponent(new URL(req.url, 'http://x').pathname)];
+      res.writeHead(body ? 200 : 404, { 'Access-Control-Allow-Origin': '*', 'Content-Type': 'application/octet-stream' });
+      res.end(body ?? 'not found');
+    });
+    await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
+    const origin = `http://127.0.0.1:${server.address().port}`;
+    await page.goto(`${base}?url=${encodeURIComponent(`${origin}/models/walk.gltf`)}`);
+    await page.waitForFunction(() => window.mocapReady === true, null, { timeout: 90000 });
+    const s = await waitState(page, (s) => s.clips.length === 1 && s.clips[0].name === 'walk.gltf' && s.framesRendered > 2);
+    check(s.error === null && s.clips[0].frames === 67, `walk.gltf and its .bin opened (${s.clips[0].frames} frames, ${s.error})`);
+    check(!s.view.includes('data.bin'), 'the shared link names the .gltf only');
+    server.close();
   });
 } finally {
   await close();

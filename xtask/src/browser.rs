@@ -159,6 +159,10 @@ pub fn bench() -> Result<(), String> {
     cmd.args([url.as_str()]).arg(&chromium);
     if let Some(f) = file {
         cmd.arg(f);
+        if let Some(corpus) = corpus_dir() {
+            let dir = std::env::temp_dir().join("mocap-bench-glb");
+            cmd.arg(crate::gltf_files::bench_glb(&corpus, &dir)?);
+        }
     }
     run(&mut cmd)
 }

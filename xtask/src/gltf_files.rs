@@ -86,3 +86,25 @@ fn expected(file: &str, clip: &Clip, body: bool) -> String {
         frames.join(",")
     )
 }
+
+/// The GLB `bench-web` drops: CMU's take 01_01 with its rows repeated to 5,000
+/// frames, written by our writer (about 5 MB), into `dir`.
+pub fn bench_glb(corpus: &Path, dir: &Path) -> Result<PathBuf, String> {
+    let src = std::fs::read(corpus.join("bvh/assimp_cmu/01_01.bvh")).map_err(|e| format!("01_01.bvh: {e}"))?;
+    let text = String::from_utf8_lossy(&src);
+    let start = text.find("Frame Time").ok_or("01_01.bvh: no Frame Time line")?;
+    let rows_at = start + text[start..].find('\n').ok_or("01_01.bvh: short")? + 1;
+    let rows: Vec<&str> = text[rows_at..].lines().filter(|l| !l.trim().is_empty()).collect();
+    let frames = 5_000;
+    let mut bvh = text[..rows_at].replace(&format!("Frames: {}", rows.len()), &format!("Frames: {frames}"));
+    for i in 0..frames {
+        bvh.push_str(rows.get(i % rows.len().max(1)).copied().unwrap_or(""));
+        bvh.push('\n');
+    }
+    let clip = mocap::formats::bvh::parse(bvh.as_bytes()).map_err(|e| e.to_string())?;
+    let glb = to_glb(&clip, &Options { name: "01_01".into(), body: true }).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
+    let path = dir.join("01_01x5000.glb");
+    std::fs::write(&path, glb).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(path)
+}
