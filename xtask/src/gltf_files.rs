@@ -51,7 +51,8 @@ pub fn write(dir: &Path, corpus: Option<&Path>) -> Result<PathBuf, String> {
     let character = mocap::formats::gltf::parse(&character_glb, &none, None).map_err(|e| format!("walk.glb: {e}"))?;
     clips.push(("walk-again.glb".into(), character.clone(), true, false));
     let source = clips[2].1.clone();
-    let (on, _) = mocap::ops::retarget::retarget(&source, &character, &Default::default()).map_err(|e| e.to_string())?;
+    let (on, _) =
+        mocap::ops::retarget::retarget(&source, &character, &Default::default()).map_err(|e| e.to_string())?;
     clips.push(("walk-z-up-on-walk.glb".into(), on, true, false));
     let mut entries = Vec::new();
     for (file, clip, body, text) in &clips {

@@ -55,7 +55,12 @@ fn main() {
     let dir = corpus();
     let bytes = long_take(&std::fs::read(dir.join("bvh/assimp_cmu/01_01.bvh")).expect("01_01.bvh"));
     let clip = mocap::formats::bvh::parse(&bytes).expect("the take parses");
-    println!("take: {} bytes of BVH, {} frames × {} channels", bytes.len(), clip.frame_count(), clip.skeleton().channel_count());
+    println!(
+        "take: {} bytes of BVH, {} frames × {} channels",
+        bytes.len(),
+        clip.frame_count(),
+        clip.skeleton().channel_count()
+    );
 
     let options = mocap::formats::gltf::Options { name: "take".into(), body: true };
     let (export, glb) = best(|| mocap::formats::gltf::to_glb(black_box(&clip), &options).expect("writes"));
@@ -69,7 +74,10 @@ fn main() {
         ms(ours),
         back.frame_count()
     );
-    println!("GLB import, gltf::import_slice: {:8.1} ms  (the peer: document and buffers only, no accessor read)", ms(theirs));
+    println!(
+        "GLB import, gltf::import_slice: {:8.1} ms  (the peer: document and buffers only, no accessor read)",
+        ms(theirs)
+    );
 
     let target = mocap::formats::bvh::parse(&std::fs::read(dir.join("bvh/axis_neuron/test.bvh")).expect("test.bvh"))
         .expect("target parses");

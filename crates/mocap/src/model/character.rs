@@ -1,14 +1,13 @@
 //! A character: what a clip carries besides its skeleton and motion when it was
 //! read from a file that also holds a look and several animations (glTF): the
 //! mesh skinned to the clip's skeleton, the file's animations ("takes") on that
-//! skeleton, and the source bytes (so a write can keep what the file had).
+//! skeleton, and a summary of what the file holds.
 //!
 //! The clip's own motion is always one of the takes ([`crate::Clip::set_take`]).
 //! Lengths are metres and Y is up, as glTF says.
 
 use crate::model::motion::Motion;
 use crate::runtime::skin::Skin;
-use std::sync::Arc;
 
 /// One animation of the file, sampled on the clip's skeleton.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,7 +29,7 @@ pub struct Look {
     pub colors: Vec<[u8; 4]>,
 }
 
-/// A character's look, takes and source.
+/// A character's look, takes and summary.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Character {
     /// Its mesh, when the file has one (a bare skin shows as a skeleton).
@@ -39,20 +38,6 @@ pub struct Character {
     pub takes: Vec<Take>,
     /// What the file holds, for `mocap info` and the inspector.
     pub summary: Summary,
-    /// The file's bytes (a `.glb`, or a `.gltf` whose resources are all inline once
-    /// read) and the joint → node index map, for writing it back with a new animation.
-    pub source: Option<Arc<Source>>,
-}
-
-/// The file a character was read from, kept to write it again.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Source {
-    /// The JSON document.
-    pub json: Vec<u8>,
-    /// The binary chunk of a `.glb` (or the bytes of the first buffer).
-    pub bin: Vec<u8>,
-    /// For each joint of the clip's skeleton, its node index in the file.
-    pub nodes: Vec<usize>,
 }
 
 /// Counts and names of what a glTF file holds.

@@ -6,6 +6,7 @@
 //! and the element width expected. Output: the values as `f32` (or `u32`), one
 //! flat array, `width` values per element.
 
+use super::document::Buffer;
 use crate::error::ParseError;
 use gltf::accessor::{DataType, Dimensions};
 
@@ -76,13 +77,13 @@ fn element(data: &[u8], offset: usize, stride: usize, size: usize, k: usize) -> 
 /// `size` bytes, `count` of them from `offset` (pointer `what` in messages).
 fn view_run<'b>(
     view: &gltf::buffer::View<'_>,
-    buffers: &'b [Vec<u8>],
+    buffers: &'b [Buffer<'_>],
     offset: usize,
     count: usize,
     size: usize,
     what: &dyn Fn(String) -> ParseError,
 ) -> Result<(&'b [u8], usize), ParseError> {
-    let buffer = buffers.get(view.buffer().index()).map_or(&[][..], Vec::as_slice);
+    let buffer: &[u8] = buffers.get(view.buffer().index()).map_or(&[][..], |b| b);
     let end = view.offset().checked_add(view.length());
     let bytes = end.and_then(|e| buffer.get(view.offset()..e)).ok_or_else(|| {
         what(format!(
@@ -115,7 +116,7 @@ fn view_run<'b>(
 
 /// The accessor's values as floats, `width` per element (the accessor's own
 /// component count must be `width`), sparse substitutions applied.
-pub fn floats(accessor: &gltf::Accessor<'_>, buffers: &[Vec<u8>], width: usize) -> Result<Vec<f32>, ParseError> {
+pub fn floats(accessor: &gltf::Accessor<'_>, buffers: &[Buffer<'_>], width: usize) -> Result<Vec<f32>, ParseError> {
     let index = accessor.index();
     let n = components(accessor.dimensions());
     if n != width {
@@ -128,14 +129,25 @@ pub fn floats(accessor: &gltf::Accessor<'_>, buffers: &[Vec<u8>], width: usize) 
     let mut out = match accessor.view() {
         Some(view) => {
             let (bytes, stride) = view_run(&view, buffers, accessor.offset(), count, size, &what)?;
-            let mut out = Vec::with_capacity(count * n);
-            for k in 0..count {
-                let e = element(bytes, accessor.offset(), stride, size, k).ok_or_else(|| what("short data".into()))?;
-                out.extend(
-                    (0..n).map(|c| component(t, accessor.normalized(), e.get(c * component_size(t)..).unwrap_or(&[]))),
-                );
+            let packed = bytes.get(accessor.offset()..accessor.offset() + count * size);
+            match packed {
+                // The common case, tightly packed floats: one pass the compiler vectorises.
+                Some(packed) if t == DataType::F32 && stride == size => {
+                    packed.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect()
+                }
+                _ => {
+                    let mut out = Vec::with_capacity(count * n);
+                    for k in 0..count {
+                        let e = element(bytes, accessor.offset(), stride, size, k)
+                            .ok_or_else(|| what("short data".into()))?;
+                        let normalized = accessor.normalized();
+                        out.extend(
+                            (0..n).map(|c| component(t, normalized, e.get(c * component_size(t)..).unwrap_or(&[]))),
+                        );
+                    }
+                    out
+                }
             }
-            out
         }
         None if count <= MAX_ZERO_ELEMENTS => vec![0.0; count * n],
         None => return Err(what(format!("count {count} with no bufferView: too many elements"))),
@@ -165,7 +177,7 @@ pub fn floats(accessor: &gltf::Accessor<'_>, buffers: &[Vec<u8>], width: usize) 
 fn sparse_indices(
     accessor: &gltf::Accessor<'_>,
     sparse: &gltf::accessor::sparse::Sparse<'_>,
-    buffers: &[Vec<u8>],
+    buffers: &[Buffer<'_>],
 ) -> Result<Vec<usize>, ParseError> {
     let index = accessor.index();
     let count = sparse.count();
@@ -196,7 +208,7 @@ fn sparse_indices(
 
 /// The accessor's values as unsigned integers (scalars or vectors of `width`):
 /// indices and joints, which must be of an unsigned integer type.
-pub fn integers(accessor: &gltf::Accessor<'_>, buffers: &[Vec<u8>], width: usize) -> Result<Vec<u32>, ParseError> {
+pub fn integers(accessor: &gltf::Accessor<'_>, buffers: &[Buffer<'_>], width: usize) -> Result<Vec<u32>, ParseError> {
     let index = accessor.index();
     let t = accessor.data_type();
     if matches!(t, DataType::F32 | DataType::I8 | DataType::I16) || accessor.normalized() {

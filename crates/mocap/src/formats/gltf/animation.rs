@@ -45,6 +45,14 @@ impl Track {
 
     /// The value at time `t` into `out` (4 slots; 3 used for translation and scale).
     pub fn sample(&self, t: f32, out: &mut [f32; 4]) {
+        let mut cursor = 0;
+        self.sample_from(t, &mut cursor, out);
+    }
+
+    /// [`Track::sample`] for times that mostly increase from call to call:
+    /// `cursor` remembers the key interval found last, so a pass over the frames
+    /// walks the keys once instead of searching them for every frame.
+    pub fn sample_from(&self, t: f32, cursor: &mut usize, out: &mut [f32; 4]) {
         let w = self.width();
         let n = self.times.len();
         let cubic = self.interpolation == Interpolation::CubicSpline;
@@ -69,7 +77,14 @@ impl Track {
             return self.finish(out);
         }
         // The key interval holding t: times[k] <= t < times[k + 1].
-        let k = self.times.partition_point(|&x| x <= t).saturating_sub(1).min(n - 2);
+        let mut k = (*cursor).min(n - 2);
+        if self.times[k] > t {
+            k = self.times.partition_point(|&x| x <= t).saturating_sub(1).min(n - 2);
+        }
+        while k + 2 < n && self.times[k + 1] <= t {
+            k += 1;
+        }
+        *cursor = k;
         let (t0, t1) = (self.times[k], self.times[k + 1]);
         let dt = t1 - t0;
         let s = if dt > 0.0 { ((t - t0) / dt).clamp(0.0, 1.0) } else { 0.0 };
@@ -135,7 +150,10 @@ fn slerp(a: glam::Quat, b: glam::Quat, s: f32) -> glam::Quat {
 
 /// The tracks of an animation on nodes' transforms, and how many morph-weight
 /// channels it has (played only on meshes with targets).
-pub fn tracks(animation: &gltf::Animation<'_>, buffers: &[Vec<u8>]) -> Result<(Vec<Track>, usize), ParseError> {
+pub fn tracks(
+    animation: &gltf::Animation<'_>,
+    buffers: &[super::document::Buffer<'_>],
+) -> Result<(Vec<Track>, usize), ParseError> {
     let mut out = Vec::new();
     let mut weights = 0;
     for (c, channel) in animation.channels().enumerate() {

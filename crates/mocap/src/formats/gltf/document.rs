@@ -25,14 +25,16 @@ pub const SUPPORTED_EXTENSIONS: [&str; 9] = [
     "KHR_lights_punctual",
 ];
 
+/// A buffer's bytes: borrowed from a `.glb`'s binary chunk, or owned (decoded
+/// from a data URI, or another file).
+pub type Buffer<'a> = std::borrow::Cow<'a, [u8]>;
+
 /// A document with its buffers.
-pub struct Parsed {
+pub struct Parsed<'a> {
     /// The checked document.
     pub document: gltf::Document,
-    /// The JSON text as read.
-    pub json: Vec<u8>,
     /// Each buffer's bytes, by buffer index.
-    pub buffers: Vec<Vec<u8>>,
+    pub buffers: Vec<Buffer<'a>>,
 }
 
 /// Looks up another file a `.gltf` names: given the URI's file name (decoded,
@@ -52,7 +54,7 @@ pub fn sniff(bytes: &[u8]) -> bool {
 }
 
 /// Reads the document and every buffer.
-pub fn parse(bytes: &[u8], resources: Resources<'_>) -> Result<Parsed, ParseError> {
+pub fn parse<'a>(bytes: &'a [u8], resources: Resources<'_>) -> Result<Parsed<'a>, ParseError> {
     let (json_bytes, blob) = if bytes.starts_with(b"glTF") { split_glb(bytes)? } else { (bytes, None) };
     let root: json::Root = json::deserialize::from_slice(json_bytes).map_err(|e| {
         let line = u32::try_from(e.line()).unwrap_or(u32::MAX);
@@ -64,7 +66,7 @@ pub fn parse(bytes: &[u8], resources: Resources<'_>) -> Result<Parsed, ParseErro
     check_valid(&root)?;
     let document = gltf::Document::from_json_without_validation(root);
     let buffers = read_buffers(&document, blob, resources)?;
-    Ok(Parsed { document, json: json_bytes.to_vec(), buffers })
+    Ok(Parsed { document, buffers })
 }
 
 /// Splits a `.glb` into its JSON chunk and its binary chunk, checking every length
@@ -204,19 +206,19 @@ fn check_valid(root: &json::Root) -> Result<(), ParseError> {
 }
 
 /// Each buffer's bytes: the GLB's binary chunk, a data URI, or another file.
-fn read_buffers(
+fn read_buffers<'a>(
     document: &gltf::Document,
-    blob: Option<&[u8]>,
+    blob: Option<&'a [u8]>,
     resources: Resources<'_>,
-) -> Result<Vec<Vec<u8>>, ParseError> {
+) -> Result<Vec<Buffer<'a>>, ParseError> {
     let mut out = Vec::new();
     for buffer in document.buffers() {
         let at = |m: String| ParseError::new(0, 0, format!("buffers[{}]: {m}", buffer.index()));
         let data = match buffer.source() {
             gltf::buffer::Source::Bin => {
-                blob.ok_or_else(|| at("it is the GLB's binary chunk, but the file has none".into()))?.to_vec()
+                Buffer::Borrowed(blob.ok_or_else(|| at("it is the GLB's binary chunk, but the file has none".into()))?)
             }
-            gltf::buffer::Source::Uri(uri) => fetch(uri, resources).map_err(at)?,
+            gltf::buffer::Source::Uri(uri) => Buffer::Owned(fetch(uri, resources).map_err(at)?),
         };
         if data.len() < buffer.length() {
             return Err(at(format!("the file says {} bytes, its data has {}", buffer.length(), data.len())));

@@ -106,7 +106,11 @@ impl Graph {
             match seen.get_mut(n) {
                 Some(s) if !*s => *s = true,
                 _ => {
-                    return Err(ParseError::new(0, 0, format!("nodes[{n}]: reached twice (a cycle in the node graph)")));
+                    return Err(ParseError::new(
+                        0,
+                        0,
+                        format!("nodes[{n}]: reached twice (a cycle in the node graph)"),
+                    ));
                 }
             }
             order.push(n);

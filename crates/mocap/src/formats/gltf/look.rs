@@ -41,7 +41,7 @@ struct Texture<'i> {
 
 /// Builds the look; `None` when the scene has no drawable mesh.
 pub fn build(
-    parsed: &Parsed,
+    parsed: &Parsed<'_>,
     graph: &Graph,
     resources: Resources<'_>,
     warnings: &mut Vec<Warning>,
@@ -104,7 +104,7 @@ fn note(message: String) -> Warning {
 /// One inverse bind matrix per skeleton joint: from the skins (the first skin
 /// naming a joint wins; a skin without the accessor means identity), else the
 /// inverse of the joint's world transform at rest.
-fn inverse_binds(parsed: &Parsed, graph: &Graph) -> Result<Vec<Mat4>, ParseError> {
+fn inverse_binds(parsed: &Parsed<'_>, graph: &Graph) -> Result<Vec<Mat4>, ParseError> {
     let mut out: Vec<Mat4> = graph.joint_world_rest().iter().map(|m| m.inverse()).collect();
     let mut set = vec![false; out.len()];
     for skin in parsed.document.skins() {
@@ -139,7 +139,7 @@ fn inverse_binds(parsed: &Parsed, graph: &Graph) -> Result<Vec<Mat4>, ParseError
 
 /// Reads one primitive into the merged mesh.
 fn add_primitive(
-    parsed: &Parsed,
+    parsed: &Parsed<'_>,
     primitive: &gltf::Primitive<'_>,
     pointer: &str,
     binding: &Binding,
@@ -298,7 +298,7 @@ fn computed_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
 /// The primitive's base-colour texture, decoded once per image (an image that
 /// cannot be had is warned about once and the factor alone is used).
 fn texture<'i>(
-    parsed: &Parsed,
+    parsed: &Parsed<'_>,
     primitive: &gltf::Primitive<'_>,
     images: &'i mut [Option<Option<Rgba>>],
     resources: Resources<'_>,
@@ -337,10 +337,10 @@ fn texture<'i>(
 }
 
 /// The encoded bytes of an image: a buffer view, a data URI or another file.
-fn image_bytes(parsed: &Parsed, image: &gltf::Image<'_>, resources: Resources<'_>) -> Result<Vec<u8>, String> {
+fn image_bytes(parsed: &Parsed<'_>, image: &gltf::Image<'_>, resources: Resources<'_>) -> Result<Vec<u8>, String> {
     match image.source() {
         gltf::image::Source::View { view, .. } => {
-            let buffer = parsed.buffers.get(view.buffer().index()).map_or(&[][..], Vec::as_slice);
+            let buffer: &[u8] = parsed.buffers.get(view.buffer().index()).map_or(&[][..], |b| b);
             let end = view.offset().checked_add(view.length()).unwrap_or(usize::MAX);
             buffer
                 .get(view.offset()..end)

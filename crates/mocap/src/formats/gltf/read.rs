@@ -17,7 +17,7 @@ use super::document::{self, Resources};
 use super::graph::{Graph, Trs};
 use crate::error::{ParseError, Warning};
 use crate::model::channel::Channel;
-use crate::model::character::{Character, Source, Summary, Take};
+use crate::model::character::{Character, Summary, Take};
 use crate::model::clip::Clip;
 use crate::model::motion::Motion;
 use crate::model::skeleton::{EulerConvention, Joint, Skeleton};
@@ -70,18 +70,13 @@ pub fn parse(bytes: &[u8], resources: Resources<'_>, animation: Option<&str>) ->
     };
     let look = super::look::build(&parsed, &graph, resources, &mut warnings)?;
     let summary = summary(&parsed, &all);
-    let source = Source {
-        json: parsed.json.clone(),
-        bin: if parsed.buffers.len() == 1 { parsed.buffers[0].clone() } else { Vec::new() },
-        nodes: graph.joints.clone(),
-    };
-    let character = Character { look, takes, summary, source: Some(Arc::new(source)) };
+    let character = Character { look, takes, summary };
     let mut clip = Clip::new(skeleton, motion)
         .map_err(|e| ParseError::new(0, 0, format!("internal: {e}")))?
         .with_warnings(warnings)
         .with_character(Arc::new(character));
-    let first = clip.takes().get(start).map(|t| t.name.clone());
-    if let Some(name) = first {
+    if start > 0 {
+        let name = clip.takes().get(start).map(|t| t.name.clone()).unwrap_or_default();
         clip.set_take(&name);
     }
     clip.metadata.push(("format".into(), "glTF 2.0".into()));
@@ -202,6 +197,7 @@ fn sample_take(
             by_joint[j].push(t);
         }
     }
+    let mut cursors: Vec<Vec<usize>> = by_joint.iter().map(|t| vec![0; t.len()]).collect();
     let mut data = Vec::with_capacity(frames * width);
     let mut previous: Vec<[f32; 3]> = vec![[0.0; 3]; graph.joints.len()];
     for f in 0..frames {
@@ -210,8 +206,8 @@ fn sample_take(
             let n = graph.joints[j];
             let mut trs = graph.rest[n];
             let mut value = [0.0f32; 4];
-            for track in joint_tracks {
-                track.sample(time, &mut value);
+            for (track, cursor) in joint_tracks.iter().zip(cursors[j].iter_mut()) {
+                track.sample_from(time, cursor, &mut value);
                 match track.path {
                     Path::Translation => trs.t = Vec3::new(value[0], value[1], value[2]),
                     Path::Rotation => trs.r = Quat::from_array(value),
@@ -253,7 +249,7 @@ fn unwrap(angles: [f32; 3], previous: [f32; 3], has_previous: bool) -> [f32; 3] 
 }
 
 /// What the file holds, for `mocap info`.
-fn summary(parsed: &document::Parsed, all: &[(String, Vec<Track>)]) -> Summary {
+fn summary(parsed: &document::Parsed<'_>, all: &[(String, Vec<Track>)]) -> Summary {
     let d = &parsed.document;
     let name = |n: Option<&str>, kind: &str, i: usize| n.map_or_else(|| format!("{kind} {i}"), str::to_owned);
     Summary {
