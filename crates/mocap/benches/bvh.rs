@@ -56,19 +56,12 @@ static GLOBAL: Counting = Counting;
 
 const FRAMES: usize = 36_000;
 
+#[path = "common/take.rs"]
+mod take;
+
 /// Header of 01_01.bvh with its rows repeated to `FRAMES` rows.
 fn long_take(src: &[u8]) -> Vec<u8> {
-    let text = std::str::from_utf8(src).expect("utf-8");
-    let start = text.find("Frame Time").expect("Frame Time line");
-    let rows_at = start + text[start..].find('\n').expect("newline") + 1;
-    let rows: Vec<&str> = text[rows_at..].lines().filter(|l| !l.trim().is_empty()).collect();
-    let header = text[..rows_at].replace(&format!("Frames: {}", rows.len()), &format!("Frames: {FRAMES}"));
-    let mut out = header.into_bytes();
-    for i in 0..FRAMES {
-        out.extend_from_slice(rows[i % rows.len()].as_bytes());
-        out.push(b'\n');
-    }
-    out
+    take::long_take(src, FRAMES)
 }
 
 /// `rows` cut into `parts` pieces of about equal length, each ending at a line break.

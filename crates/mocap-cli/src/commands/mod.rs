@@ -104,25 +104,15 @@ fn read_take(paths: &[PathBuf], animation: Option<&str>) -> Result<Clip, String>
     Ok(clip)
 }
 
-/// The `.bin` buffers and images a `.gltf` names by relative URI, read from
-/// beside it when they are there and not given already (as an AMC finds its ASF).
+/// The `.bin` buffers and images a `.gltf` names, read from beside it when they
+/// are there and not given already (as an AMC finds its ASF).
 fn add_gltf_companions(files: &mut Vec<(PathBuf, Vec<u8>)>) {
-    let mut extra = Vec::new();
+    let mut extra: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     for (path, bytes) in files.iter() {
-        if bytes.starts_with(b"glTF") || !mocap::formats::gltf::sniff(bytes) {
-            continue;
-        }
-        let Ok(json) = serde_json::from_slice::<Value>(bytes) else { continue };
-        let uris = ["buffers", "images"]
-            .iter()
-            .flat_map(|k| json.get(*k).and_then(Value::as_array).cloned().unwrap_or_default())
-            .filter_map(|v| v.get("uri").and_then(Value::as_str).map(str::to_owned))
-            .filter(|u| !u.starts_with("data:"));
-        for uri in uris {
-            let decoded = percent_decode(&uri);
-            let beside = path.parent().unwrap_or(Path::new("")).join(&decoded);
+        for name in mocap::formats::gltf::document::external_files(bytes) {
+            let beside = path.parent().unwrap_or(Path::new("")).join(&name);
             let given = |p: &Path| p.file_name() == beside.file_name();
-            if files.iter().any(|(p, _)| given(p)) || extra.iter().any(|(p, _): &(PathBuf, Vec<u8>)| given(p)) {
+            if files.iter().chain(&extra).any(|(p, _)| given(p)) {
                 continue;
             }
             if let Ok(data) = std::fs::read(&beside) {
@@ -131,30 +121,6 @@ fn add_gltf_companions(files: &mut Vec<(PathBuf, Vec<u8>)>) {
         }
     }
     files.extend(extra);
-}
-
-/// `%20` and the like in a URI, decoded.
-fn percent_decode(uri: &str) -> String {
-    let bytes = uri.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        let hex = bytes
-            .get(i + 1..i + 3)
-            .and_then(|h| std::str::from_utf8(h).ok())
-            .and_then(|h| u8::from_str_radix(h, 16).ok());
-        match (bytes[i], hex) {
-            (b'%', Some(b)) => {
-                out.push(b);
-                i += 3;
-            }
-            (b, _) => {
-                out.push(b);
-                i += 1;
-            }
-        }
-    }
-    String::from_utf8_lossy(&out).into_owned()
 }
 
 /// Reads the files of one clip (a motion file, or an Acclaim skeleton with one motion).

@@ -58,3 +58,16 @@ pub struct Summary {
     /// Extensions the file requires.
     pub extensions_required: Vec<String>,
 }
+
+/// An sRGB byte (a [`Look`] colour) as a linear value in 0–1.
+pub fn srgb_to_linear(c: u8) -> f32 {
+    let c = c as f32 / 255.0;
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+}
+
+/// A linear value (clamped to 0–1) as an sRGB byte.
+pub fn linear_to_srgb(c: f32) -> u8 {
+    let c = c.clamp(0.0, 1.0);
+    let s = if c <= 0.003_130_8 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+    (s * 255.0).round() as u8
+}

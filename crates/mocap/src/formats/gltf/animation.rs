@@ -43,16 +43,11 @@ impl Track {
         if self.path == Path::Rotation { 4 } else { 3 }
     }
 
-    /// The value at time `t` into `out` (4 slots; 3 used for translation and scale).
-    pub fn sample(&self, t: f32, out: &mut [f32; 4]) {
-        let mut cursor = 0;
-        self.sample_from(t, &mut cursor, out);
-    }
-
-    /// [`Track::sample`] for times that mostly increase from call to call:
-    /// `cursor` remembers the key interval found last, so a pass over the frames
-    /// walks the keys once instead of searching them for every frame.
-    pub fn sample_from(&self, t: f32, cursor: &mut usize, out: &mut [f32; 4]) {
+    /// The value at time `t` into `out` (4 slots; 3 used for translation and
+    /// scale). `cursor` remembers the key interval found last (start it at 0), so
+    /// a pass over increasing times walks the keys once instead of searching them
+    /// for every frame; any time is still answered exactly.
+    pub fn sample(&self, t: f32, cursor: &mut usize, out: &mut [f32; 4]) {
         let w = self.width();
         let n = self.times.len();
         let cubic = self.interpolation == Interpolation::CubicSpline;

@@ -243,3 +243,23 @@ pub fn fetch(uri: &str, resources: Resources<'_>) -> Result<Vec<u8>, String> {
     let name = decoded.rsplit(['/', '\\']).next().unwrap_or(&decoded);
     resources(name).ok_or_else(|| format!("it names the file `{name}`: open that file together with this one"))
 }
+
+/// The other files a `.gltf` names (its `.bin` buffers and images), as relative
+/// paths with their `%XX` escapes decoded; data URIs left out. Empty for a `.glb`
+/// or for bytes that are not a glTF document (the reader reports those).
+pub fn external_files(bytes: &[u8]) -> Vec<String> {
+    if bytes.starts_with(b"glTF") {
+        return Vec::new();
+    }
+    let Ok(root) = json::deserialize::from_slice::<json::Root>(bytes) else { return Vec::new() };
+    let buffers = root.buffers.iter().filter_map(|b| b.uri.clone());
+    let images = root.images.iter().filter_map(|i| i.uri.clone());
+    let mut out: Vec<String> = Vec::new();
+    for uri in buffers.chain(images).filter(|u| !u.starts_with("data:")) {
+        let path = percent_encoding::percent_decode_str(&uri).decode_utf8_lossy().into_owned();
+        if !out.contains(&path) {
+            out.push(path);
+        }
+    }
+    out
+}

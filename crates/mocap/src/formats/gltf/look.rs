@@ -13,7 +13,7 @@ use super::accessor::{floats, integers};
 use super::document::{Parsed, Resources, fetch};
 use super::graph::Graph;
 use crate::error::{ParseError, Warning};
-use crate::model::character::Look;
+use crate::model::character::{Look, linear_to_srgb, srgb_to_linear};
 use crate::model::mesh::Rgba;
 use crate::runtime::skin::{MAX_INFLUENCES, Skin};
 use glam::{Mat3, Mat4, Vec2, Vec3};
@@ -351,30 +351,17 @@ fn image_bytes(parsed: &Parsed<'_>, image: &gltf::Image<'_>, resources: Resource
     }
 }
 
-/// sRGB (0–255) to linear.
-fn linear(c: u8) -> f32 {
-    let c = c as f32 / 255.0;
-    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
-}
-
-/// Linear to sRGB (0–255).
-fn srgb(c: f32) -> u8 {
-    let c = c.clamp(0.0, 1.0);
-    let s = if c <= 0.003_130_8 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
-    (s * 255.0).round() as u8
-}
-
 /// The vertex's base colour: the factor (linear) times the texture (sRGB) at `uv`.
 fn color(factor: [f32; 4], texture: Option<&Texture<'_>>, uv: Vec2) -> [u8; 4] {
     let texel = texture.map_or([1.0; 4], |t| {
         let uv = t.transform * uv.extend(1.0);
         let p = bilinear(t.image, t.wrap, uv.x, uv.y);
-        [linear(p[0]), linear(p[1]), linear(p[2]), p[3] as f32 / 255.0]
+        [srgb_to_linear(p[0]), srgb_to_linear(p[1]), srgb_to_linear(p[2]), p[3] as f32 / 255.0]
     });
     [
-        srgb(factor[0] * texel[0]),
-        srgb(factor[1] * texel[1]),
-        srgb(factor[2] * texel[2]),
+        linear_to_srgb(factor[0] * texel[0]),
+        linear_to_srgb(factor[1] * texel[1]),
+        linear_to_srgb(factor[2] * texel[2]),
         (factor[3] * texel[3] * 255.0).round().clamp(0.0, 255.0) as u8,
     ]
 }

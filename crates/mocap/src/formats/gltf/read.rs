@@ -198,6 +198,7 @@ fn sample_take(
         }
     }
     let mut cursors: Vec<Vec<usize>> = by_joint.iter().map(|t| vec![0; t.len()]).collect();
+    let unrest: Vec<Quat> = skeleton.joints().iter().map(|j| j.rest_rotation.inverse()).collect();
     let mut data = Vec::with_capacity(frames * width);
     let mut previous: Vec<[f32; 3]> = vec![[0.0; 3]; graph.joints.len()];
     for f in 0..frames {
@@ -207,7 +208,7 @@ fn sample_take(
             let mut trs = graph.rest[n];
             let mut value = [0.0f32; 4];
             for (track, cursor) in joint_tracks.iter().zip(cursors[j].iter_mut()) {
-                track.sample_from(time, cursor, &mut value);
+                track.sample(time, cursor, &mut value);
                 match track.path {
                     Path::Translation => trs.t = Vec3::new(value[0], value[1], value[2]),
                     Path::Rotation => trs.r = Quat::from_array(value),
@@ -215,11 +216,11 @@ fn sample_take(
                 }
             }
             let local: Trs = trs.after(&graph.between[n]);
-            let rest_rotation = skeleton.joints().get(j).map_or(Quat::IDENTITY, |joint| joint.rest_rotation);
             if layout.translate[j] {
                 data.extend(local.t.to_array());
             }
-            let (z, x, y) = (rest_rotation.inverse() * local.r).normalize().to_euler(EulerRot::ZXY);
+            let unrest_j = unrest.get(j).copied().unwrap_or(Quat::IDENTITY);
+            let (z, x, y) = (unrest_j * local.r).normalize().to_euler(EulerRot::ZXY);
             let angles = unwrap([z.to_degrees(), x.to_degrees(), y.to_degrees()], previous[j], f > 0);
             previous[j] = angles;
             data.extend(angles);

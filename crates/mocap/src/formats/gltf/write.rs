@@ -168,7 +168,8 @@ fn document(clip: &Clip, options: &Options, inline: Option<()>) -> Result<(Value
         let mut attributes =
             json!({ "POSITION": position, "NORMAL": normal, "JOINTS_0": joints_0, "WEIGHTS_0": weights_0 });
         if let Some(look) = look {
-            let colors: Vec<f32> = look.colors.iter().flat_map(|c| c.map(|x| srgb_to_linear(x))).collect();
+            let colors: Vec<f32> =
+                look.colors.iter().flat_map(|c| c.map(crate::model::character::srgb_to_linear)).collect();
             attributes["COLOR_0"] =
                 json!(vertex_accessor(&mut accessors, &mut bin, &colors, "VEC4", look.colors.len(), None));
         }
@@ -392,12 +393,6 @@ fn look_mesh(look: &crate::model::character::Look) -> Option<BodyMesh> {
         joints: skin.joints().iter().map(|js| js.map(|j| u16::try_from(j).unwrap_or(0))).collect(),
         weights: skin.weights().to_vec(),
     })
-}
-
-/// An sRGB byte as a linear float (glTF's `COLOR_0` is linear).
-fn srgb_to_linear(c: u8) -> f32 {
-    let c = c as f32 / 255.0;
-    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
 }
 
 /// Per-component minimum and maximum of `points`.
