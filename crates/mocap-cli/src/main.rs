@@ -230,7 +230,7 @@ enum Command {
         /// One or more motion or model files, drawn side by side (Acclaim: skeleton and motions; MD2: the model and its skin image).
         #[arg(required = true)]
         files: Vec<PathBuf>,
-        /// A skin image (PCX, BMP, PNG, JPEG) for the MD2 model(s); same as giving it among the files.
+        /// A skin image (PCX, BMP, PNG, JPEG, TGA) for the MD2 model(s); same as giving it among the files.
         #[arg(long)]
         skin: Vec<PathBuf>,
         /// The animation MD2 models play (`run`, `stand`, …; default `all`, every frame in file order).

@@ -671,3 +671,22 @@ fn a_gltf_finds_its_bin_beside_it() {
     let out = mocap(&["info", gltf.to_str().unwrap()]);
     assert!(!out.status.success() && stderr(&out).contains("buffers[0]") && stderr(&out).contains("walk data.bin"));
 }
+
+#[test]
+fn validate_and_info_list_the_reader_warnings_with_their_lines() {
+    // A root written JOINT: read, with the warning on line 2 in both commands.
+    let dir = tempfile::tempdir().unwrap();
+    let file = write_temp(dir.path(), "joint_root.bvh", &SIMPLE.replacen("ROOT", "JOINT", 1));
+    let out = mocap(&["validate", file.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stdout(&out));
+    let text = stdout(&out);
+    assert!(text.contains("1 warnings"), "{text}");
+    assert!(
+        text.contains("warning: ") && text.contains("joint_root.bvh:2: the skeleton's root is written JOINT"),
+        "{text}"
+    );
+    let info = mocap(&["info", file.to_str().unwrap(), "--json"]);
+    assert!(info.status.success(), "{}", stderr(&info));
+    let v: Value = serde_json::from_str(&stdout(&info)).unwrap();
+    assert!(v["warnings"][0].as_str().unwrap().contains("written JOINT"), "{v}");
+}

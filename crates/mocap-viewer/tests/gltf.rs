@@ -119,7 +119,10 @@ fn a_damaged_glb_is_named_in_the_banner_and_what_was_open_stays() {
     let glb = two_takes();
     let mut v = Viewer::default();
     assert!(v.open_files(&[("walk.glb", &glb)], OpenMode::Replace).is_empty());
-    for (name, bytes) in [("cut.glb", &glb[..glb.len() / 2]), ("draco.gltf", &br#"{"asset":{"version":"2.0"},"extensionsRequired":["KHR_draco_mesh_compression"]}"#[..])] {
+    for (name, bytes) in [
+        ("cut.glb", &glb[..glb.len() / 2]),
+        ("draco.gltf", &br#"{"asset":{"version":"2.0"},"extensionsRequired":["KHR_draco_mesh_compression"]}"#[..]),
+    ] {
         let errors = v.open_files(&[(name, bytes)], OpenMode::Replace);
         assert_eq!(errors.len(), 1, "{errors:?}");
         assert!(errors[0].starts_with(name), "{}", errors[0]);
@@ -127,6 +130,9 @@ fn a_damaged_glb_is_named_in_the_banner_and_what_was_open_stays() {
         assert_eq!(s.clips.len(), 1, "the character stays open");
         assert_eq!(s.clips[0].name, "walk.glb");
     }
-    let errors = v.open_files(&[("draco.gltf", br#"{"asset":{"version":"2.0"},"extensionsRequired":["KHR_draco_mesh_compression"]}"#)], OpenMode::Add);
+    let errors = v.open_files(
+        &[("draco.gltf", br#"{"asset":{"version":"2.0"},"extensionsRequired":["KHR_draco_mesh_compression"]}"#)],
+        OpenMode::Add,
+    );
     assert!(errors[0].contains("KHR_draco_mesh_compression"), "{}", errors[0]);
 }

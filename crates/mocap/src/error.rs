@@ -59,7 +59,7 @@ pub enum LoadError {
     },
     /// Neither the extension nor the content matches a format we read.
     #[error(
-        "{file}: not a motion file or model this viewer reads (BVH, BVA, an Acclaim .asf skeleton with .amc motions, or a Quake 2 .md2 model with its PCX, BMP, PNG or JPEG skin)"
+        "{file}: not a motion file or model this viewer reads (BVH, BVA, an Acclaim .asf skeleton with .amc motions, a Quake 2 .md2 model with its PCX, BMP, PNG, JPEG or TGA skin, or glTF .glb/.gltf)"
     )]
     UnknownFormat {
         /// The file name as given by the caller.

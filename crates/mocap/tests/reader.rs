@@ -165,7 +165,8 @@ fn error_cases_have_line_and_column() {
     let cases: &[(&str, u32, u32, &str)] = &[
         ("", 1, 1, "expected HIERARCHY"),
         ("HIERARCHX\n", 1, 1, "expected HIERARCHY"),
-        ("HIERARCHY\nJOINT A\n", 2, 1, "expected ROOT"),
+        ("HIERARCHY\nJOINTS A\n", 2, 1, "expected ROOT"),
+        ("HIERARCHY\nEnd Site\n{\n}\n", 2, 1, "expected ROOT"),
         ("HIERARCHY\nROOT A\n{\nOFFSET 0 x 0\n}\n", 4, 10, "y value of OFFSET"),
         ("HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS 2 Xrotation Wrotation\n}\n", 5, 22, "channel name"),
         ("HIERARCHY\nROOT A\n{\nOFFSET 0 0 0\nCHANNELS three\n}\n", 5, 10, "channel count"),
@@ -307,4 +308,25 @@ fn big_input_parsed_in_parallel_matches_sequential_and_reports_lines() {
     let two = bad.replacen("20000 ", "20000 1 ", 1);
     let e = err(&one_joint(ch, &two, 60_000));
     assert_eq!((e.line, e.message.contains("more than 6 values")), (14 + 20_000, true), "{e}");
+}
+
+#[test]
+fn a_root_written_joint_reads_as_the_root_with_one_warning() {
+    // What some Mixamo-to-BVH converters write: `JOINT` where `ROOT` belongs, twice
+    // (two skeletons), otherwise an ordinary file.
+    let src = one_joint("CHANNELS 3 Xposition Yposition Zposition", "1 2 3\n4 5 6\n", 2).replacen("ROOT", "JOINT", 1);
+    let two = src.replacen("MOTION", "JOINT Second\n{\n\tOFFSET 0 0 0\n}\nMOTION", 1);
+    let clip = parse(two.as_bytes()).expect("a top-level JOINT is a root");
+    let roots: Vec<&str> =
+        clip.skeleton().joints().iter().filter(|j| j.parent.is_none()).map(|j| j.name.as_str()).collect();
+    assert_eq!(roots, ["Hips", "Second"]);
+    assert_eq!(clip.frame_count(), 2);
+    let joint_warnings: Vec<_> = clip.warnings.iter().filter(|w| w.message.contains("written JOINT")).collect();
+    assert_eq!(joint_warnings.len(), 1, "{:?}", clip.warnings);
+    assert_eq!(joint_warnings[0].line, Some(2));
+    // The same file with ROOT reads to the same skeleton and motion, without the warning.
+    let plain = parse(src.replacen("JOINT", "ROOT", 1).as_bytes()).unwrap();
+    assert!(plain.warnings.is_empty(), "{:?}", plain.warnings);
+    // A JOINT inside a joint is still a child.
+    assert!(parse(one_joint("CHANNELS 0", "\n", 1).replace("End Site", "JOINT Child").as_bytes()).is_ok());
 }

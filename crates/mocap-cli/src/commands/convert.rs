@@ -67,17 +67,18 @@ fn is_motion_file(path: &Path) -> bool {
     path.extension().and_then(|e| e.to_str()).is_some_and(known)
 }
 
-/// One line on what a valid file holds, or why it is not valid.
-fn describe(file: &Path) -> Result<String, String> {
+/// One line on what a valid file holds and the reader's warnings, or why it is not valid.
+fn describe(file: &Path) -> Result<(String, Vec<mocap::Warning>), String> {
     let one = [file.to_path_buf()];
     Ok(match one_asset(read_set(&one)?, &one)? {
-        Asset::Model(model) => {
-            format!("MD2 model, {} vertices, {} frames", model.mesh.source_counts.vertices, model.mesh.frame_count())
-        }
+        Asset::Model(model) => (
+            format!("MD2 model, {} vertices, {} frames", model.mesh.source_counts.vertices, model.mesh.frame_count()),
+            Vec::new(),
+        ),
         Asset::Clip(clip) => {
             let warn =
                 if clip.warnings.is_empty() { String::new() } else { format!(", {} warnings", clip.warnings.len()) };
-            format!("{} joints, {} frames{warn}", clip.skeleton().len(), clip.frame_count())
+            (format!("{} joints, {} frames{warn}", clip.skeleton().len(), clip.frame_count()), clip.warnings.clone())
         }
     })
 }
@@ -94,7 +95,15 @@ pub fn validate(paths: &[PathBuf]) -> Result<ExitCode, String> {
     let mut failed = 0;
     for file in &files {
         match describe(file) {
-            Ok(line) => println!("ok   {}: {line}", file.display()),
+            Ok((line, warnings)) => {
+                println!("ok   {}: {line}", file.display());
+                for w in warnings {
+                    match w.line {
+                        Some(n) => println!("     warning: {}:{n}: {}", file.display(), w.message),
+                        None => println!("     warning: {}: {}", file.display(), w.message),
+                    }
+                }
+            }
             Err(message) => {
                 failed += 1;
                 println!("FAIL {message}");

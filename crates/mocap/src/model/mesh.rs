@@ -388,8 +388,9 @@ pub fn file_key(name: &str) -> String {
 
 /// Which of `images` (file names) belongs to a model named `model_name` with
 /// embedded skin names `skins`: the first image whose file name matches an embedded
-/// skin name (case-insensitive, any folder prefix), else the first whose name
-/// without extension is the model's. `None` when none matches.
+/// skin name (case-insensitive, any folder prefix), else one that matches a skin
+/// name but for its extension (`skin.tga` for `skin.pcx`), else the first whose
+/// name without extension is the model's. `None` when none matches.
 pub fn match_skin(model_name: &str, skins: &[String], images: &[&str]) -> Option<usize> {
     let wanted: Vec<String> = skins.iter().map(|s| file_key(s)).collect();
     if let Some(i) = images.iter().position(|name| wanted.contains(&file_key(name))) {
@@ -399,6 +400,11 @@ pub fn match_skin(model_name: &str, skins: &[String], images: &[&str]) -> Option
         let key = file_key(n);
         key.rsplit_once('.').map_or(key.clone(), |(s, _)| s.to_owned())
     };
+    // A skin named `skin.pcx` shipped as `skin.tga` (what Quake 2 engines fall back to).
+    let wanted_stems: Vec<String> = skins.iter().map(|s| stem(s)).collect();
+    if let Some(i) = images.iter().position(|name| wanted_stems.contains(&stem(name))) {
+        return Some(i);
+    }
     let model = stem(model_name);
     images.iter().position(|name| stem(name) == model)
 }

@@ -41,6 +41,9 @@ pub(crate) fn parse_f32(token: &Token) -> Option<f32> {
     }
 }
 
+/// The start of the warning for a top-level `JOINT`.
+const JOINT_AS_ROOT: &str = "the skeleton's root is written JOINT";
+
 struct Builder<'a> {
     cursor: Cursor<'a>,
     joints: Vec<Joint>,
@@ -76,6 +79,16 @@ pub(crate) fn parse_header(src: &[u8]) -> Result<Header, ParseError> {
         };
         if b.stack.is_empty() {
             if token.is("ROOT") {
+                b.open_joint(&token, None, false, None)?;
+            } else if token.is("JOINT") {
+                // Some Mixamo-to-BVH converters write the root as `JOINT`. With no joint
+                // open it can only be a root, so it reads as one, with a warning.
+                if !b.warnings.iter().any(|w| w.message.starts_with(JOINT_AS_ROOT)) {
+                    b.warnings.push(Warning {
+                        line: Some(token.line),
+                        message: format!("{JOINT_AS_ROOT}; read as the root (BVH writes ROOT there)"),
+                    });
+                }
                 b.open_joint(&token, None, false, None)?;
             } else if token.is("MOTION") {
                 if b.joints.is_empty() {

@@ -27,11 +27,13 @@ pub enum ImageFormat {
     Png,
     /// JPEG (baseline and progressive).
     Jpeg,
+    /// Truevision TGA (what Quake 2 engines load when a skin's `.pcx` is missing).
+    Tga,
 }
 
 impl ImageFormat {
     /// File extensions of images (for file pickers), without the dot.
-    pub const EXTENSIONS: [&'static str; 5] = ["pcx", "bmp", "png", "jpg", "jpeg"];
+    pub const EXTENSIONS: [&'static str; 6] = ["pcx", "bmp", "png", "jpg", "jpeg", "tga"];
 
     /// The format of `bytes` from their first bytes (signatures), if an image.
     pub fn detect(bytes: &[u8]) -> Option<ImageFormat> {
@@ -43,6 +45,8 @@ impl ImageFormat {
             Some(ImageFormat::Bmp)
         } else if pcx::sniff(bytes) {
             Some(ImageFormat::Pcx)
+        } else if sniff_tga(bytes) {
+            Some(ImageFormat::Tga)
         } else {
             None
         }
@@ -56,6 +60,7 @@ impl ImageFormat {
             "bmp" => Some(ImageFormat::Bmp),
             "png" => Some(ImageFormat::Png),
             "jpg" | "jpeg" => Some(ImageFormat::Jpeg),
+            "tga" => Some(ImageFormat::Tga),
             _ => None,
         }
     }
@@ -67,6 +72,7 @@ impl ImageFormat {
             ImageFormat::Bmp => "BMP",
             ImageFormat::Png => "PNG",
             ImageFormat::Jpeg => "JPEG",
+            ImageFormat::Tga => "TGA",
         }
     }
 }
@@ -80,6 +86,7 @@ pub fn decode(format: ImageFormat, bytes: &[u8]) -> Result<Rgba, ParseError> {
         ImageFormat::Bmp => ::image::ImageFormat::Bmp,
         ImageFormat::Png => ::image::ImageFormat::Png,
         ImageFormat::Jpeg => return jpeg::decode(bytes),
+        ImageFormat::Tga => ::image::ImageFormat::Tga,
     };
     let mut reader = ::image::ImageReader::with_format(std::io::Cursor::new(bytes), kind);
     let mut limits = ::image::Limits::default();
@@ -99,6 +106,28 @@ pub fn decode(format: ImageFormat, bytes: &[u8]) -> Result<Rgba, ParseError> {
 pub fn decode_any(name: &str, bytes: &[u8]) -> Result<Rgba, ParseError> {
     let format = ImageFormat::detect(bytes)
         .or_else(|| ImageFormat::from_extension(name))
-        .ok_or_else(|| ParseError::at_byte(0, "not an image this viewer reads (PCX, BMP, PNG or JPEG)"))?;
+        .ok_or_else(|| ParseError::at_byte(0, "not an image this viewer reads (PCX, BMP, PNG, JPEG or TGA)"))?;
     decode(format, bytes)
+}
+
+/// True when `bytes` start with a TGA header every field of which holds an allowed
+/// value: colour-map type 0 or 1, image type 1–3 or 9–11 (colour-mapped, true-colour
+/// or grey, raw or RLE), a colour map only with a colour-mapped type, 8/15/16/24/32
+/// bits per pixel, a non-zero size, and the ID field and colour map inside the file.
+/// TGA has no signature, so this is the last format tried.
+fn sniff_tga(bytes: &[u8]) -> bool {
+    let Some(h) = bytes.get(..18) else { return false };
+    let word = |i: usize| usize::from(u16::from_le_bytes([h[i], h[i + 1]]));
+    let (id_len, map_type, image_type) = (usize::from(h[0]), h[1], h[2]);
+    let mapped = matches!(image_type, 1 | 9);
+    let known_type = matches!(image_type, 1..=3 | 9..=11);
+    let map_ok = match map_type {
+        0 => !mapped,
+        1 => mapped && matches!(h[7], 15 | 16 | 24 | 32),
+        _ => false,
+    };
+    let map_bytes = if map_type == 1 { word(5) * usize::from(h[7]).div_ceil(8) } else { 0 };
+    let depth_ok = matches!(h[16], 8 | 15 | 16 | 24 | 32);
+    let size_ok = word(12) > 0 && word(14) > 0;
+    known_type && map_ok && depth_ok && size_ok && h[17] & 0xC0 == 0 && 18 + id_len + map_bytes < bytes.len()
 }
