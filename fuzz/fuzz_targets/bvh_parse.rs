@@ -10,7 +10,11 @@ fuzz_target!(|data: &[u8]| {
     let whole = mocap::formats::bvh::parse(data);
     let mut stream = mocap::formats::bvh::Stream::with_capacity(data.len());
     data.chunks(usize::from(data.first().copied().unwrap_or(1)).max(1)).for_each(|c| stream.push(c));
-    let outcome = |r: &Result<mocap::Clip, mocap::ParseError>| r.as_ref().map(|c| (c.frame_count(), c.motion().data().iter().map(|v| v.to_bits()).collect::<Vec<_>>())).map_err(|e| e.to_string());
+    let outcome = |r: &Result<mocap::Clip, mocap::ParseError>| {
+        r.as_ref()
+            .map(|c| (c.frame_count(), c.motion().data().iter().map(|v| v.to_bits()).collect::<Vec<_>>()))
+            .map_err(|e| e.to_string())
+    };
     assert!(outcome(&whole) == outcome(&stream.finish()), "streamed differs from parse");
     if let Ok(clip) = whole {
         let _ = clip.bounds();

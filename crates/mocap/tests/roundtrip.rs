@@ -168,3 +168,18 @@ proptest! {
         }
     }
 }
+
+/// Found by the mutation test (`tests/mutations.rs`): a BVA segment whose first
+/// frame's scale is infinite made baking fail and `bvh::write` call itself for
+/// ever (a stack overflow in `mocap convert`). It writes, once baked, and reads back.
+#[test]
+fn a_bva_with_an_infinite_first_scale_writes_as_bvh() {
+    let header = "Segment: Hips\nFrames: 2\nFrame Time: 0.033333\nXTRAN\tYTRAN\tZTRAN\tXROT\tYROT\tZROT\tXSCALE\tYSCALE\tZSCALE\nCENTIMETERS\tCENTIMETERS\tCENTIMETERS\tDEGREES\tDEGREES\tDEGREES\tCENTIMETERS\tCENTIMETERS\tCENTIMETERS\n";
+    let text = format!("{header}0\t92\t0\t0\t0\t0\t10\t-1e39\t10\n1\t92\t0\t0\t0\t0\t10\t10\t10\n");
+    let bva = mocap::formats::bva::parse(text.as_bytes()).expect("reads, with a warning");
+    let clip = mocap::formats::bva::to_clip(&bva).expect("a clip");
+    let written = mocap::formats::bvh::write(&clip);
+    let again = mocap::formats::bvh::parse(written.as_bytes()).expect("the written BVH reads");
+    assert_eq!(again.frame_count(), 2);
+    assert!(again.skeleton().joints().iter().all(|j| j.offset.is_finite()));
+}

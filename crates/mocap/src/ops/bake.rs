@@ -72,7 +72,9 @@ pub fn to_bvh(clip: &Clip) -> (Clip, Vec<Warning>) {
         .map(|(j, plan)| {
             if j.is_end_site() && !plan.translate {
                 let parent_scale = j.parent.and_then(|p| first.scale.get(p)).copied().unwrap_or(Vec3::ONE);
-                return Joint::end_site(j.name.clone(), j.parent, j.offset * parent_scale);
+                // A non-finite scale in the first frame keeps the unscaled offset.
+                let scaled = j.offset * parent_scale;
+                return Joint::end_site(j.name.clone(), j.parent, if scaled.is_finite() { scaled } else { j.offset });
             }
             let mut channels = Vec::new();
             if plan.translate {

@@ -26,9 +26,16 @@ fn column_order(skeleton: &Skeleton, written: &[usize]) -> Vec<usize> {
 /// extrinsic rotations, radians, scale or length channels) is first baked by
 /// [`crate::ops::bake::to_bvh`], which keeps every joint's model position.
 pub fn write(clip: &Clip) -> String {
-    if !crate::ops::bake::is_bvh_ready(clip) {
-        return write(&crate::ops::bake::to_bvh(clip).0);
+    if crate::ops::bake::is_bvh_ready(clip) {
+        write_ready(clip)
+    } else {
+        // Baked once, never again: what baking cannot make plain is written as it is.
+        write_ready(&crate::ops::bake::to_bvh(clip).0)
     }
+}
+
+/// Writes a clip whose skeleton and units BVH holds as they are.
+fn write_ready(clip: &Clip) -> String {
     let skeleton = clip.skeleton();
     let kids = skeleton.children();
     let mut written = Vec::with_capacity(skeleton.len());

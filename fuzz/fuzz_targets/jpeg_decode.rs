@@ -1,0 +1,11 @@
+//! Fuzzes jPEG skins, decoded alone and dropped with a model. No input may panic, hang or allocate
+//! without bound; what reads must survive what a user does next
+//! (`mocap_fuzz::check_set`).
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let _ = mocap::formats::image::decode(mocap::formats::image::ImageFormat::Jpeg, data);
+    mocap_fuzz::check_set(&[("skin.jpg", data), ("a.md2", &mocap_fuzz::tiny_md2())]);
+});
