@@ -5,6 +5,7 @@
 import init, { FileSet, start } from '../pkg/mocap_web.js';
 import { ClipError, DEFAULT_LIMIT, fetchClip, fileNameOf, gltfCompanions, resolveClipUrl } from './fetch-clip.js';
 import { followViewState, share } from './view-link.js';
+import { watchGpu } from './gpu-loss.js';
 
 const status = document.getElementById('status');
 const input = document.getElementById('file-input');
@@ -246,8 +247,28 @@ function wireFiles(viewer) {
 function saveFile(viewer) {
   // A file the viewer asked for, else the current character as BVH.
   const saved = viewer.takeDownload() ?? viewer.saveBvh();
-  if (!saved) return;
-  const [name, text] = saved;
+  if (saved) download(saved[0], saved[1]);
+}
+
+// Saves the selected character (else the first) as `kind` ('bvh' or 'glb') without
+// the viewer's menus: what the page offers when the graphics device is gone.
+function saveWork(viewer, kind) {
+  const s = viewer.state();
+  const index = s.selectedCharacter ?? 0;
+  if (kind === 'bvh') {
+    const saved = viewer.saveBvh(index);
+    if (saved) download(saved[0], saved[1]);
+    return;
+  }
+  try {
+    const [name, bytes] = viewer.saveGltfFile(index);
+    download(name, bytes);
+  } catch (e) {
+    viewer.showError(`Save as glTF: ${e && e.message ? e.message : e}`);
+  }
+}
+
+function download(name, text) {
   const type = name.endsWith('.glb') ? 'model/gltf-binary' : 'text/plain';
   const url = URL.createObjectURL(new Blob([text], { type }));
   const a = document.createElement('a');
@@ -280,6 +301,7 @@ async function main() {
     window.mocapViewer = viewer;
     viewer.setEmbed(embed);
     wireFiles(viewer);
+    watchGpu(viewer, 'viewer', 'gpu-notice', (kind) => saveWork(viewer, kind));
     hideStatus();
   } catch (e) {
     console.warn('viewer failed to start:', e);

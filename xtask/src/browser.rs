@@ -96,6 +96,9 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
         if let Err(e) = run(node("demo.mjs").args([url.as_str(), mode]).arg(&out).arg(&chromium)) {
             failures.push(format!("{mode} tentacle demo: {e}"));
         }
+        if let Err(e) = run(node("gpu-loss.mjs").args([url.as_str(), mode]).arg(&out).arg(&chromium)) {
+            failures.push(format!("{mode} lost graphics device: {e}"));
+        }
         let mut multi = node("multi.mjs");
         multi.args([url.as_str(), mode]).arg(&out).arg(&chromium);
         if let Some(corpus) = corpus_dir() {

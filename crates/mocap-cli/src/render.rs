@@ -69,9 +69,47 @@ pub struct Gpu {
     device: wgpu::Device,
     queue: wgpu::Queue,
     adapter: String,
+    /// Why the device is unusable (lost, or the first error it reported), once it is.
+    failed: std::sync::Arc<std::sync::Mutex<Option<String>>>,
 }
 
+/// How long a frame's pixels may take to come back before the device is taken for hung.
+const READBACK_LIMIT: std::time::Duration = std::time::Duration::from_secs(120);
+
 impl Gpu {
+    /// The device (for callers drawing with it themselves).
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
+    /// An error when the device was lost or reported an error: every frame after
+    /// is refused with it, instead of waiting for a device that will not answer.
+    pub fn check(&self) -> Result<(), String> {
+        match self.failed.lock().ok().and_then(|f| f.clone()) {
+            Some(reason) => Err(reason),
+            None => Ok(()),
+        }
+    }
+
+    /// Records why the device failed, keeping the first reason.
+    fn watch(device: &wgpu::Device) -> std::sync::Arc<std::sync::Mutex<Option<String>>> {
+        let failed = std::sync::Arc::new(std::sync::Mutex::new(None::<String>));
+        let record = |failed: &std::sync::Arc<std::sync::Mutex<Option<String>>>, reason: String| {
+            if let Ok(mut slot) = failed.lock() {
+                slot.get_or_insert(reason);
+            }
+        };
+        let lost = failed.clone();
+        device.set_device_lost_callback(move |reason, message| {
+            record(&lost, format!("the GPU device was lost ({reason:?}: {message}); nothing more can be drawn"));
+        });
+        let errors = failed.clone();
+        device.on_uncaptured_error(std::sync::Arc::new(move |error| {
+            record(&errors, format!("GPU error: {error}"));
+        }));
+        failed
+    }
+
     /// The adapter's name (e.g. "llvmpipe (LLVM 15.0.6, 256 bits)").
     pub fn adapter_name(&self) -> &str {
         &self.adapter
@@ -103,7 +141,8 @@ impl Gpu {
             ..Default::default()
         }))
         .map_err(|e| format!("cannot open the Vulkan device {name}: {e}"))?;
-        Ok(Gpu { device, queue, adapter: name })
+        let failed = Gpu::watch(&device);
+        Ok(Gpu { device, queue, adapter: name, failed })
     }
 }
 
@@ -197,14 +236,16 @@ impl Offscreen {
     /// Renders and waits for the GPU to finish, without reading pixels back (what a
     /// frame costs in a window).
     pub fn render(&mut self, gpu: &Gpu, scene: &Scene, camera: &Camera) -> Result<(), String> {
+        gpu.check()?;
         let single = self.choose_target(gpu, scene);
         self.renderer.render(&gpu.device, &gpu.queue, pick(&self.target, &self.single, single), scene, camera);
         gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU wait failed: {e}"))?;
-        Ok(())
+        gpu.check()
     }
 
     /// Renders and returns tightly packed RGBA8 (sRGB) rows.
     pub fn draw(&mut self, gpu: &Gpu, scene: &Scene, camera: &Camera) -> Result<Vec<u8>, String> {
+        gpu.check()?;
         let [w, h] = self.target.size();
         let single = self.choose_target(gpu, scene);
         let target = pick(&self.target, &self.single, single);
@@ -234,8 +275,22 @@ impl Offscreen {
         slice.map_async(wgpu::MapMode::Read, move |result| {
             let _ = sender.send(result);
         });
-        gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| format!("GPU wait failed: {e}"))?;
-        receiver.recv().map_err(|e| e.to_string())?.map_err(|e| format!("GPU readback failed: {e}"))?;
+        let waited = gpu.device.poll(wgpu::PollType::wait_indefinitely());
+        gpu.check()?;
+        waited.map_err(|e| format!("GPU wait failed: {e}"))?;
+        let mapped = receiver.recv_timeout(READBACK_LIMIT).map_err(|e| match e {
+            std::sync::mpsc::RecvTimeoutError::Timeout => {
+                format!(
+                    "the GPU did not return the frame in {} s: the device is hung or lost",
+                    READBACK_LIMIT.as_secs()
+                )
+            }
+            std::sync::mpsc::RecvTimeoutError::Disconnected => {
+                "GPU readback was dropped: the device is lost".to_owned()
+            }
+        })?;
+        gpu.check()?;
+        mapped.map_err(|e| format!("GPU readback failed: {e}"))?;
         let mut pixels = Vec::with_capacity((w * h * 4) as usize);
         {
             let data = slice.get_mapped_range().map_err(|e| format!("GPU readback failed: {e:?}"))?;

@@ -305,3 +305,30 @@ fn render_rejects_bad_arguments_clearly() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn a_lost_device_is_an_error_not_a_hang() {
+    if std::env::var_os("MOCAP_SKIP_GPU_TESTS").is_some() {
+        eprintln!("MOCAP_SKIP_GPU_TESTS set: skipping the lost-device render");
+        return;
+    }
+    use mocap_cli::render::{Gpu, Offscreen, Orbit, StageView};
+    let clip = mocap::formats::bvh::parse(include_bytes!("../../../data/walk.bvh")).unwrap();
+    let view = StageView::new(vec![("walk.bvh".into(), mocap::Asset::Clip(clip))]);
+    let gpu = Gpu::new().expect("a Vulkan adapter (apt-get install mesa-vulkan-drivers)");
+    let size = [64, 48];
+    let mut offscreen = Offscreen::new(&gpu, size);
+    let mut scene = mocap_render::Scene::default();
+    view.scene_at(0.5, &mut scene);
+    let camera = view.camera(Orbit::default(), size);
+    assert_eq!(offscreen.draw(&gpu, &scene, &camera).expect("a frame").len(), 64 * 48 * 4);
+    // The device goes (what a driver reset or a GPU removed does): the next frames
+    // are refused with the reason, at once, instead of waiting for ever.
+    gpu.device().destroy();
+    let started = std::time::Instant::now();
+    let error = offscreen.draw(&gpu, &scene, &camera).expect_err("no frame from a lost device");
+    println!("{error}");
+    assert!(error.contains("lost"), "{error}");
+    assert!(offscreen.render(&gpu, &scene, &camera).is_err());
+    assert!(started.elapsed() < std::time::Duration::from_secs(30), "{:?}", started.elapsed());
+}

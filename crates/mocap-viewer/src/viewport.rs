@@ -12,6 +12,10 @@ const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// GPU resources of the 3D view, created on first use. The frame reaches the
 /// window through [`ShowFrame`], a copy inside egui's own pass.
 struct Gpu {
+    /// The egui renderer of the device these resources belong to: when the page
+    /// starts again on a new device (after the old one was lost), it differs and
+    /// everything here is made again on the new one.
+    owner: std::sync::Weak<egui::mutex::RwLock<egui_wgpu::Renderer>>,
     renderer: SceneRenderer,
     /// Multisampled when the adapter can: full quality for scenes that need
     /// it (meshes and bodies).
@@ -125,6 +129,9 @@ impl Viewport {
         }
         let moving = playing || response.dragged() || joint_drag.is_some();
         let dt = ui.input(|i| i.unstable_dt);
+        if self.gpu.as_ref().is_some_and(|g| !std::ptr::eq(g.owner.as_ptr(), std::sync::Arc::as_ptr(&rs.renderer))) {
+            self.gpu = None;
+        }
         let gpu = self.gpu.get_or_insert_with(|| create_gpu(rs, size));
         self.reduced = self.adaptive.decide(quality, moving, dt);
         gpu.renderer.fast_look = self.reduced;
@@ -184,7 +191,7 @@ fn create_gpu(rs: &egui_wgpu::RenderState, size: [u32; 2]) -> Gpu {
     let renderer = SceneRenderer::new(&rs.device, FORMAT, samples);
     let target = RenderTarget::new(&rs.device, FORMAT, samples, size);
     bind_frame(rs, &target, false);
-    Gpu { renderer, target, single: None }
+    Gpu { owner: std::sync::Arc::downgrade(&rs.renderer), renderer, target, single: None }
 }
 
 /// Points [`ShowFrame`] at `target`, the multisampled or the `single`-sampled

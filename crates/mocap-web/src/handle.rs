@@ -14,7 +14,8 @@ pub struct MocapViewer {
     /// The last file the viewer asked to save (`HostRequest::Save`), until the page takes it.
     pub(crate) saved: Rc<RefCell<Option<(String, Vec<u8>)>>>,
     pub(crate) ctx: Rc<RefCell<Option<egui::Context>>>,
-    pub(crate) _runner: eframe::WebRunner,
+    /// What the runner was started with and the runner itself (see `crate::gpu`).
+    pub(crate) shared: crate::start::Shared,
 }
 
 #[wasm_bindgen]
@@ -219,6 +220,17 @@ impl MocapViewer {
         let v = self.viewer.try_borrow().map_err(|_| JsError::new("viewer busy"))?;
         let index = index.map_or(v.state().current(), |i| i as usize);
         v.save_gltf(index).map(|(_, bytes)| bytes).map_err(|e| JsError::new(&e))
+    }
+
+    /// Character `index` (the current one by default) as a binary glTF file, as
+    /// `saveGltf` makes it: `[fileName, bytes]` (`walk-edited.glb` when edited);
+    /// throws the reason for a model.
+    #[wasm_bindgen(js_name = saveGltfFile)]
+    pub fn save_gltf_file(&self, index: Option<u32>) -> Result<js_sys::Array, JsError> {
+        let v = self.viewer.try_borrow().map_err(|_| JsError::new("viewer busy"))?;
+        let index = index.map_or(v.state().current(), |i| i as usize);
+        let (name, bytes) = v.save_gltf(index).map_err(|e| JsError::new(&e))?;
+        Ok(js_sys::Array::of2(&name.into(), &js_sys::Uint8Array::from(bytes.as_slice())))
     }
 
     /// Captures the skeletal motion of model `index` (an MD2): with the rig given

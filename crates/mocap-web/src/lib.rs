@@ -12,6 +12,8 @@ mod clip_api;
 #[cfg(target_arch = "wasm32")]
 mod file_set;
 #[cfg(target_arch = "wasm32")]
+mod gpu;
+#[cfg(target_arch = "wasm32")]
 mod handle;
 #[cfg(target_arch = "wasm32")]
 mod js_state;

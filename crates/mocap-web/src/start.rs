@@ -6,6 +6,7 @@ use mocap_viewer::app::ViewerApp;
 use mocap_viewer::{OpenMode, Viewer};
 use std::cell::RefCell;
 use std::rc::Rc;
+use std::sync::atomic::{AtomicU32, Ordering};
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;
 
@@ -67,17 +68,56 @@ async fn start_on(
     if default_clip && let Err(e) = viewer.load(crate::DEFAULT_CLIP_NAME, crate::DEFAULT_CLIP) {
         web_sys::console::error_1(&format!("default clip: {e}").into());
     }
-    let viewer = Rc::new(RefCell::new(viewer));
-    let saved: Rc<RefCell<Option<(String, Vec<u8>)>>> = Rc::default();
-    let app_saved = saved.clone();
+    let shared = Shared {
+        viewer: Rc::new(RefCell::new(viewer)),
+        saved: Rc::default(),
+        ctx: Rc::default(),
+        file_input_id,
+        runner: Rc::default(),
+    };
+    run_on(canvas, &shared).await?;
+    Ok(MocapViewer { viewer: shared.viewer.clone(), saved: shared.saved.clone(), ctx: shared.ctx.clone(), shared })
+}
+
+/// What the viewer's runner is started with, kept so that a new runner on a new
+/// graphics device (after the old one was lost) starts on the same state.
+#[derive(Clone)]
+pub(crate) struct Shared {
+    pub viewer: Rc<RefCell<Viewer>>,
+    pub saved: Rc<RefCell<Option<(String, Vec<u8>)>>>,
+    pub ctx: Rc<RefCell<Option<egui::Context>>>,
+    pub file_input_id: Option<String>,
+    /// The running eframe runner; `None` while the graphics device is lost.
+    pub runner: Rc<RefCell<Option<eframe::WebRunner>>>,
+}
+
+/// Which runner is current: a device-lost callback of an earlier one (its device
+/// dropped when it was stopped) is not a loss of the current device.
+static GENERATION: AtomicU32 = AtomicU32::new(0);
+
+/// Stops the running runner, if any: no more frames on its device.
+pub(crate) fn stop(shared: &Shared) {
+    GENERATION.fetch_add(1, Ordering::Relaxed);
+    if let Ok(mut slot) = shared.runner.try_borrow_mut()
+        && let Some(runner) = slot.take()
+    {
+        runner.destroy();
+    }
+}
+
+/// Starts a runner on `canvas` drawing `shared`'s viewer (stopping any running
+/// one first). Fails with a message when no graphics device can be had.
+pub(crate) async fn run_on(canvas: web_sys::HtmlCanvasElement, shared: &Shared) -> Result<(), JsValue> {
+    stop(shared);
+    let generation = GENERATION.load(Ordering::Relaxed);
+    let saved = shared.saved.clone();
     let save = move |name: String, bytes: Vec<u8>| {
-        if let Ok(mut slot) = app_saved.try_borrow_mut() {
+        if let Ok(mut slot) = saved.try_borrow_mut() {
             *slot = Some((name, bytes));
         }
         save_event();
     };
-    let ctx: Rc<RefCell<Option<egui::Context>>> = Rc::default();
-
+    let file_input_id = shared.file_input_id.clone();
     let open_picker = move |mode: OpenMode| {
         let input = web_sys::window()
             .and_then(|w| w.document())
@@ -92,18 +132,21 @@ async fn start_on(
             input.click();
         }
     };
-
+    // egui's memory (panel sizes, open windows, scroll places) carries over to the new context.
+    let memory = shared.ctx.borrow().as_ref().map(|c| c.memory(|m| m.clone()));
     let runner = eframe::WebRunner::new();
-    let (app_viewer, app_ctx) = (viewer.clone(), ctx.clone());
+    let (app_viewer, app_ctx) = (shared.viewer.clone(), shared.ctx.clone());
     runner
         .start(
             canvas,
             eframe::WebOptions::default(),
             Box::new(move |cc| {
-                *app_ctx.borrow_mut() = Some(cc.egui_ctx.clone());
-                if cc.wgpu_render_state.is_none() {
-                    return Err("no wgpu renderer".into());
+                let Some(rs) = cc.wgpu_render_state.as_ref() else { return Err("no wgpu renderer".into()) };
+                watch_device(&rs.device, generation);
+                if let Some(memory) = memory {
+                    cc.egui_ctx.memory_mut(|m| *m = memory);
                 }
+                *app_ctx.borrow_mut() = Some(cc.egui_ctx.clone());
                 let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker))
                     .on_share(Box::new(share_event))
                     .on_save(Box::new(save))
@@ -113,7 +156,33 @@ async fn start_on(
             }),
         )
         .await?;
-    Ok(MocapViewer { viewer, saved, ctx, _runner: runner })
+    *shared.runner.borrow_mut() = Some(runner);
+    Ok(())
+}
+
+/// Tells the page when `device` is lost (a `mocap-gpu-lost` event on `window`,
+/// with the reason as `detail`), unless a newer runner has started since; and
+/// keeps wgpu's errors from aborting the page (wgpu's default handler panics:
+/// after a loss every call may fail until the page starts again on a new device).
+fn watch_device(device: &eframe::wgpu::Device, generation: u32) {
+    device.set_device_lost_callback(move |reason, message| {
+        if GENERATION.load(Ordering::Relaxed) == generation {
+            gpu_lost_event(&format!("{reason:?}: {message}"));
+        }
+    });
+    device.on_uncaptured_error(std::sync::Arc::new(|error| {
+        web_sys::console::warn_1(&format!("graphics error: {error}").into());
+    }));
+}
+
+/// A `mocap-gpu-lost` event on `window` whose `detail` is `reason`.
+fn gpu_lost_event(reason: &str) {
+    let init = web_sys::CustomEventInit::new();
+    init.set_detail(&JsValue::from_str(reason));
+    let event = web_sys::CustomEvent::new_with_event_init_dict("mocap-gpu-lost", &init);
+    if let (Some(window), Ok(event)) = (web_sys::window(), event) {
+        let _ = window.dispatch_event(&event);
+    }
 }
 
 /// Tells the page that the viewer asked to save a file (a `mocap-save` event on
