@@ -6,6 +6,7 @@ import init, { FileSet, start } from '../pkg/mocap_web.js';
 import { ClipError, DEFAULT_LIMIT, fetchClip, fileNameOf, gltfCompanions, resolveClipUrl } from './fetch-clip.js';
 import { followViewState, share } from './view-link.js';
 import { watchGpu } from './gpu-loss.js';
+import { startAutosave } from './autosave.js';
 
 const status = document.getElementById('status');
 const input = document.getElementById('file-input');
@@ -281,6 +282,50 @@ function download(name, text) {
   window.mocapLastSave = { name, bytes: text.length };
 }
 
+// The line under the toolbar after a restore: "Restored your unsaved work · Discard".
+function sessionBanner() {
+  const element = document.getElementById('session-banner');
+  return {
+    show(text, actions) {
+      const line = document.createElement('span');
+      line.textContent = text;
+      element.replaceChildren(line);
+      for (const { label, action } of actions) {
+        element.append(' · ');
+        const b = document.createElement('button');
+        b.type = 'button';
+        b.textContent = label;
+        b.addEventListener('click', action);
+        element.append(b);
+      }
+      const close = document.createElement('button');
+      close.type = 'button';
+      close.className = 'close';
+      close.textContent = '×';
+      close.title = 'Close';
+      close.addEventListener('click', () => { element.hidden = true; });
+      element.append(close);
+      element.hidden = false;
+    },
+    hide() {
+      element.hidden = true;
+    },
+  };
+}
+
+// A one-line notice about autosave (`null` hides it).
+function autosaveNotice(text) {
+  const element = document.getElementById('autosave-notice');
+  element.textContent = text ?? '';
+  element.hidden = !text;
+}
+
+// After one visit the page works offline (sw.js caches the page's own files).
+function registerServiceWorker() {
+  if (!('serviceWorker' in navigator) || !window.isSecureContext) return;
+  navigator.serviceWorker.register('sw.js').catch((e) => console.warn('offline copy unavailable:', e));
+}
+
 async function main() {
   if (!navigator.gpu && !hasWebGL2()) {
     showStatus(NO_GPU, true);
@@ -311,18 +356,23 @@ async function main() {
   window.mocapUrlLoads = [];
   if (urls.length > 0) await loadUrls(viewer, urls, limit);
   if (demo && !viewer.openDemo(demo, Number(params.get('bones')) || undefined)) viewer.showError(`?demo=${demo}: no such demo (try ?demo=tentacle)`);
-  if (location.hash.length > 1) viewer.applyViewState(location.hash.slice(1));
+  const hash = location.hash.length > 1 ? location.hash.slice(1) : null;
+  // Without a link the work stored last time comes back (the fragment, the page's
+  // own record of the view, then applies over it).
+  await startAutosave(viewer, { restore: urls.length === 0 && !demo, banner: sessionBanner(viewer), notice: autosaveNotice });
+  if (hash) viewer.applyViewState(hash);
   followViewState(viewer);
   window.addEventListener('mocap-share', () => share(viewer, source));
   window.addEventListener('mocap-save', () => saveFile(viewer));
   // Edits not saved are not lost by accident: the browser asks before leaving.
   window.addEventListener('beforeunload', (e) => {
     const s = viewer.state();
-    if (s && s.clips.some((c) => c.edited)) e.preventDefault();
+    if (s && s.clips.some((c) => c.unsaved)) e.preventDefault();
   });
   document.getElementById('share-close').addEventListener('click', () => {
     document.getElementById('share').hidden = true;
   });
+  registerServiceWorker();
   window.mocapReady = true;
 }
 

@@ -119,6 +119,9 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
     if let Err(e) = run(node("editing.mjs").arg(&url).arg(&out).arg(&chromium)) {
         failures.push(format!("editing through the page's controls: {e}"));
     }
+    if let Err(e) = run(node("autosave.mjs").arg(&url).arg(&out).arg(&chromium)) {
+        failures.push(format!("autosave and restore: {e}"));
+    }
     if let Err(e) = run(node("nogpu.mjs").arg(&url).arg(&out).arg(&chromium)) {
         failures.push(format!("no-gpu message: {e}"));
     }

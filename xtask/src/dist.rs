@@ -69,9 +69,14 @@ pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
     println!("xtask: mocap_web_bg.wasm {raw} bytes, {gz} gzipped");
     copy(&root.join("index.html"), &dist.join("index.html"))?;
     copy_dir(&root.join("web"), &dist.join("web"))?;
+    // The worker's template is filled in after minifying (which would drop its placeholders).
+    let template = dist.join("web/sw.js");
+    let worker = std::fs::read_to_string(&template).map_err(|e| format!("{}: {e}", template.display()))?;
+    let _ = std::fs::remove_file(&template);
     if !fast {
         minify_js(&dist);
     }
+    write_service_worker(&dist, &worker)?;
     println!("dist: {}", dist.display());
     Ok(dist)
 }
@@ -147,6 +152,38 @@ fn optimize(wasm: &Path, npm_fallback: bool) {
     }
     let _ = std::fs::remove_file(&out);
     eprintln!("xtask: wasm-opt failed; keeping the unoptimised wasm");
+}
+
+/// Writes the service worker (`web/sw.js`) at the root of `dist/` (its scope is
+/// the folder it is served from) with the list of the page's files to cache
+/// (everything in `dist/` but the API examples) and a version that changes with
+/// their contents, so that a new build replaces the cache.
+fn write_service_worker(dist: &Path, text: &str) -> Result<(), String> {
+    let mut files = Vec::new();
+    let mut dirs = vec![dist.to_path_buf()];
+    while let Some(dir) = dirs.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else { continue };
+        for path in entries.flatten().map(|e| e.path()) {
+            if path.is_dir() {
+                if !path.ends_with("examples") {
+                    dirs.push(path);
+                }
+            } else if let Ok(rel) = path.strip_prefix(dist) {
+                files.push(rel.to_string_lossy().replace('\\', "/"));
+            }
+        }
+    }
+    files.sort();
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    for f in &files {
+        for b in f.bytes().chain(std::fs::read(dist.join(f)).unwrap_or_default()) {
+            hash = (hash ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    let list: Vec<String> = std::iter::once("'./'".to_owned()).chain(files.iter().map(|f| format!("'{f}'"))).collect();
+    let text = text.replace("/*FILES*/", &list.join(", ")).replace("/*VERSION*/", &format!("{hash:016x}"));
+    let out = dist.join("sw.js");
+    std::fs::write(&out, text).map_err(|e| format!("{}: {e}", out.display()))
 }
 
 /// Minifies the page's JavaScript in `dist/` (wasm-bindgen's glue and `web/*.js`)

@@ -10,6 +10,8 @@ pub struct ViewerApp {
     viewer: Rc<RefCell<Viewer>>,
     on_open_requested: Box<dyn FnMut(OpenMode)>,
     on_share_requested: Box<dyn FnMut()>,
+    /// Runs when the user asks for the previous session ([`HostRequest::RestorePrevious`]).
+    on_restore_requested: Option<Box<dyn FnMut()>>,
     on_save_requested: Box<dyn FnMut(String, Vec<u8>)>,
     /// The panels' colour, which the window is cleared to (see [`ViewerApp::new`]).
     panel_fill: egui::Color32,
@@ -46,6 +48,7 @@ impl ViewerApp {
             viewer,
             on_open_requested,
             on_share_requested: Box::new(|| {}),
+            on_restore_requested: None,
             on_save_requested: Box::new(|_, _| {}),
             panel_fill,
             on_render_scale: None,
@@ -104,6 +107,13 @@ impl ViewerApp {
         self
     }
 
+    /// Sets what runs when the user asks for the previous session the host holds
+    /// (File ▸ Restore previous session; the host reads it and restores it).
+    pub fn on_restore_previous(mut self, f: Box<dyn FnMut()>) -> ViewerApp {
+        self.on_restore_requested = Some(f);
+        self
+    }
+
     /// Sets what runs when the user presses "Share" (the host builds and copies the link).
     pub fn on_share(mut self, f: Box<dyn FnMut()>) -> ViewerApp {
         self.on_share_requested = f;
@@ -132,6 +142,11 @@ impl eframe::App for ViewerApp {
                 HostRequest::Save { name, bytes } => (self.on_save_requested)(name, bytes),
                 HostRequest::PickFiles(mode) => (self.on_open_requested)(mode),
                 HostRequest::Share => (self.on_share_requested)(),
+                HostRequest::RestorePrevious => {
+                    if let Some(f) = &mut self.on_restore_requested {
+                        f();
+                    }
+                }
             }
         }
     }

@@ -27,6 +27,8 @@ pub enum HostRequest {
     PickFiles(OpenMode),
     /// Build a link that reproduces this view and offer it.
     Share,
+    /// Restore the earlier session the page holds (autosave).
+    RestorePrevious,
     /// Save a file: the current character as BVH or glTF, or a capture rig.
     Save {
         /// File name (`walk-edited.bvh`).
@@ -254,6 +256,15 @@ pub enum Command {
     Notify(crate::notice::Notice),
     /// Close the banner.
     DismissNotice,
+    /// Open a session the page stored (autosave): its characters, edit history and
+    /// view replace what is open.
+    Restore(Box<crate::session::Restored>),
+    /// Character `index` is saved as it is now (the page saved it).
+    MarkSaved(usize),
+    /// Whether the page holds an earlier session to restore (File ▸ Restore previous session).
+    SetPreviousSession(bool),
+    /// Ask the page to restore the earlier session it holds.
+    RestorePrevious,
 }
 
 impl Command {
@@ -284,6 +295,7 @@ impl Command {
             Command::Share => "Share",
             Command::SaveBvh => "Save as BVH",
             Command::SaveGltf => "Save as glTF",
+            Command::RestorePrevious => "Restore previous session",
             Command::NewCharacter => "New character",
             Command::OpenTentacle(_) => "Bendy tentacle",
             _ => "",
@@ -339,6 +351,9 @@ impl Command {
             Command::SaveBvh => "Download the current character as BVH, every edit baked in",
             Command::SaveGltf => {
                 "Download the current character as glTF (.glb) for Blender, three.js or a game engine: skeleton, skin, a body and the animation, in metres, Y up"
+            }
+            Command::RestorePrevious => {
+                "Open the work that was open before this link: its characters, edits and view replace what is open"
             }
             Command::NewCharacter => {
                 "Start a skeleton from one root joint: add joints here, pose them by dragging (Edit mode) and Set key"

@@ -5,7 +5,7 @@
 use mocap::Asset;
 
 /// One edit as the history keeps it.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Change {
     /// The character edited (0-based).
     pub character: usize,
@@ -27,11 +27,17 @@ pub struct Change {
     pub edit: Option<mocap::ops::edit::Edit>,
 }
 
-/// Done and undone edits.
-#[derive(Clone, Debug, Default)]
+/// Done and undone edits, and which are saved.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct History {
     done: Vec<Change>,
     undone: Vec<Change>,
+    /// A serial number per done and undone change, in the same order.
+    done_ids: Vec<u64>,
+    undone_ids: Vec<u64>,
+    next_id: u64,
+    /// Per character saved: the serial of its last done change then (`None`: none).
+    saved: Vec<(usize, Option<u64>)>,
 }
 
 /// Most edits kept for undo (the oldest are forgotten past this).
@@ -41,9 +47,13 @@ impl History {
     /// Records an edit (clearing what could be redone).
     pub fn push(&mut self, change: Change) {
         self.undone.clear();
+        self.undone_ids.clear();
         self.done.push(change);
+        self.done_ids.push(self.next_id);
+        self.next_id += 1;
         if self.done.len() > DEPTH {
             self.done.remove(0);
+            self.done_ids.remove(0);
         }
     }
 
@@ -51,6 +61,7 @@ impl History {
     pub fn undo(&mut self) -> Option<&Change> {
         let change = self.done.pop()?;
         self.undone.push(change);
+        self.undone_ids.extend(self.done_ids.pop());
         self.undone.last()
     }
 
@@ -58,7 +69,50 @@ impl History {
     pub fn redo(&mut self) -> Option<&Change> {
         let change = self.undone.pop()?;
         self.done.push(change);
+        self.done_ids.extend(self.undone_ids.pop());
         self.done.last()
+    }
+
+    /// The done and the undone changes, oldest first (undone: the next to redo last).
+    pub fn changes(&self) -> (&[Change], &[Change]) {
+        (&self.done, &self.undone)
+    }
+
+    /// A history holding these done and undone changes (as [`History::changes`] gives them), none saved.
+    pub fn from_changes(done: Vec<Change>, undone: Vec<Change>) -> History {
+        let n = (done.len() + undone.len()) as u64;
+        History {
+            done_ids: (0..done.len() as u64).collect(),
+            undone_ids: (done.len() as u64..n).collect(),
+            next_id: n,
+            done,
+            undone,
+            saved: Vec::new(),
+        }
+    }
+
+    /// The serial of character `c`'s last done change.
+    fn last_id(&self, c: usize) -> Option<u64> {
+        self.done.iter().zip(&self.done_ids).rev().find(|(x, _)| x.character == c).map(|(_, id)| *id)
+    }
+
+    /// Changes whenever the history does (an edit, undo, redo, save or clear).
+    pub fn stamp(&self) -> String {
+        format!("{}:{:?}:{:?}:{:?}", self.next_id, self.done_ids, self.undone_ids, self.saved)
+    }
+
+    /// Character `c` is saved as it is now (Save as BVH or glTF).
+    pub fn mark_saved(&mut self, c: usize) {
+        let last = self.last_id(c);
+        self.saved.retain(|(x, _)| *x != c);
+        self.saved.push((c, last));
+    }
+
+    /// Whether character `c` has edits made or undone since it was last saved (or
+    /// opened).
+    pub fn unsaved(&self, c: usize) -> bool {
+        let mark = self.saved.iter().find(|(x, _)| *x == c).and_then(|(_, id)| *id);
+        self.last_id(c) != mark
     }
 
     /// Label of the edit Undo would undo.
@@ -135,7 +189,6 @@ impl History {
 
     /// Forgets everything (files opened, characters closed).
     pub fn clear(&mut self) {
-        self.done.clear();
-        self.undone.clear();
+        *self = History { next_id: self.next_id, ..History::default() };
     }
 }

@@ -29,6 +29,7 @@ pub mod quality;
 pub mod retarget_dialog;
 pub mod rig_edit;
 pub mod selection;
+pub mod session;
 pub mod settings;
 pub mod snapshot;
 pub mod stage;

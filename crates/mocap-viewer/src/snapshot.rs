@@ -36,6 +36,8 @@ pub struct ClipSummary {
     pub foot_contacts: Vec<usize>,
     /// Whether the clip has edits (that undo can take back).
     pub edited: bool,
+    /// Whether it has edits made (or undone) since it was last saved.
+    pub unsaved: bool,
     /// Frames keyed (pose corrections made keys), in order.
     pub keys: Vec<usize>,
     /// Which file axis points up: `y` or `z` (a model: `y`).
@@ -69,6 +71,7 @@ impl ClipSummary {
             skin: model.and_then(|m| m.skin.as_ref()).map(|s| s.name.clone()),
             corrected: c.extra.correction.is_some(),
             edited: false,
+            unsaved: false,
             keys: Vec::new(),
             foot_contacts: c
                 .extra
@@ -148,6 +151,8 @@ pub struct Snapshot {
     pub view: String,
     /// Whether the embed layout is on.
     pub embed: bool,
+    /// Whether the page holds an earlier session to restore.
+    pub previous_session: bool,
     /// The wgpu backend drawing the 3D view ("BrowserWebGpu", "Gl", ...).
     pub backend: Option<String>,
     /// The bendy-tentacle demo, when open.
@@ -170,6 +175,7 @@ impl Snapshot {
                 .enumerate()
                 .map(|(i, c)| ClipSummary {
                     edited: v.history.edited(i),
+                    unsaved: v.history.unsaved(i),
                     keys: v.history.keys(i),
                     ..ClipSummary::of(c)
                 })
@@ -194,6 +200,7 @@ impl Snapshot {
             },
             view: v.view_fragment(),
             embed: v.panels.embed,
+            previous_session: v.previous_session,
             undo: v.history.next_undo().map(str::to_owned),
             redo: v.history.next_redo().map(str::to_owned),
             demo: v.tentacle.as_ref().map(|t| DemoSummary {

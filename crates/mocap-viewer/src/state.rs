@@ -56,6 +56,8 @@ pub struct AppState {
     pub rig_edit: Option<RigEdit>,
     /// A character with unsaved edits the user asked to close: the viewer asks first.
     pub pending_close: Option<usize>,
+    /// Whether the page holds an earlier session (File ▸ Restore previous session).
+    pub previous_session: bool,
 }
 
 impl AppState {

@@ -198,9 +198,14 @@ impl MocapViewer {
     /// `undefined` for a model.
     #[wasm_bindgen(js_name = saveBvh)]
     pub fn save_bvh(&self, index: Option<u32>) -> Option<Vec<String>> {
-        let v = self.viewer.try_borrow().ok()?;
-        let index = index.map_or(v.state().current(), |i| i as usize);
-        v.save_bvh(index).map(|(name, text)| vec![name, text])
+        let (index, saved) = {
+            let v = self.viewer.try_borrow().ok()?;
+            let index = index.map_or(v.state().current(), |i| i as usize);
+            (index, v.save_bvh(index)?)
+        };
+        // The page downloads what it asked for: the work is saved.
+        self.with_viewer(|v| v.apply(Command::MarkSaved(index)));
+        Some(vec![saved.0, saved.1])
     }
 
     /// The file the viewer asked to save with its last `mocap-save` event (Save
@@ -227,9 +232,12 @@ impl MocapViewer {
     /// throws the reason for a model.
     #[wasm_bindgen(js_name = saveGltfFile)]
     pub fn save_gltf_file(&self, index: Option<u32>) -> Result<js_sys::Array, JsError> {
-        let v = self.viewer.try_borrow().map_err(|_| JsError::new("viewer busy"))?;
-        let index = index.map_or(v.state().current(), |i| i as usize);
-        let (name, bytes) = v.save_gltf(index).map_err(|e| JsError::new(&e))?;
+        let (index, (name, bytes)) = {
+            let v = self.viewer.try_borrow().map_err(|_| JsError::new("viewer busy"))?;
+            let index = index.map_or(v.state().current(), |i| i as usize);
+            (index, v.save_gltf(index).map_err(|e| JsError::new(&e))?)
+        };
+        self.with_viewer(|v| v.apply(Command::MarkSaved(index)));
         Ok(js_sys::Array::of2(&name.into(), &js_sys::Uint8Array::from(bytes.as_slice())))
     }
 
@@ -607,7 +615,7 @@ impl MocapViewer {
     }
 
     /// Runs `f` on the viewer and asks for a repaint.
-    fn with_viewer<R>(&self, f: impl FnOnce(&mut Viewer) -> R) -> Option<R> {
+    pub(crate) fn with_viewer<R>(&self, f: impl FnOnce(&mut Viewer) -> R) -> Option<R> {
         let result = self.viewer.try_borrow_mut().ok().map(|mut v| f(&mut v));
         if let Some(ctx) = self.ctx.borrow().as_ref() {
             ctx.request_repaint();

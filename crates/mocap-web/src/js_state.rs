@@ -42,6 +42,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
             set(&o, "up", c.up);
             set(&o, "corrected", c.corrected);
             set(&o, "edited", c.edited);
+            set(&o, "unsaved", c.unsaved);
             let keys: Array = c.keys.iter().map(|k| JsValue::from_f64(*k as f64)).collect();
             set(&o, "keys", keys);
             let contacts: Array = c.foot_contacts.iter().map(|n| JsValue::from_f64(*n as f64)).collect();
@@ -71,6 +72,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "framesRendered", s.frames_rendered as f64);
     set(&o, "view", s.view.as_str());
     set(&o, "embed", s.embed);
+    set(&o, "previousSession", s.previous_session);
     set(&o, "backend", opt(&s.backend));
     let demo = s.demo.as_ref().map_or(JsValue::NULL, |d| {
         let o = Object::new();

@@ -20,6 +20,8 @@ mod js_state;
 #[cfg(target_arch = "wasm32")]
 mod model_api;
 #[cfg(target_arch = "wasm32")]
+mod session_api;
+#[cfg(target_arch = "wasm32")]
 mod start;
 
 #[cfg(target_arch = "wasm32")]

@@ -149,6 +149,7 @@ pub(crate) async fn run_on(canvas: web_sys::HtmlCanvasElement, shared: &Shared) 
                 *app_ctx.borrow_mut() = Some(cc.egui_ctx.clone());
                 let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker))
                     .on_share(Box::new(share_event))
+                    .on_restore_previous(Box::new(restore_previous_event))
                     .on_save(Box::new(save))
                     .on_render_scale(Box::new(eframe::web::set_render_scale))
                     .on_view_change(Box::new(view_event));
@@ -198,6 +199,15 @@ fn save_event() {
 /// `window`, after the frame that changed it; the page updates the URL fragment).
 fn view_event() {
     let event = web_sys::Event::new("mocap-view");
+    if let (Some(window), Ok(event)) = (web_sys::window(), event) {
+        let _ = window.dispatch_event(&event);
+    }
+}
+
+/// Tells the page that the user asked for the previous session (a
+/// `mocap-restore-previous` event on `window`).
+fn restore_previous_event() {
+    let event = web_sys::Event::new("mocap-restore-previous");
     if let (Some(window), Ok(event)) = (web_sys::window(), event) {
         let _ = window.dispatch_event(&event);
     }

@@ -1,5 +1,6 @@
 //! Errors and warnings from the readers.
 
+use serde::{Deserialize, Serialize};
 use std::fmt;
 
 /// A reader error with its position in the file: 1-based line and byte column in
@@ -29,7 +30,7 @@ impl ParseError {
 }
 
 /// A non-fatal problem found while reading; the clip is still usable.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Warning {
     /// 1-based line the warning refers to, when there is one.
     pub line: Option<u32>,

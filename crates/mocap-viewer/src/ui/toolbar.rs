@@ -22,6 +22,8 @@ pub struct ToolbarView<'a> {
     pub current: Option<&'a str>,
     /// What the Edit menu acts on.
     pub edit: super::edit_menu::EditMenuView<'a>,
+    /// Whether the page holds an earlier session to restore.
+    pub previous_session: bool,
 }
 
 /// Shows the top panel; what the user does comes back as commands in `out`.
@@ -33,6 +35,9 @@ pub fn show(ui: &mut egui::Ui, view: &ToolbarView, out: &mut Vec<Command>) {
             button(ui, Command::Open(OpenMode::Replace), out);
             button(ui, Command::Open(OpenMode::Add), out);
             button(ui, Command::Share, out);
+            if view.previous_session {
+                button(ui, Command::RestorePrevious, out);
+            }
             match view.characters {
                 [] => {}
                 [one] => {

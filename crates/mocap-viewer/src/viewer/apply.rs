@@ -202,23 +202,32 @@ impl Viewer {
             (Command::OpenTentacle(bones), _) => self.open_tentacle(bones),
             (Command::Open(mode), _) => self.requests.push(HostRequest::PickFiles(mode)),
             (Command::Share, _) => self.requests.push(HostRequest::Share),
-            (Command::SaveBvh, _) => self.request_save(self.state.current())?,
+            (Command::SaveBvh, _) => {
+                self.request_save(self.state.current())?;
+                self.state.history.mark_saved(self.state.current());
+            }
             (Command::SaveCharacter(index), _) => {
                 // Saving saves the current character: make it this one.
                 if self.state.current() != index {
                     self.state.selected = Some(Selection { character: index, joint: 0 });
                 }
                 self.request_save(index)?;
+                self.state.history.mark_saved(index);
             }
             (Command::SaveGltf, _) => {
                 let (name, bytes) = self.save_gltf(self.state.current())?;
                 self.requests.push(HostRequest::Save { name, bytes });
+                self.state.history.mark_saved(self.state.current());
             }
             (Command::SaveRig, _) => {
                 let (name, text) = self.rig_download().ok_or("no capture rig to save")?;
                 self.requests.push(HostRequest::Save { name, bytes: text.into_bytes() });
             }
             (Command::DismissNotice, _) => self.state.notice = None,
+            (Command::Restore(restored), _) => self.restore(*restored),
+            (Command::MarkSaved(index), _) => self.state.history.mark_saved(index),
+            (Command::SetPreviousSession(held), _) => self.state.previous_session = held,
+            (Command::RestorePrevious, _) => self.requests.push(HostRequest::RestorePrevious),
             (Command::Notify(notice), _) => self.state.notice = Some(notice),
             (Command::Step(_) | Command::First | Command::Last, None) => {}
         }

@@ -19,6 +19,7 @@ mod capture;
 mod drag;
 mod editing;
 mod rig;
+mod session;
 mod view;
 mod views;
 use mocap_render::Scene;

@@ -34,6 +34,7 @@ impl Viewer {
             panels: &s.panels,
             current: s.current_character().map(|c| c.name.as_str()),
             edit: self.edit_menu_view(),
+            previous_session: self.state.previous_session,
         }
     }
 

@@ -4,9 +4,11 @@
 use crate::model::clip::{Aabb, Clip, Units};
 use crate::model::mesh::Model;
 use crate::model::time::Timeline;
+use serde::{Deserialize, Serialize};
 
-/// A loaded asset.
-#[derive(Clone, Debug, PartialEq)]
+/// A loaded asset. Its serde form (the [`crate::formats::store`] body) goes
+/// through each part's checks when read.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Asset {
     /// A skeleton and its motion (BVH, BVA, Acclaim).
     Clip(Clip),

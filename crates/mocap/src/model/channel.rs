@@ -1,6 +1,7 @@
 //! The animated degrees of freedom a joint can have, in one general set shared by
 //! every format, and the angle unit their rotation values are written in.
 
+use serde::{Deserialize, Serialize};
 use std::fmt;
 
 /// One animated degree of freedom of a joint.
@@ -14,7 +15,7 @@ use std::fmt;
 /// - scale channels set that component of the local scale (1 at rest);
 /// - the bone-length channel (Acclaim `l`) moves the joint's children along their
 ///   rest direction by the value (a change of bone length, 0 at rest).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Channel {
     /// Sets the X component of the local translation.
     Xposition,
@@ -52,7 +53,7 @@ pub enum ChannelKind {
 }
 
 /// The unit rotation values are written in.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum AngleUnit {
     /// Degrees (BVH, most Acclaim files).
     #[default]

@@ -8,6 +8,7 @@
 
 use crate::model::motion::Motion;
 use crate::runtime::skin::Skin;
+use serde::{Deserialize, Serialize};
 
 /// One animation of the file, sampled on the clip's skeleton.
 #[derive(Clone, Debug, PartialEq)]
@@ -41,7 +42,7 @@ pub struct Character {
 }
 
 /// Counts and names of what a glTF file holds.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Summary {
     /// Nodes in the file.
     pub nodes: usize,

@@ -199,6 +199,21 @@ impl Clip {
         self.character.as_deref().map_or(&[], |c| c.takes.as_slice())
     }
 
+    /// Which of the character's takes the motion is (0 when there are none).
+    pub(crate) fn take_index(&self) -> usize {
+        self.take
+    }
+
+    /// Says that the motion is take `index` of the character; false (and no
+    /// change) unless it is 0 or one of the character's takes.
+    pub(crate) fn set_take_index(&mut self, index: usize) -> bool {
+        if index != 0 && index >= self.takes().len() {
+            return false;
+        }
+        self.take = index;
+        true
+    }
+
     /// The name of the take the motion is, when the clip has takes.
     pub fn take_name(&self) -> Option<&str> {
         self.takes().get(self.take).map(|t| t.name.as_str())

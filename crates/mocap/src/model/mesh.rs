@@ -15,6 +15,7 @@ use crate::model::clip::{Aabb, Units};
 use crate::model::time::{FramePosition, Timeline};
 use crate::runtime::sample::Interpolation;
 use glam::Vec3;
+use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
 /// Seconds between key frames: Quake 2 runs model animations at 10 Hz.
@@ -48,7 +49,7 @@ pub struct MorphMesh {
 
 /// Counts as the source file gives them (before vertices are split per texture
 /// coordinate for drawing).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct SourceCounts {
     /// Vertices per frame.
     pub vertices: usize,
@@ -84,7 +85,7 @@ pub(crate) struct MeshParts {
 }
 
 /// A named run of consecutive frames (`stand`: frames 0 to 39).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Animation {
     /// Base name shared by the frames (for MD2, the frame names without their
     /// trailing digits).
@@ -129,6 +130,58 @@ impl MorphMesh {
         mesh.bounds = bounds_of(&mesh.positions);
         mesh.first_bounds = bounds_of(mesh.frame_positions(0));
         mesh
+    }
+
+    /// The mesh from parts whose every invariant is checked first (a stored mesh,
+    /// [`crate::formats::store`]; a reader's parts hold by construction): at
+    /// least one key frame; positions and normals for every drawing vertex of
+    /// every frame; one texture coordinate and one file vertex (below the source
+    /// count, at most 65,536: MD2 triangles index vertices with 16 bits) per
+    /// drawing vertex; whole triangles of drawing vertices, as many as the source
+    /// says; animations over existing frames, `first <= last`.
+    pub(crate) fn checked_from_parts(parts: MeshParts) -> Result<MorphMesh, String> {
+        let vertices = parts.sources.len();
+        let frames = parts.frame_names.len();
+        if frames == 0 {
+            return Err("the mesh has no key frames".into());
+        }
+        let expected = vertices.checked_mul(frames);
+        if expected != Some(parts.positions.len()) || expected != Some(parts.normals.len()) {
+            return Err(format!(
+                "{} positions and {} normals for {vertices} vertices × {frames} frames",
+                parts.positions.len(),
+                parts.normals.len()
+            ));
+        }
+        if parts.tex_coords.len() != vertices {
+            return Err(format!("{} texture coordinates for {vertices} vertices", parts.tex_coords.len()));
+        }
+        let sources = parts.source_counts.vertices;
+        if sources > 1 << 16 {
+            return Err(format!("{sources} source vertices: MD2 triangles reach 65536"));
+        }
+        if let Some((i, v)) = parts.sources.iter().enumerate().find(|(_, v)| **v as usize >= sources) {
+            return Err(format!("vertex {i} comes from source vertex {v}, but there are {sources}"));
+        }
+        if !parts.indices.len().is_multiple_of(3) || parts.indices.len() / 3 != parts.source_counts.triangles {
+            return Err(format!(
+                "{} triangle corners for {} triangles",
+                parts.indices.len(),
+                parts.source_counts.triangles
+            ));
+        }
+        if let Some((corner, v)) = parts.indices.iter().enumerate().find(|(_, v)| **v as usize >= vertices) {
+            return Err(format!("triangle corner {corner} uses vertex {v}, but there are {vertices}"));
+        }
+        if let Some(a) = parts.animations.iter().find(|a| a.first > a.last || a.last >= frames) {
+            return Err(format!("animation `{}` runs over frames {} to {} of {frames}", a.name, a.first, a.last));
+        }
+        Ok(MorphMesh::from_parts(parts))
+    }
+
+    /// The file vertex each drawing vertex was split from.
+    pub(crate) fn sources(&self) -> &[u32] {
+        &self.sources
     }
 
     /// Every frame's positions per file vertex (before the split per texture

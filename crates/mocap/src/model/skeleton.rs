@@ -7,9 +7,10 @@
 
 use crate::model::channel::Channel;
 use glam::{Quat, Vec3};
+use serde::{Deserialize, Serialize};
 
 /// The range a degree of freedom may take (Acclaim `limits`), in the channel's unit.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Limit {
     /// Smallest value (may be `-inf`).
     pub min: f32,
@@ -18,7 +19,7 @@ pub struct Limit {
 }
 
 /// How a joint's rotation channels compose.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum EulerConvention {
     /// Intrinsic, in file order: `Zrotation Xrotation Yrotation` is `Rz · Rx · Ry`
     /// (BVH, BVA).
@@ -114,7 +115,7 @@ pub struct SkeletonError {
 
 /// A set of joint trees (one file may hold several roots), flattened so that every
 /// parent comes before its children.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Skeleton {
     joints: Vec<Joint>,
     euler: EulerConvention,
@@ -124,17 +125,50 @@ pub struct Skeleton {
     plain: bool,
 }
 
+impl Default for Skeleton {
+    /// No joints: what [`Skeleton::new`] makes of none (plain, no channels).
+    fn default() -> Skeleton {
+        Skeleton {
+            joints: Vec::new(),
+            euler: EulerConvention::Intrinsic,
+            channel_count: 0,
+            has_length: false,
+            has_scale: false,
+            plain: true,
+        }
+    }
+}
+
 impl Skeleton {
     /// Checks the joints and builds a skeleton: every parent must come before its
-    /// child, End Sites have no channels, and `limits` are empty or one per channel.
+    /// child, End Sites have no channels and no children, and `limits` are empty
+    /// or one per channel.
     /// Motion columns are assigned in joint order, channels in their order.
     pub fn new(joints: Vec<Joint>, euler: EulerConvention) -> Result<Skeleton, SkeletonError> {
+        Skeleton::build(joints, euler, true)
+    }
+
+    /// [`Skeleton::new`] for joints whose rest rotations are already unit
+    /// quaternions (a stored skeleton, [`crate::formats::store`]): they are kept
+    /// bit for bit rather than normalised again, and one that is not a unit
+    /// quaternion (within glam's tolerance) is an error.
+    pub(crate) fn with_unit_rotations(joints: Vec<Joint>, euler: EulerConvention) -> Result<Skeleton, SkeletonError> {
+        Skeleton::build(joints, euler, false)
+    }
+
+    /// The checks of [`Skeleton::new`]; `normalise` normalises rest rotations,
+    /// otherwise they must be unit already.
+    fn build(joints: Vec<Joint>, euler: EulerConvention, normalise: bool) -> Result<Skeleton, SkeletonError> {
         let mut joints = joints;
         let mut next = 0usize;
+        let end_sites: Vec<bool> = joints.iter().map(|j| j.end_site).collect();
         for (index, joint) in joints.iter_mut().enumerate() {
             let fail = |message: &str| SkeletonError { index, name: joint.name.clone(), message: message.to_owned() };
             if joint.parent.is_some_and(|p| p >= index) {
                 return Err(fail("its parent does not come before it"));
+            }
+            if joint.parent.is_some_and(|p| end_sites[p]) {
+                return Err(fail("its parent is an End Site, which has no children"));
             }
             if joint.end_site && !joint.channels.is_empty() {
                 return Err(fail("an End Site has no channels"));
@@ -145,7 +179,11 @@ impl Skeleton {
             if !joint.offset.is_finite() || !joint.rest_rotation.is_finite() {
                 return Err(fail("its rest transform is not finite"));
             }
-            joint.rest_rotation = joint.rest_rotation.normalize();
+            if normalise {
+                joint.rest_rotation = joint.rest_rotation.normalize();
+            } else if !joint.rest_rotation.is_normalized() {
+                return Err(fail("its rest rotation is not a unit quaternion"));
+            }
             joint.first_channel = next;
             next += joint.channels.len();
         }
@@ -264,6 +302,8 @@ mod tests {
         let mut end = Joint::end_site("e", None, Vec3::ZERO);
         end.channels.push(Channel::Xrotation);
         assert!(Skeleton::new(vec![end], EulerConvention::Intrinsic).is_err());
+        let under_end = vec![Joint::end_site("e", None, Vec3::Y), Joint::new("a", Some(0), Vec3::Y, vec![])];
+        assert_eq!(Skeleton::new(under_end, EulerConvention::Intrinsic).unwrap_err().index, 1);
         let limits = Joint::new("a", None, Vec3::ZERO, vec![Channel::Xrotation]).with_limits(vec![]);
         assert!(Skeleton::new(vec![limits.clone()], EulerConvention::Intrinsic).is_ok());
         let two = limits.with_limits(vec![Limit { min: 0.0, max: 1.0 }; 2]);

@@ -14,6 +14,7 @@
 
 use crate::model::clip::{Aabb, Clip};
 use glam::{Quat, Vec3};
+use serde::{Deserialize, Serialize};
 use std::f32::consts::FRAC_PI_2;
 
 /// Frames of a clip the guess poses, spread evenly over it.
@@ -31,7 +32,7 @@ const REST_Y_OVER_Z: f32 = 2.0;
 const MIN_JOINTS: usize = 4;
 
 /// The file axis that points up.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum UpAxis {
     /// +Y up (BVH's convention, Acclaim, MD2 once decoded).
     #[default]

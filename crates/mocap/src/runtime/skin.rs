@@ -50,8 +50,11 @@ pub enum SkinError {
         /// Joints in the bind pose.
         joints: usize,
     },
-    /// A weight is negative or not finite, or all of a vertex's weights are zero.
-    #[error("vertex {vertex} has weights {weights:?}: each must be finite and ≥ 0, and their sum > 0")]
+    /// A weight is negative or not finite, or all of a vertex's weights are zero
+    /// (or, in a stored skin, they do not sum to 1).
+    #[error(
+        "vertex {vertex} has weights {weights:?}: each must be finite and ≥ 0, and their sum > 0 (1 in a stored skin)"
+    )]
     Weights {
         /// The vertex.
         vertex: usize,
@@ -113,6 +116,34 @@ impl Skin {
         weights: Vec<[f32; MAX_INFLUENCES]>,
         inverse_bind: Vec<Mat4>,
     ) -> Result<Skin, SkinError> {
+        Skin::build(positions, normals, indices, joints, weights, inverse_bind, true)
+    }
+
+    /// [`Skin::with_inverse_bind`] for weights already normalised (a stored skin,
+    /// [`crate::formats::store`]): the same checks, and each vertex's weights
+    /// must sum to 1 (within 1e-4); they are kept bit for bit.
+    pub(crate) fn with_unit_weights(
+        positions: Vec<Vec3>,
+        normals: Vec<Vec3>,
+        indices: Vec<u32>,
+        joints: Vec<[u32; MAX_INFLUENCES]>,
+        weights: Vec<[f32; MAX_INFLUENCES]>,
+        inverse_bind: Vec<Mat4>,
+    ) -> Result<Skin, SkinError> {
+        Skin::build(positions, normals, indices, joints, weights, inverse_bind, false)
+    }
+
+    /// The checks of [`Skin::with_inverse_bind`]; `normalise` divides each
+    /// vertex's weights by their sum, otherwise the sum must be 1 already.
+    fn build(
+        positions: Vec<Vec3>,
+        normals: Vec<Vec3>,
+        indices: Vec<u32>,
+        joints: Vec<[u32; MAX_INFLUENCES]>,
+        weights: Vec<[f32; MAX_INFLUENCES]>,
+        inverse_bind: Vec<Mat4>,
+        normalise: bool,
+    ) -> Result<Skin, SkinError> {
         let n = positions.len();
         if normals.len() != n || joints.len() != n || weights.len() != n {
             return Err(SkinError::Lengths {
@@ -133,14 +164,17 @@ impl Skin {
         let mut normalised = weights;
         for (vertex, (w, js)) in normalised.iter_mut().zip(&joints).enumerate() {
             let sum: f32 = w.iter().sum();
-            if w.iter().any(|x| !x.is_finite() || *x < 0.0) || !(sum > 0.0) || !sum.is_finite() {
+            let unit = normalise || (sum - 1.0).abs() <= 1e-4;
+            if w.iter().any(|x| !x.is_finite() || *x < 0.0) || !(sum > 0.0) || !sum.is_finite() || !unit {
                 return Err(SkinError::Weights { vertex, weights: *w });
             }
             for (k, weight) in w.iter_mut().enumerate() {
                 if *weight > 0.0 && js[k] as usize >= inverse_bind.len() {
                     return Err(SkinError::Joint { vertex, joint: js[k], joints: inverse_bind.len() });
                 }
-                *weight /= sum;
+                if normalise {
+                    *weight /= sum;
+                }
             }
         }
         Ok(Skin { positions, normals, indices, joints, weights: normalised, inverse_bind })

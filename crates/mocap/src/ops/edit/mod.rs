@@ -24,6 +24,7 @@ use glam::{Quat, Vec3};
 use keys::{correct, tween};
 use poses::rows;
 use rig::{add_joint, remove_joint, rename, set_channels, set_offset};
+use serde::{Deserialize, Serialize};
 use space::{in_place, scale, up_axis};
 use timing::{loop_knit, resample};
 
@@ -39,8 +40,9 @@ pub(crate) use poses::joint_values;
 pub use rig::new_character;
 pub use spec::{EditSpec, SpecError};
 
-/// One clip edit.
-#[derive(Clone, Debug, PartialEq)]
+/// One clip edit (serde: kept in the viewer's saved session; quaternions and
+/// vectors as arrays `[x, y, z, w]`, `[x, y, z]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum Edit {
     /// Keep frames `first..=last`.
     Trim {
