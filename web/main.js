@@ -356,12 +356,7 @@ async function main() {
   window.mocapUrlLoads = [];
   if (urls.length > 0) await loadUrls(viewer, urls, limit);
   if (demo && !viewer.openDemo(demo, Number(params.get('bones')) || undefined)) viewer.showError(`?demo=${demo}: no such demo (try ?demo=tentacle)`);
-  const hash = location.hash.length > 1 ? location.hash.slice(1) : null;
-  // Without a link the work stored last time comes back (the fragment, the page's
-  // own record of the view, then applies over it).
-  await startAutosave(viewer, { restore: urls.length === 0 && !demo, banner: sessionBanner(viewer), notice: autosaveNotice });
-  if (hash) viewer.applyViewState(hash);
-  followViewState(viewer);
+  // The page's answers to the viewer's requests, before autosave opens its storage.
   window.addEventListener('mocap-share', () => share(viewer, source));
   window.addEventListener('mocap-save', () => saveFile(viewer));
   // Edits not saved are not lost by accident: the browser asks before leaving.
@@ -369,6 +364,13 @@ async function main() {
     const s = viewer.state();
     if (s && s.clips.some((c) => c.unsaved)) e.preventDefault();
   });
+  const hash = location.hash.length > 1 ? location.hash.slice(1) : null;
+  if (hash) viewer.applyViewState(hash);
+  // Without a link the work stored last time comes back (the fragment, the page's
+  // own record of the view, then applies over it again).
+  const saved = await startAutosave(viewer, { restore: urls.length === 0 && !demo, banner: sessionBanner(viewer), notice: autosaveNotice });
+  if (hash && saved.restored) viewer.applyViewState(hash);
+  followViewState(viewer);
   document.getElementById('share-close').addEventListener('click', () => {
     document.getElementById('share').hidden = true;
   });

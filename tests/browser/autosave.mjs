@@ -29,7 +29,7 @@ async function stored(page, before) {
   await page.waitForFunction((n) => window.mocapAutosave && window.mocapAutosave.saves > n, before, { timeout: 20000 });
 }
 
-const { context, page: first, close, errors } = await launch(chromiumPath, 'webgl2');
+const { context, page: first, close, errors } = await launch(chromiumPath, 'webgl2', { keepStorage: true });
 try {
   await step('an edit is stored a moment after it is made', async () => {
     await first.goto(base);

@@ -19,7 +19,8 @@ export const MODES = {
 
 /**
  * Launches headless Chromium with a fresh profile; returns { context, page, close, errors }.
- * `options` may set `deviceScaleFactor` (default 1).
+ * `options` may set `deviceScaleFactor` (default 1) and `keepStorage` (keep the
+ * autosaved work between page loads; by default every load is a first visit).
  */
 export async function launch(executablePath, mode, options = {}) {
   const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'mocap-chromium-'));
@@ -28,6 +29,11 @@ export async function launch(executablePath, mode, options = {}) {
     viewport: { width: 1280, height: 800 },
     deviceScaleFactor: options.deviceScaleFactor ?? 1,
   });
+  // Each page load is a first visit: the work the page autosaved in an earlier
+  // step is not restored over what a test opens (autosave.mjs keeps it).
+  if (!options.keepStorage) {
+    await context.addInitScript(() => { try { indexedDB.deleteDatabase('mocap-autosave'); } catch { /* no storage */ } });
+  }
   const page = context.pages()[0] ?? await context.newPage();
   const errors = [];
   page.on('console', (msg) => { if (msg.type() === 'error') errors.push(msg.text()); });

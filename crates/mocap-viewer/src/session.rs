@@ -191,11 +191,8 @@ pub fn parse(manifest: &str, asset: &dyn Fn(&str) -> Option<Vec<u8>>) -> Result<
     };
     let done = m.done.into_iter().map(&mut change).collect::<Result<Vec<_>, _>>()?;
     let undone = m.undone.into_iter().map(&mut change).collect::<Result<Vec<_>, _>>()?;
-    let characters = m
-        .characters
-        .into_iter()
-        .map(|c| Ok((c.name, get(&c.asset)?, c.shown)))
-        .collect::<Result<Vec<_>, String>>()?;
+    let characters =
+        m.characters.into_iter().map(|c| Ok((c.name, get(&c.asset)?, c.shown))).collect::<Result<Vec<_>, String>>()?;
     Ok(Restored { characters, history: History::from_changes(done, undone), view: m.view, unsaved: m.unsaved })
 }
 

@@ -48,14 +48,13 @@ fn a_stored_session_opens_as_it_was() {
     let (a, b) = (v.snapshot(), w.snapshot());
     assert_eq!(b.clips.len(), 2);
     for (x, y) in a.clips.iter().zip(&b.clips) {
-        assert_eq!((&x.name, x.frames, x.frame_time, x.visible, x.edited, x.unsaved), (&y.name, y.frames, y.frame_time, y.visible, y.edited, y.unsaved));
+        assert_eq!(
+            (&x.name, x.frames, x.frame_time, x.visible, x.edited, x.unsaved),
+            (&y.name, y.frames, y.frame_time, y.visible, y.edited, y.unsaved)
+        );
     }
     assert_eq!(a.view, b.view, "the view");
-    assert_eq!(
-        v.state().stage.actors[0].asset,
-        w.state().stage.actors[0].asset,
-        "the edited clip, bit for bit"
-    );
+    assert_eq!(v.state().stage.actors[0].asset, w.state().stage.actors[0].asset, "the edited clip, bit for bit");
     // Undo and redo go on where they were.
     w.apply(Command::Redo).unwrap();
     assert_eq!(w.snapshot().clips[0].frame_time, 1.0 / 60.0);
@@ -112,7 +111,11 @@ fn a_damaged_session_is_refused_and_changes_nothing() {
             },
             "is damaged",
         ),
-        (stored.manifest.replace("\"character\":0", "\"character\":7"), Box::new(move |k| pool.get(k).cloned()), "character 8"),
+        (
+            stored.manifest.replace("\"character\":0", "\"character\":7"),
+            Box::new(move |k| pool.get(k).cloned()),
+            "character 8",
+        ),
     ];
     for (manifest, asset, needle) in cases {
         let error = session::parse(&manifest, &*asset).expect_err(needle);

@@ -134,6 +134,111 @@ fn a_map_overrides_names_and_a_bad_one_is_named() {
     assert!(retarget(&source, &stranger, &Options::default()).is_err());
 }
 
+/// `clip` with every joint renamed `name(i)`: only the tree's shape is left.
+fn renamed(mut clip: Clip, name: impl Fn(usize) -> String) -> Clip {
+    let names: Vec<String> =
+        clip.skeleton().joints().iter().filter(|j| !j.is_end_site()).map(|j| j.name.clone()).collect();
+    for (i, from) in names.into_iter().enumerate() {
+        clip = apply(&clip, &Edit::Rename { from, to: name(i) }).unwrap();
+    }
+    clip
+}
+
+/// The walk with names that say nothing (`j1`, `j2`, …).
+fn anonymous() -> Clip {
+    renamed(walk(), |i| format!("j{i}"))
+}
+
+#[test]
+fn where_names_fail_the_shape_of_the_tree_maps_every_joint() {
+    let source = walk();
+    let target = anonymous();
+    let pairs = map_joints(target.skeleton(), source.skeleton(), &[]).unwrap();
+    let joints = source.skeleton().joints().iter().filter(|j| !j.is_end_site()).count();
+    assert_eq!(pairs.len(), joints, "every joint found by shape: {pairs:?}");
+    assert!(pairs.iter().all(|&(t, s)| t == s), "each joint onto itself: {pairs:?}");
+    let (out, _) = retarget(&source, &target, &Options::default()).unwrap();
+    let height = source.pose_height();
+    for f in [0, 33, source.frame_count() - 1] {
+        for (a, b) in positions(&out, f).iter().zip(positions(&source, f)) {
+            assert!(a.distance(b) < 1e-3 * height, "frame {f}: {a} vs {b}");
+        }
+    }
+    // The same from the other side, and an explicit pair still wins.
+    assert_eq!(map_joints(source.skeleton(), target.skeleton(), &[]).unwrap(), pairs);
+    let map = vec![("j7".to_owned(), String::new())];
+    let pairs = map_joints(target.skeleton(), source.skeleton(), &map).unwrap();
+    let j7 = target.skeleton().find("j7").unwrap();
+    assert!(pairs.iter().all(|&(t, _)| t != j7), "left out by the map");
+}
+
+/// The walk without its collar bones (arms straight from the chest), anonymous.
+fn anonymous_without_collars() -> Clip {
+    let mut clip = walk();
+    for side in ["Left", "Right"] {
+        clip = apply(&clip, &Edit::RemoveJoint { name: format!("{side}Shoulder"), fold: true }).unwrap();
+    }
+    renamed(clip, |i| format!("bone{i:03}"))
+}
+
+#[test]
+fn cmu_acclaim_onto_skeletons_with_names_that_say_nothing() {
+    let Some(source) = cmu_02_01() else { return };
+    let named = walk();
+    let (_, by_name) = retarget(&source, &named, &Options::default()).unwrap();
+    let limbs = [
+        "LeftUpLeg",
+        "LeftLeg",
+        "LeftFoot",
+        "RightUpLeg",
+        "RightLeg",
+        "RightFoot",
+        "LeftArm",
+        "LeftForeArm",
+        "LeftHand",
+        "RightArm",
+        "RightForeArm",
+        "RightHand",
+        "Head",
+    ];
+    let driver = |pairs: &[(usize, usize)], t: usize| {
+        pairs.iter().find(|p| p.0 == t).map(|p| source.skeleton().joints()[p.1].name.clone())
+    };
+    // Anonymous, same tree: the limbs get the drivers names gave them.
+    let target = anonymous();
+    let (out, pairs) = retarget(&source, &target, &Options::default()).unwrap();
+    for limb in limbs {
+        let t = named.skeleton().find(limb).unwrap();
+        assert_eq!(driver(&pairs, t), driver(&by_name, t), "{limb}");
+    }
+    let (worst, at) = worst_bone_angle(&source, &out, &pairs);
+    assert!(worst < 3.0, "a limb is {worst}° off its source ({at})");
+    // No collar bones: the upper arm still takes CMU's humerus, not its clavicle.
+    let target = anonymous_without_collars();
+    let (out, pairs) = retarget(&source, &target, &Options::default()).unwrap();
+    let arm = |side: &str| {
+        let before = named.skeleton().find(&format!("{side}Arm")).unwrap();
+        // Removing the shoulder before it moves the arm one index down, per side removed.
+        before - if side == "Left" { 1 } else { 2 }
+    };
+    assert_eq!(driver(&pairs, arm("Left")).as_deref(), Some("lhumerus"), "{pairs:?}");
+    assert_eq!(driver(&pairs, arm("Right")).as_deref(), Some("rhumerus"), "{pairs:?}");
+    let (worst, at) = worst_bone_angle(&source, &out, &pairs);
+    assert!(worst < 3.0, "a limb is {worst}° off its source ({at})");
+}
+
+/// CMU's subject 2, take 1 (Acclaim), from the corpus.
+fn cmu_02_01() -> Option<Clip> {
+    let dir = common::corpus_dir()?;
+    let asf = std::fs::read(dir.join("asf_amc/cmu/02.asf")).unwrap();
+    let amc = std::fs::read(dir.join("asf_amc/cmu/02_01.amc")).unwrap();
+    let inputs = [mocap::Input { name: "02.asf", bytes: &asf }, mocap::Input { name: "02_01.amc", bytes: &amc }];
+    mocap::load(&inputs).into_iter().find_map(|r| match r.map(|l| l.asset) {
+        Ok(mocap::Asset::Clip(c)) => Some(c),
+        _ => None,
+    })
+}
+
 #[test]
 fn cmu_acclaim_onto_a_bvh_skeleton_keeps_every_limb_direction() {
     let Some(dir) = common::corpus_dir() else { return };

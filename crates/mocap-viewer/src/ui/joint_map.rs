@@ -8,6 +8,9 @@ pub struct Row {
     pub joint: String,
     /// The joint driving it.
     pub driver: Option<String>,
+    /// The chain of the body the joint is on (`left arm`, `spine`), where the
+    /// tree's shape was read ([`mocap::ops::retarget::chains`]).
+    pub chain: Option<&'static str>,
 }
 
 /// Shows the table; a choice made by hand is recorded in `map` as
@@ -21,9 +24,13 @@ pub fn grid(
     drivers: &[String],
     map: &mut Vec<(String, String)>,
 ) {
+    let chains = rows.iter().any(|r| r.chain.is_some());
     egui::ScrollArea::vertical().max_height(260.0).id_salt(id).show(ui, |ui| {
-        egui::Grid::new((id, "grid")).striped(true).num_columns(2).show(ui, |ui| {
+        egui::Grid::new((id, "grid")).striped(true).num_columns(2 + usize::from(chains)).show(ui, |ui| {
             for row in rows {
+                if chains {
+                    ui.label(egui::RichText::new(row.chain.unwrap_or("")).weak());
+                }
                 ui.label(&row.joint);
                 let mut choice: Option<String> = None;
                 egui::ComboBox::from_id_salt((id, row.joint.as_str()))

@@ -113,7 +113,7 @@ fn mapping(stage: &Stage, dialog: &LayerDialog, source: usize) -> (Vec<Row>, Vec
             let base = bs.joints().get(b)?.name.clone();
             let played =
                 pairs.iter().find(|(pb, _)| *pb == b).and_then(|&(_, l)| ls.joints().get(l)).map(|j| j.name.clone());
-            Some(Row { joint: base, driver: played })
+            Some(Row { joint: base, driver: played, chain: None })
         })
         .collect();
     (rows, names)

@@ -1,8 +1,9 @@
 //! The Retarget window (Edit ▸ Retarget onto…): which open character receives
 //! the current one's motion, the reference pose, and which source joint drives
 //! each target joint, proposed by name across the common conventions
-//! (`LeftArm` = `lShldr` = `mixamorig:LeftArm` = `lhumerus` …) and changeable
-//! joint by joint. "Retarget" adds the result as a new character beside them.
+//! (`LeftArm` = `lShldr` = `mixamorig:LeftArm` = `lhumerus` …) and, where names
+//! fail, by the shape of the tree (each row shows the chain found: spine, left
+//! arm, …), changeable joint by joint. "Retarget" adds the result as a new character beside them.
 
 use super::joint_map::{self, Row};
 use crate::command::Command;
@@ -95,6 +96,8 @@ fn mapping(stage: &Stage, dialog: &RetargetDialog, target: usize) -> (Vec<Row>, 
     let names =
         ss.joints().iter().enumerate().filter(|(k, _)| !ss.is_end_site(*k)).map(|(_, j)| j.name.clone()).collect();
     let pairs = retarget::map_joints(ts, ss, &dialog.map).unwrap_or_default();
+    let chains = retarget::chains::find_body(ts, &retarget::chains::rest_positions(ts)).map(|b| b.labels());
+    let chain = |k: usize| chains.as_ref().and_then(|c| c.iter().find(|(j, _)| *j == k)).map(|(_, name)| *name);
     let rows = ts
         .joints()
         .iter()
@@ -103,6 +106,7 @@ fn mapping(stage: &Stage, dialog: &RetargetDialog, target: usize) -> (Vec<Row>, 
         .map(|(k, j)| Row {
             joint: j.name.clone(),
             driver: pairs.iter().find(|(t, _)| *t == k).and_then(|&(_, s)| ss.joints().get(s)).map(|s| s.name.clone()),
+            chain: chain(k),
         })
         .collect();
     (rows, names)

@@ -3,7 +3,7 @@
 //! Inputs: the source clip, the target (a clip whose skeleton, and whose
 //! reference pose, receive the motion) and a joint map ([`map_joints`]: by name
 //! across the common conventions, [`crate::ops::layer::canonical_name`], then
-//! explicit pairs). Output: a clip on exactly the target's skeleton (its names,
+//! explicit pairs; where names fail, the shape of the tree, [`chains`]). Output: a clip on exactly the target's skeleton (its names,
 //! hierarchy and offsets; channels: the root's position and every joint's
 //! rotation) at the source's frame times.
 //!
@@ -30,6 +30,8 @@ use crate::ops::layer::canonical_name;
 use crate::runtime::fk::{Transform, local_to_model};
 use crate::runtime::pose::LocalPose;
 use glam::{EulerRot, Quat, Vec3};
+
+pub mod chains;
 
 /// Which pose the two skeletons are matched in.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -65,10 +67,11 @@ pub enum RetargetError {
     Clip(String),
 }
 
-/// The (target joint, source joint) pairs: explicit ones first, then equal names,
-/// then equal [`canonical_name`]s. End Sites are matched to End Sites of the
-/// matched parent only through explicit pairs. Each source joint drives at most
-/// one target joint.
+/// The (target joint, source joint) pairs, in target joint order: explicit ones
+/// first, then equal names, then equal [`canonical_name`]s, then, for target
+/// joints still unmapped (and not left out by the map), the pairs the shape of
+/// the two trees gives ([`shape_pairs`]). End Sites are matched only through
+/// explicit pairs. Each source joint drives at most one target joint.
 pub fn map_joints(
     target: &Skeleton,
     source: &Skeleton,
@@ -101,10 +104,32 @@ pub fn map_joints(
             pairs.push((i, s));
         }
     }
+    let mut mapped = vec![false; target.len()];
+    for &(t, _) in &pairs {
+        mapped[t] = true;
+    }
+    for (t, s) in shape_pairs(target, source) {
+        let named = target.joints().get(t).is_some_and(|j| explicit.iter().any(|(x, _)| *x == j.name));
+        if !mapped[t] && !named && !used[s] && !target.is_end_site(t) && !source.is_end_site(s) {
+            (mapped[t], used[s]) = (true, true);
+            pairs.push((t, s));
+        }
+    }
+    pairs.sort_unstable();
     if pairs.is_empty() {
         return Err(RetargetError::NothingMapped);
     }
     Ok(pairs)
+}
+
+/// The pairs the shapes of two skeletons' trees give, in their rest poses
+/// ([`chains::find_body`], [`chains::match_bodies`]); none unless both are humanoid.
+pub fn shape_pairs(target: &Skeleton, source: &Skeleton) -> Vec<(usize, usize)> {
+    let (t_at, s_at) = (chains::rest_positions(target), chains::rest_positions(source));
+    match (chains::find_body(target, &t_at), chains::find_body(source, &s_at)) {
+        (Some(t), Some(s)) => chains::match_bodies(&t, &t_at, &s, &s_at),
+        _ => Vec::new(),
+    }
 }
 
 /// The source's motion on the target's skeleton (see the module documentation),
