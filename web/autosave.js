@@ -22,6 +22,9 @@ function request(r) {
   });
 }
 
+// How long the page waits for its storage before going on without autosave.
+const OPEN_MS = 4000;
+
 function openDb() {
   return new Promise((resolve, reject) => {
     let r;
@@ -31,13 +34,22 @@ function openDb() {
       reject(e);
       return;
     }
+    // Storage that does not answer (another tab deleting or upgrading it) must
+    // not hold the page: autosave is off for this visit instead.
+    const timer = setTimeout(() => reject(new Error('the storage did not answer')), OPEN_MS);
     r.onupgradeneeded = () => {
       r.result.createObjectStore(SESSIONS);
       r.result.createObjectStore(ASSETS);
     };
-    r.onsuccess = () => resolve(r.result);
-    r.onerror = () => reject(r.error);
-    r.onblocked = () => reject(new Error('storage blocked'));
+    r.onsuccess = () => {
+      clearTimeout(timer);
+      const db = r.result;
+      // Another tab deleting or upgrading the database is not kept waiting.
+      db.onversionchange = () => db.close();
+      resolve(db);
+    };
+    r.onerror = () => { clearTimeout(timer); reject(r.error); };
+    r.onblocked = () => { clearTimeout(timer); reject(new Error('storage blocked')); };
   });
 }
 

@@ -3,15 +3,15 @@
 // the edit back), saying so with Discard; a `?url=` link opens the link and
 // keeps the earlier session one click away; saving marks the work saved; a full
 // storage quota gives a one-line notice and nothing else.
-//   node autosave.mjs <url> <outDir> <chromium>
+//   node autosave.mjs <url> <webgl2|webgpu> <outDir> <chromium>
 import fs from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
 import { launch, state, waitState, changeAndRender, reporter } from './common.mjs';
 
-const [base, outDir, chromiumPath] = process.argv.slice(2);
-const shot = (name) => path.join(outDir, `webgl2-autosave-${name}.png`);
-const { check, step, finish } = reporter('autosave');
+const [base, mode, outDir, chromiumPath] = process.argv.slice(2);
+const shot = (name) => path.join(outDir, `${mode}-autosave-${name}.png`);
+const { check, step, finish } = reporter(`${mode} autosave`);
 const walk = fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url));
 
 // A second origin serving one clip, for the ?url= link.
@@ -29,7 +29,7 @@ async function stored(page, before) {
   await page.waitForFunction((n) => window.mocapAutosave && window.mocapAutosave.saves > n, before, { timeout: 20000 });
 }
 
-const { context, page: first, close, errors } = await launch(chromiumPath, 'webgl2', { keepStorage: true });
+const { context, page: first, close, errors } = await launch(chromiumPath, mode, { keepStorage: true });
 try {
   await step('an edit is stored a moment after it is made', async () => {
     await first.goto(base);

@@ -99,6 +99,9 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
         if let Err(e) = run(node("gpu-loss.mjs").args([url.as_str(), mode]).arg(&out).arg(&chromium)) {
             failures.push(format!("{mode} lost graphics device: {e}"));
         }
+        if let Err(e) = run(node("autosave.mjs").args([url.as_str(), mode]).arg(&out).arg(&chromium)) {
+            failures.push(format!("{mode} autosave and restore: {e}"));
+        }
         let mut multi = node("multi.mjs");
         multi.args([url.as_str(), mode]).arg(&out).arg(&chromium);
         if let Some(corpus) = corpus_dir() {
@@ -118,9 +121,6 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
     }
     if let Err(e) = run(node("editing.mjs").arg(&url).arg(&out).arg(&chromium)) {
         failures.push(format!("editing through the page's controls: {e}"));
-    }
-    if let Err(e) = run(node("autosave.mjs").arg(&url).arg(&out).arg(&chromium)) {
-        failures.push(format!("autosave and restore: {e}"));
     }
     if let Err(e) = run(node("nogpu.mjs").arg(&url).arg(&out).arg(&chromium)) {
         failures.push(format!("no-gpu message: {e}"));
