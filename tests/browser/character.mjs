@@ -7,7 +7,7 @@
 import fs from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
-import { launch, state, waitState, dropFiles, changeAndRender, waitDropped, view3d, reporter } from './common.mjs';
+import { launch, state, waitState, dropFiles, changeAndRender, waitDropped, view3d, decodePng, reporter } from './common.mjs';
 
 const [base, outDir, chromiumPath, gltfDir] = process.argv.slice(2);
 const shot = (name) => path.join(outDir, `webgl2-character-${name}.png`);
@@ -16,7 +16,9 @@ const glb = fs.readFileSync(path.join(gltfDir, 'walk.glb'));
 const lying = fs.readFileSync(path.join(gltfDir, 'walk-z-up.glb'));
 const walk = fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url));
 
-const { page, close, errors } = await launch(chromiumPath, 'webgl2');
+const textured = fs.readFileSync(path.join(gltfDir, 'walk-textured.glb'));
+
+const { context, page, close, errors } = await launch(chromiumPath, 'webgl2');
 try {
   await step('a GLB opens as a character in its own look', async () => {
     await page.goto(base);
@@ -63,6 +65,24 @@ try {
     await page.screenshot({ path: shot('saved') });
     check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
   });
+  await step('a textured character is drawn with its texture', async () => {
+    // xtask's walk-textured.glb: orange and teal stripes around the body.
+    await dropFiles(page, [{ name: 'textured.glb', bytes: textured }]);
+    const s = await waitDropped(page, 'textured.glb');
+    check(s.error === null && s.clips.length === 1, `opened: ${s.clips.map((c) => c.name).join(', ')} ${s.error ?? ''}`);
+    await changeAndRender(page, (v) => { v.pause(); v.seek(10); v.applyViewState('mode=body'); });
+    const png = await view3d(page, shot('textured'));
+    const { data } = await decodePng(context, png);
+    let [orange, teal] = [0, 0];
+    for (let i = 0; i < data.length; i += 4) {
+      const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
+      if (r > g + 20 && g > b + 20 && r > 80) orange += 1;
+      if (g > r + 40 && b > r + 40) teal += 1;
+    }
+    check(orange > 300 && teal > 300, `both stripes on screen (${orange} orange, ${teal} teal pixels)`);
+    await page.screenshot({ path: shot('textured-page') });
+  });
+
   await step('a ?url= link to a .gltf fetches its .bin beside it', async () => {
     const json = JSON.parse(fs.readFileSync(path.join(gltfDir, 'walk.gltf'), 'utf8'));
     const bin = Buffer.from(json.buffers[0].uri.split(',')[1], 'base64');

@@ -1,7 +1,7 @@
 //! The glTF files the browser suite checks (`tests/browser/gltf.mjs`): the core's
 //! writer on the generated walk (`.glb` and `.gltf`, a Z-up copy, the skeleton
 //! alone), a glTF character read and written again, a motion retargeted onto
-//! it, and on corpus clips (BVH and Acclaim), with the joint positions we
+//! it, that character wearing a striped texture, and on corpus clips (BVH and Acclaim), with the joint positions we
 //! compute (metres, Y up) at a few frames in `expected.json`.
 
 use mocap::formats::gltf::{Options, to_glb, to_gltf};
@@ -54,6 +54,7 @@ pub fn write(dir: &Path, corpus: Option<&Path>) -> Result<PathBuf, String> {
     let (on, _) =
         mocap::ops::retarget::retarget(&source, &character, &Default::default()).map_err(|e| e.to_string())?;
     clips.push(("walk-z-up-on-walk.glb".into(), on, true, false));
+    clips.push(("walk-textured.glb".into(), textured(&character)?, true, false));
     let mut entries = Vec::new();
     for (file, clip, body, text) in &clips {
         let options = Options { name: file.split('.').next().unwrap_or("motion").to_owned(), body: *body };
@@ -64,6 +65,32 @@ pub fn write(dir: &Path, corpus: Option<&Path>) -> Result<PathBuf, String> {
     }
     std::fs::write(dir.join("expected.json"), format!("[{}]", entries.join(",\n"))).map_err(|e| e.to_string())?;
     Ok(dir.to_path_buf())
+}
+
+/// Stripes of the textured character's image, top to bottom (sRGB).
+pub const STRIPES: [[u8; 4]; 2] = [[240, 140, 30, 255], [30, 170, 170, 255]];
+
+/// `character` (a glTF character read back) wearing a texture drawn per pixel:
+/// a 64×64 image of eight-texel stripes alternating [`STRIPES`], wrapped around
+/// the body (u by the angle about the vertical, v down from the top).
+fn textured(character: &Clip) -> Result<Clip, String> {
+    use mocap::model::character::{Surface, TextureImage, Wrap};
+    let mut c = (**character.character.as_ref().ok_or("walk-again.glb: no character")?).clone();
+    let look = c.look.as_mut().ok_or("walk-again.glb: no look")?;
+    let positions = look.skin.positions();
+    let (lo, hi) = positions.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), p| (a.min(p.y), b.max(p.y)));
+    let uvs: Vec<Option<[f32; 2]>> = positions
+        .iter()
+        .map(|p| Some([p.x.atan2(p.z) / std::f32::consts::TAU + 0.5, 1.0 - (p.y - lo) / (hi - lo).max(1e-6)]))
+        .collect();
+    let stripe = |v: f32| STRIPES[((v.clamp(0.0, 0.999) * 64.0) as usize / 8) % 2];
+    let pixels: Vec<u8> = (0..64).flat_map(|y| std::iter::repeat_n(stripe(y as f32 / 64.0), 64)).flatten().collect();
+    // Without the texture (a writer or renderer that has none), the stripe at each vertex.
+    look.colors = uvs.iter().map(|uv| stripe(uv.map_or(0.0, |[_, v]| v))).collect();
+    let image = TextureImage { width: 64, height: 64, pixels, wrap: [Wrap::Repeat; 2] };
+    let tints = vec![[255; 4]; uvs.len()];
+    look.surface = Some(Surface { image: std::sync::Arc::new(image), uvs, tints });
+    Ok(character.clone().with_character(std::sync::Arc::new(c)))
 }
 
 /// One file's entry: its joints' positions at the first, middle and last frames.

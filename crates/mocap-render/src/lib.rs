@@ -45,6 +45,7 @@ mod shadow;
 mod skinned;
 mod spheres;
 mod target;
+mod texture;
 mod uniforms;
 
 pub use blit::{Blit, BlitSource};
@@ -55,15 +56,16 @@ pub use figure::{
 };
 pub use glam;
 pub use grid::Grid;
-pub use mesh::{MeshDraw, MorphMeshData, MorphVertex, NEUTRAL_TINT, SkinImage};
+pub use mesh::{MeshDraw, MorphMeshData, MorphVertex, NEUTRAL_TINT};
 pub use radius::{BODY_THICKNESS, HELPER_BONE, MAX_CARRIED, body_radii, bone_radii, bone_radius, size_figure};
 pub use renderer::SceneRenderer;
 #[cfg(feature = "test-support")]
 pub use renderer::TestPaths;
 pub use scene::{Capsule, Line, Scene, Sphere};
 pub use shadow::key_light_direction;
-pub use skinned::{COARSE_BODY_SPAN_PX, SkinnedDraw, SkinnedMeshData, SkinnedVertex};
+pub use skinned::{COARSE_BODY_SPAN_PX, SkinnedDraw, SkinnedMeshData, SkinnedTexture, SkinnedVertex};
 pub use target::RenderTarget;
+pub use texture::SkinImage;
 pub use wgpu;
 
 /// Depth format used by every pipeline and [`RenderTarget`]: 32-bit float,

@@ -8,6 +8,7 @@
 //! upload. The renderer keeps a mesh's GPU copy while the caller holds its `Arc`.
 
 use crate::buffer::GrowingBuffer;
+use crate::texture::{SkinImage, skin_group};
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 use std::collections::HashMap;
@@ -22,17 +23,6 @@ pub struct MorphVertex {
     pub position: [f32; 3],
     /// Unit normal.
     pub normal: [f32; 3],
-}
-
-/// An RGBA8 skin, rows top to bottom, sRGB colours.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct SkinImage {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// `width × height × 4` bytes.
-    pub pixels: Vec<u8>,
 }
 
 /// A triangle mesh whose vertices move from key frame to key frame.
@@ -296,12 +286,9 @@ impl MeshCache {
         let buffer = |label, contents: &[u8], usage| {
             device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
         };
-        let max_side = device.limits().max_texture_dimension_2d;
         let skin = match &data.skin {
-            Some(s) if s.width <= max_side && s.height <= max_side => {
-                skin_group(device, queue, &self.skin_layout, &self.sampler, s)
-            }
-            _ => self.neutral.clone()?,
+            Some(s) => skin_group(device, queue, &self.skin_layout, &self.sampler, s),
+            None => self.neutral.clone()?,
         };
         Some(GpuMesh {
             owner: Arc::downgrade(data),
@@ -347,40 +334,6 @@ impl MeshCache {
         }
         calls
     }
-}
-
-/// A bind group sampling `image` (uploaded as an sRGB texture).
-fn skin_group(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    layout: &wgpu::BindGroupLayout,
-    sampler: &wgpu::Sampler,
-    image: &SkinImage,
-) -> wgpu::BindGroup {
-    let texture = device.create_texture_with_data(
-        queue,
-        &wgpu::TextureDescriptor {
-            label: Some("mocap skin"),
-            size: wgpu::Extent3d { width: image.width, height: image.height, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba8UnormSrgb,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        &image.pixels,
-    );
-    let view = texture.create_view(&Default::default());
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("mocap skin"),
-        layout,
-        entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view) },
-            wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(sampler) },
-        ],
-    })
 }
 
 #[cfg(test)]

@@ -84,6 +84,8 @@ pub(crate) struct Layouts<'a> {
     pub(crate) shadow: &'a wgpu::BindGroupLayout,
     pub(crate) skin: &'a wgpu::BindGroupLayout,
     pub(crate) joints: &'a wgpu::BindGroupLayout,
+    /// A skinned mesh's colour texture.
+    pub(crate) surface: &'a wgpu::BindGroupLayout,
 }
 
 impl Pipelines {
@@ -97,7 +99,7 @@ impl Pipelines {
         let (frame_layout, shadow_layout, skin_layout) = (layouts.frame, layouts.shadow, layouts.skin);
         let skinned_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("mocap skinned"),
-            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(layouts.joints)],
+            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(layouts.joints), Some(layouts.surface)],
             immediate_size: 0,
         });
         let skinned_shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {

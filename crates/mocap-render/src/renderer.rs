@@ -249,6 +249,7 @@ impl SceneRenderer {
             shadow: &self.shadow_layout,
             skin: &self.meshes.skin_layout,
             joints: &self.skinned.layout,
+            surface: &self.skinned.texture_layout,
         };
         let pipelines = Pipelines::new(device, &layouts, self.format, key);
         self.pipelines.push((key, pipelines));
@@ -349,7 +350,7 @@ impl SceneRenderer {
         }
         if self.skinned.has_draws() {
             pass.set_pipeline(&pipelines.skinned);
-            self.draw_calls += self.skinned.draw(&mut pass);
+            self.draw_calls += self.skinned.draw(&mut pass, true);
         }
         // Blended outlines: the lines first, so that a joint's fringe is
         // blended over the bones entering it (else a bone's line behind a
@@ -472,7 +473,7 @@ impl SceneRenderer {
         }
         if self.skinned.has_draws() && !self.bodies_cast_as_capsules {
             pass.set_pipeline(&pipelines.skinned_shadow);
-            self.draw_calls += self.skinned.draw(&mut pass);
+            self.draw_calls += self.skinned.draw(&mut pass, false);
         }
     }
 

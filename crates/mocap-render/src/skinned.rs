@@ -2,12 +2,16 @@
 //! joint weights, handed over once through an `Arc`), [`SkinnedDraw`] (one posed
 //! copy: a matrix per joint) and the renderer's cache of their buffers.
 //!
+//! A mesh may carry a colour texture ([`SkinnedMeshData::set_texture`]), drawn
+//! per pixel on the vertices that have a texture coordinate.
+//!
 //! The vertex buffer is uploaded once per mesh; per frame only the joint matrices
 //! move, all draws' into one RGBA32F texture (three texels per matrix: the rows of
 //! its affine part) that the vertex shader reads, the same code on WebGPU, WebGL2
 //! and Vulkan.
 
 use crate::buffer::GrowingBuffer;
+use crate::texture::{SkinImage, skin_group};
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 use std::collections::HashMap;
@@ -33,6 +37,18 @@ pub struct SkinnedVertex {
     pub weights: [f32; 4],
     /// sRGB colour, multiplied with the draw's tint (white for a plain body).
     pub color: [u8; 4],
+    /// Texture coordinate (u, v: v down from the image's top row) and 1 where the
+    /// mesh's texture colours this vertex (times `color`), else 0.
+    pub tex: [f32; 4],
+}
+
+/// A mesh's colour texture and how coordinates outside 0–1 wrap (u, v).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SkinnedTexture {
+    /// The picture.
+    pub image: SkinImage,
+    /// Wrap along u and v.
+    pub wrap: [wgpu::AddressMode; 2],
 }
 
 /// A mesh bound to joints, as the renderer draws it: closed surfaces whose
@@ -49,6 +65,7 @@ pub struct SkinnedMeshData {
     /// mean of its joints' matrices applied to it, so the posed mesh lies inside
     /// these boxes carried by their joints' matrices.
     joint_boxes: Vec<(Vec3, Vec3)>,
+    texture: Option<SkinnedTexture>,
 }
 
 impl SkinnedMeshData {
@@ -90,9 +107,39 @@ impl SkinnedMeshData {
                 joints: joints[i].map(|j| j.min(joint_count_u32.saturating_sub(1))),
                 weights: weights[i],
                 color: [255; 4],
+                tex: [0.0; 4],
             })
             .collect();
-        Ok(SkinnedMeshData { vertices, indices, joint_count: joint_count_u32, joint_boxes })
+        Ok(SkinnedMeshData { vertices, indices, joint_count: joint_count_u32, joint_boxes, texture: None })
+    }
+
+    /// Draws the mesh with `texture`: each vertex with a coordinate takes the
+    /// texture there times its `tints` colour; one without takes `tints`' colour
+    /// (sRGB) alone. Refused, and the mesh left as it was, unless one coordinate
+    /// and one colour per vertex, the coordinates finite and the image's bytes
+    /// its size.
+    pub fn set_texture(
+        &mut self,
+        texture: SkinnedTexture,
+        uvs: &[Option<[f32; 2]>],
+        tints: &[[u8; 4]],
+    ) -> Result<(), String> {
+        if uvs.len() != self.vertices.len() || tints.len() != self.vertices.len() {
+            return Err("one texture coordinate and one colour per vertex".into());
+        }
+        if uvs.iter().flatten().flatten().any(|x| !x.is_finite()) {
+            return Err("a texture coordinate is not finite".into());
+        }
+        let image = &texture.image;
+        if u64::from(image.width) * u64::from(image.height) * 4 != image.pixels.len() as u64 || image.width == 0 {
+            return Err("the texture's bytes do not match its size".into());
+        }
+        for ((v, uv), tint) in self.vertices.iter_mut().zip(uvs).zip(tints) {
+            v.color = *tint;
+            v.tex = uv.map_or([0.0; 4], |[x, y]| [x, y, 1.0, 0.0]);
+        }
+        self.texture = Some(texture);
+        Ok(())
     }
 
     /// The same mesh with a colour per vertex (sRGB; a character's own look:
@@ -148,6 +195,18 @@ impl SkinnedDraw {
     }
 }
 
+/// A linear sampler wrapping as `wrap` says (u, v).
+fn sampler(device: &wgpu::Device, wrap: [wgpu::AddressMode; 2]) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("mocap skinned texture"),
+        address_mode_u: wrap[0],
+        address_mode_v: wrap[1],
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    })
+}
+
 /// Bodies spanning fewer pixels than this on screen (their bounding sphere)
 /// are drawn with their coarse mesh in the fast look.
 pub const COARSE_BODY_SPAN_PX: f32 = 200.0;
@@ -164,8 +223,9 @@ const INSTANCE_SIZE: u64 = std::mem::size_of::<Instance>() as u64;
 
 /// Vertex buffer layouts of the skinned pipeline: the mesh, then the instance.
 pub(crate) fn buffer_layouts() -> [Option<wgpu::VertexBufferLayout<'static>>; 2] {
-    const VERTEX: [wgpu::VertexAttribute; 5] =
-        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Uint32x4, 3 => Float32x4, 6 => Unorm8x4];
+    const VERTEX: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Uint32x4, 3 => Float32x4, 6 => Unorm8x4, 7 => Float32x4
+    ];
     const INSTANCE: [wgpu::VertexAttribute; 2] = wgpu::vertex_attr_array![4 => Uint32x4, 5 => Float32x4];
     [
         Some(wgpu::VertexBufferLayout {
@@ -186,11 +246,17 @@ struct GpuMesh {
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     index_count: u32,
+    /// Its colour texture (white when it has none).
+    texture: wgpu::BindGroup,
 }
 
 /// The skinned meshes on the GPU, the joint texture and this frame's draws.
 pub(crate) struct SkinnedCache {
     pub layout: wgpu::BindGroupLayout,
+    /// The meshes' colour textures (group 3).
+    pub texture_layout: wgpu::BindGroupLayout,
+    /// A white texture for meshes without one (made on first use).
+    white: Option<wgpu::BindGroup>,
     meshes: HashMap<usize, GpuMesh>,
     texture: Option<(wgpu::Texture, wgpu::BindGroup, u32)>,
     instances: GrowingBuffer,
@@ -216,6 +282,8 @@ impl SkinnedCache {
         });
         SkinnedCache {
             layout,
+            texture_layout: crate::pipeline::color_texture_layout(device, "mocap skinned texture"),
+            white: None,
             meshes: HashMap::new(),
             texture: None,
             instances: GrowingBuffer::new("mocap skinned instances"),
@@ -253,7 +321,15 @@ impl SkinnedCache {
                 let buffer = |label, contents: &[u8], usage| {
                     device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
                 };
+                let texture = match &data.texture {
+                    Some(t) => {
+                        let sampler = sampler(device, t.wrap);
+                        skin_group(device, queue, &self.texture_layout, &sampler, &t.image)
+                    }
+                    None => self.white(device, queue),
+                };
                 let mesh = GpuMesh {
+                    texture,
                     owner: Arc::downgrade(data),
                     vertices: buffer("mocap skinned vertices", bytes, wgpu::BufferUsages::VERTEX),
                     indices: buffer(
@@ -279,6 +355,17 @@ impl SkinnedCache {
         }
         self.instances.upload(device, queue, &self.scratch);
         self.upload_matrices(device, queue);
+    }
+
+    /// The white texture's bind group (made once).
+    fn white(&mut self, device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::BindGroup {
+        let layout = &self.texture_layout;
+        self.white
+            .get_or_insert_with(|| {
+                let white = SkinImage { width: 1, height: 1, pixels: vec![255; 4] };
+                skin_group(device, queue, layout, &sampler(device, [wgpu::AddressMode::Repeat; 2]), &white)
+            })
+            .clone()
     }
 
     /// Writes the matrices into the joint texture, growing it (rows doubling) when needed.
@@ -340,8 +427,9 @@ impl SkinnedCache {
     }
 
     /// Records the draws into `pass` (pipeline and group 0 set); binds the joint
-    /// texture at group 2. Returns the draw calls made.
-    pub fn draw<'a>(&'a self, pass: &mut wgpu::RenderPass<'a>) -> u32 {
+    /// texture at group 2 and, with `textured` (the colour pass), each mesh's
+    /// colour texture at group 3. Returns the draw calls made.
+    pub fn draw<'a>(&'a self, pass: &mut wgpu::RenderPass<'a>, textured: bool) -> u32 {
         let (Some((instances, _)), Some((_, group, _))) = (self.instances.get(), &self.texture) else { return 0 };
         pass.set_bind_group(2, group, &[]);
         let mut calls = 0;
@@ -350,6 +438,9 @@ impl SkinnedCache {
             let at = u64::from(instance) * INSTANCE_SIZE;
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));
             pass.set_vertex_buffer(1, instances.slice(at..at + INSTANCE_SIZE));
+            if textured {
+                pass.set_bind_group(3, &mesh.texture, &[]);
+            }
             pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
             pass.draw_indexed(0..mesh.index_count, 0, 0..1);
             calls += 1;

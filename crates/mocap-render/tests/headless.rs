@@ -1442,3 +1442,64 @@ fn every_pixel_an_outline_reaches_is_drawn_across_a_wide_view() {
         &missed[..missed.len().min(20)]
     );
 }
+
+/// A square of two triangles bound to one joint: corners (x, y) at z = 0 with
+/// texture coordinates (u, v), v down.
+fn skinned_square() -> mocap_render::SkinnedMeshData {
+    let corners = [(-0.5f32, 0.5f32), (0.5, 0.5), (0.5, 1.5), (-0.5, 1.5)];
+    let positions: Vec<Vec3> = corners.iter().map(|&(x, y)| Vec3::new(x, y, 0.0)).collect();
+    mocap_render::SkinnedMeshData::new(
+        &positions,
+        &[Vec3::Z; 4],
+        &[[0, 0, 0, 0]; 4],
+        &[[1.0, 0.0, 0.0, 0.0]; 4],
+        vec![0, 1, 2, 0, 2, 3],
+        1,
+    )
+    .expect("a valid mesh")
+}
+
+#[test]
+fn a_skinned_mesh_draws_its_texture_per_pixel() {
+    use mocap_render::glam::Mat4;
+    use mocap_render::{SkinImage, SkinnedDraw, SkinnedTexture};
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    let background = [10, 20, 30, 255];
+    let camera = Camera::look_at(Vec3::new(0.0, 1.0, 3.0), Vec3::new(0.0, 1.0, 0.0), 0.8, 1.0);
+    // 64 texels wide: red on the left half, blue on the right; the square's left
+    // corners sample u = 0, its right u = 1.
+    let half = |c: [u8; 4]| std::iter::repeat_n(c, 32).flatten();
+    let image =
+        SkinImage { width: 64, height: 1, pixels: half([230, 20, 20, 255]).chain(half([20, 20, 230, 255])).collect() };
+    let texture = SkinnedTexture { image, wrap: [wgpu::AddressMode::ClampToEdge; 2] };
+    let uvs = [Some([0.0, 1.0]), Some([1.0, 1.0]), Some([1.0, 0.0]), Some([0.0, 0.0])];
+    let mut mesh = skinned_square();
+    mesh.set_texture(texture.clone(), &uvs, &[[255; 4]; 4]).expect("a valid texture");
+    let draw = |mesh: mocap_render::SkinnedMeshData| SkinnedDraw {
+        mesh: std::sync::Arc::new(mesh),
+        coarse: None,
+        matrices: vec![Mat4::IDENTITY],
+        tint: [255; 4],
+        weights_view: false,
+    };
+    let mut scene = Scene { background, shadows: false, ..Scene::default() };
+    scene.skinned = vec![draw(mesh)];
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let px = read_pixels(&device, &queue, &target);
+    let red = columns(&px, |p| p[0] > 100 && p[2] < 60);
+    let blue = columns(&px, |p| p[2] > 100 && p[0] < 60);
+    assert!(red.len() > 10 && blue.len() > 10, "both halves drawn: {} red, {} blue columns", red.len(), blue.len());
+    assert!(red[red.len() - 1] < blue[0], "red left of blue, per pixel: {red:?} {blue:?}");
+    // A vertex without a coordinate takes its own colour: the same square all green.
+    let mut plain = skinned_square();
+    plain.set_texture(texture.clone(), &[None; 4], &[[20, 200, 20, 255]; 4]).expect("valid");
+    scene.skinned = vec![draw(plain)];
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let px = read_pixels(&device, &queue, &target);
+    let drawn: Vec<&[u8]> = px.chunks(4).filter(|p| *p != background).collect();
+    assert!(drawn.len() > 100 && drawn.iter().all(|p| p[1] > p[0] && p[1] > p[2]), "green, no texture");
+    // Refused: a coordinate per vertex is needed, and finite ones; the mesh stays as it was.
+    let mut bad = skinned_square();
+    assert!(bad.set_texture(texture.clone(), &uvs[..3], &[[255; 4]; 3]).is_err());
+    assert!(bad.set_texture(texture, &[Some([f32::NAN, 0.0]); 4], &[[255; 4]; 4]).is_err());
+}

@@ -3,7 +3,8 @@
 
 use mocap::glam::{Mat4, Vec3};
 use mocap::{Asset, Clip, Model};
-use mocap_render::{FigureJoint, MorphMeshData, SkinImage, SkinnedMeshData};
+use mocap_render::wgpu::AddressMode;
+use mocap_render::{FigureJoint, MorphMeshData, SkinImage, SkinnedMeshData, SkinnedTexture};
 use std::sync::Arc;
 
 /// A clip's generated body as the renderer draws it.
@@ -114,14 +115,33 @@ impl Body {
         Some(Body { mesh: Arc::new(mesh), coarse, inverse_bind: skin.inverse_bind().to_vec(), own: false })
     }
 
-    /// The renderer's copy of a character's own look (its vertex colours kept);
-    /// `None` when the renderer cannot take it.
+    /// The renderer's copy of a character's own look: its vertex colours, and its
+    /// base-colour texture drawn per pixel where it has one (else the colours
+    /// baked from it); `None` when the renderer cannot take it.
     pub fn from_look(look: &mocap::model::character::Look, joints: usize) -> Option<Body> {
         let mut body = Body::from_skin(&look.skin, None, joints)?;
-        let mesh = Arc::try_unwrap(body.mesh).ok()?.with_colors(&look.colors).ok()?;
+        let mut mesh = Arc::try_unwrap(body.mesh).ok()?.with_colors(&look.colors).ok()?;
+        if let Some(surface) = &look.surface {
+            // A texture the renderer refuses leaves the baked colours.
+            let _ = mesh.set_texture(texture_of(&surface.image), &surface.uvs, &surface.tints);
+        }
         body.mesh = Arc::new(mesh);
         body.own = true;
         Some(body)
+    }
+}
+
+/// The renderer's copy of a look's texture image and wrap modes.
+fn texture_of(image: &mocap::model::character::TextureImage) -> SkinnedTexture {
+    use mocap::model::character::Wrap;
+    let mode = |w: Wrap| match w {
+        Wrap::Repeat => AddressMode::Repeat,
+        Wrap::Mirror => AddressMode::MirrorRepeat,
+        Wrap::Clamp => AddressMode::ClampToEdge,
+    };
+    SkinnedTexture {
+        image: SkinImage { width: image.width, height: image.height, pixels: image.pixels.clone() },
+        wrap: image.wrap.map(mode),
     }
 }
 

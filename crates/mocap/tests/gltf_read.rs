@@ -387,6 +387,22 @@ fn the_base_colour_texture_and_factor_colour_each_vertex() {
     let look = clip.character.as_ref().unwrap().look.as_ref().unwrap();
     // Linear ½ on green is sRGB 188.
     assert_eq!(look.colors, vec![[255, 0, 0, 255], [0, 188, 0, 255], [0, 0, 255, 255], [255, 188, 255, 255]]);
+    // Drawn per pixel: the image itself, the coordinates through the transform,
+    // and the factor alone as each vertex's colour.
+    let surface = look.surface.as_ref().expect("the texture is kept to draw per pixel");
+    assert_eq!((surface.image.width, surface.image.height, &surface.image.pixels), (2, 2, &pixels));
+    assert_eq!(surface.image.wrap, [mocap::model::character::Wrap::Clamp; 2]);
+    assert_eq!(surface.uvs, vec![Some([0.25, 0.25]), Some([0.75, 0.25]), Some([0.25, 0.75]), Some([0.75, 0.75])]);
+    assert_eq!(surface.tints, vec![[255, 188, 255, 255]; 4]);
+    // Stored (the page's autosave) and read back whole.
+    let again = mocap::formats::store::parse(&mocap::formats::store::write(&mocap::Asset::Clip(clip.clone()))).unwrap();
+    assert_eq!(again, mocap::Asset::Clip(clip.clone()));
+    // Written as glTF and read again: the same texture, coordinates and colours.
+    let glb = mocap::formats::gltf::write::to_glb(&clip, &Default::default()).unwrap();
+    let back = read(&[("quad-again.glb", &glb)]).unwrap();
+    let look_back = back.character.as_ref().unwrap().look.as_ref().unwrap();
+    assert_eq!(look_back.colors, look.colors);
+    assert_eq!(look_back.surface, look.surface);
 }
 
 #[test]

@@ -403,6 +403,11 @@ fn holds_together(asset: &Asset, what: &str) {
                     let (skin, n) = (&look.skin, look.skin.positions().len());
                     assert_eq!(skin.inverse_bind().len(), skeleton.len(), "{what}");
                     assert!(look.colors.len() == n && skin.normals().len() == n && skin.weights().len() == n, "{what}");
+                    if let Some(s) = &look.surface {
+                        let texels = s.image.width as usize * s.image.height as usize;
+                        assert!(s.uvs.len() == n && s.tints.len() == n && s.image.pixels.len() == texels * 4, "{what}");
+                        assert!(s.uvs.iter().flatten().flatten().all(|x| x.is_finite()), "{what}");
+                    }
                     assert!(skin.indices().len() % 3 == 0 && skin.indices().iter().all(|&v| (v as usize) < n));
                     for (js, ws) in skin.joints().iter().zip(skin.weights()) {
                         assert!(js.iter().zip(ws).all(|(j, w)| *w == 0.0 || (*j as usize) < skeleton.len()), "{what}");
@@ -495,7 +500,23 @@ fn small_stores() -> Vec<(&'static str, Vec<u8>)> {
     )
     .unwrap();
     let mut character = (*clip.character.clone().unwrap()).clone();
-    character.look = Some(mocap::model::character::Look { skin: look_skin, colors: vec![[255, 0, 0, 255]; 3] });
+    // A texture drawn per pixel on two of the three vertices.
+    let image = mocap::model::character::TextureImage {
+        width: 2,
+        height: 1,
+        pixels: vec![255, 0, 0, 255, 0, 0, 255, 255],
+        wrap: [mocap::model::character::Wrap::Mirror, mocap::model::character::Wrap::Clamp],
+    };
+    let surface = mocap::model::character::Surface {
+        image: Arc::new(image),
+        uvs: vec![Some([0.25, 0.5]), Some([0.75, 0.5]), None],
+        tints: vec![[255; 4], [200, 200, 200, 255], [255, 0, 0, 255]],
+    };
+    character.look = Some(mocap::model::character::Look {
+        skin: look_skin,
+        colors: vec![[255, 0, 0, 255]; 3],
+        surface: Some(surface),
+    });
     let take = character.takes[0].clone();
     character.takes.push(mocap::model::character::Take { name: "again".into(), ..take });
     clip = clip.with_character(Arc::new(character));

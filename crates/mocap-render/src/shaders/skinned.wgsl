@@ -10,6 +10,9 @@
 const MATRICES_PER_ROW: u32 = 256u;
 
 @group(2) @binding(0) var joint_matrices: texture_2d<f32>;
+// The mesh's colour texture (1×1 white without one); not bound in the shadow pass.
+@group(3) @binding(0) var surface_texture: texture_2d<f32>;
+@group(3) @binding(1) var surface_sampler: sampler;
 
 struct SkinnedVertex {
     @location(0) position: vec3<f32>,
@@ -21,6 +24,8 @@ struct SkinnedVertex {
     @location(5) tint_mode: vec4<f32>,
     // The vertex's own sRGB colour (white for a generated body).
     @location(6) color: vec4<f32>,
+    // Texture coordinate (xy) and 1 where the texture colours the vertex (z).
+    @location(7) tex: vec4<f32>,
 };
 
 struct Out {
@@ -28,6 +33,7 @@ struct Out {
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) color: vec3<f32>,
+    @location(3) tex: vec3<f32>,
 };
 
 // The rows of a joint's matrix (affine: the fourth row is 0 0 0 1), weighted.
@@ -88,6 +94,8 @@ fn vs_main(v: SkinnedVertex) -> Out {
     out.position = frame.projection * frame.view * vec4<f32>(world, 1.0);
     out.world = world;
     out.normal = skin_vector(m, v.normal);
+    // The weights view shows no texture.
+    out.tex = vec3<f32>(v.tex.xy, select(v.tex.z, 0.0, v.tint_mode.w > 0.5));
     if (v.tint_mode.w > 0.5) {
         out.color = joint_color(v.joints.x) * v.weights.x + joint_color(v.joints.y) * v.weights.y
             + joint_color(v.joints.z) * v.weights.z + joint_color(v.joints.w) * v.weights.w;
@@ -108,9 +116,12 @@ fn vs_shadow(v: SkinnedVertex) -> @builtin(position) vec4<f32> {
 
 @fragment
 fn fs_main(in: Out) -> @location(0) vec4<f32> {
+    // Sampled in uniform control flow; used where the vertex is textured.
+    let texel = textureSample(surface_texture, surface_sampler, in.tex.xy).rgb;
+    let color = select(in.color, in.color * texel, in.tex.z > 0.5);
     var n = normalize(in.normal);
     if (dot(n, frame.eye.xyz - in.world) < 0.0) {
         n = -n;
     }
-    return to_target(vec4<f32>(shade(in.color, in.world, n), 1.0));
+    return to_target(vec4<f32>(shade(color, in.world, n), 1.0));
 }

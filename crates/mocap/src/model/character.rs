@@ -26,8 +26,51 @@ pub struct Look {
     /// inverse bind matrix per joint of the clip's skeleton.
     pub skin: Skin,
     /// One sRGB colour per vertex: the material's base colour times its
-    /// base-colour texture sampled at the vertex.
+    /// base-colour texture sampled at the vertex (what a writer or a renderer
+    /// without the texture uses).
     pub colors: Vec<[u8; 4]>,
+    /// The base-colour texture to draw per pixel, when the look has one.
+    pub surface: Option<Surface>,
+}
+
+/// How a texture coordinate outside 0–1 is taken back into the image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Wrap {
+    /// The image repeats.
+    #[default]
+    Repeat,
+    /// The image repeats, every other copy mirrored.
+    Mirror,
+    /// The edge texel.
+    Clamp,
+}
+
+/// A texture image: sRGB RGBA, rows from the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureImage {
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// `width × height × 4` bytes.
+    pub pixels: Vec<u8>,
+    /// Wrap along u and v.
+    pub wrap: [Wrap; 2],
+}
+
+/// A look's base-colour texture, drawn per pixel: the image most of the look's
+/// textured vertices use, and per vertex its texture coordinate (glTF's, v down,
+/// after `KHR_texture_transform`; `None` for a vertex of a part drawn without
+/// this image, whose colour is [`Look::colors`]'s) and the colour the texture is
+/// multiplied with (the base-colour factor times `COLOR_0`, sRGB).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Surface {
+    /// The image, shared by every copy of the look.
+    pub image: std::sync::Arc<TextureImage>,
+    /// One per vertex.
+    pub uvs: Vec<Option<[f32; 2]>>,
+    /// One per vertex.
+    pub tints: Vec<[u8; 4]>,
 }
 
 /// A character's look, takes and summary.

@@ -58,7 +58,14 @@ fn write_ready(clip: &Clip) -> String {
             out.push_str("End Site\n");
         } else {
             out.push_str(if joint.parent.is_none() { "ROOT " } else { "JOINT " });
-            out.push_str(&joint.name.replace(['\n', '\r', '{', '}'], "_"));
+            let name: String =
+                joint.name.chars().map(|c| if c.is_control() || c == '{' || c == '}' { '_' } else { c }).collect();
+            // A joint without a name (a damaged store, a hand-built clip) still reads back.
+            if name.trim().is_empty() {
+                out.push_str(&format!("joint{j}"));
+            } else {
+                out.push_str(&name);
+            }
             out.push('\n');
         }
         indent(&mut out, depth);

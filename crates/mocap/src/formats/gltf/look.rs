@@ -7,13 +7,15 @@
 //! matrices; a mesh on a plain node moves rigidly with its nearest joint. Normals
 //! are computed when absent. Each vertex's colour is the material's base colour
 //! factor times its `COLOR_0` times its base-colour texture (PNG or JPEG, through
-//! `KHR_texture_transform` and the sampler's wrap modes) at the vertex.
+//! `KHR_texture_transform` and the sampler's wrap modes) at the vertex. The image
+//! most textured vertices use is also kept to draw per pixel ([`Surface`]): its
+//! vertices' texture coordinates and untextured colours.
 
 use super::accessor::{floats, integers};
 use super::document::{Parsed, Resources, fetch};
 use super::graph::Graph;
 use crate::error::{ParseError, Warning};
-use crate::model::character::{Look, linear_to_srgb, srgb_to_linear};
+use crate::model::character::{Look, Surface, TextureImage, Wrap, linear_to_srgb, srgb_to_linear};
 use crate::model::mesh::Rgba;
 use crate::runtime::skin::{MAX_INFLUENCES, Skin};
 use glam::{Mat3, Mat4, Vec2, Vec3};
@@ -29,10 +31,18 @@ struct Merged {
     joints: Vec<[u32; MAX_INFLUENCES]>,
     weights: Vec<[f32; MAX_INFLUENCES]>,
     colors: Vec<[u8; 4]>,
+    /// Per vertex: the image that textures it, its (transformed) coordinate and
+    /// its colour without the texture.
+    textured: Vec<Option<(usize, [f32; 2])>>,
+    tints: Vec<[u8; 4]>,
+    /// Per image index: its wrap modes where a primitive first used it.
+    wraps: Vec<(usize, [WrappingMode; 2])>,
 }
 
 /// A decoded base-colour texture with how it is sampled.
 struct Texture<'i> {
+    /// Its index in the file's images.
+    index: usize,
     image: &'i Rgba,
     wrap: [WrappingMode; 2],
     /// `KHR_texture_transform` as a 3×3 matrix on `(u, v, 1)`.
@@ -83,10 +93,41 @@ pub fn build(
     if merged.positions.is_empty() {
         return Ok(None);
     }
-    let Merged { positions, normals, indices, joints, weights, colors } = merged;
+    let surface = surface(&merged, &images);
+    let Merged { positions, normals, indices, joints, weights, colors, .. } = merged;
     let skin = Skin::with_inverse_bind(positions, normals, indices, joints, weights, inverse_bind)
         .map_err(|e| ParseError::new(0, 0, format!("the mesh cannot be skinned: {e}")))?;
-    Ok(Some(Look { skin, colors }))
+    Ok(Some(Look { skin, colors, surface }))
+}
+
+/// The texture drawn per pixel: the image the most vertices use, with each
+/// vertex's coordinate (`None` where another image or none colours it: its
+/// baked colour is used) and untextured colour.
+fn surface(merged: &Merged, images: &[Option<Option<Rgba>>]) -> Option<Surface> {
+    let mut counts: Vec<usize> = vec![0; images.len()];
+    for (index, _) in merged.textured.iter().flatten() {
+        if let Some(c) = counts.get_mut(*index) {
+            *c += 1;
+        }
+    }
+    let (chosen, _) = counts.iter().enumerate().filter(|(_, c)| **c > 0).max_by_key(|(_, c)| **c)?;
+    let rgba = images.get(chosen)?.as_ref()?.as_ref()?;
+    let wrap_of = |m: WrappingMode| match m {
+        WrappingMode::Repeat => Wrap::Repeat,
+        WrappingMode::MirroredRepeat => Wrap::Mirror,
+        WrappingMode::ClampToEdge => Wrap::Clamp,
+    };
+    let modes = merged.wraps.iter().find(|(i, _)| *i == chosen).map_or([WrappingMode::Repeat; 2], |(_, m)| *m);
+    let image =
+        TextureImage { width: rgba.width, height: rgba.height, pixels: rgba.pixels.clone(), wrap: modes.map(wrap_of) };
+    let uvs = merged.textured.iter().map(|t| t.filter(|(i, _)| *i == chosen).map(|(_, uv)| uv)).collect();
+    let tints = merged
+        .textured
+        .iter()
+        .zip(merged.tints.iter().zip(&merged.colors))
+        .map(|(t, (tint, baked))| if t.is_some_and(|(i, _)| i == chosen) { *tint } else { *baked })
+        .collect();
+    Some(Surface { image: std::sync::Arc::new(image), uvs, tints })
 }
 
 /// How a mesh node's vertices are bound.
@@ -244,6 +285,16 @@ fn add_primitive(
             (0..4).for_each(|k| factor[k] *= c.get(4 * v + k).copied().unwrap_or(1.0));
         }
         merged.colors.push(color(factor, texture, uv));
+        merged.tints.push(color(factor, None, uv));
+        merged.textured.push(texture.map(|t| {
+            let uv = t.transform * uv.extend(1.0);
+            (t.index, [uv.x, uv.y])
+        }));
+    }
+    if let Some(t) = texture
+        && !merged.wraps.iter().any(|(i, _)| *i == t.index)
+    {
+        merged.wraps.push((t.index, t.wrap));
     }
     if unweighted > 0 {
         warnings.push(note(format!("{pointer}: {unweighted} vertices have no weights; they follow the first joint")));
@@ -333,7 +384,7 @@ fn texture<'i>(
             * Mat3::from_cols_array(&[sx, 0.0, 0.0, 0.0, sy, 0.0, 0.0, 0.0, 1.0]);
     }
     let image = slot.as_ref()?.as_ref()?;
-    Some(Texture { image, wrap: [sampler.wrap_s(), sampler.wrap_t()], transform })
+    Some(Texture { index, image, wrap: [sampler.wrap_s(), sampler.wrap_t()], transform })
 }
 
 /// The encoded bytes of an image: a buffer view, a data URI or another file.

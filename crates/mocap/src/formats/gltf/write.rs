@@ -54,6 +54,9 @@ pub enum WriteError {
     /// The binary chunk would pass glTF's 4 GiB limit.
     #[error("{0} bytes of data: more than a glTF buffer can hold")]
     TooLarge(usize),
+    /// The look's texture could not be encoded as PNG.
+    #[error("the texture cannot be written as PNG: {0}")]
+    Image(String),
 }
 
 /// The clip as a binary glTF (`.glb`).
@@ -163,22 +166,45 @@ fn document(clip: &Clip, options: &Options, inline: Option<()>) -> Result<(Value
         let joints_0 = push_accessor(&mut accessors, joints_at, "VEC4", 5123, mesh.joints.len(), None);
         let weights: Vec<f32> = mesh.weights.concat();
         let weights_0 = vertex_accessor(&mut accessors, &mut bin, &weights, "VEC4", mesh.weights.len(), None);
-        let indices_at = bin.u32s(&mesh.indices);
-        let indices = push_accessor(&mut accessors, indices_at, "SCALAR", 5125, mesh.indices.len(), None);
         let mut attributes =
             json!({ "POSITION": position, "NORMAL": normal, "JOINTS_0": joints_0, "WEIGHTS_0": weights_0 });
+        let whole = |attributes: &Value, accessors: &mut Vec<Value>, bin: &mut Binary| {
+            let at = bin.u32s(&mesh.indices);
+            let indices = push_accessor(accessors, at, "SCALAR", 5125, mesh.indices.len(), None);
+            vec![json!({ "attributes": attributes, "indices": indices, "material": 0 })]
+        };
+        let mut primitives = Vec::new();
         if let Some(look) = look {
-            let colors: Vec<f32> =
-                look.colors.iter().flat_map(|c| c.map(crate::model::character::srgb_to_linear)).collect();
+            // With a texture: the colours it is multiplied with, and the texture.
+            let surface = look.surface.as_ref();
+            let colors = surface.map_or(&look.colors, |s| &s.tints);
+            let colors: Vec<f32> = colors.iter().flat_map(|c| c.map(crate::model::character::srgb_to_linear)).collect();
             attributes["COLOR_0"] =
                 json!(vertex_accessor(&mut accessors, &mut bin, &colors, "VEC4", look.colors.len(), None));
+            if let Some(surface) = surface {
+                primitives = textured_primitives(
+                    surface,
+                    &mesh.indices,
+                    &mut attributes,
+                    &mut accessors,
+                    &mut bin,
+                    &mut document,
+                )?;
+            }
         }
-        document["meshes"] = json!([{
-            "name": format!("{} body", options.name),
-            "primitives": [{ "attributes": attributes, "indices": indices, "material": 0 }],
-        }]);
+        if primitives.is_empty() {
+            primitives = whole(&attributes, &mut accessors, &mut bin);
+        }
+        document["meshes"] = json!([{ "name": format!("{} body", options.name), "primitives": primitives }]);
         let factor = if look.is_some() { [1.0, 1.0, 1.0, 1.0] } else { [0.8, 0.8, 0.82, 1.0] };
-        document["materials"] = json!([{ "name": "body", "pbrMetallicRoughness": { "baseColorFactor": factor, "metallicFactor": 0.0, "roughnessFactor": 0.7 } }]);
+        let material = |name: &str| json!({ "name": name, "pbrMetallicRoughness": { "baseColorFactor": factor, "metallicFactor": 0.0, "roughnessFactor": 0.7 } });
+        let mut materials = vec![material("body")];
+        if document.get("textures").is_some() {
+            let mut textured = material("body, textured");
+            textured["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": 0 });
+            materials.push(textured);
+        }
+        document["materials"] = Value::Array(materials);
         nodes.push(json!({ "name": format!("{} body", options.name), "mesh": 0, "skin": 0 }));
         roots.push(nodes.len() - 1);
     }
@@ -381,6 +407,53 @@ fn own_look<'c>(clip: &'c Clip, convert: &Convert) -> Option<&'c crate::model::c
     let same_space = convert.meters == 1.0 && convert.up.abs_diff_eq(Quat::IDENTITY, 1e-6);
     (same_space && look.skin.inverse_bind().len() == clip.skeleton().len() && clip.skeleton().len() <= 65535)
         .then_some(look)
+}
+
+/// A look's texture written into `document` (its PNG in the buffer, a texture
+/// and its sampler; material 1 uses it) and the mesh's primitives: the triangles
+/// whose corners all have a texture coordinate with the texture (material 1),
+/// the rest without (material 0). `attributes` gains `TEXCOORD_0` (0, 0 where a
+/// vertex has none).
+fn textured_primitives(
+    surface: &crate::model::character::Surface,
+    indices: &[u32],
+    attributes: &mut Value,
+    accessors: &mut Vec<Value>,
+    bin: &mut Binary,
+    document: &mut Value,
+) -> Result<Vec<Value>, WriteError> {
+    use crate::model::character::Wrap;
+    use image::ImageEncoder;
+    let image = &surface.image;
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image(&image.pixels, image.width, image.height, image::ExtendedColorType::Rgba8)
+        .map_err(|e| WriteError::Image(e.to_string()))?;
+    let png_view = bin.view(&png, None);
+    let code = |w: Wrap| match w {
+        Wrap::Repeat => 10497,
+        Wrap::Mirror => 33648,
+        Wrap::Clamp => 33071,
+    };
+    document["images"] = json!([{ "bufferView": png_view, "mimeType": "image/png" }]);
+    document["samplers"] =
+        json!([{ "magFilter": 9729, "minFilter": 9987, "wrapS": code(image.wrap[0]), "wrapT": code(image.wrap[1]) }]);
+    document["textures"] = json!([{ "source": 0, "sampler": 0 }]);
+    let uvs: Vec<f32> = surface.uvs.iter().flat_map(|uv| uv.unwrap_or([0.0; 2])).collect();
+    attributes["TEXCOORD_0"] = json!(vertex_accessor(accessors, bin, &uvs, "VEC2", surface.uvs.len(), None));
+    let textured = |t: &[u32]| t.iter().all(|&v| surface.uvs.get(v as usize).is_some_and(Option::is_some));
+    let (with, without): (Vec<&[u32]>, Vec<&[u32]>) = indices.chunks_exact(3).partition(|t| textured(t));
+    let mut primitives = Vec::new();
+    for (triangles, material) in [(without, 0), (with, 1)] {
+        if triangles.is_empty() {
+            continue;
+        }
+        let list: Vec<u32> = triangles.concat();
+        let at = bin.u32s(&list);
+        let indices = push_accessor(accessors, at, "SCALAR", 5125, list.len(), None);
+        primitives.push(json!({ "attributes": attributes.clone(), "indices": indices, "material": material }));
+    }
+    Ok(primitives)
 }
 
 /// A character's look as the written mesh.

@@ -21,7 +21,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::Warning;
 use crate::model::asset::Asset;
 use crate::model::channel::{AngleUnit, Channel};
-use crate::model::character::{Character, Look, Summary, Take};
+use crate::model::character::{Character, Look, Summary, Surface, Take, TextureImage, Wrap};
 use crate::model::clip::Clip;
 use crate::model::mesh::{Animation, MeshParts, Model, MorphMesh, Rgba, Skin as ImageSkin, SourceCounts};
 use crate::model::motion::Motion;
@@ -319,24 +319,91 @@ impl<'a> SkinParts<'a> {
     }
 }
 
-/// A character's [`Look`]: the skin and one colour per vertex.
+/// A character's [`Look`]: the skin, one colour per vertex and the texture.
 #[derive(Serialize, Deserialize)]
 struct LookParts<'a> {
     skin: SkinParts<'a>,
     colors: Cow<'a, [[u8; 4]]>,
+    surface: Option<SurfaceParts<'a>>,
 }
 
 impl<'a> LookParts<'a> {
     fn of(l: &'a Look) -> Self {
-        LookParts { skin: SkinParts::of(&l.skin), colors: Cow::Borrowed(&l.colors) }
+        LookParts {
+            skin: SkinParts::of(&l.skin),
+            colors: Cow::Borrowed(&l.colors),
+            surface: l.surface.as_ref().map(SurfaceParts::of),
+        }
     }
 
     fn build(self) -> Result<Look, String> {
         let skin = self.skin.build().map_err(within("skin"))?;
-        if self.colors.len() != skin.positions().len() {
-            return Err(format!("{} colours for {} vertices", self.colors.len(), skin.positions().len()));
+        let n = skin.positions().len();
+        if self.colors.len() != n {
+            return Err(format!("{} colours for {n} vertices", self.colors.len()));
         }
-        Ok(Look { skin, colors: self.colors.into_owned() })
+        let surface = self.surface.map(|s| s.build(n).map_err(within("texture"))).transpose()?;
+        Ok(Look { skin, colors: self.colors.into_owned(), surface })
+    }
+}
+
+/// A look's [`Surface`]: the image (wrap modes as 0 repeat, 1 mirror, 2 clamp),
+/// a coordinate and a colour per vertex.
+#[derive(Serialize, Deserialize)]
+struct SurfaceParts<'a> {
+    width: u32,
+    height: u32,
+    pixels: Cow<'a, [u8]>,
+    wrap: [u8; 2],
+    uvs: Cow<'a, [Option<[f32; 2]>]>,
+    tints: Cow<'a, [[u8; 4]]>,
+}
+
+impl<'a> SurfaceParts<'a> {
+    fn of(s: &'a Surface) -> Self {
+        let code = |w: Wrap| match w {
+            Wrap::Repeat => 0,
+            Wrap::Mirror => 1,
+            Wrap::Clamp => 2,
+        };
+        SurfaceParts {
+            width: s.image.width,
+            height: s.image.height,
+            pixels: Cow::Borrowed(&s.image.pixels),
+            wrap: s.image.wrap.map(code),
+            uvs: Cow::Borrowed(&s.uvs),
+            tints: Cow::Borrowed(&s.tints),
+        }
+    }
+
+    fn build(self, vertices: usize) -> Result<Surface, String> {
+        let texels = u64::from(self.width) * u64::from(self.height);
+        if self.width == 0 || self.height == 0 || texels.checked_mul(4) != Some(self.pixels.len() as u64) {
+            return Err(format!("{} bytes for a {}×{} image", self.pixels.len(), self.width, self.height));
+        }
+        if self.uvs.len() != vertices || self.tints.len() != vertices {
+            return Err(format!(
+                "{} coordinates and {} colours for {vertices} vertices",
+                self.uvs.len(),
+                self.tints.len()
+            ));
+        }
+        if self.uvs.iter().flatten().flatten().any(|x| !x.is_finite()) {
+            return Err("a texture coordinate is not finite".into());
+        }
+        let wrap = |c: u8| match c {
+            0 => Ok(Wrap::Repeat),
+            1 => Ok(Wrap::Mirror),
+            2 => Ok(Wrap::Clamp),
+            other => Err(format!("wrap mode {other} (0, 1 or 2)")),
+        };
+        let image = TextureImage {
+            width: self.width,
+            height: self.height,
+            pixels: self.pixels.into_owned(),
+            wrap: [wrap(self.wrap[0])?, wrap(self.wrap[1])?],
+        };
+        Ok(Surface { image: std::sync::Arc::new(image), uvs: self.uvs.into_owned(), tints: self.tints.into_owned() })
     }
 }
 
