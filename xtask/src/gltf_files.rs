@@ -1,8 +1,10 @@
 //! The glTF files the browser suite checks (`tests/browser/gltf.mjs`): the core's
 //! writer on the generated walk (`.glb` and `.gltf`, a Z-up copy, the skeleton
 //! alone), a glTF character read and written again, a motion retargeted onto
-//! it, that character wearing a striped texture, and on corpus clips (BVH and Acclaim), with the joint positions we
-//! compute (metres, Y up) at a few frames in `expected.json`.
+//! it, that character wearing a striped texture, and on corpus clips (BVH and
+//! Acclaim), with the joint positions we compute (metres, Y up) at a few frames
+//! in `expected.json`; and a corpus MD2 model as morph targets, with its
+//! vertices at one time in `models.json`. `cargo xtask gltf-files DIR` writes them.
 
 use mocap::formats::gltf::{Options, to_glb, to_gltf};
 use mocap::ops::edit::{Edit, apply};
@@ -64,7 +66,53 @@ pub fn write(dir: &Path, corpus: Option<&Path>) -> Result<PathBuf, String> {
         entries.push(expected(file, clip, *body));
     }
     std::fs::write(dir.join("expected.json"), format!("[{}]", entries.join(",\n"))).map_err(|e| e.to_string())?;
+    let models = match corpus {
+        Some(corpus) => vec![model_file(dir, corpus, MODEL)?],
+        None => Vec::new(),
+    };
+    std::fs::write(dir.join("models.json"), format!("[{}]", models.join(",\n"))).map_err(|e| e.to_string())?;
     Ok(dir.to_path_buf())
+}
+
+/// The corpus model written as glTF (model, skin, file written, animation and
+/// time checked).
+const MODEL: (&str, &str, &str, &str, f64) = ("md2/waste/tris.md2", "md2/waste/waste.pcx", "waste.glb", "run", 0.25);
+
+/// Writes an MD2 model as `.glb` (morph targets, an animation per named
+/// animation, its skin); its `models.json` entry: every vertex in metres at the
+/// time checked (between two frames), as our sampling puts it.
+fn model_file(
+    dir: &Path,
+    corpus: &Path,
+    (md2, skin, file, animation, time): (&str, &str, &str, &str, f64),
+) -> Result<String, String> {
+    let read = |f: &str| std::fs::read(corpus.join(f)).map_err(|e| format!("{f}: {e}"));
+    let (a, b) = (read(md2)?, read(skin)?);
+    let inputs = [Input { name: md2, bytes: &a }, Input { name: skin, bytes: &b }];
+    let mut model = match mocap::load(&inputs).into_iter().next() {
+        Some(Ok(loaded)) => match loaded.asset {
+            Asset::Model(m) => m,
+            Asset::Clip(_) => return Err(format!("{md2}: not a model")),
+        },
+        _ => return Err(format!("{md2}: not read")),
+    };
+    let bytes = mocap::formats::gltf::model_to_glb(&model, "waste").map_err(|e| format!("{file}: {e}"))?;
+    std::fs::write(dir.join(file), bytes).map_err(|e| format!("{file}: {e}"))?;
+    if !model.set_animation_by_name(animation) {
+        return Err(format!("{md2}: no animation {animation}"));
+    }
+    let sample = model.frames_at(time, mocap::Interpolation::Linear);
+    let m = model.mesh.units().meters_per_unit();
+    let (p, q) = (model.mesh.frame_positions(sample.frame0), model.mesh.frame_positions(sample.frame1));
+    let mut vertices = String::new();
+    for (i, (a, b)) in p.iter().zip(q).enumerate() {
+        let at = |k: usize| (a[k] + (b[k] - a[k]) * sample.blend) * m;
+        let _ = write!(vertices, "{}[{},{},{}]", if i > 0 { "," } else { "" }, at(0), at(1), at(2));
+    }
+    Ok(format!(
+        "{{\"file\":{file:?},\"animation\":{animation:?},\"time\":{time},\"tolerance\":{},\"vertices\":[{vertices}]}}",
+        1e-4 * model.mesh.height() * m
+    ))
 }
 
 /// Stripes of the textured character's image, top to bottom (sRGB).

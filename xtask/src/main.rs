@@ -9,6 +9,7 @@
 //! - `bench-web`           drop-to-first-frame, frame time and transfer size in the browser
 //! - `setup`               install what the web build and browser tests need
 //! - `shape`               the code's shape: import circles, file lengths, shared runs (limits in `shape.rs`)
+//! - `gltf-files DIR`      write the glTF files the browser suite checks into DIR (`gltf_files.rs`)
 //!
 //! Missing tools are installed on first use (apt-get packages, wasm-bindgen-cli,
 //! chromium, npm `playwright-core`).
@@ -36,7 +37,16 @@ fn main() -> ExitCode {
         Some("bench-web") => browser::bench(),
         Some("setup") => setup::setup_all(),
         Some("shape") => shape::report(&util::root()),
-        _ => Err("usage: cargo xtask <gen-walk | gen-fonts | dist [--fast|--opt] | serve [--port P] | test | bench-web | setup | shape>".to_string()),
+        Some("gltf-files") => match args.get(1) {
+            Some(dir) => {
+                let corpus = util::root().join("../shared/corpus");
+                gltf_files::write(std::path::Path::new(dir), corpus.is_dir().then_some(corpus.as_path())).map(|d| {
+                    println!("wrote {}", d.display());
+                })
+            }
+            None => Err("usage: cargo xtask gltf-files DIR".into()),
+        },
+        _ => Err("usage: cargo xtask <gen-walk | gen-fonts | dist [--fast|--opt] | serve [--port P] | test | bench-web | setup | shape | gltf-files DIR>".to_string()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

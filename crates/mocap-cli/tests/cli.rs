@@ -156,6 +156,33 @@ fn convert_writes_glb_and_gltf() {
 }
 
 #[test]
+fn an_md2_model_converts_to_glb_with_its_animations_and_reads_back() {
+    let Some(corpus) = corpus() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let (md2, pcx) = (corpus.join("md2/waste/tris.md2"), corpus.join("md2/waste/waste.pcx"));
+    let glb = dir.path().join("waste.glb");
+    let out = mocap(&["convert", md2.to_str().unwrap(), pcx.to_str().unwrap(), "-o", glb.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let bytes = std::fs::read(&glb).unwrap();
+    let length = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: serde_json::Value = serde_json::from_slice(&bytes[20..20 + length]).unwrap();
+    assert_eq!(json["meshes"][0]["primitives"][0]["targets"].as_array().unwrap().len(), 198, "a target per key frame");
+    let names: Vec<&str> = json["animations"].as_array().unwrap().iter().map(|a| a["name"].as_str().unwrap()).collect();
+    assert_eq!(names.len(), 20);
+    assert!(names.contains(&"run") && names.contains(&"stand"), "{names:?}");
+    assert_eq!(json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"], 0, "textured by its skin");
+    // Read back: the same model, 198 frames, with its animations.
+    let info = mocap(&["info", glb.to_str().unwrap()]);
+    assert!(info.status.success(), "{}", stderr(&info));
+    let text = stdout(&info);
+    assert!(text.contains("frames:     198") && text.contains("animation:  run"), "{text}");
+    // Without its skin: untextured, and said so.
+    let bare = dir.path().join("bare.glb");
+    let out = mocap(&["convert", md2.to_str().unwrap(), "-o", bare.to_str().unwrap()]);
+    assert!(out.status.success() && stderr(&out).contains("untextured"), "{}", stderr(&out));
+}
+
+#[test]
 fn retarget_maps_saves_its_map_and_reads_one_back() {
     let dir = tempfile::tempdir().unwrap();
     let walk = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/walk.bvh");

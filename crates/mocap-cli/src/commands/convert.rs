@@ -4,10 +4,29 @@ use super::*;
 
 /// `mocap convert`: to BVH (general clips baked, every position kept), BVA (each
 /// joint's world transform a segment) or glTF (`.glb`, `.gltf`: skeleton, skin,
-/// generated body and animation, metres and Y up). What the target cannot keep
-/// is said on stderr.
+/// generated body and animation, metres and Y up; an MD2 model as a textured
+/// mesh with morph targets and an animation per named animation). What the
+/// target cannot keep is said on stderr.
 pub fn convert(inputs: &[PathBuf], output: &Path, animation: Option<&str>) -> Result<ExitCode, String> {
     let ext = output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let glb = matches!(ext.as_deref(), Some("glb" | "gltf"));
+    // An MD2 model goes to glTF whole: its frames as morph targets, every animation.
+    if glb && let Asset::Model(model) = one_asset(read_set(inputs)?, inputs)? {
+        let name = inputs
+            .first()
+            .and_then(|p| p.file_stem())
+            .map_or_else(|| "model".into(), |s| s.to_string_lossy().into_owned());
+        let bytes = match ext.as_deref() {
+            Some("glb") => mocap::formats::gltf::model_to_glb(&model, &name),
+            _ => mocap::formats::gltf::model_to_gltf(&model, &name).map(String::into_bytes),
+        }
+        .map_err(|e| format!("{}: {e}", output.display()))?;
+        if model.skin.is_none() {
+            eprintln!("{}: warning: no skin image given; the mesh is written untextured", output.display());
+        }
+        std::fs::write(output, bytes).map_err(|e| format!("{}: cannot write: {e}", output.display()))?;
+        return Ok(ExitCode::SUCCESS);
+    }
     let clip = read_take(inputs, animation)?;
     if let Some(kind @ ("glb" | "gltf")) = ext.as_deref() {
         let name = clip.take_name().map(str::to_owned).unwrap_or_else(|| {

@@ -2,7 +2,7 @@
 
 use super::*;
 
-/// `mocap info` for an MD2 model: frames, vertices, triangles, texture
+/// `mocap info` for a vertex-animated model (MD2, or glTF morph targets): frames, vertices, triangles, texture
 /// coordinates, skins, animations (`frames` is the same key as for motion files).
 fn info_model(path: &str, model: &Model, as_json: bool) -> Result<ExitCode, String> {
     let mesh = &model.mesh;
@@ -11,10 +11,12 @@ fn info_model(path: &str, model: &Model, as_json: bool) -> Result<ExitCode, Stri
     let animations: Vec<Value> =
         mesh.animations().iter().map(|a| json!({ "name": a.name, "first": a.first, "last": a.last })).collect();
     let skin = model.skin.as_ref().map(|s| s.name.clone());
+    // A model read from glTF (a mesh moved by morph targets) or from MD2.
+    let gltf = [".glb", ".gltf"].iter().any(|e| path.to_ascii_lowercase().ends_with(e));
     if as_json {
         return print_json(&json!({
             "file": path,
-            "format": "md2",
+            "format": if gltf { "gltf-morph" } else { "md2" },
             "frames": mesh.frame_count(),
             "vertices": counts.vertices,
             "triangles": counts.triangles,
@@ -29,7 +31,8 @@ fn info_model(path: &str, model: &Model, as_json: bool) -> Result<ExitCode, Stri
     }
     let mut out = std::io::stdout().lock();
     let _ = writeln!(out, "file:       {path}");
-    let _ = writeln!(out, "format:     Quake 2 MD2 model");
+    let format = if gltf { "glTF 2.0, a mesh moved by morph targets" } else { "Quake 2 MD2 model" };
+    let _ = writeln!(out, "format:     {format}");
     let _ = writeln!(out, "frames:     {}", mesh.frame_count());
     let _ = writeln!(out, "vertices:   {}", counts.vertices);
     let _ = writeln!(out, "triangles:  {}", counts.triangles);

@@ -224,9 +224,7 @@ impl Loader {
                 Some(Format::Gltf) => {
                     let resources =
                         |name: &str| files.iter().find(|f| base_name(f.name) == name).map(|f| f.bytes.to_vec());
-                    crate::formats::gltf::parse(file.bytes, &resources, None)
-                        .map(Asset::from)
-                        .map_err(|e| parse_error(file, e))
+                    crate::formats::gltf::parse_asset(file.bytes, &resources).map_err(|e| parse_error(file, e))
                 }
                 Some(Format::Amc) => {
                     let chosen = self.skeleton_for(file.name, files, &skeletons);

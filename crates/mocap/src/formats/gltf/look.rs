@@ -319,7 +319,7 @@ fn strongest(list: &mut [(u32, f32)]) -> ([u32; MAX_INFLUENCES], [f32; MAX_INFLU
 }
 
 /// Strips and fans as a triangle list.
-fn triangles(mode: Mode, indices: &[u32]) -> Vec<u32> {
+pub(super) fn triangles(mode: Mode, indices: &[u32]) -> Vec<u32> {
     match mode {
         Mode::TriangleStrip => (2..indices.len())
             .flat_map(|i| {
@@ -333,7 +333,7 @@ fn triangles(mode: Mode, indices: &[u32]) -> Vec<u32> {
 }
 
 /// Area-weighted vertex normals.
-fn computed_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
+pub(super) fn computed_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
     let mut out = vec![Vec3::ZERO; positions.len()];
     for t in indices.chunks_exact(3) {
         let [a, b, c] = [t[0] as usize, t[1] as usize, t[2] as usize];
@@ -388,7 +388,11 @@ fn texture<'i>(
 }
 
 /// The encoded bytes of an image: a buffer view, a data URI or another file.
-fn image_bytes(parsed: &Parsed<'_>, image: &gltf::Image<'_>, resources: Resources<'_>) -> Result<Vec<u8>, String> {
+pub(super) fn image_bytes(
+    parsed: &Parsed<'_>,
+    image: &gltf::Image<'_>,
+    resources: Resources<'_>,
+) -> Result<Vec<u8>, String> {
     match image.source() {
         gltf::image::Source::View { view, .. } => {
             let buffer: &[u8] = parsed.buffers.get(view.buffer().index()).map_or(&[][..], |b| b);

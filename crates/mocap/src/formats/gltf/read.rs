@@ -27,6 +27,20 @@ use std::sync::Arc;
 /// Most values (frames × channels) one animation may be sampled into.
 const MAX_VALUES: usize = 1 << 26;
 
+/// Reads a glTF file as what it holds: a vertex-animated model when its mesh
+/// moves by morph targets alone ([`super::morph`]), else a clip carrying a
+/// character ([`parse`]).
+pub fn parse_asset(bytes: &[u8], resources: Resources<'_>) -> Result<crate::model::asset::Asset, ParseError> {
+    {
+        let parsed = document::parse(bytes, resources)?;
+        let graph = Graph::new(&parsed.document)?;
+        if let Some(model) = super::morph::model(&parsed, &graph, resources)? {
+            return Ok(crate::model::asset::Asset::Model(model));
+        }
+    }
+    parse(bytes, resources, None).map(crate::model::asset::Asset::from)
+}
+
 /// Reads a glTF file; `animation` picks the take the clip starts on (the first
 /// when `None`; an unknown name is an error that lists the names).
 pub fn parse(bytes: &[u8], resources: Resources<'_>, animation: Option<&str>) -> Result<Clip, ParseError> {

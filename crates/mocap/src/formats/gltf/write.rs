@@ -17,6 +17,7 @@
 //! over the frames, no recursion; a clip without frames writes the rest pose and
 //! no animation.
 
+use super::buffer::{Binary, accessor, bounds, glb, push_accessor, vertex_accessor};
 use crate::build::body;
 use crate::model::clip::Clip;
 use crate::runtime::fk::{Transform, local_to_model};
@@ -62,27 +63,7 @@ pub enum WriteError {
 /// The clip as a binary glTF (`.glb`).
 pub fn to_glb(clip: &Clip, options: &Options) -> Result<Vec<u8>, WriteError> {
     let (json, bin) = document(clip, options, None)?;
-    let mut text = serde_json::to_vec(&json).unwrap_or_default();
-    while text.len() % 4 != 0 {
-        text.push(b' ');
-    }
-    let mut bin = bin;
-    while bin.len() % 4 != 0 {
-        bin.push(0);
-    }
-    let total = 12 + 8 + text.len() + 8 + bin.len();
-    let length = u32::try_from(total).map_err(|_| WriteError::TooLarge(total))?;
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&length.to_le_bytes());
-    out.extend_from_slice(&(text.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&text);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
-    Ok(out)
+    glb(&json, bin)
 }
 
 /// The clip as a text glTF (`.gltf`), its buffer inline as a `data:` URI.
@@ -215,16 +196,8 @@ fn document(clip: &Clip, options: &Options, inline: Option<()>) -> Result<(Value
         document["animations"] = json!([animation(clip, options, &convert, &rest, &mut accessors, &mut bin)?]);
     }
     document["accessors"] = Value::Array(accessors);
-    document["bufferViews"] = Value::Array(bin.views.clone());
-    let length = bin.data.len();
-    u32::try_from(length).map_err(|_| WriteError::TooLarge(length))?;
-    document["buffers"] = match inline {
-        Some(()) => {
-            json!([{ "byteLength": length, "uri": format!("data:application/octet-stream;base64,{}", base64(&bin.data)) }])
-        }
-        None => json!([{ "byteLength": length }]),
-    };
-    Ok((document, bin.data))
+    let data = bin.finish(&mut document, inline.is_some())?;
+    Ok((document, data))
 }
 
 /// The clip's parent of joint `i` (only a parent listed before it counts).
@@ -466,135 +439,4 @@ fn look_mesh(look: &crate::model::character::Look) -> Option<BodyMesh> {
         joints: skin.joints().iter().map(|js| js.map(|j| u16::try_from(j).unwrap_or(0))).collect(),
         weights: skin.weights().to_vec(),
     })
-}
-
-/// Per-component minimum and maximum of `points`.
-fn bounds(points: &[Vec3]) -> (Vec<f32>, Vec<f32>) {
-    let min = points.iter().fold(Vec3::splat(f32::INFINITY), |a, p| a.min(*p));
-    let max = points.iter().fold(Vec3::splat(f32::NEG_INFINITY), |a, p| a.max(*p));
-    (min.to_array().to_vec(), max.to_array().to_vec())
-}
-
-/// A buffer view of vertex attributes.
-const ARRAY_BUFFER: u32 = 34962;
-/// A buffer view of vertex indices.
-const ELEMENT_ARRAY_BUFFER: u32 = 34963;
-
-/// The binary buffer and its views, each 4-byte aligned.
-#[derive(Default)]
-struct Binary {
-    data: Vec<u8>,
-    views: Vec<Value>,
-}
-
-impl Binary {
-    /// Appends bytes as one buffer view; its index.
-    fn view(&mut self, bytes: &[u8], target: Option<u32>) -> usize {
-        while self.data.len() % 4 != 0 {
-            self.data.push(0);
-        }
-        let mut view = json!({ "buffer": 0, "byteOffset": self.data.len(), "byteLength": bytes.len() });
-        if let Some(target) = target {
-            view["target"] = json!(target);
-        }
-        self.views.push(view);
-        self.data.extend_from_slice(bytes);
-        self.views.len() - 1
-    }
-
-    fn f32s(&mut self, values: &[f32], target: Option<u32>) -> usize {
-        let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
-        self.view(&bytes, target)
-    }
-
-    fn u16s(&mut self, values: &[u16]) -> usize {
-        let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
-        self.view(&bytes, Some(ARRAY_BUFFER))
-    }
-
-    fn u32s(&mut self, values: &[u32]) -> usize {
-        let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
-        self.view(&bytes, Some(ELEMENT_ARRAY_BUFFER))
-    }
-}
-
-/// A float accessor over new data; its index.
-fn accessor(
-    accessors: &mut Vec<Value>,
-    bin: &mut Binary,
-    values: &[f32],
-    kind: &str,
-    component: u32,
-    count: usize,
-    min_max: Option<(Vec<f32>, Vec<f32>)>,
-) -> usize {
-    let view = bin.f32s(values, None);
-    push_accessor(accessors, view, kind, component, count, min_max)
-}
-
-/// A float vertex-attribute accessor over new data; its index.
-fn vertex_accessor(
-    accessors: &mut Vec<Value>,
-    bin: &mut Binary,
-    values: &[f32],
-    kind: &str,
-    count: usize,
-    min_max: Option<(Vec<f32>, Vec<f32>)>,
-) -> usize {
-    let view = bin.f32s(values, Some(ARRAY_BUFFER));
-    push_accessor(accessors, view, kind, 5126, count, min_max)
-}
-
-/// An accessor over buffer view `view`; its index.
-fn push_accessor(
-    accessors: &mut Vec<Value>,
-    view: usize,
-    kind: &str,
-    component: u32,
-    count: usize,
-    min_max: Option<(Vec<f32>, Vec<f32>)>,
-) -> usize {
-    let mut a = json!({ "bufferView": view, "componentType": component, "count": count, "type": kind });
-    if let Some((min, max)) = min_max {
-        a["min"] = json!(min);
-        a["max"] = json!(max);
-    }
-    accessors.push(a);
-    accessors.len() - 1
-}
-
-/// Standard base64 with padding (RFC 4648), for the inline buffer of a `.gltf`.
-fn base64(bytes: &[u8]) -> String {
-    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for chunk in bytes.chunks(3) {
-        let b = [chunk[0], chunk.get(1).copied().unwrap_or(0), chunk.get(2).copied().unwrap_or(0)];
-        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
-        for k in 0..4 {
-            if k <= chunk.len() {
-                out.push(char::from(ALPHABET[((n >> (18 - 6 * k)) & 63) as usize]));
-            } else {
-                out.push('=');
-            }
-        }
-    }
-    out
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn base64_matches_the_rfc_examples() {
-        for (raw, coded) in [
-            ("", ""),
-            ("f", "Zg=="),
-            ("fo", "Zm8="),
-            ("foo", "Zm9v"),
-            ("foob", "Zm9vYg=="),
-            ("fooba", "Zm9vYmE="),
-            ("foobar", "Zm9vYmFy"),
-        ] {
-            assert_eq!(super::base64(raw.as_bytes()), coded);
-        }
-    }
 }
