@@ -257,3 +257,21 @@ fn closing_characters_keeps_the_rig_and_the_capture_on_their_model() {
     v.load("walk.bvh", WALK).unwrap();
     assert!(v.state().rig_edit.is_none(), "opening files in place of everything ends the set-up");
 }
+
+#[test]
+fn a_model_saves_as_gltf_and_opens_again_as_the_same_model() {
+    let Some(mut v) = faerie() else { return };
+    let (name, bytes) = v.save_gltf(0).expect("a model saves as glTF");
+    assert_eq!(name, "faerie.glb");
+    let errors = v.open_files(&[("faerie.glb", &bytes)], OpenMode::Add);
+    assert!(errors.is_empty(), "{errors:?}");
+    let s = v.snapshot();
+    let (a, b) = (&s.clips[0], &s.clips[1]);
+    assert_eq!((b.frames, b.animations.len()), (a.frames, a.animations.len()), "every frame and animation");
+    assert!(b.skin.is_some(), "its skin came along");
+    // The same shape at the same frame.
+    let (m, n) = (v.state().stage.actors[0].model().unwrap(), v.state().stage.actors[1].model().unwrap());
+    for (p, q) in m.mesh.frame_positions(42).iter().zip(n.mesh.frame_positions(42)) {
+        assert!((0..3).all(|k| (p[k] - q[k]).abs() < 1e-3), "{p:?} vs {q:?}");
+    }
+}

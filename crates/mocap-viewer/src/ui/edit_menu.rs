@@ -35,6 +35,10 @@ pub fn show(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
     };
     let Some(clip) = c.clip() else {
         ui.label(format!("{}: a model has no motion to edit", c.name));
+        // A model saves as glTF: its frames as morph targets, its animations.
+        if button(ui, Command::SaveGltf, out) {
+            ui.close();
+        }
         return;
     };
     let (name, fps, units) = (c.name.clone(), 1.0 / clip.frame_time(), c.units);

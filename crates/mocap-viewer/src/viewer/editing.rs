@@ -205,12 +205,17 @@ impl Viewer {
     }
 
     /// Character `index` as a binary glTF ([`mocap::formats::gltf`]): its file
-    /// name and bytes, every edit baked in; why not for a model or a clip that
-    /// cannot be written.
+    /// name and bytes, every edit baked in (a model: its key frames as morph
+    /// targets, every animation); why not for a clip that cannot be written.
     pub fn save_gltf(&self, index: usize) -> Result<(String, Vec<u8>), String> {
         let c = self.state.stage.actors.get(index).ok_or_else(|| format!("no character {}", index + 1))?;
-        let clip = c.clip().ok_or("a model has no skeleton to save as glTF")?;
         let name = self.save_name(index, "glb");
+        if let Some(model) = c.model() {
+            // Its key frames as morph targets and every animation.
+            let bytes = mocap::formats::gltf::model_to_glb(model, name.trim_end_matches(".glb"));
+            return Ok((name, bytes.map_err(|e| e.to_string())?));
+        }
+        let clip = c.clip().ok_or("nothing to save as glTF")?;
         let options = mocap::formats::gltf::Options { name: name.trim_end_matches(".glb").to_owned(), body: true };
         let bytes = mocap::formats::gltf::to_glb(clip, &options).map_err(|e| e.to_string())?;
         Ok((name, bytes))
