@@ -31,14 +31,12 @@ const MAX_VALUES: usize = 1 << 26;
 /// moves by morph targets alone ([`super::morph`]), else a clip carrying a
 /// character ([`parse`]).
 pub fn parse_asset(bytes: &[u8], resources: Resources<'_>) -> Result<crate::model::asset::Asset, ParseError> {
-    {
-        let parsed = document::parse(bytes, resources)?;
-        let graph = Graph::new(&parsed.document)?;
-        if let Some(model) = super::morph::model(&parsed, &graph, resources)? {
-            return Ok(crate::model::asset::Asset::Model(model));
-        }
+    let parsed = document::parse(bytes, resources)?;
+    let graph = Graph::new(&parsed.document)?;
+    if let Some(model) = super::morph::model(&parsed, &graph, resources)? {
+        return Ok(crate::model::asset::Asset::Model(model));
     }
-    parse(bytes, resources, None).map(crate::model::asset::Asset::from)
+    character(&parsed, graph, resources, None).map(crate::model::asset::Asset::from)
 }
 
 /// Reads a glTF file; `animation` picks the take the clip starts on (the first
@@ -46,6 +44,16 @@ pub fn parse_asset(bytes: &[u8], resources: Resources<'_>) -> Result<crate::mode
 pub fn parse(bytes: &[u8], resources: Resources<'_>, animation: Option<&str>) -> Result<Clip, ParseError> {
     let parsed = document::parse(bytes, resources)?;
     let graph = Graph::new(&parsed.document)?;
+    character(&parsed, graph, resources, animation)
+}
+
+/// The clip carrying a character that a read document holds (see [`parse`]).
+fn character(
+    parsed: &document::Parsed<'_>,
+    graph: Graph,
+    resources: Resources<'_>,
+    animation: Option<&str>,
+) -> Result<Clip, ParseError> {
     if graph.joints.is_empty() {
         return Err(ParseError::new(0, 0, "the scene has no nodes: nothing to show"));
     }
