@@ -70,6 +70,7 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
     let corpus = required_corpus()?;
     if !args.iter().any(|a| a == "--browser-only") {
         setup::vulkan_driver();
+        setup::ffmpeg()?;
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
         run(Command::new(&cargo).current_dir(root()).args(["test", "--workspace"]))?;
     }

@@ -173,6 +173,14 @@ pub fn vulkan_driver() {
     }
 }
 
+/// `ffmpeg` and `ffprobe` (Debian's), which the video tests decode with.
+pub fn ffmpeg() -> Result<(), String> {
+    if have("ffmpeg") && have("ffprobe") {
+        return Ok(());
+    }
+    apt_install(&["ffmpeg"])
+}
+
 /// Everything at once.
 pub fn setup_all() -> Result<(), String> {
     wasm_toolchain()?;
@@ -180,6 +188,7 @@ pub fn setup_all() -> Result<(), String> {
     chromium()?;
     playwright()?;
     vulkan_driver();
+    ffmpeg()?;
     println!("setup: done");
     Ok(())
 }
