@@ -225,7 +225,7 @@ enum Command {
         #[arg(long)]
         animation: Option<String>,
     },
-    /// Renders clips and models to PNG headlessly (wgpu on Vulkan; Mesa lavapipe without a GPU).
+    /// Renders clips and models to PNG or video headlessly (wgpu on Vulkan; Mesa lavapipe without a GPU).
     Render {
         /// One or more motion or model files, drawn side by side (Acclaim: skeleton and motions; MD2: the model and its skin image).
         #[arg(required = true)]
@@ -237,23 +237,39 @@ enum Command {
         #[arg(long)]
         animation: Option<String>,
         /// Frame to render (in the first file's frame time; default 0).
-        #[arg(long, conflicts_with_all = ["time", "frames", "sheet"])]
+        #[arg(long, conflicts_with_all = ["time", "frames", "sheet", "video"])]
         frame: Option<usize>,
         /// Time in seconds to render (interpolated).
-        #[arg(long, conflicts_with_all = ["frames", "sheet"])]
+        #[arg(long, conflicts_with_all = ["frames", "sheet", "video"])]
         time: Option<f64>,
         /// A sequence `a:b:step` (end inclusive, step default 1); --out is a directory.
-        #[arg(long, conflicts_with = "sheet")]
+        #[arg(long, conflicts_with_all = ["sheet", "video"])]
         frames: Option<String>,
         /// A contact sheet of evenly spaced frames over the whole clip.
-        #[arg(long)]
+        #[arg(long, conflicts_with = "video")]
         sheet: bool,
+        /// A video of the whole clip (or --from/--to): OUT.mp4 (H.264), OUT.webm (AV1) or OUT.gif;
+        /// frame k shows the time from + k/fps, as --time draws it.
+        #[arg(long, value_name = "OUT", conflicts_with = "out")]
+        video: Option<PathBuf>,
+        /// Video frames per second (default: the first clip's rate; a GIF at most 50).
+        #[arg(long)]
+        fps: Option<f64>,
+        /// The video's first time in seconds (default 0).
+        #[arg(long)]
+        from: Option<f64>,
+        /// The video's last time in seconds (default: the end of the longest clip).
+        #[arg(long)]
+        to: Option<f64>,
+        /// No progress bar or summary for --video.
+        #[arg(long, short)]
+        quiet: bool,
         /// Columns of the contact sheet (rows follow from the aspect).
         #[arg(long, default_value_t = 4)]
         columns: u32,
         /// Output PNG (or directory for --frames).
-        #[arg(long)]
-        out: PathBuf,
+        #[arg(long, required_unless_present = "video")]
+        out: Option<PathBuf>,
         /// Image size WIDTHxHEIGHT (the whole sheet for --sheet).
         #[arg(long, default_value = "1280x720")]
         size: String,
@@ -383,6 +399,11 @@ fn main() -> ExitCode {
             time,
             frames,
             sheet,
+            video,
+            fps,
+            from,
+            to,
+            quiet,
             columns,
             out,
             size,
@@ -391,11 +412,13 @@ fn main() -> ExitCode {
             up,
         } => {
             files.extend(skin);
-            let shot = match (frame, time, frames, sheet) {
-                (_, Some(t), _, _) => commands::Shot::Time(t),
-                (_, _, Some(range), _) => commands::Shot::Sequence(range),
-                (_, _, _, true) => commands::Shot::Sheet(columns),
-                (f, ..) => commands::Shot::Frame(f.unwrap_or(0)),
+            let is_video = video.is_some();
+            let shot = match (&video, frame, time, frames, sheet) {
+                (Some(_), ..) => commands::Shot::Video(commands::VideoRequest { fps, from, to, quiet }),
+                (_, _, Some(t), _, _) => commands::Shot::Time(t),
+                (_, _, _, Some(range), _) => commands::Shot::Sequence(range),
+                (_, _, _, _, true) => commands::Shot::Sheet(columns),
+                (_, f, ..) => commands::Shot::Frame(f.unwrap_or(0)),
             };
             let options = commands::RenderOptions {
                 mode: &mode,
@@ -403,7 +426,13 @@ fn main() -> ExitCode {
                 animation: animation.as_deref(),
                 up: up.as_deref(),
             };
-            commands::render(&files, shot, &out, &size, &options)
+            match video.or(out) {
+                Some(_) if !is_video && (fps.is_some() || from.is_some() || to.is_some()) => {
+                    Err("--fps, --from and --to are for --video".into())
+                }
+                Some(out) => commands::render(&files, shot, &out, &size, &options),
+                None => Err("mocap render: give --out FILE (or --video FILE)".into()),
+            }
         }
     };
     match result {

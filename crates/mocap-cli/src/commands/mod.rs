@@ -13,6 +13,7 @@ mod edit;
 mod info;
 mod render;
 mod retarget;
+mod video;
 
 pub use capture::{CaptureRequest, IkRequest, capture, ik};
 pub use convert::{convert, validate};
@@ -20,6 +21,7 @@ pub use edit::{LayerRequest, edit, flag_spec, layer};
 pub use info::{info, pose};
 pub use render::{RenderOptions, Shot, render};
 pub use retarget::{RetargetRequest, retarget};
+pub use video::VideoRequest;
 
 fn read(path: &Path) -> Result<Vec<u8>, String> {
     std::fs::read(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))

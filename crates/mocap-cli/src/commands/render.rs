@@ -12,6 +12,8 @@ pub enum Shot {
     Sequence(String),
     /// A contact sheet with this many columns.
     Sheet(u32),
+    /// A video (`out` is an .mp4, .webm or .gif file).
+    Video(super::video::VideoRequest),
 }
 
 /// Parses `a:b[:step]` (end inclusive).
@@ -41,19 +43,15 @@ pub struct RenderOptions<'a> {
     pub up: Option<&'a str>,
 }
 
-/// `mocap render`: `files` may hold models with their skins (`--skin` files are
-/// added to the set).
-pub fn render(
+/// The stage `files` make, drawn and played as `options` say, and the orbit
+/// the camera takes (shared by stills, sequences, sheets and videos).
+pub(super) fn prepare(
     files: &[PathBuf],
-    shot: Shot,
-    out: &Path,
-    size: &str,
     options: &RenderOptions,
-) -> Result<ExitCode, String> {
+) -> Result<(crate::render::StageView, crate::render::Orbit), String> {
     let mode = options.mode;
     let mode = mocap_render::DrawMode::from_name(mode)
         .ok_or_else(|| format!("--mode {mode}: expected `capsules`, `sticks` or `body`"))?;
-    let size = crate::render::parse_size(size)?;
     let orbit = options.camera.map(crate::render::parse_orbit).transpose()?.unwrap_or_default();
     let assets = read_set(files)?.into_iter().map(|l| (l.name, l.asset)).collect();
     let mut stage = crate::render::StageView::new(assets).with_mode(mode);
@@ -66,6 +64,20 @@ pub fn render(
             return Err(format!("--animation {name}: no model in {} has that animation", shown(files)));
         }
     }
+    Ok((stage, orbit))
+}
+
+/// `mocap render`: `files` may hold models with their skins (`--skin` files are
+/// added to the set).
+pub fn render(
+    files: &[PathBuf],
+    shot: Shot,
+    out: &Path,
+    size: &str,
+    options: &RenderOptions,
+) -> Result<ExitCode, String> {
+    let size = crate::render::parse_size(size)?;
+    let (stage, orbit) = prepare(files, options)?;
     let gpu = crate::render::Gpu::new()?;
     let mut scene = mocap_render::Scene::default();
     let timeline = stage.timeline();
@@ -100,6 +112,7 @@ pub fn render(
                 crate::render::write_png(&out.join(format!("frame_{frame:05}.png")), offscreen.size(), &pixels)?;
             }
         }
+        Shot::Video(request) => super::video::video(&gpu, &stage, orbit, size, out, &request)?,
         Shot::Sheet(columns) => {
             let columns = columns.clamp(1, 16);
             let tile_w = (size[0] / columns).max(16);
