@@ -270,7 +270,8 @@ function saveWork(viewer, kind) {
 }
 
 function download(name, text) {
-  const type = name.endsWith('.glb') ? 'model/gltf-binary' : 'text/plain';
+  const types = { glb: 'model/gltf-binary', mp4: 'video/mp4', webm: 'video/webm', gif: 'image/gif' };
+  const type = types[name.split('.').pop()] || 'text/plain';
   const url = URL.createObjectURL(new Blob([text], { type }));
   const a = document.createElement('a');
   a.href = url;
@@ -359,6 +360,14 @@ async function main() {
   // The page's answers to the viewer's requests, before autosave opens its storage.
   window.addEventListener('mocap-share', () => share(viewer, source));
   window.addEventListener('mocap-save', () => saveFile(viewer));
+  // File ▸ Export video…: the exporter (and its encoders) load on first use.
+  window.addEventListener('mocap-export-video', () => {
+    import('./video-export.js')
+      .then((m) => m.openExportDialog(viewer, download))
+      .catch((e) => viewer.showError(`Video export could not start: ${e && e.message ? e.message : e}`));
+  });
+  // JS API: exportVideo({format, width, height, fps, from, to, follow}) resolves to the bytes.
+  viewer.exportVideo = (options, callbacks) => import('./video-export.js').then((m) => m.exportVideo(viewer, options, callbacks));
   // Edits not saved are not lost by accident: the browser asks before leaving.
   window.addEventListener('beforeunload', (e) => {
     const s = viewer.state();

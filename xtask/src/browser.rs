@@ -76,6 +76,7 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
     }
     let dist = crate::dist::dist(fast)?;
     let chromium = setup::chromium()?;
+    setup::ffmpeg()?;
     setup::playwright()?;
     let out = root().join("tests/browser/out");
     std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
@@ -102,6 +103,10 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
         }
         if let Err(e) = run(node("autosave.mjs").args([url.as_str(), mode]).arg(&out).arg(&chromium)) {
             failures.push(format!("{mode} autosave and restore: {e}"));
+        }
+        let walk = root().join("data/walk.bvh");
+        if let Err(e) = run(node("video.mjs").args([url.as_str(), mode]).arg(&out).arg(&chromium).arg(&walk)) {
+            failures.push(format!("{mode} video export: {e}"));
         }
         let mut multi = node("multi.mjs");
         multi.args([url.as_str(), mode]).arg(&out).arg(&chromium);

@@ -69,6 +69,7 @@ pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
     println!("xtask: mocap_web_bg.wasm {raw} bytes, {gz} gzipped");
     copy(&root.join("index.html"), &dist.join("index.html"))?;
     copy_dir(&root.join("web"), &dist.join("web"))?;
+    bundle_video_export(&root, &dist);
     // The worker's template is filled in after minifying (which would drop its placeholders).
     let template = dist.join("web/sw.js");
     let worker = std::fs::read_to_string(&template).map_err(|e| format!("{}: {e}", template.display()))?;
@@ -184,6 +185,30 @@ fn write_service_worker(dist: &Path, text: &str) -> Result<(), String> {
     let text = text.replace("/*FILES*/", &list.join(", ")).replace("/*VERSION*/", &format!("{hash:016x}"));
     let out = dist.join("sw.js");
     std::fs::write(&out, text).map_err(|e| format!("{}: {e}", out.display()))
+}
+
+/// Bundles `web/video-export.js` with its npm packages (mediabunny, gifenc from
+/// `tests/browser/node_modules`) into one module in `dist/web/`: the page loads
+/// it on first export, from its own origin (the CSP allows nothing else).
+/// Without esbuild the unbundled file stays and the page says video export
+/// could not start.
+fn bundle_video_export(root: &Path, dist: &Path) {
+    let Some(esbuild) = setup::esbuild() else {
+        eprintln!("xtask: no esbuild (npm install in tests/browser); video export is not bundled");
+        return;
+    };
+    let out = dist.join("web/video-export.js");
+    let ok = run(Command::new(&esbuild)
+        .arg(root.join("web/video-export.js"))
+        .args(["--bundle", "--format=esm", "--log-level=warning"])
+        .arg(format!("--outfile={}", out.display()))
+        .env("NODE_PATH", root.join("tests/browser/node_modules")))
+    .is_ok();
+    if ok {
+        println!("xtask: bundled {}: {} bytes gzipped", out.display(), sizes(&out).1);
+    } else {
+        eprintln!("xtask: esbuild could not bundle web/video-export.js; video export will not start");
+    }
 }
 
 /// Minifies the page's JavaScript in `dist/` (wasm-bindgen's glue and `web/*.js`)

@@ -118,7 +118,7 @@ pub fn playwright() -> Result<(), String> {
         apt_install(&["nodejs", "npm"])?;
     }
     let dir = root().join("tests/browser");
-    if ["playwright-core", "three", "esbuild", "gltf-validator"]
+    if ["playwright-core", "three", "esbuild", "gltf-validator", "mediabunny", "gifenc"]
         .iter()
         .any(|p| !dir.join("node_modules").join(p).is_dir())
     {

@@ -5,7 +5,7 @@
 
 use mocap::stage::{Actor, Layout, PoseScratch, Stage};
 use mocap::{Asset, Interpolation, Timeline};
-use mocap_render::{Camera, DrawMode, RenderTarget, Scene, SceneRenderer, wgpu};
+use mocap_render::{Camera, DrawMode, Readback, RenderTarget, Scene, SceneRenderer, wgpu};
 use mocap_scene::{ActorDraw, Drawable, OrbitCamera, SceneStyle};
 use std::path::Path;
 
@@ -172,8 +172,7 @@ pub struct Offscreen {
     single: Option<RenderTarget>,
     /// Samples per pixel of the last frame.
     last_samples: u32,
-    readback: wgpu::Buffer,
-    padded_row: u32,
+    readback: Readback,
 }
 
 impl Offscreen {
@@ -186,15 +185,8 @@ impl Offscreen {
     pub fn with_samples(gpu: &Gpu, size: [u32; 2], samples: u32) -> Offscreen {
         let renderer = SceneRenderer::new(&gpu.device, FORMAT, samples);
         let target = RenderTarget::new(&gpu.device, FORMAT, samples, size);
-        let [w, h] = target.size();
-        let padded_row = (w * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("mocap readback"),
-            size: u64::from(padded_row) * u64::from(h),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        Offscreen { renderer, target, single: None, last_samples: samples, readback, padded_row }
+        let readback = Readback::new(&gpu.device, target.size());
+        Offscreen { renderer, target, single: None, last_samples: samples, readback }
     }
 
     /// Size in pixels.
@@ -246,31 +238,14 @@ impl Offscreen {
     /// Renders and returns tightly packed RGBA8 (sRGB) rows.
     pub fn draw(&mut self, gpu: &Gpu, scene: &Scene, camera: &Camera) -> Result<Vec<u8>, String> {
         gpu.check()?;
-        let [w, h] = self.target.size();
         let single = self.choose_target(gpu, scene);
         let target = pick(&self.target, &self.single, single);
         let mut encoder =
             gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("mocap render") });
         self.renderer.encode(&gpu.device, &gpu.queue, &mut encoder, target, scene, camera);
-        encoder.copy_texture_to_buffer(
-            wgpu::TexelCopyTextureInfo {
-                texture: &target.color,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            wgpu::TexelCopyBufferInfo {
-                buffer: &self.readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(self.padded_row),
-                    rows_per_image: Some(h),
-                },
-            },
-            wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-        );
+        self.readback.copy(&mut encoder, &target.color);
         gpu.queue.submit([encoder.finish()]);
-        let slice = self.readback.slice(..);
+        let slice = self.readback.buffer().slice(..);
         let (sender, receiver) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |result| {
             let _ = sender.send(result);
@@ -291,15 +266,7 @@ impl Offscreen {
         })?;
         gpu.check()?;
         mapped.map_err(|e| format!("GPU readback failed: {e}"))?;
-        let mut pixels = Vec::with_capacity((w * h * 4) as usize);
-        {
-            let data = slice.get_mapped_range().map_err(|e| format!("GPU readback failed: {e:?}"))?;
-            for row in data.chunks(self.padded_row as usize).take(h as usize) {
-                pixels.extend_from_slice(row.get(..(w * 4) as usize).unwrap_or(row));
-            }
-        }
-        self.readback.unmap();
-        Ok(pixels)
+        self.readback.read()
     }
 }
 

@@ -39,6 +39,7 @@ mod pipeline;
 mod pipeline_set;
 mod placed;
 mod radius;
+mod readback;
 mod renderer;
 mod scene;
 mod shadow;
@@ -58,6 +59,7 @@ pub use glam;
 pub use grid::Grid;
 pub use mesh::{MeshDraw, MorphMeshData, MorphVertex, NEUTRAL_TINT};
 pub use radius::{BODY_THICKNESS, HELPER_BONE, MAX_CARRIED, body_radii, bone_radii, bone_radius, size_figure};
+pub use readback::Readback;
 pub use renderer::SceneRenderer;
 #[cfg(feature = "test-support")]
 pub use renderer::TestPaths;

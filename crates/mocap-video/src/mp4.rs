@@ -5,7 +5,7 @@
 use crate::yuv::I420;
 use crate::{Rate, VideoError};
 use openh264::encoder::{
-    BitRate, Complexity, Encoder, EncoderConfig, FrameRate, FrameType, IntraFramePeriod, RateControlMode,
+    BitRate, Complexity, Encoder, EncoderConfig, FrameRate, FrameType, IntraFramePeriod, QpRange, RateControlMode,
 };
 use openh264::formats::YUVSlices;
 use openh264::OpenH264API;
@@ -53,7 +53,8 @@ impl Mp4Encoder {
             .bitrate(BitRate::from_bps(bps))
             .max_frame_rate(FrameRate::from_hz(rate.fps() as f32))
             .skip_frames(false)
-            .rate_control_mode(RateControlMode::Bitrate)
+            .rate_control_mode(RateControlMode::Off)
+            .qp(QpRange::new(18, 26))
             .complexity(Complexity::Low)
             .intra_frame_period(IntraFramePeriod::from_num_frames(key_every));
         let encoder = Encoder::with_api_config(OpenH264API::from_source(), config).map_err(error)?;

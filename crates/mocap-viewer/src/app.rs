@@ -10,6 +10,7 @@ pub struct ViewerApp {
     viewer: Rc<RefCell<Viewer>>,
     on_open_requested: Box<dyn FnMut(OpenMode)>,
     on_share_requested: Box<dyn FnMut()>,
+    on_export_video: Option<Box<dyn FnMut()>>,
     /// Runs when the user asks for the previous session ([`HostRequest::RestorePrevious`]).
     on_restore_requested: Option<Box<dyn FnMut()>>,
     on_save_requested: Box<dyn FnMut(String, Vec<u8>)>,
@@ -48,6 +49,7 @@ impl ViewerApp {
             viewer,
             on_open_requested,
             on_share_requested: Box::new(|| {}),
+            on_export_video: None,
             on_restore_requested: None,
             on_save_requested: Box::new(|_, _| {}),
             panel_fill,
@@ -114,6 +116,17 @@ impl ViewerApp {
         self
     }
 
+    /// Sets what runs when the user asks to export a video (the host shows its
+    /// dialog, renders with [`crate::Viewer::video_frame`] and encodes); the
+    /// Export video… button shows from now on.
+    pub fn on_export_video(mut self, f: Box<dyn FnMut()>) -> ViewerApp {
+        self.on_export_video = Some(f);
+        if let Ok(mut v) = self.viewer.try_borrow_mut() {
+            let _ = v.apply(crate::Command::SetVideoExport(true));
+        }
+        self
+    }
+
     /// Sets what runs when the user presses "Share" (the host builds and copies the link).
     pub fn on_share(mut self, f: Box<dyn FnMut()>) -> ViewerApp {
         self.on_share_requested = f;
@@ -142,6 +155,11 @@ impl eframe::App for ViewerApp {
                 HostRequest::Save { name, bytes } => (self.on_save_requested)(name, bytes),
                 HostRequest::PickFiles(mode) => (self.on_open_requested)(mode),
                 HostRequest::Share => (self.on_share_requested)(),
+                HostRequest::ExportVideo => {
+                    if let Some(f) = &mut self.on_export_video {
+                        f();
+                    }
+                }
                 HostRequest::RestorePrevious => {
                     if let Some(f) = &mut self.on_restore_requested {
                         f();

@@ -29,6 +29,8 @@ pub enum HostRequest {
     Share,
     /// Restore the earlier session the page holds (autosave).
     RestorePrevious,
+    /// Open the host's video export dialog.
+    ExportVideo,
     /// Save a file: the current character as BVH or glTF, or a capture rig.
     Save {
         /// File name (`walk-edited.bvh`).
@@ -265,6 +267,10 @@ pub enum Command {
     SetPreviousSession(bool),
     /// Ask the page to restore the earlier session it holds.
     RestorePrevious,
+    /// Whether the host can export video (set by the host when it can).
+    SetVideoExport(bool),
+    /// Ask the host to open its video export dialog.
+    ExportVideo,
 }
 
 impl Command {
@@ -296,6 +302,7 @@ impl Command {
             Command::SaveBvh => "Save as BVH",
             Command::SaveGltf => "Save as glTF",
             Command::RestorePrevious => "Restore previous session",
+            Command::ExportVideo => "Export video…",
             Command::NewCharacter => "New character",
             Command::OpenTentacle(_) => "Bendy tentacle",
             _ => "",
@@ -354,6 +361,9 @@ impl Command {
             }
             Command::RestorePrevious => {
                 "Open the work that was open before this link: its characters, edits and view replace what is open"
+            }
+            Command::ExportVideo => {
+                "Download the motion as a video (MP4, WebM or GIF), each frame drawn at its exact time at the size you choose"
             }
             Command::NewCharacter => {
                 "Start a skeleton from one root joint: add joints here, pose them by dragging (Edit mode) and Set key"

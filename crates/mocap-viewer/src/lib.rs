@@ -54,4 +54,4 @@ pub use snapshot::{ClipSummary, Snapshot};
 pub use stage::Stage;
 pub use state::AppState;
 pub use view_state::ViewState;
-pub use viewer::Viewer;
+pub use viewer::{VideoDefaults, Viewer};

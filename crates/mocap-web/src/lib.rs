@@ -23,6 +23,8 @@ mod model_api;
 mod session_api;
 #[cfg(target_arch = "wasm32")]
 mod start;
+#[cfg(target_arch = "wasm32")]
+mod video;
 
 #[cfg(target_arch = "wasm32")]
 pub use clip_api::{MotionClip, parse_motion};

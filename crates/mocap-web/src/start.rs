@@ -74,6 +74,8 @@ async fn start_on(
         ctx: Rc::default(),
         file_input_id,
         runner: Rc::default(),
+        render_state: Rc::default(),
+        video: Rc::default(),
     };
     run_on(canvas, &shared).await?;
     Ok(MocapViewer { viewer: shared.viewer.clone(), saved: shared.saved.clone(), ctx: shared.ctx.clone(), shared })
@@ -89,6 +91,10 @@ pub(crate) struct Shared {
     pub file_input_id: Option<String>,
     /// The running eframe runner; `None` while the graphics device is lost.
     pub runner: Rc<RefCell<Option<eframe::WebRunner>>>,
+    /// The running runner's device and queue (video frames are drawn on them).
+    pub render_state: Rc<RefCell<Option<eframe::egui_wgpu::RenderState>>>,
+    /// The video exporter's GPU objects (`crate::video`), made on first use.
+    pub video: Rc<RefCell<Option<crate::video::VideoGpu>>>,
 }
 
 /// Which runner is current: a device-lost callback of an earlier one (its device
@@ -98,6 +104,12 @@ static GENERATION: AtomicU32 = AtomicU32::new(0);
 /// Stops the running runner, if any: no more frames on its device.
 pub(crate) fn stop(shared: &Shared) {
     GENERATION.fetch_add(1, Ordering::Relaxed);
+    if let Ok(mut slot) = shared.render_state.try_borrow_mut() {
+        *slot = None;
+    }
+    if let Ok(mut slot) = shared.video.try_borrow_mut() {
+        *slot = None;
+    }
     if let Ok(mut slot) = shared.runner.try_borrow_mut()
         && let Some(runner) = slot.take()
     {
@@ -136,6 +148,7 @@ pub(crate) async fn run_on(canvas: web_sys::HtmlCanvasElement, shared: &Shared) 
     let memory = shared.ctx.borrow().as_ref().map(|c| c.memory(|m| m.clone()));
     let runner = eframe::WebRunner::new();
     let (app_viewer, app_ctx) = (shared.viewer.clone(), shared.ctx.clone());
+    let render_state = shared.render_state.clone();
     runner
         .start(
             canvas,
@@ -143,12 +156,14 @@ pub(crate) async fn run_on(canvas: web_sys::HtmlCanvasElement, shared: &Shared) 
             Box::new(move |cc| {
                 let Some(rs) = cc.wgpu_render_state.as_ref() else { return Err("no wgpu renderer".into()) };
                 watch_device(&rs.device, generation);
+                *render_state.borrow_mut() = Some(rs.clone());
                 if let Some(memory) = memory {
                     cc.egui_ctx.memory_mut(|m| *m = memory);
                 }
                 *app_ctx.borrow_mut() = Some(cc.egui_ctx.clone());
                 let app = ViewerApp::new(&cc.egui_ctx, app_viewer, Box::new(open_picker))
                     .on_share(Box::new(share_event))
+                    .on_export_video(Box::new(export_video_event))
                     .on_restore_previous(Box::new(restore_previous_event))
                     .on_save(Box::new(save))
                     .on_render_scale(Box::new(eframe::web::set_render_scale))
@@ -208,6 +223,15 @@ fn view_event() {
 /// `mocap-restore-previous` event on `window`).
 fn restore_previous_event() {
     let event = web_sys::Event::new("mocap-restore-previous");
+    if let (Some(window), Ok(event)) = (web_sys::window(), event) {
+        let _ = window.dispatch_event(&event);
+    }
+}
+
+/// Tells the page that the user asked to export a video (a `mocap-export-video`
+/// event on `window`; the page shows its dialog).
+fn export_video_event() {
+    let event = web_sys::Event::new("mocap-export-video");
     if let (Some(window), Ok(event)) = (web_sys::window(), event) {
         let _ = window.dispatch_event(&event);
     }

@@ -228,6 +228,8 @@ impl Viewer {
             (Command::MarkSaved(index), _) => self.state.history.mark_saved(index),
             (Command::SetPreviousSession(held), _) => self.state.previous_session = held,
             (Command::RestorePrevious, _) => self.requests.push(HostRequest::RestorePrevious),
+            (Command::SetVideoExport(can), _) => self.state.video_export = can,
+            (Command::ExportVideo, _) => self.requests.push(HostRequest::ExportVideo),
             (Command::Notify(notice), _) => self.state.notice = Some(notice),
             (Command::Step(_) | Command::First | Command::Last, None) => {}
         }

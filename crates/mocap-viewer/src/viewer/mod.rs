@@ -29,6 +29,19 @@ use mocap_scene::OrbitCamera;
 /// tab, a debugger) do not make the playhead jump.
 const MAX_STEP: f64 = 0.5;
 
+/// What a video export starts from ([`Viewer::video_defaults`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VideoDefaults {
+    /// The current character's frame rate.
+    pub fps: f64,
+    /// The stage's length in seconds (the longest clip).
+    pub duration: f64,
+    /// The loop range, in seconds, when one is set.
+    pub range: Option<(f64, f64)>,
+    /// The 3D view's size in points.
+    pub view: Option<[f32; 2]>,
+}
+
 /// The whole viewer. Plain state is public; GPU and scratch state is private.
 #[derive(Default)]
 pub struct Viewer {
@@ -437,6 +450,60 @@ impl Viewer {
     /// Poses every visible character at the playhead and rebuilds the scene primitives.
     pub fn pose(&mut self) {
         let smooth = self.state.playback.playing && self.state.settings.interpolate;
+        self.pose_characters(self.state.playback.time, smooth);
+        pose_scene::build_scene(&self.state.stage, &self.state.settings, self.state.selected, &mut self.scene);
+        self.drag_overlay();
+        self.rig_overlay();
+        if let Some(demo) = &mut self.state.tentacle {
+            self.scene.spheres.push(mocap_render::Sphere {
+                center: demo.target,
+                radius: 0.07,
+                color: [235, 70, 60, 255],
+            });
+            if let Some(tip) = self.state.stage.actors.first().and_then(|c| c.extra.pose.last()) {
+                demo.tip = tip.translation;
+            }
+        }
+    }
+
+    /// The picture at `time` seconds for a video frame: every visible character
+    /// posed at `time` (between frames as the view interpolates), the floor and
+    /// the view's draw settings, without selection or editing overlays; seen by
+    /// the view's camera at `aspect` (width / height), its target following the
+    /// current character's root when `follow`. The view is posed at its
+    /// playhead again afterwards, its camera untouched.
+    pub fn video_frame(&mut self, time: f64, aspect: f32, follow: bool) -> (Scene, mocap_render::Camera) {
+        let (target, follow_setting) = (self.state.camera.target, self.state.settings.follow_root);
+        self.state.settings.follow_root = follow;
+        self.pose_characters(time, self.state.settings.interpolate);
+        let mut scene = Scene::default();
+        pose_scene::build_scene(&self.state.stage, &self.state.settings, None, &mut scene);
+        let camera = self.state.camera.to_camera(aspect.max(1e-3));
+        self.state.camera.target = target;
+        self.state.settings.follow_root = follow_setting;
+        self.pose();
+        (scene, camera)
+    }
+
+    /// What a video export starts from: the timeline's frame rate and
+    /// length, the loop range in seconds (when one is set), and the 3D view's
+    /// size in points (`None` before it is first drawn).
+    pub fn video_defaults(&self) -> VideoDefaults {
+        let timing = self.state.timing();
+        let fps = timing.map_or(30.0, |t| 1.0 / t.frame_time());
+        let duration = timing.map_or(0.0, |t| t.duration()).max(self.state.stage.duration());
+        let range = timing.filter(|_| self.state.playback.range.is_some()).map(|t| {
+            let (a, b) = self.state.playback.frame_range(t);
+            (t.time_of(a), t.time_of(b))
+        });
+        let view = self.viewport.geometry.map(|g| [g.rect.width(), g.rect.height()]);
+        VideoDefaults { fps, duration, range, view }
+    }
+
+    /// Poses every visible character at `time` (`smooth`: between frames), and
+    /// moves the camera's target with the current character's root when the
+    /// view follows it.
+    fn pose_characters(&mut self, time: f64, smooth: bool) {
         let body = self.state.settings.mode == DrawMode::Body;
         if let (Some(demo), Some(c)) = (&self.state.tentacle, self.state.stage.actors.first_mut()) {
             demo.pose(c);
@@ -444,7 +511,7 @@ impl Viewer {
         for c in self.state.stage.actors.iter_mut().filter(|c| c.visible) {
             character::pose_at(
                 c,
-                self.state.playback.time,
+                time,
                 smooth,
                 self.state.settings.foot_lock,
                 &mut self.pose_scratch,
@@ -459,19 +526,6 @@ impl Viewer {
         {
             self.state.camera.target.x = root.translation.x;
             self.state.camera.target.z = root.translation.z;
-        }
-        pose_scene::build_scene(&self.state.stage, &self.state.settings, self.state.selected, &mut self.scene);
-        self.drag_overlay();
-        self.rig_overlay();
-        if let Some(demo) = &mut self.state.tentacle {
-            self.scene.spheres.push(mocap_render::Sphere {
-                center: demo.target,
-                radius: 0.07,
-                color: [235, 70, 60, 255],
-            });
-            if let Some(tip) = self.state.stage.actors.first().and_then(|c| c.extra.pose.last()) {
-                demo.tip = tip.translation;
-            }
         }
     }
 

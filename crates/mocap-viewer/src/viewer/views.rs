@@ -35,6 +35,7 @@ impl Viewer {
             current: s.current_character().map(|c| c.name.as_str()),
             edit: self.edit_menu_view(),
             previous_session: self.state.previous_session,
+            video_export: self.state.video_export,
         }
     }
 
