@@ -176,7 +176,13 @@ pub fn bench() -> Result<(), String> {
             cmd.arg(crate::gltf_files::bench_glb(&corpus, &dir)?);
         }
     }
-    run(&mut cmd)
+    run(&mut cmd)?;
+    // The page's video export: a 10 s corpus clip where there is one, else the default walk.
+    let clip = corpus_dir()
+        .map(|c| c.join("bvh/animated_drawings/jesse_dance.bvh"))
+        .filter(|f| f.is_file())
+        .unwrap_or_else(|| root().join("data/walk.bvh"));
+    run(node("bench-video.mjs").arg(&url).arg(&chromium).arg(clip))
 }
 
 fn node(script: &str) -> Command {
