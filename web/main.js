@@ -360,7 +360,7 @@ async function main() {
   // The page's answers to the viewer's requests, before autosave opens its storage.
   window.addEventListener('mocap-share', () => share(viewer, source));
   window.addEventListener('mocap-save', () => saveFile(viewer));
-  // File ▸ Export video…: the exporter (and its encoders) load on first use.
+  // Edit ▸ Export video…: the exporter (and its encoders) load on first use.
   window.addEventListener('mocap-export-video', () => {
     import('./video-export.js')
       .then((m) => m.openExportDialog(viewer, download))

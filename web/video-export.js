@@ -1,4 +1,4 @@
-// Video export (File ▸ Export video…, and the JS API's exportVideo): every frame
+// Video export (Edit ▸ Export video…, and the JS API's exportVideo): every frame
 // is drawn offscreen at its exact time by the viewer (renderVideoFrame), then
 // encoded: MP4 (H.264) and WebM (VP9, else VP8) through WebCodecs with
 // mediabunny's muxers, GIF through gifenc with a palette per frame. Frame k

@@ -1,5 +1,5 @@
 // Video export from the page, in one mode: a dropped clip exported as WebM (the
-// JS API's exportVideo) and as GIF (File ▸ Export video…'s dialog, with its
+// JS API's exportVideo) and as GIF (Edit ▸ Export video…'s dialog, with its
 // progress bar; screenshots of both looked at). FFmpeg decodes each: the frame
 // count and duration the range asks for, frames that move, and frame k within
 // 26 dB PSNR of the page's own picture at k/fps (renderVideoFrame). MP4 where
@@ -9,7 +9,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import { execFileSync } from 'node:child_process';
-import { launch, waitState, dropFile, waitDropped, reporter } from './common.mjs';
+import { launch, waitState, dropFile, waitDropped, reporter, slowClick } from './common.mjs';
 
 const [base, mode, outDir, chromiumPath, clipPath] = process.argv.slice(2);
 const shot = (name) => path.join(outDir, `${mode}-video-${name}.png`);
@@ -99,9 +99,13 @@ try {
     await checkVideo(page, 'MP4', file, 30, 0, 1);
   });
 
-  await step('GIF through File ▸ Export video…, with its progress bar', async () => {
-    await page.evaluate(() => window.dispatchEvent(new Event('mocap-export-video')));
-    await page.waitForSelector('#video-export[open]');
+  await step('GIF through Edit ▸ Export video…, with its progress bar', async () => {
+    // Edit ▸ Export video… by the page's own menu (the 1280x800 layout's toolbar).
+    await slowClick(page, 950, 12);
+    await page.waitForTimeout(500);
+    await page.screenshot({ path: shot('menu') });
+    await slowClick(page, 963, 446);
+    await page.waitForSelector('#video-export[open]', { timeout: 15000 });
     await page.screenshot({ path: shot('dialog') });
     await page.selectOption('#video-export select[name=format]', 'gif');
     await page.selectOption('#video-export select[name=size]', 'custom');

@@ -58,7 +58,7 @@ pub struct AppState {
     pub pending_close: Option<usize>,
     /// Whether the page holds an earlier session (File ▸ Restore previous session).
     pub previous_session: bool,
-    /// Whether the host can export video (File ▸ Export video… shows).
+    /// Whether the host can export video (Edit ▸ Export video… shows).
     pub video_export: bool,
 }
 

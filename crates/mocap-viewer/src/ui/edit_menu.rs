@@ -19,6 +19,8 @@ pub struct EditMenuView<'a> {
     pub redo: Option<&'a str>,
     /// Other open characters with a skeleton (what a motion can be retargeted onto).
     pub others: usize,
+    /// Whether the host exports video (Export video… shows).
+    pub video_export: bool,
 }
 
 /// Shows the Edit menu's entries (inside the toolbar's menu button); what the
@@ -39,6 +41,7 @@ pub fn show(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
         if button(ui, Command::SaveGltf, out) {
             ui.close();
         }
+        export_video(ui, view, out);
         return;
     };
     let (name, fps, units) = (c.name.clone(), 1.0 / clip.frame_time(), c.units);
@@ -121,12 +124,20 @@ pub fn show(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
     if button(ui, Command::SaveGltf, out) {
         ui.close();
     }
+    export_video(ui, view, out);
     if let Some(name) = grow {
         out.push(Command::GrowBone(name));
         ui.close();
     }
     if let Some((edit, label)) = edit {
         out.push(Command::Edit { character: index, edit, label });
+        ui.close();
+    }
+}
+
+/// Export video… where the host can export video.
+fn export_video(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
+    if view.video_export && button(ui, Command::ExportVideo, out) {
         ui.close();
     }
 }

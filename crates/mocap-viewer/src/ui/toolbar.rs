@@ -24,8 +24,6 @@ pub struct ToolbarView<'a> {
     pub edit: super::edit_menu::EditMenuView<'a>,
     /// Whether the page holds an earlier session to restore.
     pub previous_session: bool,
-    /// Whether the host exports video (the Export video… button shows).
-    pub video_export: bool,
 }
 
 /// Shows the top panel; what the user does comes back as commands in `out`.
@@ -39,9 +37,6 @@ pub fn show(ui: &mut egui::Ui, view: &ToolbarView, out: &mut Vec<Command>) {
             button(ui, Command::Share, out);
             if view.previous_session {
                 button(ui, Command::RestorePrevious, out);
-            }
-            if view.video_export && !view.characters.is_empty() {
-                button(ui, Command::ExportVideo, out);
             }
             match view.characters {
                 [] => {}

@@ -35,7 +35,6 @@ impl Viewer {
             current: s.current_character().map(|c| c.name.as_str()),
             edit: self.edit_menu_view(),
             previous_session: self.state.previous_session,
-            video_export: self.state.video_export,
         }
     }
 
@@ -50,6 +49,7 @@ impl Viewer {
             undo: s.history.next_undo(),
             redo: s.history.next_redo(),
             others: s.stage.actors.iter().enumerate().filter(|(i, c)| *i != index && c.clip().is_some()).count(),
+            video_export: s.video_export,
         }
     }
 
