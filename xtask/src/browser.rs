@@ -142,6 +142,11 @@ pub fn test_all(args: &[String]) -> Result<(), String> {
         }
         Err(e) => failures.push(format!("glTF files: {e}")),
     }
+    if !args.iter().any(|a| a == "--browser-only") {
+        if let Err(e) = crate::python::test(corpus.as_deref()) {
+            failures.push(format!("Python package: {e}"));
+        }
+    }
     if !fast {
         if let Err(e) = crate::dist::check_download_size(&dist) {
             failures.push(e);

@@ -18,6 +18,7 @@ mod browser;
 mod dist;
 mod fonts;
 mod gltf_files;
+mod python;
 mod serve;
 mod setup;
 mod shape;

@@ -289,6 +289,34 @@ enum Command {
         #[arg(required = true)]
         paths: Vec<PathBuf>,
     },
+    /// A whole dataset at once: every motion file under DIR (or listed in a text file, one
+    /// path a line) validated, summarised or converted, with a JSON-lines manifest
+    /// (file, sha256, status, error with its location or the figures); resumable, never
+    /// stopped by a bad file, on every core.
+    Batch {
+        /// A folder (walked recursively) or a text file listing paths.
+        source: PathBuf,
+        /// Only read each file (the default).
+        #[arg(long, conflicts_with = "to")]
+        validate: bool,
+        /// `json` (a summary line per file: frames, fps, joints, units, up axis, duration,
+        /// bounds, warnings), `bvh` or `glb` (converted into --out, same relative paths).
+        #[arg(long)]
+        to: Option<String>,
+        /// Where converted files go (and the manifest, by default).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The manifest (default: OUT/manifest.jsonl, else ./manifest.jsonl); files it lists
+        /// with the same sha256 are skipped.
+        #[arg(long)]
+        manifest: Option<PathBuf>,
+        /// Threads (default: every core).
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// No progress bar.
+        #[arg(long, short)]
+        quiet: bool,
+    },
 }
 
 /// The edits of `mocap edit` as the core's edit specs, in the order they appear
@@ -368,6 +396,9 @@ fn main() -> ExitCode {
             &commands::IkRequest { joint: &joint, target: &target, frame, bones, solver: solver.as_deref() },
         ),
         Command::Validate { paths } => commands::validate(&paths),
+        Command::Batch { source, validate: _, to, out, manifest, jobs, quiet } => {
+            commands::batch(&source, to.as_deref(), out.as_deref(), manifest.as_deref(), jobs, quiet)
+        }
         Command::Capture {
             model,
             rig,

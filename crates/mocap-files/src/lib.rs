@@ -4,6 +4,8 @@
 //! CLI and the Python package; the core itself never touches the file system.
 //! Errors read `FILE: message` or `FILE:LINE:COL: message`.
 
+pub mod batch;
+
 use mocap::{Format, Input, Loaded};
 use std::path::{Path, PathBuf};
 

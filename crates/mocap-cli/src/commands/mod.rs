@@ -7,6 +7,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+mod batch;
 mod capture;
 mod convert;
 mod edit;
@@ -15,6 +16,7 @@ mod render;
 mod retarget;
 mod video;
 
+pub use batch::batch;
 pub use capture::{CaptureRequest, IkRequest, capture, ik};
 pub use convert::{convert, validate};
 pub use edit::{LayerRequest, edit, flag_spec, layer};
