@@ -57,8 +57,9 @@ def main():
         mb = path.stat().st_size / 1e6
         ours, xyz = best(lambda: mocap.read(path).world_positions())
         def theirs_run():
+            # End Sites included, as ours are: pybvh's node positions.
             bvh = pybvh.read_bvh_file(str(path))
-            return bvh.get_spatial_coord() if hasattr(bvh, "get_spatial_coord") else bvh.joint_positions()
+            return bvh.node_positions()
         theirs, _ = best(theirs_run, rounds=1)
         print(f"read + world positions, {mb:.1f} MB, {FRAMES} frames, {xyz.shape[1]} joints:")
         print(f"  mocap {ours * 1000:8.0f} ms   pybvh {pybvh.__version__ if hasattr(pybvh, '__version__') else '0.9.0'} {theirs * 1000:8.0f} ms   {theirs / ours:5.1f}x faster (aim >= 10x)")
