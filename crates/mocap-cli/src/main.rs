@@ -300,7 +300,8 @@ enum Command {
         #[arg(long, conflicts_with = "to")]
         validate: bool,
         /// `json` (a summary line per file: frames, fps, joints, units, up axis, duration,
-        /// bounds, warnings), `bvh` or `glb` (converted into --out, same relative paths).
+        /// bounds, warnings), `bvh` or `glb` (converted into --out, same relative paths), or
+        /// `png` (a contact sheet of each, as render --sheet draws it).
         #[arg(long)]
         to: Option<String>,
         /// Where converted files go (and the manifest, by default).

@@ -87,3 +87,27 @@ fn summaries_and_conversions() {
     assert_eq!(first["up_axis"], "y");
     assert!(first["bounds"][1][1].as_f64().unwrap() > 100.0);
 }
+
+#[test]
+fn thumbnails_are_contact_sheets() {
+    let Some(corpus) = corpus() else { return };
+    if std::env::var_os("MOCAP_SKIP_GPU_TESTS").is_some() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("png");
+    let status = Command::new(env!("CARGO_BIN_EXE_mocap"))
+        .arg("batch")
+        .arg(corpus.join("bvh/bandai_namco"))
+        .args(["--to", "png", "--quiet", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success(), "is a Vulkan driver installed?");
+    for line in lines(&out.join("manifest.jsonl")) {
+        let png = std::fs::read(line["output"].as_str().unwrap()).unwrap();
+        assert_eq!(&png[1..4], b"PNG");
+        // 1280 wide: four 320-pixel tiles.
+        assert_eq!(u32::from_be_bytes([png[16], png[17], png[18], png[19]]), 1280);
+    }
+}

@@ -13,8 +13,11 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// The extensions a dataset's motion files have (an `.asf` is read with its `.amc`).
 pub const MOTION_EXTENSIONS: [&str; 5] = ["bvh", "bva", "amc", "glb", "gltf"];
 
+/// Writes a clip to a file: what [`Task::Write`] does (the CLI's contact sheets).
+pub type WriteClip = std::sync::Arc<dyn Fn(&mocap::Clip, &Path) -> Result<(), String> + Send + Sync>;
+
 /// What is done to each file.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone)]
 pub enum Task {
     /// Read it: `ok` or `error` with the location.
     Validate,
@@ -25,6 +28,15 @@ pub enum Task {
     Bvh(PathBuf),
     /// Write it as binary glTF into `out`.
     Glb(PathBuf),
+    /// Write it with `write` into `out` (the same relative path, `extension`).
+    Write {
+        /// The output folder.
+        out: PathBuf,
+        /// The written files' extension.
+        extension: &'static str,
+        /// What writes one.
+        write: WriteClip,
+    },
 }
 
 /// Every motion file under `root` (recursively, sorted; no recursion on the
@@ -104,6 +116,15 @@ fn do_task(path: &Path, bytes: Vec<u8>, root: &Path, task: &Task, line: &mut Map
                 mocap::formats::bvh::write(&clip).into_bytes()
             };
             std::fs::write(&target, data).map_err(|e| format!("{}: {e}", target.display()))?;
+            line.insert("output".into(), json!(target.display().to_string()));
+        }
+        Task::Write { out, extension, write } => {
+            let relative = path.strip_prefix(root).unwrap_or(path);
+            let target = out.join(relative).with_extension(extension);
+            if let Some(dir) = target.parent() {
+                std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+            }
+            write(&clip, &target).map_err(|e| format!("{}: {e}", path.display()))?;
             line.insert("output".into(), json!(target.display().to_string()));
         }
     }

@@ -22,7 +22,8 @@ pub fn batch(
         Some("json") => Task::Summary,
         Some("bvh") => Task::Bvh(need_out()?),
         Some("glb") => Task::Glb(need_out()?),
-        Some(other) => return Err(format!("--to {other}: expected json, bvh or glb")),
+        Some("png") => thumbnails(need_out()?)?,
+        Some(other) => return Err(format!("--to {other}: expected json, bvh, glb or png")),
     };
     let (files, root) = listed(source)?;
     if let Some(dir) = out {
@@ -49,6 +50,21 @@ pub fn batch(
         eprintln!("{} files: {} ok, {} failed; manifest {}", lines.len(), lines.len() - failed.len(), failed.len(), manifest.display());
     }
     Ok(if failed.is_empty() { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
+
+/// Contact sheets (1280x720, four columns, the default camera) drawn on one GPU
+/// shared by the batch's threads, one sheet at a time.
+fn thumbnails(out: PathBuf) -> Result<Task, String> {
+    let gpu = crate::render::Gpu::new()?;
+    let sheet = super::render::Sheet::new(&gpu, [1280, 720], 4);
+    let shared = std::sync::Mutex::new((gpu, sheet));
+    let write = move |clip: &mocap::Clip, path: &Path| -> Result<(), String> {
+        let stage = crate::render::StageView::new(vec![(String::new(), mocap::Asset::Clip(clip.clone()))]);
+        let mut guard = shared.lock().map_err(|_| "the renderer failed on an earlier file".to_string())?;
+        let (gpu, sheet) = &mut *guard;
+        sheet.write(gpu, &stage, crate::render::Orbit::default(), path)
+    };
+    Ok(Task::Write { out, extension: "png", write: std::sync::Arc::new(write) })
 }
 
 /// The files of a folder (recursively), or those a list file names (one a

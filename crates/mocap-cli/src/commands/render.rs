@@ -114,25 +114,52 @@ pub fn render(
         }
         Shot::Video(request) => super::video::video(&gpu, &stage, orbit, size, out, &request)?,
         Shot::Sheet(columns) => {
-            let columns = columns.clamp(1, 16);
-            let tile_w = (size[0] / columns).max(16);
-            let rows = ((size[1] as f32 / (tile_w as f32 * 9.0 / 16.0)).floor() as u32).clamp(1, 16);
-            let tile = [tile_w, (size[1] / rows).max(16)];
-            let mut offscreen = crate::render::Offscreen::new(&gpu, tile);
-            let tile = offscreen.size();
-            let camera = stage.camera(orbit, tile);
-            let count = (columns * rows) as usize;
-            let sheet_size = [tile[0] * columns, tile[1] * rows];
-            let mut sheet = vec![0u8; (sheet_size[0] * sheet_size[1] * 4) as usize];
-            for n in 0..count {
-                let time = if count > 1 { stage.duration() * n as f64 / (count - 1) as f64 } else { 0.0 };
-                stage.scene_at(time, &mut scene);
-                let pixels = offscreen.draw(&gpu, &scene, &camera)?;
-                let (x, y) = ((n as u32 % columns) * tile[0], (n as u32 / columns) * tile[1]);
-                crate::render::blit(&mut sheet, sheet_size[0], &pixels, tile, x, y);
-            }
-            crate::render::write_png(out, sheet_size, &sheet)?;
+            let mut sheet = Sheet::new(&gpu, size, columns);
+            sheet.write(&gpu, &stage, orbit, out)?;
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// A contact sheet: `columns` x rows tiles of evenly spaced times over the whole
+/// stage (rows follow from a 16:9 tile in the sheet's size), drawn offscreen.
+pub struct Sheet {
+    offscreen: crate::render::Offscreen,
+    columns: u32,
+    rows: u32,
+}
+
+impl Sheet {
+    /// A sheet of about `size` pixels with `columns` columns (1 to 16).
+    pub fn new(gpu: &crate::render::Gpu, size: [u32; 2], columns: u32) -> Sheet {
+        let columns = columns.clamp(1, 16);
+        let tile_w = (size[0] / columns).max(16);
+        let rows = ((size[1] as f32 / (tile_w as f32 * 9.0 / 16.0)).floor() as u32).clamp(1, 16);
+        let tile = [tile_w, (size[1] / rows).max(16)];
+        Sheet { offscreen: crate::render::Offscreen::new(gpu, tile), columns, rows }
+    }
+
+    /// Draws `stage`'s sheet from `orbit` and writes it as the PNG `out`.
+    pub fn write(
+        &mut self,
+        gpu: &crate::render::Gpu,
+        stage: &crate::render::StageView,
+        orbit: crate::render::Orbit,
+        out: &Path,
+    ) -> Result<(), String> {
+        let tile = self.offscreen.size();
+        let camera = stage.camera(orbit, tile);
+        let count = (self.columns * self.rows) as usize;
+        let sheet_size = [tile[0] * self.columns, tile[1] * self.rows];
+        let mut sheet = vec![0u8; (sheet_size[0] * sheet_size[1] * 4) as usize];
+        let mut scene = mocap_render::Scene::default();
+        for n in 0..count {
+            let time = if count > 1 { stage.duration() * n as f64 / (count - 1) as f64 } else { 0.0 };
+            stage.scene_at(time, &mut scene);
+            let pixels = self.offscreen.draw(gpu, &scene, &camera)?;
+            let (x, y) = ((n as u32 % self.columns) * tile[0], (n as u32 / self.columns) * tile[1]);
+            crate::render::blit(&mut sheet, sheet_size[0], &pixels, tile, x, y);
+        }
+        crate::render::write_png(out, sheet_size, &sheet)
+    }
 }
