@@ -175,6 +175,25 @@ enum Command {
         #[arg(short, long)]
         output: PathBuf,
     },
+    /// Compares two takes (a prediction with ground truth, two captures): B sampled at A's frame
+    /// times, both in metres with Y up; MPJPE and per-joint errors in A's file units and metres,
+    /// per-frame error, per-joint angle differences.
+    Compare {
+        /// The first take (the reference; an .amc finds its .asf).
+        a: PathBuf,
+        /// The second take (same skeleton, or matched by joint names and tree shape).
+        b: PathBuf,
+        /// `none`, `root` (each frame: roots to the origin, B turned to A's heading) or
+        /// `procrustes` (each frame: B's best rigid fit onto A).
+        #[arg(long, default_value = "none")]
+        align: String,
+        /// Joint pairs by hand: a JSON object `{"A_JOINT": "B_JOINT", …}`.
+        #[arg(long, value_name = "MAP.json")]
+        map: Option<PathBuf>,
+        /// Print JSON: `mpjpe`, `mpjpe_m`, `joints: [{name, mean, max, angle}]`, `frames`, `worst_frame`.
+        #[arg(long)]
+        json: bool,
+    },
     /// Captures skeletal motion from a Quake 2 MD2 model's vertex animation:
     /// joints where four tracked vertices' spheres meet, bone spins from tracked
     /// triangles; prints each joint's residuals; writes BVH.
@@ -372,6 +391,7 @@ fn main() -> ExitCode {
             commands::pose(&files, frame, time, animation.as_deref())
         }
         Command::Convert { inputs, output, animation } => commands::convert(&inputs, &output, animation.as_deref()),
+        Command::Compare { a, b, align, map, json } => commands::compare(&a, &b, &align, map.as_deref(), json),
         Command::Retarget { source, onto, map, save_map, reference, animation, output } => {
             commands::retarget(&commands::RetargetRequest {
                 animation: animation.as_deref(),

@@ -423,6 +423,48 @@ impl Clip {
         Ok(Clip { clip, name: self.name.clone() })
     }
 
+    /// This take against `other` (a Clip or a path), sampled at this one's
+    /// frame times, both in metres with Y up: `{mpjpe, mpjpe_m, worst_frame,
+    /// joints: [{name, mean, max, angle}], frames}` (`mpjpe`, joint errors and
+    /// `frames` (a float32 array) in this clip's file units; `angle` in degrees
+    /// where the skeletons are the same, else None). `align`: `"none"`,
+    /// `"root"` or `"procrustes"`; `map` gives `(this_joint, other_joint)` pairs.
+    #[pyo3(signature = (other, *, align="none", map=None))]
+    fn compare<'py>(
+        &self,
+        py: Python<'py>,
+        other: &Bound<'py, PyAny>,
+        align: &str,
+        map: Option<Vec<(String, String)>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        use mocap::ops::compare::Align;
+        let align = Align::from_name(align).ok_or_else(|| PyValueError::new_err(format!("align={align}: expected 'none', 'root' or 'procrustes'")))?;
+        let other_clip = match other.cast::<Clip>() {
+            Ok(c) => c.get().clip.clone(),
+            Err(_) => read(py, other, None, None, None)?.clip,
+        };
+        let map = map.unwrap_or_default();
+        let report = py
+            .detach(|| mocap::ops::compare::compare(&self.clip, &other_clip, align, &map))
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let d = PyDict::new(py);
+        d.set_item("mpjpe", report.mpjpe)?;
+        d.set_item("mpjpe_m", report.mpjpe_m)?;
+        d.set_item("worst_frame", report.worst_frame)?;
+        let joints = PyList::empty(py);
+        for j in &report.joints {
+            let item = PyDict::new(py);
+            item.set_item("name", &j.name)?;
+            item.set_item("mean", j.mean)?;
+            item.set_item("max", j.max)?;
+            item.set_item("angle", j.angle)?;
+            joints.append(item)?;
+        }
+        d.set_item("joints", joints)?;
+        d.set_item("frames", report.frames.into_pyarray(py))?;
+        Ok(d)
+    }
+
     /// Writes the clip as BVH (every edit baked in).
     fn write_bvh(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
         let text = py.detach(|| mocap::formats::bvh::write(&self.clip));

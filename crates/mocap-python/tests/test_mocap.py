@@ -135,3 +135,17 @@ def test_batch_writes_a_resumable_manifest(corpus, tmp_path):
     assert len(written) == len(lines)
     again = mocap.batch(folder, manifest=manifest, jobs=2)
     assert again == lines and len(manifest.read_text().splitlines()) == len(lines), "nothing done twice"
+
+
+def test_compare_as_the_cli_does(walk, mocap_bin):
+    clip = mocap.read(walk)
+    same = clip.compare(clip)
+    assert same["mpjpe"] == 0.0 and len(same["frames"]) == clip.frame_count
+    trimmed = clip.edit("trim:0:40")
+    report = clip.compare(walk, align="procrustes")
+    assert report["mpjpe"] < 1e-5
+    cli = json.loads(subprocess.run([str(mocap_bin), "compare", str(walk), str(walk), "--json"], capture_output=True, check=True, text=True).stdout)
+    assert [j["name"] for j in cli["joints"]] == [j["name"] for j in same["joints"]]
+    assert trimmed.compare(clip)["frames"].shape == (41,)
+    with pytest.raises(ValueError):
+        clip.compare(clip, align="sideways")

@@ -10,6 +10,8 @@
 #[cfg(target_arch = "wasm32")]
 mod clip_api;
 #[cfg(target_arch = "wasm32")]
+mod compare_api;
+#[cfg(target_arch = "wasm32")]
 mod file_set;
 #[cfg(target_arch = "wasm32")]
 mod gpu;

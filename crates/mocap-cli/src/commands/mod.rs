@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 mod batch;
 mod capture;
+mod compare;
 mod convert;
 mod edit;
 mod info;
@@ -17,6 +18,7 @@ mod retarget;
 mod video;
 
 pub use batch::batch;
+pub use compare::compare;
 pub use capture::{CaptureRequest, IkRequest, capture, ik};
 pub use convert::{convert, validate};
 pub use edit::{LayerRequest, edit, flag_spec, layer};

@@ -69,7 +69,7 @@ pub fn retarget(request: &RetargetRequest) -> Result<ExitCode, String> {
 }
 
 /// A map file: a JSON object of target joint names to source joint names.
-fn read_map(path: &Path) -> Result<Vec<(String, String)>, String> {
+pub(super) fn read_map(path: &Path) -> Result<Vec<(String, String)>, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
     let value: Value =
         serde_json::from_str(&text).map_err(|e| format!("{}:{}:{}: {e}", path.display(), e.line(), e.column()))?;

@@ -1,0 +1,297 @@
+//! Comparing two takes ([`compare`]): a prediction against ground truth, two
+//! captures of one move. Clip `b` is sampled at clip `a`'s frame times; both
+//! are measured in metres with Y up (each by its own unit and up axis), joints
+//! paired by index on the same skeleton, else by the retargeting name map
+//! ([`crate::ops::retarget::map_joints`]); End Sites are left out. Errors come
+//! back in `a`'s file units and in metres.
+//!
+//! Inputs: two clips, an [`Align`] rule and explicit joint pairs. Output: a
+//! [`Report`] (MPJPE, per-joint mean and max, per-frame error, per-joint angle
+//! differences). Flat arrays, one pass over the frames; nothing recurses.
+
+use crate::glam::{Mat3, Quat, Vec3};
+use crate::model::clip::Clip;
+use crate::runtime::sample::Interpolation;
+
+/// How the second take is placed on the first before measuring.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Align {
+    /// As captured.
+    #[default]
+    None,
+    /// Each frame: both roots moved to the origin and `b` turned about the up
+    /// axis so its root faces as `a`'s does (translation and heading removed).
+    Root,
+    /// Each frame: the rigid motion (rotation and translation, Kabsch/Horn)
+    /// that best fits `b`'s joints onto `a`'s.
+    Procrustes,
+}
+
+impl Align {
+    /// `none`, `root` or `procrustes`.
+    pub fn from_name(name: &str) -> Option<Align> {
+        match name {
+            "none" => Some(Align::None),
+            "root" => Some(Align::Root),
+            "procrustes" => Some(Align::Procrustes),
+            _ => None,
+        }
+    }
+}
+
+/// One joint's error over the take.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointError {
+    /// The joint's name in `a`.
+    pub name: String,
+    /// Mean distance, `a`'s file units.
+    pub mean: f32,
+    /// Largest distance, `a`'s file units.
+    pub max: f32,
+    /// Mean angle between the two joints' local rotations in degrees, when both
+    /// clips share the skeleton; `None` otherwise.
+    pub angle: Option<f32>,
+}
+
+/// What [`compare`] measures.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    /// Mean per-joint position error over every frame and compared joint, in
+    /// `a`'s file units.
+    pub mpjpe: f32,
+    /// The same in metres.
+    pub mpjpe_m: f32,
+    /// Per joint (End Sites left out), in `a`'s joint order.
+    pub joints: Vec<JointError>,
+    /// Per frame of `a`: the mean error over the joints, `a`'s units.
+    pub frames: Vec<f32>,
+    /// The frame with the largest error.
+    pub worst_frame: usize,
+}
+
+/// Why two clips cannot be compared.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum CompareError {
+    /// No joint of one matches a joint of the other.
+    #[error("the two skeletons share no joint (give a map: A_JOINT=B_JOINT pairs)")]
+    NoJoints,
+    /// A clip without frames.
+    #[error("a clip has no frames")]
+    Empty,
+    /// The name map failed.
+    #[error("{0}")]
+    Map(String),
+}
+
+/// Compares `b` with `a` (see the module documentation); `map` gives
+/// `(a_joint, b_joint)` pairs first when the skeletons differ.
+pub fn compare(a: &Clip, b: &Clip, align: Align, map: &[(String, String)]) -> Result<Report, CompareError> {
+    if a.frame_count() == 0 || b.frame_count() == 0 {
+        return Err(CompareError::Empty);
+    }
+    let (sa, sb) = (a.skeleton(), b.skeleton());
+    let same = sa.len() == sb.len() && sa.joints().iter().zip(sb.joints()).all(|(x, y)| x.name == y.name && x.parent == y.parent);
+    let pairs: Vec<(usize, usize)> = if same && map.is_empty() {
+        (0..sa.len()).map(|j| (j, j)).collect()
+    } else {
+        crate::ops::retarget::map_joints(sa, sb, map).map_err(|e| CompareError::Map(e.to_string()))?
+    };
+    let pairs: Vec<(usize, usize)> = pairs.into_iter().filter(|&(ja, _)| !sa.is_end_site(ja)).collect();
+    if pairs.is_empty() {
+        return Err(CompareError::NoJoints);
+    }
+    let (ma, mb) = (a.units().meters_per_unit(), b.units().meters_per_unit());
+    let (ua, ub) = (a.up_axis(), b.up_axis());
+    let per_unit = 1.0 / ma.max(f32::MIN_POSITIVE);
+    let n = pairs.len();
+    let mut sums = vec![0.0f64; n];
+    let mut maxes = vec![0.0f32; n];
+    let mut angles = vec![0.0f64; n];
+    let mut frames = Vec::with_capacity(a.frame_count());
+    let (mut pa, mut pb) = (Vec::new(), Vec::new());
+    let (mut qa, mut qb) = (Vec::new(), Vec::new());
+    let (mut la, mut lb) = (crate::runtime::pose::LocalPose::default(), crate::runtime::pose::LocalPose::default());
+    let mut scratch = crate::runtime::sample::SampleScratch::default();
+    let (mut xa, mut xb) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    for f in 0..a.frame_count() {
+        let time = a.timeline().time_of(f);
+        // On the same frame times `b`'s own frame, not a sample that rounds.
+        let exact = (b.frame_time() - a.frame_time()).abs() < 1e-12 && f < b.frame_count();
+        a.world_transforms_into(f, &mut qa);
+        if exact {
+            b.world_transforms_into(f, &mut qb);
+        } else {
+            b.sample_world_transforms_into(time, Interpolation::Linear, &mut qb);
+        }
+        pa.clear();
+        pa.extend(qa.iter().map(|t| ua.to_y_up(t.translation) * ma));
+        pb.clear();
+        pb.extend(qb.iter().map(|t| ub.to_y_up(t.translation) * mb));
+        for (k, &(ja, jb)) in pairs.iter().enumerate() {
+            xa[k] = pa.get(ja).copied().unwrap_or_default();
+            xb[k] = pb.get(jb).copied().unwrap_or_default();
+        }
+        match align {
+            Align::None => {}
+            Align::Root => {
+                let root_a = pa.first().copied().unwrap_or_default();
+                let root_b = pb.first().copied().unwrap_or_default();
+                let turn = heading(ua.rotation() * qa.first().map_or(Quat::IDENTITY, |t| t.rotation))
+                    - heading(ub.rotation() * qb.first().map_or(Quat::IDENTITY, |t| t.rotation));
+                let r = Quat::from_rotation_y(turn);
+                for k in 0..n {
+                    xa[k] -= root_a;
+                    xb[k] = r * (xb[k] - root_b);
+                }
+            }
+            Align::Procrustes => fit(&xa, &mut xb),
+        }
+        let mut frame_sum = 0.0f64;
+        for k in 0..n {
+            let d = xa[k].distance(xb[k]) * per_unit;
+            sums[k] += f64::from(d);
+            maxes[k] = maxes[k].max(d);
+            frame_sum += f64::from(d);
+        }
+        frames.push((frame_sum / n as f64) as f32);
+        if same {
+            a.local_pose_into(f, &mut la);
+            if exact {
+                b.local_pose_into(f, &mut lb);
+            } else {
+                b.sample_local_into(time, Interpolation::Linear, &mut scratch, &mut lb);
+            }
+            for (k, &(ja, jb)) in pairs.iter().enumerate() {
+                if let (Some(x), Some(y)) = (la.rotation.get(ja), lb.rotation.get(jb)) {
+                    angles[k] += f64::from(turn(*x, *y).to_degrees());
+                }
+            }
+        }
+    }
+    let count = a.frame_count() as f64;
+    let joints: Vec<JointError> = pairs
+        .iter()
+        .enumerate()
+        .map(|(k, &(ja, _))| JointError {
+            name: sa.joints().get(ja).map(|j| j.name.clone()).unwrap_or_default(),
+            mean: (sums[k] / count) as f32,
+            max: maxes[k],
+            angle: same.then(|| (angles[k] / count) as f32),
+        })
+        .collect();
+    let mpjpe = (sums.iter().sum::<f64>() / (count * n as f64)) as f32;
+    let worst_frame = frames.iter().enumerate().fold(0, |best, (i, e)| if *e > frames[best] { i } else { best });
+    Ok(Report { mpjpe, mpjpe_m: mpjpe * ma, joints, frames, worst_frame })
+}
+
+/// The angle of the rotation from `x` to `y` in radians (by atan2, exact
+/// near zero where acos is not).
+fn turn(x: Quat, y: Quat) -> f32 {
+    let d = x.conjugate() * y;
+    2.0 * Vec3::new(d.x, d.y, d.z).length().atan2(d.w.abs())
+}
+
+/// The heading (angle about +Y) of a rotation's forward (+Z) axis.
+fn heading(q: Quat) -> f32 {
+    let f = q * Vec3::Z;
+    f.x.atan2(f.z)
+}
+
+/// Moves `b` onto `a` by the best rigid motion (Horn's quaternion method:
+/// the largest eigenvector of the 4x4 symmetric matrix, by Jacobi rotations).
+fn fit(a: &[Vec3], b: &mut [Vec3]) {
+    let n = a.len().max(1) as f32;
+    let ca = a.iter().copied().sum::<Vec3>() / n;
+    let cb = b.iter().copied().sum::<Vec3>() / n;
+    // Cross-covariance S = sum (b - cb)(a - ca)^T.
+    let mut s = [[0.0f64; 3]; 3];
+    for (p, q) in a.iter().zip(b.iter()) {
+        let (p, q) = (*p - ca, *q - cb);
+        let (p, q) = ([p.x, p.y, p.z], [q.x, q.y, q.z]);
+        for i in 0..3 {
+            for j in 0..3 {
+                s[i][j] += f64::from(q[i]) * f64::from(p[j]);
+            }
+        }
+    }
+    let [[sxx, sxy, sxz], [syx, syy, syz], [szx, szy, szz]] = s;
+    let mut m = [
+        [sxx + syy + szz, syz - szy, szx - sxz, sxy - syx],
+        [syz - szy, sxx - syy - szz, sxy + syx, szx + sxz],
+        [szx - sxz, sxy + syx, -sxx + syy - szz, syz + szy],
+        [sxy - syx, szx + sxz, syz + szy, -sxx - syy + szz],
+    ];
+    let v = largest_eigenvector(&mut m);
+    let r = Quat::from_xyzw(v[1] as f32, v[2] as f32, v[3] as f32, v[0] as f32).normalize();
+    let r = Mat3::from_quat(r);
+    for q in b.iter_mut() {
+        *q = r * (*q - cb) + ca;
+    }
+}
+
+/// The eigenvector of the largest eigenvalue of a symmetric 4x4 matrix
+/// (cyclic Jacobi; `m` is overwritten).
+fn largest_eigenvector(m: &mut [[f64; 4]; 4]) -> [f64; 4] {
+    let mut v = [[0.0f64; 4]; 4];
+    for (i, row) in v.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    for _ in 0..50 {
+        let off: f64 = (0..4).flat_map(|i| (0..4).filter(move |&j| j != i).map(move |j| (i, j))).map(|(i, j)| m[i][j] * m[i][j]).sum();
+        if off < 1e-22 {
+            break;
+        }
+        for p in 0..3 {
+            for q in p + 1..4 {
+                if m[p][q].abs() < 1e-300 {
+                    continue;
+                }
+                let theta = (m[q][q] - m[p][p]) / (2.0 * m[p][q]);
+                let sign = if theta >= 0.0 { 1.0 } else { -1.0 };
+                let t = sign / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for k in 0..4 {
+                    let (mkp, mkq) = (m[k][p], m[k][q]);
+                    m[k][p] = c * mkp - s * mkq;
+                    m[k][q] = s * mkp + c * mkq;
+                }
+                for k in 0..4 {
+                    let (mpk, mqk) = (m[p][k], m[q][k]);
+                    m[p][k] = c * mpk - s * mqk;
+                    m[q][k] = s * mpk + c * mqk;
+                }
+                for row in v.iter_mut() {
+                    let (vp, vq) = (row[p], row[q]);
+                    row[p] = c * vp - s * vq;
+                    row[q] = s * vp + c * vq;
+                }
+            }
+        }
+    }
+    let best = (0..4).max_by(|&i, &j| m[i][i].total_cmp(&m[j][j])).unwrap_or(0);
+    [v[0][best], v[1][best], v[2][best], v[3][best]]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_fit_undoes_a_rigid_motion() {
+        let a: Vec<Vec3> = vec![Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.2, 0.0), Vec3::new(0.0, 1.0, 0.3), Vec3::new(0.4, 0.1, 1.0)];
+        let r = Quat::from_euler(crate::glam::EulerRot::YXZ, 0.7, -0.3, 0.2);
+        let mut b: Vec<Vec3> = a.iter().map(|p| r * *p + Vec3::new(3.0, -1.0, 2.0)).collect();
+        fit(&a, &mut b);
+        for (p, q) in a.iter().zip(&b) {
+            assert!(p.distance(*q) < 1e-4, "{p} {q}");
+        }
+    }
+
+    #[test]
+    fn alignment_names() {
+        assert_eq!(Align::from_name("procrustes"), Some(Align::Procrustes));
+        assert_eq!(Align::from_name("root"), Some(Align::Root));
+        assert_eq!(Align::from_name("x"), None);
+    }
+}
