@@ -11,6 +11,8 @@
 
 use crate::glam::{Mat3, Quat, Vec3};
 use crate::model::clip::Clip;
+use crate::runtime::fk::local_to_model;
+use crate::runtime::pose::LocalPose;
 use crate::runtime::sample::Interpolation;
 
 /// How the second take is placed on the first before measuring.
@@ -100,73 +102,23 @@ pub fn compare(a: &Clip, b: &Clip, align: Align, map: &[(String, String)]) -> Re
     if pairs.is_empty() {
         return Err(CompareError::NoJoints);
     }
-    let (ma, mb) = (a.units().meters_per_unit(), b.units().meters_per_unit());
-    let (ua, ub) = (a.up_axis(), b.up_axis());
-    let per_unit = 1.0 / ma.max(f32::MIN_POSITIVE);
+    let ctx = Context { a, b, pairs: &pairs, align, same, exact: (b.frame_time() - a.frame_time()).abs() < 1e-12 };
+    // Frames in pieces, measured on every core, merged in order.
+    let ranges: Vec<std::ops::Range<usize>> =
+        (0..a.frame_count()).step_by(PIECE).map(|s| s..(s + PIECE).min(a.frame_count())).collect();
     let n = pairs.len();
     let mut sums = vec![0.0f64; n];
     let mut maxes = vec![0.0f32; n];
     let mut angles = vec![0.0f64; n];
     let mut frames = Vec::with_capacity(a.frame_count());
-    let (mut pa, mut pb) = (Vec::new(), Vec::new());
-    let (mut qa, mut qb) = (Vec::new(), Vec::new());
-    let (mut la, mut lb) = (crate::runtime::pose::LocalPose::default(), crate::runtime::pose::LocalPose::default());
-    let mut scratch = crate::runtime::sample::SampleScratch::default();
-    let (mut xa, mut xb) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
-    for f in 0..a.frame_count() {
-        let time = a.timeline().time_of(f);
-        // On the same frame times `b`'s own frame, not a sample that rounds.
-        let exact = (b.frame_time() - a.frame_time()).abs() < 1e-12 && f < b.frame_count();
-        a.world_transforms_into(f, &mut qa);
-        if exact {
-            b.world_transforms_into(f, &mut qb);
-        } else {
-            b.sample_world_transforms_into(time, Interpolation::Linear, &mut qb);
-        }
-        pa.clear();
-        pa.extend(qa.iter().map(|t| ua.to_y_up(t.translation) * ma));
-        pb.clear();
-        pb.extend(qb.iter().map(|t| ub.to_y_up(t.translation) * mb));
-        for (k, &(ja, jb)) in pairs.iter().enumerate() {
-            xa[k] = pa.get(ja).copied().unwrap_or_default();
-            xb[k] = pb.get(jb).copied().unwrap_or_default();
-        }
-        match align {
-            Align::None => {}
-            Align::Root => {
-                let root_a = pa.first().copied().unwrap_or_default();
-                let root_b = pb.first().copied().unwrap_or_default();
-                let turn = heading(ua.rotation() * qa.first().map_or(Quat::IDENTITY, |t| t.rotation))
-                    - heading(ub.rotation() * qb.first().map_or(Quat::IDENTITY, |t| t.rotation));
-                let r = Quat::from_rotation_y(turn);
-                for k in 0..n {
-                    xa[k] -= root_a;
-                    xb[k] = r * (xb[k] - root_b);
-                }
-            }
-            Align::Procrustes => fit(&xa, &mut xb),
-        }
-        let mut frame_sum = 0.0f64;
+    for part in crate::runtime::parallel::map(ranges, |r| measure(&ctx, r)) {
+        let part = part.ok_or(CompareError::Empty)?;
         for k in 0..n {
-            let d = xa[k].distance(xb[k]) * per_unit;
-            sums[k] += f64::from(d);
-            maxes[k] = maxes[k].max(d);
-            frame_sum += f64::from(d);
+            sums[k] += part.sums[k];
+            maxes[k] = maxes[k].max(part.maxes[k]);
+            angles[k] += part.angles[k];
         }
-        frames.push((frame_sum / n as f64) as f32);
-        if same {
-            a.local_pose_into(f, &mut la);
-            if exact {
-                b.local_pose_into(f, &mut lb);
-            } else {
-                b.sample_local_into(time, Interpolation::Linear, &mut scratch, &mut lb);
-            }
-            for (k, &(ja, jb)) in pairs.iter().enumerate() {
-                if let (Some(x), Some(y)) = (la.rotation.get(ja), lb.rotation.get(jb)) {
-                    angles[k] += f64::from(turn(*x, *y).to_degrees());
-                }
-            }
-        }
+        frames.extend(part.frames);
     }
     let count = a.frame_count() as f64;
     let joints: Vec<JointError> = pairs
@@ -180,8 +132,91 @@ pub fn compare(a: &Clip, b: &Clip, align: Align, map: &[(String, String)]) -> Re
         })
         .collect();
     let mpjpe = (sums.iter().sum::<f64>() / (count * n as f64)) as f32;
+    let ma = a.units().meters_per_unit();
     let worst_frame = frames.iter().enumerate().fold(0, |best, (i, e)| if *e > frames[best] { i } else { best });
     Ok(Report { mpjpe, mpjpe_m: mpjpe * ma, joints, frames, worst_frame })
+}
+
+/// Frames measured per piece of work.
+const PIECE: usize = 1024;
+
+/// What every piece of [`compare`] reads.
+struct Context<'a> {
+    a: &'a Clip,
+    b: &'a Clip,
+    pairs: &'a [(usize, usize)],
+    align: Align,
+    same: bool,
+    /// Same frame times: `b`'s own frames, not samples that round.
+    exact: bool,
+}
+
+/// One piece's sums: per pair the distances' sum and largest, the angles'
+/// sum; per frame the mean distance.
+struct Partial {
+    sums: Vec<f64>,
+    maxes: Vec<f32>,
+    angles: Vec<f64>,
+    frames: Vec<f32>,
+}
+
+/// Measures frames `range` of `a` (see [`compare`]).
+fn measure(ctx: &Context<'_>, range: std::ops::Range<usize>) -> Partial {
+    let (a, b) = (ctx.a, ctx.b);
+    let (ma, mb) = (a.units().meters_per_unit(), b.units().meters_per_unit());
+    let (ua, ub) = (a.up_axis(), b.up_axis());
+    let per_unit = 1.0 / ma.max(f32::MIN_POSITIVE);
+    let n = ctx.pairs.len();
+    let mut part = Partial { sums: vec![0.0; n], maxes: vec![0.0; n], angles: vec![0.0; n], frames: Vec::with_capacity(range.len()) };
+    let (mut la, mut lb) = (LocalPose::default(), LocalPose::default());
+    let (mut ta, mut tb) = (Vec::new(), Vec::new());
+    let mut scratch = crate::runtime::sample::SampleScratch::default();
+    let (mut xa, mut xb) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    for f in range {
+        a.local_pose_into(f, &mut la);
+        if ctx.exact && f < b.frame_count() {
+            b.local_pose_into(f, &mut lb);
+        } else {
+            b.sample_local_into(a.timeline().time_of(f), Interpolation::Linear, &mut scratch, &mut lb);
+        }
+        local_to_model(a.skeleton(), &la, &mut ta);
+        local_to_model(b.skeleton(), &lb, &mut tb);
+        for (k, &(ja, jb)) in ctx.pairs.iter().enumerate() {
+            xa[k] = ta.get(ja).map_or(Vec3::ZERO, |t| ua.to_y_up(t.translation) * ma);
+            xb[k] = tb.get(jb).map_or(Vec3::ZERO, |t| ub.to_y_up(t.translation) * mb);
+        }
+        match ctx.align {
+            Align::None => {}
+            Align::Root => {
+                let root_a = ta.first().map_or(Vec3::ZERO, |t| ua.to_y_up(t.translation) * ma);
+                let root_b = tb.first().map_or(Vec3::ZERO, |t| ub.to_y_up(t.translation) * mb);
+                let turn = heading(ua.rotation() * ta.first().map_or(Quat::IDENTITY, |t| t.rotation))
+                    - heading(ub.rotation() * tb.first().map_or(Quat::IDENTITY, |t| t.rotation));
+                let r = Quat::from_rotation_y(turn);
+                for k in 0..n {
+                    xa[k] -= root_a;
+                    xb[k] = r * (xb[k] - root_b);
+                }
+            }
+            Align::Procrustes => fit(&xa, &mut xb),
+        }
+        let mut frame_sum = 0.0f64;
+        for k in 0..n {
+            let d = xa[k].distance(xb[k]) * per_unit;
+            part.sums[k] += f64::from(d);
+            part.maxes[k] = part.maxes[k].max(d);
+            frame_sum += f64::from(d);
+        }
+        part.frames.push((frame_sum / n.max(1) as f64) as f32);
+        if ctx.same {
+            for (k, &(ja, jb)) in ctx.pairs.iter().enumerate() {
+                if let (Some(x), Some(y)) = (la.rotation.get(ja), lb.rotation.get(jb)) {
+                    part.angles[k] += f64::from(turn(*x, *y).to_degrees());
+                }
+            }
+        }
+    }
+    part
 }
 
 /// The angle of the rotation from `x` to `y` in radians (by atan2, exact
