@@ -262,6 +262,27 @@ try {
     const delta = [moved[0] - orig[0], moved[1] - orig[1], moved[2] - orig[2]];
     check(Math.hypot(delta[0] - 8, delta[1] - 12, delta[2] + 5) < 0.3, `the saved BVH has the hand 8, 12, -5 cm away at frame 12 (${delta.map((d) => d.toFixed(2))})`);
   });
+  await step('compare(i, j): an edited copy against the original', async () => {
+    await page.goto(base);
+    await page.waitForFunction(() => window.mocapViewer && window.mocapViewer.state().clips.length === 1, null, { timeout: 60000 });
+    const r = await page.evaluate(async (text) => {
+      const v = window.mocapViewer;
+      v.add('walk-2.bvh', new TextEncoder().encode(text));
+      const same = v.compare(0, 1);
+      const error = v.edit(1, 'reverse') ?? null;
+      const reversed = v.compare(0, 1, 'procrustes');
+      let refused = null;
+      try { v.compare(0, 1, 'sideways'); } catch (e) { refused = String(e.message || e); }
+      return {
+        same: same.mpjpe, frames: same.frames.length, kind: Object.prototype.toString.call(same.frames),
+        error, reversed: reversed.mpjpe, joints: reversed.joints.length, worst: reversed.worstFrame, refused,
+      };
+    }, walk.toString());
+    check(r.same === 0 && r.frames === 67 && r.kind === '[object Float32Array]', `against itself: ${r.same} over ${r.frames} frames (${r.kind})`);
+    check(r.error === null && r.reversed > 1 && r.joints === 21 && r.worst >= 0, `the reversed copy: MPJPE ${r.reversed.toFixed(2)} cm over ${r.joints} joints, worst frame ${r.worst}`);
+    check(typeof r.refused === 'string' && r.refused.includes('procrustes'), `a bad alignment is refused (${r.refused})`);
+  });
+
   await step('the creator: three joints, two keyed poses, play, save, drop the file back in', async () => {
     const made = await page.evaluate(async () => {
       const v = window.mocapViewer;
