@@ -42,6 +42,9 @@ enum Command {
         /// The animation of a glTF file (default: its first).
         #[arg(long)]
         animation: Option<String>,
+        /// How --time is sampled between frames: nearest, linear (default) or cubic.
+        #[arg(long, requires = "time")]
+        interpolation: Option<String>,
         /// Print JSON (the only output form; accepted for clarity).
         #[arg(long)]
         json: bool,
@@ -301,6 +304,9 @@ enum Command {
         /// The file axis that points up in every clip, `y` or `z` (default: guessed per clip from its motion).
         #[arg(long)]
         up: Option<String>,
+        /// Sampling between frames (--time, --video): nearest, linear (default) or cubic.
+        #[arg(long)]
+        interpolation: Option<String>,
     },
     /// Checks files or directories (recursively): one line per file.
     Validate {
@@ -387,8 +393,8 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Info { files, json } => commands::info(&files, json),
-        Command::Pose { files, frame, time, animation, json: _ } => {
-            commands::pose(&files, frame, time, animation.as_deref())
+        Command::Pose { files, frame, time, animation, interpolation, json: _ } => {
+            commands::pose(&files, frame, time, animation.as_deref(), interpolation.as_deref())
         }
         Command::Convert { inputs, output, animation } => commands::convert(&inputs, &output, animation.as_deref()),
         Command::Compare { a, b, align, map, json } => commands::compare(&a, &b, &align, map.as_deref(), json),
@@ -462,6 +468,7 @@ fn main() -> ExitCode {
             mode,
             camera,
             up,
+            interpolation,
         } => {
             files.extend(skin);
             let is_video = video.is_some();
@@ -477,6 +484,7 @@ fn main() -> ExitCode {
                 camera: camera.as_deref(),
                 animation: animation.as_deref(),
                 up: up.as_deref(),
+                interpolation: interpolation.as_deref(),
             };
             match video.or(out) {
                 Some(_) if !is_video && (fps.is_some() || from.is_some() || to.is_some()) => {

@@ -281,6 +281,8 @@ fn pick<'a>(target: &'a RenderTarget, single: &'a Option<RenderTarget>, use_sing
 pub struct StageView {
     stage: Stage<Drawable>,
     mode: DrawMode,
+    /// How poses between frames are sampled (default linear).
+    interpolation: Interpolation,
     scratch: std::cell::RefCell<(PoseScratch, Vec<mocap::Transform>)>,
 }
 
@@ -295,6 +297,7 @@ impl StageView {
         StageView {
             stage: Stage::new(actors.collect(), Layout::Spread),
             mode: DrawMode::default(),
+            interpolation: Interpolation::Linear,
             scratch: Default::default(),
         }
     }
@@ -313,6 +316,11 @@ impl StageView {
         for i in 0..self.stage.actors.len() {
             self.stage.set_up_axis(i, up);
         }
+    }
+
+    /// Samples between frames by `interpolation` (nearest, linear or cubic).
+    pub fn set_interpolation(&mut self, interpolation: Interpolation) {
+        self.interpolation = interpolation;
     }
 
     /// The same stage drawn in `mode` (body mode builds the bodies).
@@ -345,10 +353,10 @@ impl StageView {
         let mut scratch = self.scratch.borrow_mut();
         let (pose_scratch, pose) = &mut *scratch;
         for (n, actor) in self.stage.visible() {
-            let morph = actor.morph_at(time, Interpolation::Linear);
+            let morph = actor.morph_at(time, self.interpolation);
             pose.clear();
             if actor.asset.clip().is_some() {
-                actor.pose_at(time, Interpolation::Linear, pose_scratch, pose);
+                actor.pose_at(time, self.interpolation, pose_scratch, pose);
             }
             let draw = ActorDraw {
                 drawable: &actor.extra,

@@ -367,6 +367,40 @@ impl Clip {
         Ok(Array3::from_shape_vec((frames.len(), j, 3), data).unwrap_or_default().into_pyarray(py))
     }
 
+    /// World positions at `times` in seconds (T×J×3 float32), sampled between
+    /// frames by `interpolation`: `"nearest"`, `"linear"` (default) or
+    /// `"cubic"` (Catmull-Rom positions, squad rotations: through every frame,
+    /// smooth across them); file units or `units="m"`.
+    #[pyo3(signature = (times, *, interpolation="linear", units=None))]
+    fn positions_at<'py>(
+        &self,
+        py: Python<'py>,
+        times: Vec<f64>,
+        interpolation: &str,
+        units: Option<&str>,
+    ) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        let between = mocap::Interpolation::from_name(interpolation)
+            .filter(|i| *i != mocap::Interpolation::Step)
+            .ok_or_else(|| PyValueError::new_err(format!("interpolation={interpolation}: expected 'nearest', 'linear' or 'cubic'")))?;
+        let scale = match units {
+            None | Some("file") => 1.0,
+            Some("m") => self.clip.units().meters_per_unit(),
+            Some(other) => return Err(PyValueError::new_err(format!("units={other}: expected None, 'file' or 'm'"))),
+        };
+        let clip = &self.clip;
+        let j = clip.skeleton().len();
+        let data = py.detach(|| {
+            let mut out = Vec::with_capacity(times.len() * j * 3);
+            let mut scratch = Vec::new();
+            for &t in &times {
+                clip.sample_world_positions_into(t, between, &mut scratch);
+                out.extend(scratch.iter().flat_map(|p| (*p * scale).to_array()));
+            }
+            out
+        });
+        Ok(Array3::from_shape_vec((times.len(), j, 3), data).unwrap_or_default().into_pyarray(py))
+    }
+
     /// World rotations of every joint (F×J×4 quaternions, x y z w) at `frames`.
     #[pyo3(signature = (frames=None))]
     fn world_rotations<'py>(&self, py: Python<'py>, frames: Option<Vec<i64>>) -> PyResult<Bound<'py, PyArray3<f32>>> {

@@ -149,3 +149,20 @@ def test_compare_as_the_cli_does(walk, mocap_bin):
     assert trimmed.compare(clip)["frames"].shape == (41,)
     with pytest.raises(ValueError):
         clip.compare(clip, align="sideways")
+
+
+def test_cubic_sampling_and_resampling(walk, mocap_bin):
+    clip = mocap.read(walk)
+    dt = clip.frame_time
+    at_frames = clip.positions_at([3 * dt, 7 * dt], interpolation="cubic")
+    assert np.allclose(at_frames, clip.world_positions([3, 7]), atol=1e-3), "through every frame"
+    between = clip.positions_at([0.35], interpolation="cubic")[0]
+    cli = json.loads(subprocess.run([str(mocap_bin), "pose", str(walk), "--time", "0.35", "--interpolation", "cubic"], capture_output=True, check=True, text=True).stdout)
+    assert np.allclose(between, [j["position"] for j in cli["joints"]], atol=1e-3)
+    assert not np.allclose(between, clip.positions_at([0.35])[0], atol=1e-3), "cubic is not linear"
+    fps = 1 / clip.frame_time  # 30.0003: the file's own rate, so frames line up again
+    back = clip.edit([f"fps:{4 * fps!r}:cubic", f"fps:{fps!r}:cubic"])
+    assert back.frame_count == clip.frame_count
+    assert np.abs(back.values - clip.values).max() < 2e-3
+    with pytest.raises(ValueError):
+        clip.positions_at([0.1], interpolation="sideways")

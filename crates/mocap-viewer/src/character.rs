@@ -213,11 +213,11 @@ pub fn new_character(name: &str, asset: Asset, open: &[Character]) -> Character 
 /// pose: a correction made by dragging (at its frame; the clip's own pose becomes
 /// the ghost), then foot locking when `lock_feet`. The transforms are in metres and
 /// placed.
-pub fn pose_at(c: &mut Character, time: f64, smooth: bool, lock_feet: bool, scratch: &mut PoseScratch) {
+pub fn pose_at(c: &mut Character, time: f64, smooth: Option<Interpolation>, lock_feet: bool, scratch: &mut PoseScratch) {
     let interpolation = match (smooth, c.model().is_some()) {
-        (true, _) => Interpolation::Linear,
-        (false, false) => Interpolation::Step,
-        (false, true) => Interpolation::Nearest,
+        (Some(between), _) => between,
+        (None, false) => Interpolation::Step,
+        (None, true) => Interpolation::Nearest,
     };
     if lock_feet && c.extra.foot_lock.is_none() {
         c.extra.foot_lock = c.clip().map(|clip| mocap::ops::contact::FootLock::with_up(clip, c.up));

@@ -19,6 +19,9 @@ pub struct ViewSettings {
     pub follow_root: bool,
     /// Interpolate between frames while playing (paused views are always frame-exact).
     pub interpolate: bool,
+    /// Interpolate with cubic in-betweens (Catmull-Rom translations, squad
+    /// rotations: smooth across frames) instead of linear; Edit ▸ Resample too.
+    pub cubic: bool,
     /// Edit mode: dragging a joint in the view moves it and its chain follows by IK.
     pub pose_mode: bool,
     /// Pin each foot to the floor while it is in contact (legs solved by IK).
@@ -33,6 +36,13 @@ pub struct ViewSettings {
     pub quality: crate::quality::Quality,
 }
 
+impl ViewSettings {
+    /// How frames are blended when they are: linear, or cubic with [`ViewSettings::cubic`].
+    pub fn between(&self) -> mocap::Interpolation {
+        if self.cubic { mocap::Interpolation::Cubic } else { mocap::Interpolation::Linear }
+    }
+}
+
 impl Default for ViewSettings {
     fn default() -> ViewSettings {
         ViewSettings {
@@ -43,6 +53,7 @@ impl Default for ViewSettings {
             shadows: true,
             follow_root: false,
             interpolate: true,
+            cubic: false,
             pose_mode: false,
             foot_lock: false,
             key_window: 3,

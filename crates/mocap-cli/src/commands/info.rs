@@ -122,13 +122,20 @@ pub fn info(paths: &[PathBuf], as_json: bool) -> Result<ExitCode, String> {
 
 /// `mocap pose`: every joint's world position at a frame, or at a time (sampled
 /// between frames), of the glTF animation named when one is.
-pub fn pose(paths: &[PathBuf], frame: usize, time: Option<f64>, animation: Option<&str>) -> Result<ExitCode, String> {
+pub fn pose(
+    paths: &[PathBuf],
+    frame: usize,
+    time: Option<f64>,
+    animation: Option<&str>,
+    interpolation: Option<&str>,
+) -> Result<ExitCode, String> {
+    let between = interpolation.map(super::render::interpolation).transpose()?.unwrap_or(mocap::Interpolation::Linear);
     let clip = read_take(paths, animation)?;
     let mut positions = Vec::new();
     let (frame, time) = match time {
         Some(t) if !(t.is_finite() && t >= 0.0) => return Err(format!("--time {t}: a time in seconds, 0 or more")),
         Some(t) => {
-            clip.sample_world_positions_into(t, mocap::Interpolation::Linear, &mut positions);
+            clip.sample_world_positions_into(t, between, &mut positions);
             (clip.timeline().frame_at(t), t)
         }
         None => {

@@ -41,6 +41,15 @@ pub struct RenderOptions<'a> {
     pub animation: Option<&'a str>,
     /// The up axis of every clip (`y` or `z`; guessed per clip when absent).
     pub up: Option<&'a str>,
+    /// Sampling between frames: `nearest`, `linear` (default) or `cubic`.
+    pub interpolation: Option<&'a str>,
+}
+
+/// `--interpolation NAME`.
+pub(super) fn interpolation(name: &str) -> Result<mocap::Interpolation, String> {
+    mocap::Interpolation::from_name(name)
+        .filter(|i| *i != mocap::Interpolation::Step)
+        .ok_or_else(|| format!("--interpolation {name}: expected nearest, linear or cubic"))
 }
 
 /// The stage `files` make, drawn and played as `options` say, and the orbit
@@ -58,6 +67,9 @@ pub(super) fn prepare(
     if let Some(name) = options.up {
         let up = mocap::UpAxis::from_name(name).ok_or_else(|| format!("--up: expected y or z, found `{name}`"))?;
         stage.set_up_axis(up);
+    }
+    if let Some(name) = options.interpolation {
+        stage.set_interpolation(interpolation(name)?);
     }
     if let Some(name) = options.animation {
         if !stage.set_animation(name) {

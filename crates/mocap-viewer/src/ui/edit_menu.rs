@@ -21,6 +21,8 @@ pub struct EditMenuView<'a> {
     pub others: usize,
     /// Whether the host exports video (Export video… shows).
     pub video_export: bool,
+    /// Resample with cubic in-betweens (View ▸ Cubic in-betweens).
+    pub cubic: bool,
 }
 
 /// Shows the Edit menu's entries (inside the toolbar's menu button); what the
@@ -60,7 +62,11 @@ pub fn show(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
     super::menu(ui, "Resample", &mut |ui| {
         for target in [24.0, 30.0, 60.0, 120.0] {
             if ui.button(format!("{target} fps")).clicked() {
-                edit = Some((Edit::Resample { fps: target }, format!("Resample to {target} fps")));
+                edit = Some(if view.cubic {
+                    (Edit::ResampleCubic { fps: target }, format!("Resample to {target} fps (cubic)"))
+                } else {
+                    (Edit::Resample { fps: target }, format!("Resample to {target} fps"))
+                });
             }
         }
         ui.label(egui::RichText::new(format!("now {fps:.2} fps")).weak());

@@ -107,6 +107,9 @@ fn view_menu(ui: &mut egui::Ui, settings: &mut ViewSettings, panels: &mut Panels
     ui.checkbox(&mut settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");
     ui.checkbox(&mut settings.follow_root, "Follow root").on_hover_text("f");
     ui.checkbox(&mut settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
+    ui.add_enabled(settings.interpolate, egui::Checkbox::new(&mut settings.cubic, "Cubic in-betweens")).on_hover_text(
+        "Smooth across frames (Catmull-Rom positions, squad rotations) instead of straight blends; Edit ▸ Resample uses it too",
+    );
     ui.separator();
     quality_choice(ui, &mut settings.quality);
 }

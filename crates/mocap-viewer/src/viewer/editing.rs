@@ -13,7 +13,7 @@ impl Viewer {
         let edited = mocap::ops::edit::apply(clip, edit).map_err(|e| format!("{}: {e}", c.name))?;
         use mocap::ops::edit::Edit;
         let key = edit.key_frame();
-        let retimes = matches!(edit, Edit::Trim { .. } | Edit::Resample { .. } | Edit::Reverse | Edit::PingPong);
+        let retimes = matches!(edit, Edit::Trim { .. } | Edit::Resample { .. } | Edit::ResampleCubic { .. } | Edit::Reverse | Edit::PingPong);
         self.commit(character, edited, label, key, retimes, Some(edit.clone()), None);
         Ok(())
     }

@@ -450,7 +450,7 @@ impl Viewer {
     /// Poses every visible character at the playhead and rebuilds the scene primitives.
     pub fn pose(&mut self) {
         let smooth = self.state.playback.playing && self.state.settings.interpolate;
-        self.pose_characters(self.state.playback.time, smooth);
+        self.pose_characters(self.state.playback.time, smooth.then(|| self.state.settings.between()));
         pose_scene::build_scene(&self.state.stage, &self.state.settings, self.state.selected, &mut self.scene);
         self.drag_overlay();
         self.rig_overlay();
@@ -475,7 +475,7 @@ impl Viewer {
     pub fn video_frame(&mut self, time: f64, aspect: f32, follow: bool) -> (Scene, mocap_render::Camera) {
         let (target, follow_setting) = (self.state.camera.target, self.state.settings.follow_root);
         self.state.settings.follow_root = follow;
-        self.pose_characters(time, self.state.settings.interpolate);
+        self.pose_characters(time, self.state.settings.interpolate.then(|| self.state.settings.between()));
         let mut scene = Scene::default();
         pose_scene::build_scene(&self.state.stage, &self.state.settings, None, &mut scene);
         let camera = self.state.camera.to_camera(aspect.max(1e-3));
@@ -500,10 +500,11 @@ impl Viewer {
         VideoDefaults { fps, duration, range, view }
     }
 
-    /// Poses every visible character at `time` (`smooth`: between frames), and
+    /// Poses every visible character at `time` (`smooth`: how to blend between
+    /// frames; `None`: the frame shown), and
     /// moves the camera's target with the current character's root when the
     /// view follows it.
-    fn pose_characters(&mut self, time: f64, smooth: bool) {
+    fn pose_characters(&mut self, time: f64, smooth: Option<mocap::Interpolation>) {
         let body = self.state.settings.mode == DrawMode::Body;
         if let (Some(demo), Some(c)) = (&self.state.tentacle, self.state.stage.actors.first_mut()) {
             demo.pose(c);

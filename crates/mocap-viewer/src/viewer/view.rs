@@ -48,7 +48,8 @@ impl Viewer {
         if let Some(range) = view.range {
             self.state.playback.range = range;
         }
-        if let Some([joints, axes, follow, interp, weights, pose, footlock]) = view.draw {
+        if let Some([joints, axes, follow, interp, weights, pose, footlock, cubic]) = view.draw {
+            self.state.settings.cubic = cubic;
             self.state.settings.pose_mode = pose;
             self.state.settings.foot_lock = footlock;
             self.state.settings.show_joints = joints;

@@ -409,7 +409,8 @@ impl Model {
         let wrap = |f: usize| f % n;
         let FramePosition { frame0, frame1, alpha } = lap.position(time);
         let (frame0, frame1, blend) = match interpolation {
-            Interpolation::Linear => (frame0, frame1, alpha),
+            // Vertex animation blends two key frames on the GPU: cubic is linear here.
+            Interpolation::Linear | Interpolation::Cubic => (frame0, frame1, alpha),
             Interpolation::Step => (frame0, frame0, 0.0),
             Interpolation::Nearest => {
                 let f = lap.nearest(time);

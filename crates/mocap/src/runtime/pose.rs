@@ -230,3 +230,76 @@ pub fn blend(a: &LocalPose, b: &LocalPose, alpha: f32, out: &mut LocalPose) {
         out.stretch.push(0.0);
     }
 }
+
+/// Cubic in-betweens of four consecutive poses at `alpha` (0 = `a`, 1 = `b`;
+/// `before` precedes `a`, `after` follows `b`): translations and scales by
+/// uniform Catmull-Rom, rotations by squad on the shortest arc (each quaternion
+/// on the hemisphere of the one before), C¹ across frames and through every
+/// frame. Joints missing from a pose keep `a`'s values.
+pub fn cubic(before: &LocalPose, a: &LocalPose, b: &LocalPose, after: &LocalPose, alpha: f32, out: &mut LocalPose) {
+    out.clear(a.len());
+    for i in 0..a.len() {
+        let (Some(&ta), Some(&ra), Some(&sa)) = (a.translation.get(i), a.rotation.get(i), a.scale.get(i)) else {
+            break;
+        };
+        let at = |p: &LocalPose| (p.translation.get(i).copied(), p.rotation.get(i).copied(), p.scale.get(i).copied());
+        let (t, r, s) = match (at(before), at(b), at(after)) {
+            ((Some(t0), Some(r0), Some(s0)), (Some(tb), Some(rb), Some(sb)), (Some(t3), Some(r3), Some(s3))) => (
+                catmull_rom(t0, ta, tb, t3, alpha),
+                squad(r0, ra, rb, r3, alpha),
+                catmull_rom(s0, sa, sb, s3, alpha),
+            ),
+            _ => (ta, ra, sa),
+        };
+        out.translation.push(t);
+        out.rotation.push(r);
+        out.scale.push(s);
+        out.stretch.push(0.0);
+    }
+}
+
+/// Uniform Catmull-Rom between `p1` and `p2` at `t`.
+fn catmull_rom(p0: Vec3, p1: Vec3, p2: Vec3, p3: Vec3, t: f32) -> Vec3 {
+    let (t2, t3) = (t * t, t * t * t);
+    0.5 * ((2.0 * p1) + (p2 - p0) * t + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t2 + (3.0 * p1 - p0 - 3.0 * p2 + p3) * t3)
+}
+
+/// Squad between `q1` and `q2` at `t`, its inner controls from the neighbours.
+fn squad(q0: Quat, q1: Quat, q2: Quat, q3: Quat, t: f32) -> Quat {
+    let same_side = |q: Quat, reference: Quat| if q.dot(reference) < 0.0 { -q } else { q };
+    let q0 = same_side(q0, q1);
+    let q2 = same_side(q2, q1);
+    let q3 = same_side(q3, q2);
+    let s1 = inner(q0, q1, q2);
+    let s2 = inner(q1, q2, q3);
+    let path = q1.slerp(q2, t);
+    let controls = s1.slerp(s2, t);
+    path.slerp(controls, 2.0 * t * (1.0 - t)).normalize()
+}
+
+/// Squad's inner control at `q` between its neighbours.
+fn inner(prev: Quat, q: Quat, next: Quat) -> Quat {
+    let inv = q.conjugate();
+    let sum = log(inv * next) + log(inv * prev);
+    (q * exp(-0.25 * sum)).normalize()
+}
+
+/// The logarithm of a unit quaternion: its rotation vector halved.
+fn log(q: Quat) -> Vec3 {
+    let v = Vec3::new(q.x, q.y, q.z);
+    let s = v.length();
+    if s < 1e-7 {
+        return v;
+    }
+    v * (s.atan2(q.w) / s)
+}
+
+/// The exponential of a pure quaternion `v` (inverse of [`log`]).
+fn exp(v: Vec3) -> Quat {
+    let theta = v.length();
+    if theta < 1e-7 {
+        return Quat::from_xyzw(v.x, v.y, v.z, 1.0).normalize();
+    }
+    let k = theta.sin() / theta;
+    Quat::from_xyzw(v.x * k, v.y * k, v.z * k, theta.cos())
+}

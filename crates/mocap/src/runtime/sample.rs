@@ -4,7 +4,7 @@
 
 use crate::model::motion::Motion;
 use crate::model::skeleton::Skeleton;
-use crate::runtime::pose::{LocalPose, blend, from_row};
+use crate::runtime::pose::{LocalPose, blend, cubic, from_row};
 
 /// How to get a pose between two frames.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -17,6 +17,33 @@ pub enum Interpolation {
     /// Rotations by quaternion slerp (shortest arc), translations and scales by lerp.
     #[default]
     Linear,
+    /// Through every frame and smooth across them (C¹): translations and scales
+    /// by Catmull-Rom, rotations by squad on the shortest arc, each from the two
+    /// frames around the time and one on either side (the ends repeated).
+    Cubic,
+}
+
+impl Interpolation {
+    /// `nearest`, `step`, `linear` or `cubic`.
+    pub fn from_name(name: &str) -> Option<Interpolation> {
+        match name {
+            "nearest" => Some(Interpolation::Nearest),
+            "step" => Some(Interpolation::Step),
+            "linear" => Some(Interpolation::Linear),
+            "cubic" => Some(Interpolation::Cubic),
+            _ => None,
+        }
+    }
+
+    /// The name [`Interpolation::from_name`] reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            Interpolation::Nearest => "nearest",
+            Interpolation::Step => "step",
+            Interpolation::Linear => "linear",
+            Interpolation::Cubic => "cubic",
+        }
+    }
 }
 
 /// Scratch poses for [`sample`] (the two frames it blends).
@@ -24,6 +51,9 @@ pub enum Interpolation {
 pub struct SampleScratch {
     a: LocalPose,
     b: LocalPose,
+    /// The frames either side of `a` and `b` (cubic only).
+    before: LocalPose,
+    after: LocalPose,
 }
 
 /// The local pose at `time` seconds (clamped to the clip).
@@ -48,8 +78,17 @@ pub fn sample(
             from_row(skeleton, motion.row(p.frame1), unit, &mut scratch.b);
             blend(&scratch.a, &scratch.b, p.alpha, out);
         }
+        Interpolation::Cubic if p.frame1 != p.frame0 && p.alpha > 0.0 => {
+            let before = p.frame0.saturating_sub(1);
+            let after = (p.frame1 + 1).min(timeline.last());
+            from_row(skeleton, motion.row(before), unit, &mut scratch.before);
+            from_row(skeleton, motion.row(p.frame0), unit, &mut scratch.a);
+            from_row(skeleton, motion.row(p.frame1), unit, &mut scratch.b);
+            from_row(skeleton, motion.row(after), unit, &mut scratch.after);
+            cubic(&scratch.before, &scratch.a, &scratch.b, &scratch.after, p.alpha, out);
+        }
         Interpolation::Nearest => from_row(skeleton, motion.row(timeline.nearest(time)), unit, out),
         Interpolation::Step => from_row(skeleton, motion.row(p.frame0), unit, out),
-        Interpolation::Linear => from_row(skeleton, motion.row(p.frame0), unit, out),
+        Interpolation::Linear | Interpolation::Cubic => from_row(skeleton, motion.row(p.frame0), unit, out),
     }
 }

@@ -158,6 +158,13 @@ pub enum Edit {
         /// Keep positions (fold) or drop the joint's motion.
         fold: bool,
     },
+    /// [`Edit::Resample`] with cubic in-betweens
+    /// ([`crate::runtime::sample::Interpolation::Cubic`]): through every frame,
+    /// smooth across them. (Last in the list: stored sessions keep their indices.)
+    ResampleCubic {
+        /// The new frame rate.
+        fps: f64,
+    },
 }
 
 impl Edit {
@@ -216,7 +223,8 @@ pub fn apply(clip: &Clip, edit: &Edit) -> Result<Clip, EditError> {
             let back = (1..frames.saturating_sub(1)).rev();
             rows(&clip, (0..frames).chain(back).collect())
         }
-        Edit::Resample { fps } => resample(&clip, *fps),
+        Edit::Resample { fps } => resample(&clip, *fps, crate::runtime::sample::Interpolation::Linear),
+        Edit::ResampleCubic { fps } => resample(&clip, *fps, crate::runtime::sample::Interpolation::Cubic),
         Edit::LoopKnit { frames: k } => loop_knit(&clip, *k),
         Edit::InPlace { remove_turning } => in_place(&clip, *remove_turning),
         Edit::UpAxis { from, negative } => up_axis(&clip, *from, *negative),

@@ -23,7 +23,7 @@ use std::str::FromStr;
 /// | `in-place` | [`Edit::InPlace`] (turning kept) |
 /// | `in-place-turning` | [`Edit::InPlace`] (turning removed too) |
 /// | `trim:A:B` | [`Edit::Trim`]: keep frames A to B, inclusive |
-/// | `fps:N` | [`Edit::Resample`] to N frames per second |
+/// | `fps:N` | [`Edit::Resample`] to N frames per second (`fps:N:cubic`: [`Edit::ResampleCubic`]) |
 /// | `knit:N` | [`Edit::LoopKnit`] over the last N frames |
 /// | `up:AXIS` | [`Edit::UpAxis`]: the file's up is `x`, `y`, `z`, `-x`, `-y` or `-z`; `up-z` is `up:z` |
 /// | `scale:F` | [`Edit::Scale`] by F |
@@ -161,9 +161,14 @@ impl FromStr for EditSpec {
                 Edit::Trim { first: frame(a[0])?, last: frame(a[1])? }
             }
             "fps" => {
-                const FORM: &str = "fps:N";
-                let a = fields(1, "a frame rate", FORM)?;
-                Edit::Resample { fps: decimal(a[0]).ok_or_else(|| fail(NUMBER, FORM))? }
+                const FORM: &str = "fps:N or fps:N:cubic";
+                let (a, cubic) = match args.get(1).map(|s| s.trim()) {
+                    Some("cubic") => (fields(2, "a frame rate and `cubic`", FORM)?, true),
+                    Some("linear") => (fields(2, "a frame rate and `linear`", FORM)?, false),
+                    _ => (fields(1, "a frame rate", FORM)?, false),
+                };
+                let fps = decimal(a[0]).ok_or_else(|| fail(NUMBER, FORM))?;
+                if cubic { Edit::ResampleCubic { fps } } else { Edit::Resample { fps } }
             }
             "knit" => {
                 const FORM: &str = "knit:N";
@@ -293,6 +298,7 @@ impl Display for Edit {
         match self {
             Edit::Trim { first, last } => write!(f, "trim:{first}:{last}"),
             Edit::Resample { fps } => write!(f, "fps:{fps}"),
+            Edit::ResampleCubic { fps } => write!(f, "fps:{fps}:cubic"),
             Edit::Reverse => f.write_str("reverse"),
             Edit::PingPong => f.write_str("ping-pong"),
             Edit::LoopKnit { frames } => write!(f, "knit:{frames}"),
@@ -459,6 +465,7 @@ mod tests {
             ("trim:3:17", Edit::Trim { first: 3, last: 17 }),
             ("fps:60", Edit::Resample { fps: 60.0 }),
             ("fps: 29.97 ", Edit::Resample { fps: 29.97 }),
+            ("fps:120:cubic", Edit::ResampleCubic { fps: 120.0 }),
             ("knit:4", Edit::LoopKnit { frames: 4 }),
             ("scale:0.01", Edit::Scale { factor: 0.01 }),
             ("rename:Head:Kopf", Edit::Rename { from: name("Head"), to: name("Kopf") }),
@@ -531,7 +538,7 @@ mod tests {
         assert_eq!(message("trim:a:5"), "`trim:a:5`: expected first and last frames a:b (trim:A:B)");
         assert_eq!(message("up:q"), "`up:q`: expected x, y, z, -x, -y or -z (up:AXIS)");
         assert_eq!(message("scale:NaN"), "`scale:NaN`: expected a number (scale:F)");
-        assert_eq!(message("fps:fast"), "`fps:fast`: expected a number (fps:N)");
+        assert_eq!(message("fps:fast"), "`fps:fast`: expected a number (fps:N or fps:N:cubic)");
         assert_eq!(
             message("offset:Head:1,2"),
             "`offset:Head:1,2`: expected an offset x,y,z (three numbers) (offset:NAME:X,Y,Z)"
@@ -577,6 +584,7 @@ mod tests {
         prop_oneof![
             (any::<usize>(), any::<usize>()).prop_map(|(first, last)| Edit::Trim { first, last }),
             any::<f64>().prop_filter("finite", |x| x.is_finite()).prop_map(|fps| Edit::Resample { fps }),
+            any::<f64>().prop_filter("finite", |x| x.is_finite()).prop_map(|fps| Edit::ResampleCubic { fps }),
             Just(Edit::Reverse),
             Just(Edit::PingPong),
             any::<usize>().prop_map(|frames| Edit::LoopKnit { frames }),

@@ -10,7 +10,7 @@ use crate::runtime::pose::LocalPose;
 use crate::runtime::sample::{Interpolation, SampleScratch, sample};
 use glam::Quat;
 
-pub(super) fn resample(clip: &Clip, fps: f64) -> Result<Clip, EditError> {
+pub(super) fn resample(clip: &Clip, fps: f64, interpolation: Interpolation) -> Result<Clip, EditError> {
     if !(fps.is_finite() && fps > 0.0 && fps <= 100_000.0) {
         return err(format!("fps {fps}: expected a positive frame rate"));
     }
@@ -24,7 +24,7 @@ pub(super) fn resample(clip: &Clip, fps: f64) -> Result<Clip, EditError> {
     let poses: Vec<LocalPose> = (0..frames)
         .map(|f| {
             let mut local = LocalPose::default();
-            sample(clip.skeleton(), clip.motion(), f as f64 / fps, Interpolation::Linear, &mut scratch, &mut local);
+            sample(clip.skeleton(), clip.motion(), f as f64 / fps, interpolation, &mut scratch, &mut local);
             local
         })
         .collect();
