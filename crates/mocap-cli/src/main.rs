@@ -307,6 +307,10 @@ enum Command {
         /// Sampling between frames (--time, --video): nearest, linear (default) or cubic.
         #[arg(long)]
         interpolation: Option<String>,
+        /// Draw this joint's path over the whole clip (the root's on the floor), a tick each
+        /// second and the current point.
+        #[arg(long, value_name = "JOINT")]
+        trail: Option<String>,
     },
     /// Checks files or directories (recursively): one line per file.
     Validate {
@@ -469,6 +473,7 @@ fn main() -> ExitCode {
             camera,
             up,
             interpolation,
+            trail,
         } => {
             files.extend(skin);
             let is_video = video.is_some();
@@ -485,6 +490,7 @@ fn main() -> ExitCode {
                 animation: animation.as_deref(),
                 up: up.as_deref(),
                 interpolation: interpolation.as_deref(),
+                trail: trail.as_deref(),
             };
             match video.or(out) {
                 Some(_) if !is_video && (fps.is_some() || from.is_some() || to.is_some()) => {

@@ -283,6 +283,8 @@ pub struct StageView {
     mode: DrawMode,
     /// How poses between frames are sampled (default linear).
     interpolation: Interpolation,
+    /// The joint whose path over the whole clip is drawn (`--trail`).
+    trail: Option<String>,
     scratch: std::cell::RefCell<(PoseScratch, Vec<mocap::Transform>)>,
 }
 
@@ -298,6 +300,7 @@ impl StageView {
             stage: Stage::new(actors.collect(), Layout::Spread),
             mode: DrawMode::default(),
             interpolation: Interpolation::Linear,
+            trail: None,
             scratch: Default::default(),
         }
     }
@@ -316,6 +319,14 @@ impl StageView {
         for i in 0..self.stage.actors.len() {
             self.stage.set_up_axis(i, up);
         }
+    }
+
+    /// Draws joint `name`'s path over each clip that has it (the root's on the
+    /// floor), a tick each second and the current point; false when no clip has it.
+    pub fn set_trail(&mut self, name: &str) -> bool {
+        let found = self.stage.actors.iter().any(|a| a.asset.clip().is_some_and(|c| c.skeleton().find(name).is_some()));
+        self.trail = found.then(|| name.to_string());
+        found
     }
 
     /// Samples between frames by `interpolation` (nearest, linear or cubic).
@@ -369,6 +380,25 @@ impl StageView {
                 ghost: &[],
             };
             mocap_scene::push_actor(scene, &draw, &style);
+        }
+        drop(scratch);
+        self.push_trails(time, scene);
+    }
+
+    /// The `--trail` joint's path on every clip that has it.
+    fn push_trails(&self, time: f64, scene: &mut Scene) {
+        let Some(name) = &self.trail else { return };
+        let floor = self.stage.floor_height() + 0.003;
+        let mut scratch = Default::default();
+        for (n, actor) in self.stage.visible() {
+            let Some(clip) = actor.asset.clip() else { continue };
+            let Some(joint) = clip.skeleton().find(name) else { continue };
+            let on_floor = clip.skeleton().joints().get(joint).is_some_and(|j| j.parent.is_none()).then_some(floor);
+            let step = clip.frame_time().max(1.0 / 30.0);
+            let (path, ticks) = mocap_scene::joint_path(actor, joint, (0.0, clip.duration()), step, on_floor, &mut scratch);
+            let (now, _) = mocap_scene::joint_path(actor, joint, (time, time), 1.0, on_floor, &mut scratch);
+            let [r, g, b, _] = mocap_render::PALETTE[n % mocap_render::PALETTE.len()];
+            mocap_scene::push_trail(scene, &path, &ticks, now.first().copied(), [r, g, b, 230], actor.world_extent());
         }
     }
 

@@ -47,3 +47,37 @@ pub fn draw(c: &Character, color: [u8; 4], selected: Option<usize>) -> ActorDraw
         ghost: &c.extra.ghost,
     }
 }
+
+/// Onion skin and trails ([`mocap_scene::push_onion`], [`mocap_scene::push_trail`])
+/// for every visible clip at `time`, as the view settings ask.
+pub fn push_motion_marks(stage: &Stage, settings: &ViewSettings, selected: Option<Selection>, time: f64, scene: &mut Scene) {
+    if !settings.onion && !settings.trails {
+        return;
+    }
+    let mut scratch = Default::default();
+    let floor = stage.floor_height() + 0.003;
+    for (i, c) in stage.visible() {
+        let Some(clip) = c.clip() else { continue };
+        if settings.onion {
+            let onion = mocap_scene::Onion { count: settings.onion_count, step: settings.onion_step };
+            mocap_scene::push_onion(scene, c, &c.extra.drawable.figure, time, onion, &mut scratch);
+        }
+        if settings.trails {
+            // Sampled at the clip's rate, at most 30 times a second.
+            let step = clip.frame_time().max(1.0 / 30.0);
+            let root = clip.skeleton().roots().next().unwrap_or(0);
+            let window = (time - 5.0).max(0.0)..=(time + 5.0).min(c.asset.duration());
+            let (path, ticks) =
+                mocap_scene::joint_path(c, root, (*window.start(), *window.end()), step, Some(floor), &mut scratch);
+            let current = c.extra.pose.get(root).map(|t| mocap::glam::Vec3::new(t.translation.x, floor, t.translation.z));
+            let [r, g, b, _] = c.extra.color;
+            mocap_scene::push_trail(scene, &path, &ticks, current, [r, g, b, 220], c.extent);
+            if let Some(s) = selected.filter(|s| s.character == i && s.joint != root) {
+                let window = ((time - 1.0).max(0.0), (time + 1.0).min(c.asset.duration()));
+                let (path, ticks) = mocap_scene::joint_path(c, s.joint, window, step, None, &mut scratch);
+                let current = c.extra.pose.get(s.joint).map(|t| t.translation);
+                mocap_scene::push_trail(scene, &path, &ticks, current, [255, 220, 90, 230], c.extent);
+            }
+        }
+    }
+}

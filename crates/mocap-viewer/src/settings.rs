@@ -19,6 +19,15 @@ pub struct ViewSettings {
     pub follow_root: bool,
     /// Interpolate between frames while playing (paused views are always frame-exact).
     pub interpolate: bool,
+    /// Onion skin: poses before (blue) and after (orange) the frame, fading.
+    pub onion: bool,
+    /// Onion-skin poses on each side (1 to 8).
+    pub onion_count: usize,
+    /// Seconds between onion-skin poses.
+    pub onion_step: f64,
+    /// Trails: the root's path on the floor (a tick each second, the current
+    /// point) and the selected joint's path over the second either side.
+    pub trails: bool,
     /// Interpolate with cubic in-betweens (Catmull-Rom translations, squad
     /// rotations: smooth across frames) instead of linear; Edit ▸ Resample too.
     pub cubic: bool,
@@ -54,6 +63,10 @@ impl Default for ViewSettings {
             follow_root: false,
             interpolate: true,
             cubic: false,
+            onion: false,
+            onion_count: 3,
+            onion_step: 0.2,
+            trails: false,
             pose_mode: false,
             foot_lock: false,
             key_window: 3,

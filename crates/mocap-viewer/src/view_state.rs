@@ -15,7 +15,7 @@
 //! not listed play all their frames; `none` or absent when all do), `up` the file
 //! axis that points up in each character, one letter per character in order (`up=yz`:
 //! the second is Z-up; absent: as guessed when the clips opened),
-//! `shadows` 0/1, `quality` `auto`, `full` or `fast` (see [`crate::quality`]), `draw` a comma list of `joints`, `axes`, `follow`, `interp`, `weights`, `pose`, `footlock`, `cubic`, and `panels` a comma list of `tree`, `inspector` (or
+//! `shadows` 0/1, `quality` `auto`, `full` or `fast` (see [`crate::quality`]), `draw` a comma list of `joints`, `axes`, `follow`, `interp`, `weights`, `pose`, `footlock`, `cubic`, `onion`, `trails`, and `panels` a comma list of `tree`, `inspector` (or
 //! `none`). Timeline frames (`f`, `range`, the frame shown) count in the frame time
 //! of the selection's character, else the first one. Unknown keys and unreadable
 //! values are ignored; missing keys leave the viewer as it is.
@@ -60,12 +60,13 @@ pub struct ViewState {
     /// The 3D view's quality.
     pub quality: Option<crate::quality::Quality>,
     /// Draw flags: joints, axes, follow root, interpolate, weights view, pose mode.
-    pub draw: Option<[bool; 8]>,
+    pub draw: Option<[bool; 10]>,
     /// Panels: hierarchy, inspector.
     pub panels: Option<[bool; 2]>,
 }
 
-const DRAW_NAMES: [&str; 8] = ["joints", "axes", "follow", "interp", "weights", "pose", "footlock", "cubic"];
+const DRAW_NAMES: [&str; 10] =
+    ["joints", "axes", "follow", "interp", "weights", "pose", "footlock", "cubic", "onion", "trails"];
 const PANEL_NAMES: [&str; 2] = ["tree", "inspector"];
 
 impl ViewState {
@@ -175,6 +176,8 @@ impl ViewState {
             st.pose_mode,
             st.foot_lock,
             st.cubic,
+            st.onion,
+            st.trails,
         ];
         parts.push(format!("draw={}", join_flags(draw, DRAW_NAMES)));
         let panels = [viewer.panels.hierarchy, viewer.panels.inspector];
@@ -353,6 +356,6 @@ mod tests {
         assert_eq!(s.camera, None);
         assert_eq!(s.range, None);
         assert_eq!(s.playing, Some(true));
-        assert_eq!(s.draw, Some([false, true, false, false, false, false, false, false]));
+        assert_eq!(s.draw, Some([false, true, false, false, false, false, false, false, false, false]));
     }
 }

@@ -43,6 +43,8 @@ pub struct RenderOptions<'a> {
     pub up: Option<&'a str>,
     /// Sampling between frames: `nearest`, `linear` (default) or `cubic`.
     pub interpolation: Option<&'a str>,
+    /// The joint whose path is drawn (`--trail`).
+    pub trail: Option<&'a str>,
 }
 
 /// `--interpolation NAME`.
@@ -67,6 +69,11 @@ pub(super) fn prepare(
     if let Some(name) = options.up {
         let up = mocap::UpAxis::from_name(name).ok_or_else(|| format!("--up: expected y or z, found `{name}`"))?;
         stage.set_up_axis(up);
+    }
+    if let Some(name) = options.trail {
+        if !stage.set_trail(name) {
+            return Err(format!("--trail {name}: no clip in {} has that joint", shown(files)));
+        }
     }
     if let Some(name) = options.interpolation {
         stage.set_interpolation(interpolation(name)?);

@@ -106,6 +106,17 @@ fn view_menu(ui: &mut egui::Ui, settings: &mut ViewSettings, panels: &mut Panels
         .on_hover_text("Colour the body by its bone influences (body mode)");
     ui.checkbox(&mut settings.show_axes, "Axes").on_hover_text("Bone axes: x red, y green, z blue (a)");
     ui.checkbox(&mut settings.follow_root, "Follow root").on_hover_text("f");
+    ui.checkbox(&mut settings.onion, "Onion skin")
+        .on_hover_text("Poses before (blue) and after (orange) the frame, fading with distance; they play along");
+    ui.add_enabled_ui(settings.onion, |ui| {
+        ui.horizontal(|ui| {
+            ui.add(egui::DragValue::new(&mut settings.onion_count).range(1..=8).suffix(" each side"));
+            ui.add(egui::DragValue::new(&mut settings.onion_step).range(0.02..=2.0).speed(0.01).suffix(" s apart"));
+        });
+    });
+    ui.checkbox(&mut settings.trails, "Trails").on_hover_text(
+        "The root's path on the floor (a tick each second, the current point) and the selected joint's path over a second either side",
+    );
     ui.checkbox(&mut settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
     ui.add_enabled(settings.interpolate, egui::Checkbox::new(&mut settings.cubic, "Cubic in-betweens")).on_hover_text(
         "Smooth across frames (Catmull-Rom positions, squad rotations) instead of straight blends; Edit ▸ Resample uses it too",

@@ -452,6 +452,13 @@ impl Viewer {
         let smooth = self.state.playback.playing && self.state.settings.interpolate;
         self.pose_characters(self.state.playback.time, smooth.then(|| self.state.settings.between()));
         pose_scene::build_scene(&self.state.stage, &self.state.settings, self.state.selected, &mut self.scene);
+        pose_scene::push_motion_marks(
+            &self.state.stage,
+            &self.state.settings,
+            self.state.selected,
+            self.state.playback.time,
+            &mut self.scene,
+        );
         self.drag_overlay();
         self.rig_overlay();
         if let Some(demo) = &mut self.state.tentacle {
@@ -478,6 +485,7 @@ impl Viewer {
         self.pose_characters(time, self.state.settings.interpolate.then(|| self.state.settings.between()));
         let mut scene = Scene::default();
         pose_scene::build_scene(&self.state.stage, &self.state.settings, None, &mut scene);
+        pose_scene::push_motion_marks(&self.state.stage, &self.state.settings, self.state.selected, time, &mut scene);
         let camera = self.state.camera.to_camera(aspect.max(1e-3));
         self.state.camera.target = target;
         self.state.settings.follow_root = follow_setting;

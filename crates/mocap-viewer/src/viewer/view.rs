@@ -48,8 +48,10 @@ impl Viewer {
         if let Some(range) = view.range {
             self.state.playback.range = range;
         }
-        if let Some([joints, axes, follow, interp, weights, pose, footlock, cubic]) = view.draw {
+        if let Some([joints, axes, follow, interp, weights, pose, footlock, cubic, onion, trails]) = view.draw {
             self.state.settings.cubic = cubic;
+            self.state.settings.onion = onion;
+            self.state.settings.trails = trails;
             self.state.settings.pose_mode = pose;
             self.state.settings.foot_lock = footlock;
             self.state.settings.show_joints = joints;
