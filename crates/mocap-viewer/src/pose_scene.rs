@@ -71,12 +71,12 @@ pub fn push_motion_marks(stage: &Stage, settings: &ViewSettings, selected: Optio
                 mocap_scene::joint_path(c, root, (*window.start(), *window.end()), step, Some(floor), &mut scratch);
             let current = c.extra.pose.get(root).map(|t| mocap::glam::Vec3::new(t.translation.x, floor, t.translation.z));
             let [r, g, b, _] = c.extra.color;
-            mocap_scene::push_trail(scene, &path, &ticks, current, [r, g, b, 220], c.extent);
+            mocap_scene::push_trail(scene, &path, &ticks, current, [r, g, b, 220], c.world_extent());
             if let Some(s) = selected.filter(|s| s.character == i && s.joint != root) {
                 let window = ((time - 1.0).max(0.0), (time + 1.0).min(c.asset.duration()));
                 let (path, ticks) = mocap_scene::joint_path(c, s.joint, window, step, None, &mut scratch);
                 let current = c.extra.pose.get(s.joint).map(|t| t.translation);
-                mocap_scene::push_trail(scene, &path, &ticks, current, [255, 220, 90, 230], c.extent);
+                mocap_scene::push_trail(scene, &path, &ticks, current, [255, 220, 90, 230], c.world_extent());
             }
         }
     }
