@@ -271,6 +271,8 @@ pub enum Command {
     SetVideoExport(bool),
     /// Ask the host to open its video export dialog.
     ExportVideo,
+    /// Compare character `.1` against character `.0` (`None`: stop comparing).
+    Compare(Option<(usize, usize)>),
 }
 
 impl Command {

@@ -14,6 +14,7 @@ pub mod app;
 pub mod capture;
 pub mod character;
 pub mod command;
+pub mod comparison;
 pub mod drag;
 pub mod fonts;
 pub mod gesture;

@@ -58,6 +58,8 @@ pub struct AppState {
     pub pending_close: Option<usize>,
     /// Whether the page holds an earlier session (File ▸ Restore previous session).
     pub previous_session: bool,
+    /// Compare ▸ with another character, while on.
+    pub comparison: Option<crate::comparison::Comparison>,
     /// Whether the host can export video (Edit ▸ Export video… shows).
     pub video_export: bool,
 }

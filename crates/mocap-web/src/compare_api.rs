@@ -11,6 +11,17 @@ fn set(obj: &Object, key: &str, value: impl Into<JsValue>) {
 
 #[wasm_bindgen]
 impl MocapViewer {
+    /// Shows character `j` compared against character `i` in the view (Edit ▸
+    /// Compare with): `j` as a ghost in `i`'s place, its bones coloured by
+    /// error, the error curve under the timeline; with no arguments, stops.
+    /// Returns the error message, or `undefined`.
+    #[wasm_bindgen(js_name = showComparison)]
+    pub fn show_comparison(&self, i: Option<u32>, j: Option<u32>) -> Option<String> {
+        let pair = i.zip(j).map(|(i, j)| (i as usize, j as usize));
+        let mut v = self.viewer.try_borrow_mut().ok()?;
+        v.try_apply(mocap_viewer::Command::Compare(pair)).err()
+    }
+
     /// Character `j` against character `i` (each as edited): `j` sampled at
     /// `i`'s frame times, both in metres with Y up. `align` is `"none"`
     /// (default), `"root"` or `"procrustes"`. Returns `{mpjpe, mpjpeM,

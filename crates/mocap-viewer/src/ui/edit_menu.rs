@@ -23,6 +23,10 @@ pub struct EditMenuView<'a> {
     pub video_export: bool,
     /// Resample with cubic in-betweens (View ▸ Cubic in-betweens).
     pub cubic: bool,
+    /// Other open clips the current one can be compared with: (index, name).
+    pub compare_with: Vec<(usize, &'a str)>,
+    /// Whether a comparison is on.
+    pub comparing: bool,
 }
 
 /// Shows the Edit menu's entries (inside the toolbar's menu button); what the
@@ -120,6 +124,7 @@ pub fn show(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
         out.push(Command::OpenRetargetDialog(index));
         ui.close();
     }
+    compare_menu(ui, index, view, out);
     ui.separator();
     history_entry(ui, Command::Undo, view.undo, out);
     history_entry(ui, Command::Redo, view.redo, out);
@@ -137,6 +142,31 @@ pub fn show(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
     }
     if let Some((edit, label)) = edit {
         out.push(Command::Edit { character: index, edit, label });
+        ui.close();
+    }
+}
+
+/// Compare with ▸ each other open clip (its errors against this one), or stop.
+fn compare_menu(ui: &mut egui::Ui, index: usize, view: &EditMenuView, out: &mut Vec<Command>) {
+    if view.compare_with.is_empty() {
+        ui.add_enabled(false, egui::Button::new("Compare with…"))
+            .on_disabled_hover_text("Open (Add…) a second take of a skeleton to compare them");
+    } else {
+        super::menu(ui, "Compare with", &mut |ui| {
+            for (other, name) in &view.compare_with {
+                if ui
+                    .button(*name)
+                    .on_hover_text("Draw it as a ghost here, each bone coloured by its error; the error per frame under the timeline")
+                    .clicked()
+                {
+                    out.push(Command::Compare(Some((index, *other))));
+                    ui.close();
+                }
+            }
+        });
+    }
+    if view.comparing && ui.button("Stop comparing").clicked() {
+        out.push(Command::Compare(None));
         ui.close();
     }
 }

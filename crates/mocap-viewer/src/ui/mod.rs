@@ -1,5 +1,6 @@
 //! The egui panels, one per file.
 
+pub mod compare_legend;
 pub mod capture;
 pub mod edit_menu;
 pub mod hierarchy;

@@ -22,6 +22,8 @@ pub struct TimelineView<'a> {
     pub corrections: bool,
     /// The embed layout's minimal timeline.
     pub embed: bool,
+    /// Compare ▸ with: the error per frame, drawn under the scrub bar.
+    pub comparison: Option<(&'a crate::comparison::Comparison, f64)>,
 }
 
 /// Shows the timeline panel; what the user does comes back as commands in `out`.
@@ -121,6 +123,9 @@ pub fn show(ui: &mut egui::Ui, view: &TimelineView, out: &mut Vec<Command>) {
                 }
             }
         });
+        if let Some((comparison, dt)) = view.comparison {
+            error_curve(ui, comparison, dt, view.playback.time, out);
+        }
         ui.add_space(2.0);
     });
 }
@@ -233,4 +238,34 @@ fn key_mode(ui: &mut egui::Ui, settings: &mut crate::settings::ViewSettings) {
 fn frame_slider(ui: &mut egui::Ui, frame: &mut usize, last: usize) -> egui::Response {
     let slider = egui::Slider::new(frame, 0..=last.max(1)).show_value(true).trailing_fill(true);
     ui.add_enabled(last > 0, slider)
+}
+
+/// The comparison's error per frame (its frame time `dt`), the playhead, and
+/// the worst frame one click away.
+fn error_curve(ui: &mut egui::Ui, comparison: &crate::comparison::Comparison, dt: f64, time: f64, out: &mut Vec<Command>) {
+    let r = &comparison.report;
+    ui.horizontal(|ui| {
+        ui.label(format!("Error: MPJPE {:.2} {} ({:.3} m)", r.mpjpe, comparison.units, r.mpjpe_m));
+        if ui
+            .button(format!("Worst frame ({})", r.worst_frame))
+            .on_hover_text("Go to the frame where the takes differ most")
+            .clicked()
+        {
+            out.push(Command::SetTime(r.worst_frame as f64 * dt));
+        }
+        if ui.button("Stop comparing").clicked() {
+            out.push(Command::Compare(None));
+        }
+    });
+    let points: egui_plot::PlotPoints = r.frames.iter().enumerate().map(|(k, e)| [k as f64 * dt, f64::from(*e)]).collect();
+    egui_plot::Plot::new("comparison error")
+        .height(70.0)
+        .allow_scroll(false)
+        .allow_zoom(false)
+        .allow_drag(false)
+        .show_axes([false, true])
+        .show(ui, |plot| {
+            plot.line(egui_plot::Line::new("error", points).color(egui::Color32::from_rgb(235, 120, 80)));
+            plot.vline(egui_plot::VLine::new("playhead", time).color(egui::Color32::YELLOW));
+        });
 }

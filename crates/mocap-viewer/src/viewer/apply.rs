@@ -230,6 +230,13 @@ impl Viewer {
             (Command::RestorePrevious, _) => self.requests.push(HostRequest::RestorePrevious),
             (Command::SetVideoExport(can), _) => self.state.video_export = can,
             (Command::ExportVideo, _) => self.requests.push(HostRequest::ExportVideo),
+            (Command::Compare(None), _) => self.state.comparison = None,
+            (Command::Compare(Some((a, b))), _) => {
+                if let Err(e) = self.compare(a, b) {
+                    self.state.comparison = None;
+                    return Err(e);
+                }
+            }
             (Command::Notify(notice), _) => self.state.notice = Some(notice),
             (Command::Step(_) | Command::First | Command::Last, None) => {}
         }

@@ -16,6 +16,7 @@ use crate::{pose_scene, ui};
 
 mod apply;
 mod capture;
+mod compare;
 mod drag;
 mod editing;
 mod rig;
@@ -387,6 +388,10 @@ impl Viewer {
                 self.state.playback.playing && !self.state.stage.actors.is_empty(),
             );
             joint_drag = dragged;
+            if let Some(c) = &self.state.comparison {
+                let name = |i: usize| self.state.stage.actors.get(i).map_or("", |x| x.name.as_str());
+                ui::compare_legend::show(ui, ui.max_rect(), c, name(c.b), name(c.a));
+            }
             if ui::overlay::show(ui, self.state.notice.as_ref(), !self.state.stage.actors.is_empty()) {
                 commands.push(Command::DismissNotice);
             }
@@ -451,7 +456,9 @@ impl Viewer {
     pub fn pose(&mut self) {
         let smooth = self.state.playback.playing && self.state.settings.interpolate;
         self.pose_characters(self.state.playback.time, smooth.then(|| self.state.settings.between()));
+        self.refresh_comparison();
         pose_scene::build_scene(&self.state.stage, &self.state.settings, self.state.selected, &mut self.scene);
+        self.comparison_overlay();
         pose_scene::push_motion_marks(
             &self.state.stage,
             &self.state.settings,

@@ -21,6 +21,10 @@ impl Viewer {
             keys: s.history.keys(s.current()),
             corrections: s.has_corrections(),
             embed: s.panels.embed,
+            comparison: s
+                .comparison
+                .as_ref()
+                .and_then(|c| s.stage.actors.get(c.a).and_then(|x| x.clip()).map(|clip| (c, clip.frame_time()))),
         }
     }
 
@@ -51,6 +55,15 @@ impl Viewer {
             others: s.stage.actors.iter().enumerate().filter(|(i, c)| *i != index && c.clip().is_some()).count(),
             video_export: s.video_export,
             cubic: s.settings.cubic,
+            compare_with: s
+                .stage
+                .actors
+                .iter()
+                .enumerate()
+                .filter(|(i, c)| *i != index && c.clip().is_some())
+                .map(|(i, c)| (i, c.name.as_str()))
+                .collect(),
+            comparing: s.comparison.is_some(),
         }
     }
 
