@@ -36,6 +36,23 @@ try {
     const seconds = r.ms / 1000;
     console.log(`  ${format.padEnd(4)} ${fps} fps ${seconds.toFixed(1).padStart(6)} s (${(Math.floor(d.duration * fps + 1e-6) + 1) / seconds | 0} frames/s)   real time ${d.duration.toFixed(1)} s   ${(d.duration / seconds).toFixed(2)}x real time (aim >= 1)   ${(r.bytes / 1e6).toFixed(1)} MB`);
   }
+  // Onion skin and trails: the frame time while playing, with and without them.
+  const frameMs = async (draw) => page.evaluate(async (draw) => {
+    const v = window.mocapViewer;
+    v.applyViewState(`draw=${draw}&quality=full`);
+    v.selectJoint('LeftHand');
+    v.play();
+    await new Promise((r) => setTimeout(r, 800));
+    const f0 = v.state().framesRendered;
+    const t0 = performance.now();
+    await new Promise((r) => setTimeout(r, 4000));
+    const frames = v.state().framesRendered - f0;
+    v.pause();
+    return (performance.now() - t0) / Math.max(1, frames);
+  }, draw);
+  const plain = await frameMs('joints,interp');
+  const marked = await frameMs('joints,interp,onion,trails');
+  console.log(`onion skin (3 each side) and trails, one character, software WebGL2, playing: ${plain.toFixed(1)} ms -> ${marked.toFixed(1)} ms a frame (+${(100 * (marked / plain - 1)).toFixed(0)}%, aim < 20%)`);
 } finally {
   await close();
 }

@@ -104,7 +104,7 @@ try {
     await slowClick(page, 950, 12);
     await page.waitForTimeout(500);
     await page.screenshot({ path: shot('menu') });
-    await slowClick(page, 963, 446);
+    await slowClick(page, 963, 470);
     await page.waitForSelector('#video-export[open]', { timeout: 15000 });
     await page.screenshot({ path: shot('dialog') });
     await page.selectOption('#video-export select[name=format]', 'gif');
