@@ -43,9 +43,14 @@ pub fn push_onion<E>(
             let (ps, pose) = scratch;
             actor.pose_at(t, Interpolation::Linear, ps, pose);
             let color = [tint[0], tint[1], tint[2], (40.0 + 150.0 * fade) as u8];
+            // Bones under 3% of the figure (fingers, helpers) are left out: on a
+            // software rasteriser every line costs, and they do not show the pose.
+            let shortest = actor.world_extent() * 0.03;
             for (joint, tr) in figure.iter().zip(pose.iter()) {
                 if let Some(parent) = joint.parent.and_then(|p| pose.get(p)) {
-                    scene.lines.push(Line { a: parent.translation, b: tr.translation, color, width_px: 1.5 + fade });
+                    if parent.translation.distance(tr.translation) >= shortest {
+                        scene.lines.push(Line { a: parent.translation, b: tr.translation, color, width_px: 1.0 + fade });
+                    }
                 }
             }
         }

@@ -54,6 +54,8 @@ pub struct Viewer {
     gesture: crate::gesture::Gestures,
     pub(crate) viewport: Viewport,
     pub(crate) scene: Scene,
+    /// Whole-clip paths the trails draw from (see [`pose_scene::TrailCache`]).
+    trails: pose_scene::TrailCache,
     pose_scratch: mocap::stage::PoseScratch,
     last_time: Option<f64>,
     /// Set by [`Viewer::hold`] while the host reads files.
@@ -464,6 +466,7 @@ impl Viewer {
             &self.state.settings,
             self.state.selected,
             self.state.playback.time,
+            &mut self.trails,
             &mut self.scene,
         );
         self.drag_overlay();
@@ -492,7 +495,14 @@ impl Viewer {
         self.pose_characters(time, self.state.settings.interpolate.then(|| self.state.settings.between()));
         let mut scene = Scene::default();
         pose_scene::build_scene(&self.state.stage, &self.state.settings, None, &mut scene);
-        pose_scene::push_motion_marks(&self.state.stage, &self.state.settings, self.state.selected, time, &mut scene);
+        pose_scene::push_motion_marks(
+            &self.state.stage,
+            &self.state.settings,
+            self.state.selected,
+            time,
+            &mut self.trails,
+            &mut scene,
+        );
         let camera = self.state.camera.to_camera(aspect.max(1e-3));
         self.state.camera.target = target;
         self.state.settings.follow_root = follow_setting;
