@@ -186,8 +186,9 @@ enum Command {
         a: PathBuf,
         /// The second take (same skeleton, or matched by joint names and tree shape).
         b: PathBuf,
-        /// `none`, `root` (each frame: roots to the origin, B turned to A's heading) or
-        /// `procrustes` (each frame: B's best rigid fit onto A).
+        /// `none`, `root` (each frame: roots to the origin, B turned to A's heading),
+        /// `procrustes` (each frame: B's best rigid fit onto A), or `root-once` /
+        /// `procrustes-once` (the same once for the whole take).
         #[arg(long, default_value = "none")]
         align: String,
         /// Joint pairs by hand: a JSON object `{"A_JOINT": "B_JOINT", …}`.

@@ -50,7 +50,7 @@ fn bad_requests_are_refused_clearly() {
     let w = walk();
     let out = run(&[w.as_os_str(), w.as_os_str(), "--align".as_ref(), "sideways".as_ref()]);
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("expected none, root or procrustes"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("expected none, root, procrustes, root-once or procrustes-once"));
     let out = run(&[w.as_os_str(), "missing.bvh".as_ref()]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("missing.bvh"));
 }

@@ -472,7 +472,7 @@ impl Clip {
         map: Option<Vec<(String, String)>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         use mocap::ops::compare::Align;
-        let align = Align::from_name(align).ok_or_else(|| PyValueError::new_err(format!("align={align}: expected 'none', 'root' or 'procrustes'")))?;
+        let align = Align::from_name(align).ok_or_else(|| PyValueError::new_err(format!("align={align}: expected 'none', 'root', 'procrustes', 'root-once' or 'procrustes-once'")))?;
         let other_clip = match other.cast::<Clip>() {
             Ok(c) => c.get().clip.clone(),
             Err(_) => read(py, other, None, None, None)?.clip,

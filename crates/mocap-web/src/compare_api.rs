@@ -32,7 +32,7 @@ impl MocapViewer {
     pub fn compare(&self, i: u32, j: u32, align: Option<String>) -> Result<JsValue, JsError> {
         let align = align.as_deref().unwrap_or("none");
         let align = mocap::ops::compare::Align::from_name(align)
-            .ok_or_else(|| JsError::new(&format!("align {align}: expected none, root or procrustes")))?;
+            .ok_or_else(|| JsError::new(&format!("align {align}: expected none, root, procrustes, root-once or procrustes-once")))?;
         let v = self.viewer.try_borrow().map_err(|_| JsError::new("viewer busy"))?;
         let clip = |k: u32| {
             v.state()

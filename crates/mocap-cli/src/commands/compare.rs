@@ -5,7 +5,7 @@ use mocap::ops::compare::{Align, Report};
 
 /// Runs `mocap compare A B`: a table, or JSON with `--json`.
 pub fn compare(a: &Path, b: &Path, align: &str, map: Option<&Path>, as_json: bool) -> Result<ExitCode, String> {
-    let align = Align::from_name(align).ok_or_else(|| format!("--align {align}: expected none, root or procrustes"))?;
+    let align = Align::from_name(align).ok_or_else(|| format!("--align {align}: expected none, root, procrustes, root-once or procrustes-once"))?;
     let first = read_clip(&[a.to_path_buf()])?;
     let second = read_clip(&[b.to_path_buf()])?;
     let map = match map {

@@ -27,15 +27,23 @@ pub enum Align {
     /// Each frame: the rigid motion (rotation and translation, Kabsch/Horn)
     /// that best fits `b`'s joints onto `a`'s.
     Procrustes,
+    /// Once for the whole take: `b` moved so its first frame's root lies on
+    /// `a`'s, turned to `a`'s first heading.
+    RootOnce,
+    /// Once for the whole take: the one rigid motion that best fits all of
+    /// `b`'s frames onto `a`'s.
+    ProcrustesOnce,
 }
 
 impl Align {
-    /// `none`, `root` or `procrustes`.
+    /// `none`, `root`, `procrustes`, `root-once` or `procrustes-once`.
     pub fn from_name(name: &str) -> Option<Align> {
         match name {
             "none" => Some(Align::None),
             "root" => Some(Align::Root),
             "procrustes" => Some(Align::Procrustes),
+            "root-once" => Some(Align::RootOnce),
+            "procrustes-once" => Some(Align::ProcrustesOnce),
             _ => None,
         }
     }
@@ -102,7 +110,13 @@ pub fn compare(a: &Clip, b: &Clip, align: Align, map: &[(String, String)]) -> Re
     if pairs.is_empty() {
         return Err(CompareError::NoJoints);
     }
-    let ctx = Context { a, b, pairs: &pairs, align, same, exact: (b.frame_time() - a.frame_time()).abs() < 1e-12 };
+    let mut ctx =
+        Context { a, b, pairs: &pairs, align, same, exact: (b.frame_time() - a.frame_time()).abs() < 1e-12, once: None };
+    ctx.once = match align {
+        Align::RootOnce => Some(root_once(&ctx)),
+        Align::ProcrustesOnce => Some(procrustes_once(&ctx)?),
+        _ => None,
+    };
     // Frames in pieces, measured on every core, merged in order.
     let ranges: Vec<std::ops::Range<usize>> =
         (0..a.frame_count()).step_by(PIECE).map(|s| s..(s + PIECE).min(a.frame_count())).collect();
@@ -149,6 +163,139 @@ struct Context<'a> {
     same: bool,
     /// Same frame times: `b`'s own frames, not samples that round.
     exact: bool,
+    /// The rigid motion every frame of `b` is moved by (the `-once` alignments).
+    once: Option<Rigid>,
+}
+
+/// A rigid motion: `p` goes to `rotation * (p - from) + to`.
+#[derive(Clone, Copy, Debug)]
+struct Rigid {
+    from: Vec3,
+    to: Vec3,
+    rotation: Quat,
+}
+
+/// Both takes posed at frame `f` of `a`: the paired joints' positions (metres,
+/// Y up) and each take's root transform in the same space.
+struct Poser<'a> {
+    ctx: &'a Context<'a>,
+    la: LocalPose,
+    lb: LocalPose,
+    ta: Vec<crate::runtime::fk::Transform>,
+    tb: Vec<crate::runtime::fk::Transform>,
+    scratch: crate::runtime::sample::SampleScratch,
+    xa: Vec<Vec3>,
+    xb: Vec<Vec3>,
+}
+
+impl<'a> Poser<'a> {
+    fn new(ctx: &'a Context<'a>) -> Poser<'a> {
+        let n = ctx.pairs.len();
+        Poser {
+            ctx,
+            la: LocalPose::default(),
+            lb: LocalPose::default(),
+            ta: Vec::new(),
+            tb: Vec::new(),
+            scratch: Default::default(),
+            xa: vec![Vec3::ZERO; n],
+            xb: vec![Vec3::ZERO; n],
+        }
+    }
+
+    /// Poses frame `f`.
+    fn at(&mut self, f: usize) {
+        let (a, b) = (self.ctx.a, self.ctx.b);
+        a.local_pose_into(f, &mut self.la);
+        if self.ctx.exact && f < b.frame_count() {
+            b.local_pose_into(f, &mut self.lb);
+        } else {
+            b.sample_local_into(a.timeline().time_of(f), Interpolation::Linear, &mut self.scratch, &mut self.lb);
+        }
+        local_to_model(a.skeleton(), &self.la, &mut self.ta);
+        local_to_model(b.skeleton(), &self.lb, &mut self.tb);
+        let (ma, mb) = (a.units().meters_per_unit(), b.units().meters_per_unit());
+        let (ua, ub) = (a.up_axis(), b.up_axis());
+        for (k, &(ja, jb)) in self.ctx.pairs.iter().enumerate() {
+            self.xa[k] = self.ta.get(ja).map_or(Vec3::ZERO, |t| ua.to_y_up(t.translation) * ma);
+            self.xb[k] = self.tb.get(jb).map_or(Vec3::ZERO, |t| ub.to_y_up(t.translation) * mb);
+        }
+    }
+
+    /// `a`'s root and the joint of `b` paired with it (else `b`'s root):
+    /// positions (metres, Y up) and the heading `b` turns by to face as `a`.
+    fn roots(&self) -> (Vec3, Vec3, f32) {
+        let (a, b) = (self.ctx.a, self.ctx.b);
+        let (ma, mb) = (a.units().meters_per_unit(), b.units().meters_per_unit());
+        let (ua, ub) = (a.up_axis(), b.up_axis());
+        let root = a.skeleton().roots().next().unwrap_or(0);
+        let paired = self.ctx.pairs.iter().find(|(ja, _)| *ja == root).map_or(0, |&(_, jb)| jb);
+        let (ta, tb) = (self.ta.get(root), self.tb.get(paired));
+        let root_a = ta.map_or(Vec3::ZERO, |t| ua.to_y_up(t.translation) * ma);
+        let root_b = tb.map_or(Vec3::ZERO, |t| ub.to_y_up(t.translation) * mb);
+        let turn = heading(ua.rotation() * ta.map_or(Quat::IDENTITY, |t| t.rotation))
+            - heading(ub.rotation() * tb.map_or(Quat::IDENTITY, |t| t.rotation));
+        (root_a, root_b, turn)
+    }
+}
+
+/// `b`'s first root onto `a`'s, turned to `a`'s first heading.
+fn root_once(ctx: &Context<'_>) -> Rigid {
+    let mut poser = Poser::new(ctx);
+    poser.at(0);
+    let (root_a, root_b, turn) = poser.roots();
+    Rigid { from: root_b, to: root_a, rotation: Quat::from_rotation_y(turn) }
+}
+
+/// The one rigid motion that best fits every frame of `b` onto `a` (Horn's
+/// method on the cross-covariance summed over all frames).
+fn procrustes_once(ctx: &Context<'_>) -> Result<Rigid, CompareError> {
+    let ranges: Vec<std::ops::Range<usize>> =
+        (0..ctx.a.frame_count()).step_by(PIECE).map(|s| s..(s + PIECE).min(ctx.a.frame_count())).collect();
+    // Per piece: sum of a, sum of b, sum of b a^T, count.
+    let parts = crate::runtime::parallel::map(ranges, |range| {
+        let mut poser = Poser::new(ctx);
+        let (mut sa, mut sb, mut m, mut n) = ([0.0f64; 3], [0.0f64; 3], [[0.0f64; 3]; 3], 0.0f64);
+        for f in range {
+            poser.at(f);
+            for (p, q) in poser.xa.iter().zip(&poser.xb) {
+                let (p, q) = (p.to_array().map(f64::from), q.to_array().map(f64::from));
+                for i in 0..3 {
+                    sa[i] += p[i];
+                    sb[i] += q[i];
+                    for j in 0..3 {
+                        m[i][j] += q[i] * p[j];
+                    }
+                }
+                n += 1.0;
+            }
+        }
+        (sa, sb, m, n)
+    });
+    let (mut sa, mut sb, mut m, mut n) = ([0.0f64; 3], [0.0f64; 3], [[0.0f64; 3]; 3], 0.0f64);
+    for part in parts {
+        let (pa, pb, pm, pn) = part.ok_or(CompareError::Empty)?;
+        for i in 0..3 {
+            sa[i] += pa[i];
+            sb[i] += pb[i];
+            for j in 0..3 {
+                m[i][j] += pm[i][j];
+            }
+        }
+        n += pn;
+    }
+    let n = n.max(1.0);
+    let (ca, cb) = (sa.map(|x| x / n), sb.map(|x| x / n));
+    // Centred: sum (b - cb)(a - ca)^T = sum b a^T - n cb ca^T.
+    let mut s = [[0.0f64; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            s[i][j] = m[i][j] - n * cb[i] * ca[j];
+        }
+    }
+    let to = Vec3::new(ca[0] as f32, ca[1] as f32, ca[2] as f32);
+    let from = Vec3::new(cb[0] as f32, cb[1] as f32, cb[2] as f32);
+    Ok(Rigid { from, to, rotation: horn(s) })
 }
 
 /// One piece's sums: per pair the distances' sum and largest, the angles'
@@ -162,43 +309,30 @@ struct Partial {
 
 /// Measures frames `range` of `a` (see [`compare`]).
 fn measure(ctx: &Context<'_>, range: std::ops::Range<usize>) -> Partial {
-    let (a, b) = (ctx.a, ctx.b);
-    let (ma, mb) = (a.units().meters_per_unit(), b.units().meters_per_unit());
-    let (ua, ub) = (a.up_axis(), b.up_axis());
-    let per_unit = 1.0 / ma.max(f32::MIN_POSITIVE);
+    let per_unit = 1.0 / ctx.a.units().meters_per_unit().max(f32::MIN_POSITIVE);
     let n = ctx.pairs.len();
     let mut part = Partial { sums: vec![0.0; n], maxes: vec![0.0; n], angles: vec![0.0; n], frames: Vec::with_capacity(range.len()) };
-    let (mut la, mut lb) = (LocalPose::default(), LocalPose::default());
-    let (mut ta, mut tb) = (Vec::new(), Vec::new());
-    let mut scratch = crate::runtime::sample::SampleScratch::default();
-    let (mut xa, mut xb) = (vec![Vec3::ZERO; n], vec![Vec3::ZERO; n]);
+    let mut poser = Poser::new(ctx);
     for f in range {
-        a.local_pose_into(f, &mut la);
-        if ctx.exact && f < b.frame_count() {
-            b.local_pose_into(f, &mut lb);
-        } else {
-            b.sample_local_into(a.timeline().time_of(f), Interpolation::Linear, &mut scratch, &mut lb);
-        }
-        local_to_model(a.skeleton(), &la, &mut ta);
-        local_to_model(b.skeleton(), &lb, &mut tb);
-        for (k, &(ja, jb)) in ctx.pairs.iter().enumerate() {
-            xa[k] = ta.get(ja).map_or(Vec3::ZERO, |t| ua.to_y_up(t.translation) * ma);
-            xb[k] = tb.get(jb).map_or(Vec3::ZERO, |t| ub.to_y_up(t.translation) * mb);
+        poser.at(f);
+        let roots = poser.roots();
+        let (xa, xb) = (&mut poser.xa, &mut poser.xb);
+        if let Some(r) = ctx.once {
+            for q in xb.iter_mut() {
+                *q = r.rotation * (*q - r.from) + r.to;
+            }
         }
         match ctx.align {
-            Align::None => {}
+            Align::None | Align::RootOnce | Align::ProcrustesOnce => {}
             Align::Root => {
-                let root_a = ta.first().map_or(Vec3::ZERO, |t| ua.to_y_up(t.translation) * ma);
-                let root_b = tb.first().map_or(Vec3::ZERO, |t| ub.to_y_up(t.translation) * mb);
-                let turn = heading(ua.rotation() * ta.first().map_or(Quat::IDENTITY, |t| t.rotation))
-                    - heading(ub.rotation() * tb.first().map_or(Quat::IDENTITY, |t| t.rotation));
+                let (root_a, root_b, turn) = roots;
                 let r = Quat::from_rotation_y(turn);
                 for k in 0..n {
                     xa[k] -= root_a;
                     xb[k] = r * (xb[k] - root_b);
                 }
             }
-            Align::Procrustes => fit(&xa, &mut xb),
+            Align::Procrustes => fit(xa, xb),
         }
         let mut frame_sum = 0.0f64;
         for k in 0..n {
@@ -210,7 +344,7 @@ fn measure(ctx: &Context<'_>, range: std::ops::Range<usize>) -> Partial {
         part.frames.push((frame_sum / n.max(1) as f64) as f32);
         if ctx.same {
             for (k, &(ja, jb)) in ctx.pairs.iter().enumerate() {
-                if let (Some(x), Some(y)) = (la.rotation.get(ja), lb.rotation.get(jb)) {
+                if let (Some(x), Some(y)) = (poser.la.rotation.get(ja), poser.lb.rotation.get(jb)) {
                     part.angles[k] += f64::from(turn(*x, *y).to_degrees());
                 }
             }
@@ -249,6 +383,15 @@ fn fit(a: &[Vec3], b: &mut [Vec3]) {
             }
         }
     }
+    let r = Mat3::from_quat(horn(s));
+    for q in b.iter_mut() {
+        *q = r * (*q - cb) + ca;
+    }
+}
+
+/// The rotation that best turns the centred points `b` onto `a` given their
+/// cross-covariance `s` = sum of b a^T (Horn's quaternion method).
+fn horn(s: [[f64; 3]; 3]) -> Quat {
     let [[sxx, sxy, sxz], [syx, syy, syz], [szx, szy, szz]] = s;
     let mut m = [
         [sxx + syy + szz, syz - szy, szx - sxz, sxy - syx],
@@ -257,11 +400,7 @@ fn fit(a: &[Vec3], b: &mut [Vec3]) {
         [sxy - syx, szx + sxz, syz + szy, -sxx - syy + szz],
     ];
     let v = largest_eigenvector(&mut m);
-    let r = Quat::from_xyzw(v[1] as f32, v[2] as f32, v[3] as f32, v[0] as f32).normalize();
-    let r = Mat3::from_quat(r);
-    for q in b.iter_mut() {
-        *q = r * (*q - cb) + ca;
-    }
+    Quat::from_xyzw(v[1] as f32, v[2] as f32, v[3] as f32, v[0] as f32).normalize()
 }
 
 /// The eigenvector of the largest eigenvalue of a symmetric 4x4 matrix
