@@ -82,6 +82,11 @@ pub fn run_one(path: &Path, root: &Path, task: &Task) -> Value {
             return Value::Object(line);
         }
     };
+    run_bytes(path, bytes, root, task, line)
+}
+
+/// [`run_one`] on bytes already read (hashed here once).
+fn run_bytes(path: &Path, bytes: Vec<u8>, root: &Path, task: &Task, mut line: Map<String, Value>) -> Value {
     line.insert("sha256".into(), json!(sha256(&bytes)));
     match do_task(path, bytes, root, task, &mut line) {
         Ok(()) => {
@@ -174,13 +179,19 @@ pub fn run(
                 loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     let Some(path) = files.get(i) else { break };
-                    let old = done.get(&path.display().to_string()).filter(|old| {
-                        let hash = std::fs::read(path).map(|b| sha256(&b)).unwrap_or_default();
-                        old.get("sha256").and_then(Value::as_str) == Some(hash.as_str())
-                    });
-                    let result = match old {
-                        Some(old) => (old.clone(), false),
-                        None => (run_one(path, root, task), true),
+                    // Each file is read once: hashed for the resume check, then worked on.
+                    let result = match (done.get(&path.display().to_string()), std::fs::read(path)) {
+                        (Some(old), Ok(bytes))
+                            if old.get("sha256").and_then(Value::as_str) == Some(sha256(&bytes).as_str()) =>
+                        {
+                            (old.clone(), false)
+                        }
+                        (_, Ok(bytes)) => {
+                            let mut line = Map::new();
+                            line.insert("file".into(), json!(path.display().to_string()));
+                            (run_bytes(path, bytes, root, task, line), true)
+                        }
+                        (_, Err(_)) => (run_one(path, root, task), true),
                     };
                     if let Some(Ok(mut slot)) = slots.get(i).map(|m| m.lock()) {
                         *slot = Some(result);
