@@ -188,22 +188,53 @@ try {
       reduced ||= s.reduced;
     }
     check(s.quality === 'full' && !reduced, `quality=full keeps full quality while playing (${s.quality})`);
-    const msPerFrame = () => page.evaluate(async () => {
+    // Auto: the rule is "three frames in a row slower than 1/24 s switch a
+    // moving view to the fast look until it rests". Watch the frames in the
+    // page (the time each new frame arrives, and whether it was reduced) and
+    // check that the switch happens after such a run and not without one. A
+    // loaded machine may stall for a few frames at any time, so the test
+    // reads the frames it saw rather than an average.
+    const frames = await page.evaluate(async () => {
       const v = window.mocapViewer;
-      const f0 = v.state().framesRendered;
+      const seen = [];
+      let last = v.state().framesRendered;
       const t0 = performance.now();
-      await new Promise((r) => setTimeout(r, 1500));
-      return (performance.now() - t0) / Math.max(1, v.state().framesRendered - f0);
+      await new Promise((done) => {
+        const tick = () => {
+          const s = v.state();
+          if (s.framesRendered !== last) {
+            last = s.framesRendered;
+            seen.push({ t: performance.now(), reduced: s.reduced });
+            // Switch to auto once two full-quality frames are seen, so the
+            // frames that lead to the switch are all watched.
+            if (seen.length === 2) v.applyViewState('quality=auto');
+          }
+          if (performance.now() - t0 < 2500) requestAnimationFrame(tick); else done();
+        };
+        requestAnimationFrame(tick);
+      });
+      return seen;
     });
-    const fullMs = await msPerFrame();
-    // Auto: reduced while playing exactly when full-quality frames are slower
-    // than 1/24 s (the reduced frames that follow may well be quicker).
-    await page.evaluate(() => window.mocapViewer.applyViewState('quality=auto'));
-    const autoMs = await msPerFrame();
-    s = await state(page);
-    const slow = fullMs > (1000 / 24) * 1.2;
-    const quick = fullMs < (1000 / 24) * 0.8;
-    check(slow ? s.reduced : quick ? !s.reduced : true, `auto: ${fullMs.toFixed(0)} ms per full-quality frame, reduced ${s.reduced} (then ${autoMs.toFixed(0)} ms per frame)`);
+    const slowMs = 1000 / 24;
+    const runBefore = (end, limit) => {
+      let run = 0;
+      for (let i = 1; i < end; i++) {
+        run = frames[i].t - frames[i - 1].t > limit ? run + 1 : 0;
+        if (run >= 3) return true;
+      }
+      return false;
+    };
+    const firstReduced = frames.findIndex((f) => f.reduced);
+    const gaps = frames.slice(1).map((f, i) => f.t - frames[i].t);
+    const meanMs = gaps.reduce((a, b) => a + b, 0) / Math.max(1, gaps.length);
+    if (firstReduced >= 0) {
+      // The frame that was drawn reduced follows the slow run (with some
+      // slack: the page sees frames a little later than the viewer times them).
+      check(runBefore(firstReduced + 1, slowMs * 0.7), `auto: reduced after a run of slow frames (frame ${firstReduced} of ${frames.length}, ${meanMs.toFixed(0)} ms per frame)`);
+      check(frames.slice(firstReduced).every((f) => f.reduced), 'auto: once reduced, frames stay reduced while playing');
+    } else {
+      check(frames.length > 5 && !runBefore(frames.length, slowMs * 1.3), `auto: full quality without a run of slow frames (${frames.length} frames, ${meanMs.toFixed(0)} ms per frame)`);
+    }
     await page.evaluate(() => window.mocapViewer.pause());
   });
 
