@@ -283,6 +283,39 @@ try {
     check(typeof r.refused === 'string' && r.refused.includes('procrustes'), `a bad alignment is refused (${r.refused})`);
   });
 
+  await step('setInterpolation: nearest, linear, cubic in the state, the fragment and the picture', async () => {
+    const r = await page.evaluate(async () => {
+      const v = window.mocapViewer;
+      v.pause();
+      const seen = {};
+      // A time 0.4 of the way between two frames: each choice poses it differently.
+      const time = 10.4 / 30;
+      for (const name of ['nearest', 'linear', 'cubic']) {
+        const error = v.setInterpolation(name) ?? null;
+        await new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done)));
+        const pixels = await v.renderVideoFrame(time, 320, 180, true);
+        seen[name] = { error, state: v.state().interpolation, view: v.viewState(), pixels: Array.from(pixels) };
+      }
+      const refused = v.setInterpolation('smooth') ?? null;
+      const after = v.state().interpolation;
+      v.applyViewState('draw=joints,interp');
+      const fromLink = v.state().interpolation;
+      return { seen, refused, after, fromLink };
+    });
+    const differ = (a, b) => a.pixels.reduce((n, x, i) => n + (x !== b.pixels[i] ? 1 : 0), 0);
+    for (const name of ['nearest', 'linear', 'cubic']) {
+      const s = r.seen[name];
+      const draw = s.view.split('&').find((p) => p.startsWith('draw=')) ?? '';
+      const flags = draw.slice(5).split(',');
+      const expected = { nearest: [false, false], linear: [true, false], cubic: [true, true] }[name];
+      check(s.error === null && s.state === name && flags.includes('interp') === expected[0] && flags.includes('cubic') === expected[1], `setInterpolation('${name}'): state ${s.state}, ${draw}`);
+    }
+    const [nl, lc] = [differ(r.seen.nearest, r.seen.linear), differ(r.seen.linear, r.seen.cubic)];
+    check(nl > 0 && lc > 0, `the picture between frames differs: nearest/linear ${nl}, linear/cubic ${lc} values`);
+    check(typeof r.refused === 'string' && r.refused.includes('cubic') && r.after === 'cubic', `an unknown name is refused and changes nothing (${r.refused}; ${r.after})`);
+    check(r.fromLink === 'linear', `a link with draw=…,interp opens linear (${r.fromLink})`);
+  });
+
   await step('the creator: three joints, two keyed poses, play, save, drop the file back in', async () => {
     const made = await page.evaluate(async () => {
       const v = window.mocapViewer;

@@ -86,9 +86,10 @@ enum Command {
         /// Keep frames a:b (inclusive).
         #[arg(long, value_name = "A:B")]
         trim: Vec<String>,
-        /// Resample to this frame rate (the clip's own interpolation).
-        #[arg(long)]
-        fps: Vec<f64>,
+        /// Resample to this frame rate: N (linear in-betweens) or N:cubic
+        /// (Catmull-Rom positions, squad rotations; smooth across frames).
+        #[arg(long, value_name = "N[:cubic]")]
+        fps: Vec<String>,
         /// Play backward.
         #[arg(long)]
         reverse: bool,

@@ -454,6 +454,26 @@ fn edit_applies_its_flags_in_the_order_given() {
     let b = out("b.bvh");
     assert!(mocap(&["edit", walk, "--fps", "60", "--trim", "0:9", "-o", &b]).status.success());
     assert_eq!(frames(&b), 10);
+    // `--fps N:cubic` resamples with cubic in-betweens: the same frames where
+    // the old ones fall (every other), other values between them.
+    let cubic = out("cubic.bvh");
+    let run = mocap(&["edit", walk, "--trim", "0:9", "--fps", "60:cubic", "-o", &cubic]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert_eq!(frames(&cubic), 19);
+    let motion = |path: &str| -> Vec<Vec<f64>> {
+        let text = std::fs::read_to_string(path).unwrap();
+        let body = text.split("Frame Time:").nth(1).unwrap();
+        body.lines().skip(1).filter(|l| !l.trim().is_empty()).map(|l| l.split_whitespace().map(|v| v.parse().unwrap()).collect()).collect()
+    };
+    let (linear, smooth) = (motion(&a), motion(&cubic));
+    let most = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max);
+    for k in (0..19).step_by(2) {
+        assert!(most(&linear[k], &smooth[k]) < 1e-3, "frame {k} is an original frame");
+    }
+    assert!((1..19).step_by(2).any(|k| most(&linear[k], &smooth[k]) > 1e-3), "cubic in-betweens differ from linear ones");
+    let bad = mocap(&["edit", walk, "--fps", "60:smooth", "-o", &out("bad.bvh")]);
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("expected a frame rate (N or N:cubic)"), "{}", String::from_utf8_lossy(&bad.stderr));
     // Every edit kind runs and writes a file that reads back.
     let c = out("c.bvh");
     let all = [

@@ -17,8 +17,11 @@ pub struct ViewSettings {
     pub shadows: bool,
     /// Keep the camera target over the root joint.
     pub follow_root: bool,
-    /// Interpolate between frames while playing (paused views are always frame-exact).
-    pub interpolate: bool,
+    /// How a playing view samples between frames: nearest frame, linear, or
+    /// cubic (Catmull-Rom translations, squad rotations: smooth across frames);
+    /// Edit ▸ Resample uses the same in-betweens. Paused views are always
+    /// frame-exact. Only `Nearest`, `Linear` and `Cubic` are offered.
+    pub between: mocap::Interpolation,
     /// Onion skin: poses before (blue) and after (orange) the frame, fading.
     pub onion: bool,
     /// Onion-skin poses on each side (1 to 8).
@@ -28,9 +31,6 @@ pub struct ViewSettings {
     /// Trails: the root's path on the floor (a tick each second, the current
     /// point) and the selected joint's path over the second either side.
     pub trails: bool,
-    /// Interpolate with cubic in-betweens (Catmull-Rom translations, squad
-    /// rotations: smooth across frames) instead of linear; Edit ▸ Resample too.
-    pub cubic: bool,
     /// Edit mode: dragging a joint in the view moves it and its chain follows by IK.
     pub pose_mode: bool,
     /// Pin each foot to the floor while it is in contact (legs solved by IK).
@@ -45,10 +45,29 @@ pub struct ViewSettings {
     pub quality: crate::quality::Quality,
 }
 
+/// The choices of [`ViewSettings::between`] the view offers, in menu order:
+/// value, label, tooltip.
+pub const BETWEEN_CHOICES: [(mocap::Interpolation, &str, &str); 3] = [
+    (mocap::Interpolation::Nearest, "Nearest", "The nearest frame: no in-betweens, the take's own steps"),
+    (mocap::Interpolation::Linear, "Linear", "Straight blends between frames (slerp rotations)"),
+    (
+        mocap::Interpolation::Cubic,
+        "Cubic",
+        "Smooth across frames: Catmull-Rom positions, squad rotations; Edit ▸ Resample uses it too",
+    ),
+];
+
 impl ViewSettings {
-    /// How frames are blended when they are: linear, or cubic with [`ViewSettings::cubic`].
-    pub fn between(&self) -> mocap::Interpolation {
-        if self.cubic { mocap::Interpolation::Cubic } else { mocap::Interpolation::Linear }
+    /// Sets [`ViewSettings::between`] by name (`nearest`, `linear` or
+    /// `cubic`); false, and nothing changed, for any other name.
+    pub fn set_between(&mut self, name: &str) -> bool {
+        match BETWEEN_CHOICES.iter().find(|(i, ..)| i.name() == name) {
+            Some((i, ..)) => {
+                self.between = *i;
+                true
+            }
+            None => false,
+        }
     }
 }
 
@@ -61,8 +80,7 @@ impl Default for ViewSettings {
             show_weights: false,
             shadows: true,
             follow_root: false,
-            interpolate: true,
-            cubic: false,
+            between: mocap::Interpolation::Linear,
             onion: false,
             onion_count: 3,
             onion_step: 0.2,

@@ -127,6 +127,8 @@ pub struct Snapshot {
     pub pose_mode: bool,
     /// The 3D view's quality setting: `auto`, `full` or `fast`.
     pub quality: &'static str,
+    /// How a playing view samples between frames: `nearest`, `linear` or `cubic`.
+    pub interpolation: &'static str,
     /// Whether the last frame was drawn in the fast look (see [`crate::quality`]).
     pub reduced: bool,
     /// Samples per pixel of the last frame: 1 in the fast look and for scenes
@@ -191,6 +193,7 @@ impl Snapshot {
             shadows: v.settings.shadows,
             pose_mode: v.settings.pose_mode,
             quality: v.settings.quality.name(),
+            interpolation: v.settings.between.name(),
             error: v.notice.as_ref().map(|n| n.message.clone()),
             error_note: v.notice.as_ref().and_then(|n| n.note(!v.stage.actors.is_empty())),
             tree_labels: if v.panels.show_hierarchy() {

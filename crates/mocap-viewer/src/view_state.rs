@@ -171,11 +171,11 @@ impl ViewState {
             st.show_joints,
             st.show_axes,
             st.follow_root,
-            st.interpolate,
+            st.between != mocap::Interpolation::Nearest,
             st.show_weights,
             st.pose_mode,
             st.foot_lock,
-            st.cubic,
+            st.between == mocap::Interpolation::Cubic,
             st.onion,
             st.trails,
         ];

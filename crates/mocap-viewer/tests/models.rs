@@ -81,7 +81,7 @@ fn the_renderer_gets_two_frames_and_a_blend_or_the_nearest_frame() {
     v.apply(Command::SetTime(0.15)).unwrap();
     v.apply(Command::SetPlaying(true)).unwrap();
     let mut edited = v.state().settings.clone();
-    edited.interpolate = true;
+    edited.between = mocap::Interpolation::Linear;
     v.apply(Command::SetSettings(edited)).unwrap();
     v.pose();
     let mesh = &v.scene().meshes;
@@ -91,7 +91,7 @@ fn the_renderer_gets_two_frames_and_a_blend_or_the_nearest_frame() {
     assert!(v.scene().capsules.is_empty() && v.scene().grid.is_some());
     // Interpolation off: switch at the halfway point (frame 1.5 of run shows 42).
     let mut edited = v.state().settings.clone();
-    edited.interpolate = false;
+    edited.between = mocap::Interpolation::Nearest;
     v.apply(Command::SetSettings(edited)).unwrap();
     v.pose();
     assert_eq!((v.scene().meshes[0].frames, v.scene().meshes[0].blend), ([42, 42], 0.0));

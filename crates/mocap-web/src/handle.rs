@@ -566,6 +566,22 @@ impl MocapViewer {
         self.with_viewer(|v| v.apply(Command::SetPlaying(false)));
     }
 
+    /// How a playing view samples between frames (View ▸ Between frames), and
+    /// how Edit ▸ Resample makes in-betweens: `nearest`, `linear` or `cubic`
+    /// (Catmull-Rom positions, squad rotations). The URL fragment keeps it.
+    /// Returns an error message for any other name (nothing changes).
+    #[wasm_bindgen(js_name = setInterpolation)]
+    pub fn set_interpolation(&self, name: &str) -> Option<String> {
+        let Some(mut settings) = self.viewer.try_borrow().ok().map(|v| v.state().settings.clone()) else {
+            return Some("the viewer is busy".to_owned());
+        };
+        if !settings.set_between(name) {
+            return Some(format!("unknown interpolation `{name}`: expected nearest, linear or cubic"));
+        }
+        self.with_viewer(|v| v.apply(Command::SetSettings(settings)));
+        None
+    }
+
     /// The view state as a URL fragment (no leading `#`): time, play state, speed,
     /// loop range, camera, selection, draw flags and panels.
     #[wasm_bindgen(js_name = viewState)]

@@ -63,6 +63,7 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "shadows", s.shadows);
     set(&o, "poseMode", s.pose_mode);
     set(&o, "quality", s.quality);
+    set(&o, "interpolation", s.interpolation);
     set(&o, "reduced", s.reduced);
     set(&o, "samples", f64::from(s.samples));
     set(&o, "floorCopied", s.floor_copied);

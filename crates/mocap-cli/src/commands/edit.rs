@@ -6,7 +6,15 @@ use super::*;
 /// spec `NAME:VALUE` ([`mocap::ops::edit::EditSpec`]: `--knit 4` is `knit:4`,
 /// `--up -z` is `up:-z`); an error names the flag.
 pub fn flag_spec(name: &str, value: &str) -> Result<EditSpec, String> {
-    format!("{name}:{value}").parse::<EditSpec>().map_err(|e| format!("--{name} {value}: expected {}", e.expected))
+    format!("{name}:{value}").parse::<EditSpec>().map_err(|e| {
+        // The spec's form as the flag takes it: `fps:N or fps:N:cubic` is `N or N:cubic`.
+        let form = e.form.replace(&format!("{name}:"), "");
+        if form.is_empty() {
+            format!("--{name} {value}: expected {}", e.expected)
+        } else {
+            format!("--{name} {value}: expected {} ({form})", e.expected)
+        }
+    })
 }
 
 /// `mocap edit`: the edits in order, then BVH.

@@ -21,8 +21,9 @@ pub struct EditMenuView<'a> {
     pub others: usize,
     /// Whether the host exports video (Export video… shows).
     pub video_export: bool,
-    /// Resample with cubic in-betweens (View ▸ Cubic in-betweens).
-    pub cubic: bool,
+    /// The view's in-betweens (View ▸ Between frames): Resample is cubic when
+    /// they are, else linear.
+    pub between: mocap::Interpolation,
     /// Other open clips the current one can be compared with: (index, name).
     pub compare_with: Vec<(usize, &'a str)>,
     /// Whether a comparison is on.
@@ -66,7 +67,7 @@ pub fn show(ui: &mut egui::Ui, view: &EditMenuView, out: &mut Vec<Command>) {
     super::menu(ui, "Resample", &mut |ui| {
         for target in [24.0, 30.0, 60.0, 120.0] {
             if ui.button(format!("{target} fps")).clicked() {
-                edit = Some(if view.cubic {
+                edit = Some(if view.between == mocap::Interpolation::Cubic {
                     (Edit::ResampleCubic { fps: target }, format!("Resample to {target} fps (cubic)"))
                 } else {
                     (Edit::Resample { fps: target }, format!("Resample to {target} fps"))

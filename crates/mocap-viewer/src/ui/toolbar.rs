@@ -117,12 +117,18 @@ fn view_menu(ui: &mut egui::Ui, settings: &mut ViewSettings, panels: &mut Panels
     ui.checkbox(&mut settings.trails, "Trails").on_hover_text(
         "The root's path on the floor (a tick each second, the current point) and the selected joint's path over a second either side",
     );
-    ui.checkbox(&mut settings.interpolate, "Interpolate").on_hover_text("Blend between frames while playing");
-    ui.add_enabled(settings.interpolate, egui::Checkbox::new(&mut settings.cubic, "Cubic in-betweens")).on_hover_text(
-        "Smooth across frames (Catmull-Rom positions, squad rotations) instead of straight blends; Edit ▸ Resample uses it too",
-    );
+    ui.separator();
+    between_choice(ui, &mut settings.between);
     ui.separator();
     quality_choice(ui, &mut settings.quality);
+}
+
+/// Between frames while playing: Nearest / Linear / Cubic.
+fn between_choice(ui: &mut egui::Ui, between: &mut mocap::Interpolation) {
+    ui.label("Between frames").on_hover_text("How a playing view samples times between the take's frames");
+    for (value, label, tip) in crate::settings::BETWEEN_CHOICES {
+        ui.radio_value(between, value, label).on_hover_text(tip);
+    }
 }
 
 /// Quality: Auto / Full / Fast while moving.

@@ -456,8 +456,8 @@ impl Viewer {
 
     /// Poses every visible character at the playhead and rebuilds the scene primitives.
     pub fn pose(&mut self) {
-        let smooth = self.state.playback.playing && self.state.settings.interpolate;
-        self.pose_characters(self.state.playback.time, smooth.then(|| self.state.settings.between()));
+        let smooth = self.state.playback.playing.then_some(self.state.settings.between);
+        self.pose_characters(self.state.playback.time, smooth);
         self.refresh_comparison();
         pose_scene::build_scene(&self.state.stage, &self.state.settings, self.state.selected, &mut self.scene);
         self.comparison_overlay();
@@ -492,7 +492,7 @@ impl Viewer {
     pub fn video_frame(&mut self, time: f64, aspect: f32, follow: bool) -> (Scene, mocap_render::Camera) {
         let (target, follow_setting) = (self.state.camera.target, self.state.settings.follow_root);
         self.state.settings.follow_root = follow;
-        self.pose_characters(time, self.state.settings.interpolate.then(|| self.state.settings.between()));
+        self.pose_characters(time, Some(self.state.settings.between));
         let mut scene = Scene::default();
         pose_scene::build_scene(&self.state.stage, &self.state.settings, None, &mut scene);
         pose_scene::push_motion_marks(

@@ -49,7 +49,11 @@ impl Viewer {
             self.state.playback.range = range;
         }
         if let Some([joints, axes, follow, interp, weights, pose, footlock, cubic, onion, trails]) = view.draw {
-            self.state.settings.cubic = cubic;
+            self.state.settings.between = match (interp, cubic) {
+                (false, _) => mocap::Interpolation::Nearest,
+                (true, false) => mocap::Interpolation::Linear,
+                (true, true) => mocap::Interpolation::Cubic,
+            };
             self.state.settings.onion = onion;
             self.state.settings.trails = trails;
             self.state.settings.pose_mode = pose;
@@ -57,7 +61,6 @@ impl Viewer {
             self.state.settings.show_joints = joints;
             self.state.settings.show_axes = axes;
             self.state.settings.follow_root = follow;
-            self.state.settings.interpolate = interp;
             self.state.settings.show_weights = weights;
         }
         if let Some(mode) = view.mode {

@@ -54,7 +54,7 @@ impl Viewer {
             redo: s.history.next_redo(),
             others: s.stage.actors.iter().enumerate().filter(|(i, c)| *i != index && c.clip().is_some()).count(),
             video_export: s.video_export,
-            cubic: s.settings.cubic,
+            between: s.settings.between,
             compare_with: s
                 .stage
                 .actors
