@@ -6,22 +6,28 @@ pub(crate) struct GrowingBuffer {
     usage: wgpu::BufferUsages,
     buffer: Option<wgpu::Buffer>,
     len: u32,
+    /// The records repeated per corner ([`GrowingBuffer::upload_quads`]).
+    staging: Vec<u8>,
 }
 
 impl GrowingBuffer {
     pub fn new(label: &'static str) -> GrowingBuffer {
-        GrowingBuffer { label, usage: wgpu::BufferUsages::VERTEX, buffer: None, len: 0 }
+        GrowingBuffer { label, usage: wgpu::BufferUsages::VERTEX, buffer: None, len: 0, staging: Vec::new() }
     }
 
     /// The same for indices.
     pub fn indices(label: &'static str) -> GrowingBuffer {
-        GrowingBuffer { label, usage: wgpu::BufferUsages::INDEX, buffer: None, len: 0 }
+        GrowingBuffer { label, usage: wgpu::BufferUsages::INDEX, buffer: None, len: 0, staging: Vec::new() }
     }
 
     /// Uploads `items` (the instances to draw), growing the buffer when needed.
     pub fn upload<T: bytemuck::Pod>(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, items: &[T]) {
-        self.len = items.len() as u32;
-        let data: &[u8] = bytemuck::cast_slice(items);
+        self.write(device, queue, bytemuck::cast_slice(items), items.len());
+    }
+
+    /// Writes `data`, `len` records, growing the buffer when needed.
+    fn write(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, data: &[u8], len: usize) {
+        self.len = u32::try_from(len).unwrap_or(u32::MAX);
         if data.is_empty() {
             return;
         }
@@ -39,7 +45,23 @@ impl GrowingBuffer {
         }
     }
 
-    /// The buffer and instance count, when there is something to draw.
+    /// Uploads `items` as quads: each record six times, once per corner of its
+    /// two triangles (see [`crate::pipeline::quad_corners`]); the count is the vertices'.
+    pub fn upload_quads<T: bytemuck::Pod>(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, items: &[T]) {
+        let mut staging = std::mem::take(&mut self.staging);
+        staging.clear();
+        for item in items {
+            let bytes = bytemuck::bytes_of(item);
+            for _ in 0..6 {
+                staging.extend_from_slice(bytes);
+            }
+        }
+        self.write(device, queue, &staging, items.len() * 6);
+        self.staging = staging;
+    }
+
+    /// The buffer and its count of records (instances, or vertices after
+    /// [`GrowingBuffer::upload_quads`]), when there is something to draw.
     pub fn get(&self) -> Option<(&wgpu::Buffer, u32)> {
         self.buffer.as_ref().filter(|_| self.len > 0).map(|b| (b, self.len))
     }

@@ -31,14 +31,18 @@ pub(crate) struct PipelineSpec<'a> {
     pub color_writes: wgpu::ColorWrites,
 }
 
-/// Per-instance buffer layout with `attributes` and `stride`.
-pub(crate) fn instances<'a>(
+/// Buffer layout with `attributes` and `stride` for quads whose six corners
+/// each repeat their item's record ([`crate::buffer::GrowingBuffer::upload_quads`]):
+/// the shader takes the corner from `vertex_index % 6`. Not instanced: a
+/// software rasteriser (SwiftShader) sets each instance of a draw up as a draw
+/// of its own, which made a few hundred lines cost milliseconds.
+pub(crate) fn quad_corners<'a>(
     attributes: &'a [wgpu::VertexAttribute],
     stride: usize,
 ) -> Option<wgpu::VertexBufferLayout<'a>> {
     Some(wgpu::VertexBufferLayout {
         array_stride: stride as u64,
-        step_mode: wgpu::VertexStepMode::Instance,
+        step_mode: wgpu::VertexStepMode::Vertex,
         attributes,
     })
 }

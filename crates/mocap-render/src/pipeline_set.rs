@@ -3,7 +3,7 @@
 
 use crate::capsule::{self, CapsuleVertex};
 use crate::lines::{LINE_ATTRIBUTES, LineInstance};
-use crate::pipeline::{self, PipelineSpec, instances};
+use crate::pipeline::{self, PipelineSpec, quad_corners};
 use crate::shadow;
 use crate::spheres::{SPHERE_ATTRIBUTES, SphereInstance};
 use crate::uniforms::OutlineRule;
@@ -141,8 +141,8 @@ impl Pipelines {
             step_mode: wgpu::VertexStepMode::Vertex,
             attributes: &capsule::ATTRIBUTES,
         })];
-        let spheres = [instances(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
-        let line_buffers = [instances(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
+        let spheres = [quad_corners(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
+        let line_buffers = [quad_corners(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
         let base = PipelineSpec {
             label: "mocap capsules",
             shader: &capsule_shader,

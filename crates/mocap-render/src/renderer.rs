@@ -582,7 +582,7 @@ impl SceneRenderer {
         let view_z = |p: Vec3| z_row.dot(p.extend(1.0));
         self.line_scratch.clear();
         self.line_scratch.extend(scene.overlay_lines.iter().map(|l| LineInstance::new(l, ppp)));
-        self.overlay_lines.upload(device, queue, &self.line_scratch);
+        self.overlay_lines.upload_quads(device, queue, &self.line_scratch);
         self.line_scratch.clear();
         self.line_scratch.extend(scene.lines.iter().map(|l| LineInstance::new(l, ppp)));
         self.sphere_scratch.clear();
@@ -591,8 +591,8 @@ impl SceneRenderer {
             sort_farthest_first(&mut self.line_scratch, |l| view_z((Vec3::from(l.a) + Vec3::from(l.b)) * 0.5));
             sort_farthest_first(&mut self.sphere_scratch, |s| view_z(Vec3::from(s.center)));
         }
-        self.lines.upload(device, queue, &self.line_scratch);
-        self.spheres.upload(device, queue, &self.sphere_scratch);
+        self.lines.upload_quads(device, queue, &self.line_scratch);
+        self.spheres.upload_quads(device, queue, &self.sphere_scratch);
     }
 }
 
@@ -605,7 +605,7 @@ fn draw_spheres<'a>(
     let Some((buffer, count)) = spheres.get() else { return 0 };
     pass.set_pipeline(pipeline);
     pass.set_vertex_buffer(0, buffer.slice(..));
-    pass.draw(0..6, 0..count);
+    pass.draw(0..count, 0..1);
     1
 }
 
@@ -624,7 +624,7 @@ fn draw_lines<'a>(
     let Some((buffer, count)) = lines.get() else { return 0 };
     pass.set_pipeline(pipeline);
     pass.set_vertex_buffer(0, buffer.slice(..));
-    pass.draw(0..6, 0..count);
+    pass.draw(0..count, 0..1);
     1
 }
 
