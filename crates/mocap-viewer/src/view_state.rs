@@ -15,7 +15,8 @@
 //! not listed play all their frames; `none` or absent when all do), `up` the file
 //! axis that points up in each character, one letter per character in order (`up=yz`:
 //! the second is Z-up; absent: as guessed when the clips opened),
-//! `shadows` 0/1, `quality` `auto`, `full` or `fast` (see [`crate::quality`]), `draw` a comma list of `joints`, `axes`, `follow`, `interp`, `weights`, `pose`, `footlock`, `cubic`, `onion`, `trails`, and `panels` a comma list of `tree`, `inspector` (or
+//! `shadows` 0/1, `quality` `auto`, `full` or `fast` (see [`crate::quality`]), `draw` a comma list of `joints`, `axes`, `follow`, `interp`, `weights`, `pose`, `footlock`, `cubic`, `onion`, `trails`, `onion` the onion skin's poses each side and seconds apart
+//! (`onion=3,0.2`, written while it is on), and `panels` a comma list of `tree`, `inspector` (or
 //! `none`). Timeline frames (`f`, `range`, the frame shown) count in the frame time
 //! of the selection's character, else the first one. Unknown keys and unreadable
 //! values are ignored; missing keys leave the viewer as it is.
@@ -61,6 +62,8 @@ pub struct ViewState {
     pub quality: Option<crate::quality::Quality>,
     /// Draw flags: joints, axes, follow root, interpolate, weights view, pose mode.
     pub draw: Option<[bool; 10]>,
+    /// Onion skin: poses each side (1 to 8) and seconds apart (0.02 to 2).
+    pub onion: Option<(usize, f64)>,
     /// Panels: hierarchy, inspector.
     pub panels: Option<[bool; 2]>,
 }
@@ -102,6 +105,7 @@ impl ViewState {
                 "shadows" => s.shadows = flag(v),
                 "quality" => s.quality = crate::quality::Quality::from_name(v),
                 "panels" => s.panels = Some(flags(v, PANEL_NAMES)),
+                "onion" => s.onion = parse_onion(v),
                 _ => {}
             }
         }
@@ -180,10 +184,22 @@ impl ViewState {
             st.trails,
         ];
         parts.push(format!("draw={}", join_flags(draw, DRAW_NAMES)));
+        if st.onion {
+            parts.push(format!("onion={},{}", st.onion_count, st.onion_step));
+        }
         let panels = [viewer.panels.hierarchy, viewer.panels.inspector];
         parts.push(format!("panels={}", join_flags(panels, PANEL_NAMES)));
         parts.join("&")
     }
+}
+
+/// `N,STEP`: the onion skin's poses each side and seconds apart, each in the
+/// View menu's range.
+fn parse_onion(v: &str) -> Option<(usize, f64)> {
+    let (count, step) = v.split_once(',')?;
+    let count: usize = count.trim().parse().ok().filter(|n| (1..=8).contains(n))?;
+    let step: f64 = step.trim().parse().ok().filter(|s: &f64| (0.02..=2.0).contains(s))?;
+    Some((count, step))
 }
 
 fn flag(v: &str) -> Option<bool> {

@@ -46,3 +46,25 @@ fn trails_draw_the_root_path_on_the_floor_and_follow_the_frame() {
     assert!(point(&a).distance(point(&b)) > 0.2, "the current point walks with the frame");
     assert!(a.state().view_fragment().contains("trails"));
 }
+
+#[test]
+fn a_link_keeps_the_onion_skins_count_and_spacing() {
+    let mut v = viewer(true, false, 30);
+    let mut s = v.state().settings.clone();
+    (s.onion_count, s.onion_step) = (5, 0.1);
+    v.apply(Command::SetSettings(s)).unwrap();
+    let fragment = v.state().view_fragment();
+    assert!(fragment.contains("onion=5,0.1"), "{fragment}");
+    let mut opened = viewer(false, false, 30);
+    opened.apply_fragment(&fragment);
+    let s = &opened.state().settings;
+    assert_eq!((s.onion, s.onion_count, s.onion_step), (true, 5, 0.1));
+    opened.pose();
+    let bones = opened.state().stage.actors[0].extra.drawable.figure.iter().filter(|j| j.parent.is_some()).count();
+    assert_eq!(opened.scene().lines.len(), 10 * bones, "five poses each side (0.5 s either way of 1 s)");
+    // Out of the View menu's range, or unreadable: left as it is.
+    for bad in ["onion=9,0.2", "onion=3,5", "onion=3", "onion=x,0.2"] {
+        opened.apply_fragment(bad);
+        assert_eq!((opened.state().settings.onion_count, opened.state().settings.onion_step), (5, 0.1), "{bad}");
+    }
+}

@@ -63,6 +63,9 @@ impl Viewer {
             self.state.settings.follow_root = follow;
             self.state.settings.show_weights = weights;
         }
+        if let Some((count, step)) = view.onion {
+            (self.state.settings.onion_count, self.state.settings.onion_step) = (count, step);
+        }
         if let Some(mode) = view.mode {
             self.state.settings.mode = mode;
         }
