@@ -160,6 +160,14 @@ impl Viewport {
             // then, not in the middle of playback when frames are already slow.
             gpu.renderer.prepare_pipelines(&rs.device, 1, true, scene.shadows);
         }
+        if self.frames_rendered == 2 {
+            // And the multisampled ones that bodies and models are drawn with
+            // (capsules alone take one sample): a frame later, so that the
+            // first file dropped with a mesh does not wait for its shaders
+            // (some 100 ms on a software rasteriser).
+            let samples = gpu.renderer.sample_count();
+            gpu.renderer.prepare_pipelines(&rs.device, samples, false, scene.shadows);
+        }
         self.frames_rendered += 1;
         ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ShowFrame { single }));
         (response, joint_drag)

@@ -223,13 +223,41 @@ fn sample_take(
     let unrest: Vec<Quat> = skeleton.joints().iter().map(|j| j.rest_rotation.inverse()).collect();
     let mut data = Vec::with_capacity(frames * width);
     let mut previous: Vec<[f32; 3]> = vec![[0.0; 3]; graph.joints.len()];
+    let take = TakeSampler { graph, layout, by_joint: &by_joint, unrest: &unrest };
     for f in 0..frames {
-        let time = (f as f64 * frame_time) as f32;
-        for (j, joint_tracks) in by_joint.iter().enumerate() {
+        take.frame((f as f64 * frame_time) as f32, f > 0, &mut cursors, &mut previous, &mut data);
+    }
+    if let Some(k) = data.iter().position(|v| !v.is_finite()) {
+        return Err(ParseError::new(0, 0, format!("animation `{name}`: frame {} is not finite", k / width.max(1))));
+    }
+    Motion::new(frame_time, width, frames, data)
+        .ok_or_else(|| ParseError::new(0, 0, format!("animation `{name}`: the motion does not fit its channels")))
+}
+
+/// What [`sample_take`] samples each frame from: the joints' tracks, the
+/// node graph, the channel layout and the rest rotations' inverses.
+struct TakeSampler<'a> {
+    graph: &'a Graph,
+    layout: &'a Layout,
+    by_joint: &'a [Vec<&'a Track>],
+    unrest: &'a [Quat],
+}
+
+impl TakeSampler<'_> {
+    /// Appends the channels of the frame at `time` to `data` (`cursors`: each
+    /// track's key interval; `previous`: each joint's angles a frame before,
+    /// when `continues`). A call per frame, not inlined: a browser's WebAssembly
+    /// engine first runs code unoptimised and optimises a function after it is
+    /// called often, so a loop over every frame in one call ran slowly throughout.
+    #[inline(never)]
+    fn frame(&self, time: f32, continues: bool, cursors: &mut [Vec<usize>], previous: &mut [[f32; 3]], data: &mut Vec<f32>) {
+        let graph = self.graph;
+        for (j, joint_tracks) in self.by_joint.iter().enumerate() {
             let n = graph.joints[j];
             let mut trs = graph.rest[n];
             let mut value = [0.0f32; 4];
-            for (track, cursor) in joint_tracks.iter().zip(cursors[j].iter_mut()) {
+            let Some(cursors) = cursors.get_mut(j) else { continue };
+            for (track, cursor) in joint_tracks.iter().zip(cursors.iter_mut()) {
                 track.sample(time, cursor, &mut value);
                 match track.path {
                     Path::Translation => trs.t = Vec3::new(value[0], value[1], value[2]),
@@ -238,24 +266,22 @@ fn sample_take(
                 }
             }
             let local: Trs = trs.after(&graph.between[n]);
-            if layout.translate[j] {
+            if self.layout.translate[j] {
                 data.extend(local.t.to_array());
             }
-            let unrest_j = unrest.get(j).copied().unwrap_or(Quat::IDENTITY);
+            let unrest_j = self.unrest.get(j).copied().unwrap_or(Quat::IDENTITY);
             let (z, x, y) = (unrest_j * local.r).normalize().to_euler(EulerRot::ZXY);
-            let angles = unwrap([z.to_degrees(), x.to_degrees(), y.to_degrees()], previous[j], f > 0);
-            previous[j] = angles;
+            let before = previous.get(j).copied().unwrap_or_default();
+            let angles = unwrap([z.to_degrees(), x.to_degrees(), y.to_degrees()], before, continues);
+            if let Some(p) = previous.get_mut(j) {
+                *p = angles;
+            }
             data.extend(angles);
-            if layout.scale[j] {
+            if self.layout.scale[j] {
                 data.extend(local.s.to_array());
             }
         }
     }
-    if let Some(k) = data.iter().position(|v| !v.is_finite()) {
-        return Err(ParseError::new(0, 0, format!("animation `{name}`: frame {} is not finite", k / width.max(1))));
-    }
-    Motion::new(frame_time, width, frames, data)
-        .ok_or_else(|| ParseError::new(0, 0, format!("animation `{name}`: the motion does not fit its channels")))
 }
 
 /// Each angle moved by whole turns to the one nearest the previous frame's, so
@@ -266,7 +292,11 @@ fn unwrap(angles: [f32; 3], previous: [f32; 3], has_previous: bool) -> [f32; 3] 
     }
     let mut out = angles;
     for (a, p) in out.iter_mut().zip(previous) {
-        *a += ((p - *a) / 360.0).round() * 360.0;
+        let d = p - *a;
+        // Under half a turn apart rounds to no turn: skip the rounding.
+        if d.abs() >= 180.0 {
+            *a += (d / 360.0).round() * 360.0;
+        }
     }
     out
 }
