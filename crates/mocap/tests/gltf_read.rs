@@ -423,3 +423,95 @@ fn a_chain_of_200000_nodes_reads_without_recursion() {
     let last = clip.world_positions(0)[n - 1];
     assert!((last.y - 200.0).abs() < 1.0, "{last} (f32 sums drift over 200,000 joints)");
 }
+
+/// A skinned triangle with two morph targets (the third vertex up 1, the second
+/// along x 2) on a mesh whose rest weights are 0.1 and 0: animation `blink`
+/// moves the root and sets the weights from (0, 0) at 0 s to (1, 0.5) at 1 s;
+/// `still` only moves the root; `bad` gives three weights a key.
+fn blend_shapes() -> Vec<u8> {
+    let mut bin = Vec::new();
+    let mut views = Vec::new();
+    let mut push = |bytes: Vec<u8>, bin: &mut Vec<u8>| {
+        views.push(serde_json::json!({ "buffer": 0, "byteOffset": bin.len(), "byteLength": bytes.len() }));
+        bin.extend(bytes);
+        views.len() - 1
+    };
+    let positions = push(floats(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]), &mut bin);
+    let joints = push(vec![0u8; 12], &mut bin);
+    let weights = push(floats(&[1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0]), &mut bin);
+    let up = push(floats(&[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0]), &mut bin);
+    let along = push(floats(&[0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0]), &mut bin);
+    let times = push(floats(&[0.0, 1.0]), &mut bin);
+    let moves = push(floats(&[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]), &mut bin);
+    let keyed = push(floats(&[0.0, 0.0, 1.0, 0.5]), &mut bin);
+    let three = push(floats(&[0.0, 0.0, 0.0, 1.0, 1.0, 1.0]), &mut bin);
+    let json = serde_json::json!({
+        "scene": 0,
+        "scenes": [{ "nodes": [0, 1] }],
+        "nodes": [
+            { "name": "root" },
+            { "name": "face", "mesh": 0, "skin": 0 }
+        ],
+        "skins": [{ "joints": [0] }],
+        "meshes": [{
+            "weights": [0.1, 0.0],
+            "primitives": [{
+                "attributes": { "POSITION": 0, "JOINTS_0": 1, "WEIGHTS_0": 2 },
+                "targets": [{ "POSITION": 3 }, { "POSITION": 4 }]
+            }]
+        }],
+        "bufferViews": views,
+        "accessors": [
+            { "bufferView": positions, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0] },
+            { "bufferView": joints, "componentType": 5121, "count": 3, "type": "VEC4" },
+            { "bufferView": weights, "componentType": 5126, "count": 3, "type": "VEC4" },
+            { "bufferView": up, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [0, 1, 0] },
+            { "bufferView": along, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [2, 0, 0] },
+            { "bufferView": times, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0.0], "max": [1.0] },
+            { "bufferView": moves, "componentType": 5126, "count": 2, "type": "VEC3" },
+            { "bufferView": keyed, "componentType": 5126, "count": 4, "type": "SCALAR" },
+            { "bufferView": three, "componentType": 5126, "count": 6, "type": "SCALAR" }
+        ],
+        "animations": [
+            { "name": "blink",
+              "samplers": [{ "input": 5, "output": 6 }, { "input": 5, "output": 7 }],
+              "channels": [{ "sampler": 0, "target": { "node": 0, "path": "translation" } },
+                           { "sampler": 1, "target": { "node": 1, "path": "weights" } }] },
+            { "name": "still",
+              "samplers": [{ "input": 5, "output": 6 }],
+              "channels": [{ "sampler": 0, "target": { "node": 0, "path": "translation" } }] },
+            { "name": "bad",
+              "samplers": [{ "input": 5, "output": 6 }, { "input": 5, "output": 8 }],
+              "channels": [{ "sampler": 0, "target": { "node": 0, "path": "translation" } },
+                           { "sampler": 1, "target": { "node": 1, "path": "weights" } }] }
+        ]
+    });
+    gltf_with(json, &bin)
+}
+
+#[test]
+fn a_skinned_mesh_plays_its_morph_target_weights() {
+    let clip = read(&[("face.gltf", &blend_shapes())]).unwrap();
+    let character = clip.character.as_deref().unwrap();
+    let look = character.look.as_ref().unwrap();
+    let morph = look.morph.as_ref().expect("the look keeps its two targets");
+    assert_eq!(morph.rest, [0.1, 0.0]);
+    assert_eq!(morph.targets, [vec![(2, [0.0, 1.0, 0.0])], vec![(1, [2.0, 0.0, 0.0])]], "only the vertices each moves");
+    let [blink, still, bad] = &character.takes[..] else { panic!("three takes") };
+    let mut w = Vec::new();
+    assert!(blink.weights_at(0.5, 2, &mut w));
+    assert!((w[0] - 0.5).abs() < 1e-5 && (w[1] - 0.25).abs() < 1e-5, "{w:?}");
+    assert!(blink.weights_at(1.0, 2, &mut w) && w == [1.0, 0.5], "{w:?}");
+    let mut shape = Vec::new();
+    morph.shape(look.skin.positions(), &w, &mut shape);
+    assert!(shape[1].distance(Vec3::new(2.0, 0.0, 0.0)) < 1e-6 && shape[2].distance(Vec3::new(0.0, 2.0, 0.0)) < 1e-6);
+    // A take without weights, or whose channel does not fit the mesh, leaves the rest weights.
+    assert!(!still.weights_at(0.5, 2, &mut w) && !bad.weights_at(0.5, 2, &mut w));
+    morph.shape(look.skin.positions(), &[], &mut shape);
+    assert!(shape[2].distance(Vec3::new(0.0, 1.1, 0.0)) < 1e-6, "rest weight 0.1: {:?}", shape[2]);
+    let warned = clip.warnings.iter().map(|w| w.message.clone()).collect::<Vec<_>>().join("\n");
+    assert!(warned.contains("animation `bad`: nodes[1] has 2 morph targets but its weights channel sets 3"), "{warned}");
+    // Stored and read back with them.
+    let asset = mocap::Asset::Clip(clip);
+    assert_eq!(mocap::formats::store::parse(&mocap::formats::store::write(&asset)).unwrap(), asset);
+}

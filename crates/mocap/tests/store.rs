@@ -97,7 +97,9 @@ fn corpus(path: &str) -> Vec<u8> {
 fn round_trip(name: &str, asset: &Asset) -> Vec<u8> {
     let bytes = store::write(asset);
     assert!(bytes.starts_with(MAGIC), "{name}");
-    assert_eq!(bytes[8..12], 1u32.to_le_bytes(), "{name}: version 1");
+    // Version 2 only for what has morph targets or weights.
+    let version = if name.contains("morphing") { 2u32 } else { 1 };
+    assert_eq!(bytes[8..12], version.to_le_bytes(), "{name}: version {version}");
     let back = store::parse(&bytes).unwrap_or_else(|e| panic!("{name}: {e}"));
     assert_eq!(&back, asset, "{name}: the stored asset comes back equal");
     assert_eq!(store::write(&back), bytes, "{name}: and stores to the same bytes");
@@ -149,7 +151,7 @@ fn a_gltf_character_comes_back_with_its_look_takes_and_take() {
     // A second take, made the motion: the take index is kept too.
     let mut more = (*character).clone();
     let half = edit::apply(&clip, &Edit::Trim { first: 0, last: 9 }).unwrap();
-    more.takes.push(mocap::model::character::Take { name: "start".into(), motion: half.motion().clone() });
+    more.takes.push(mocap::model::character::Take { name: "start".into(), motion: half.motion().clone(), weights: Vec::new() });
     let mut two = clip.clone().with_character(Arc::new(more));
     assert!(two.set_take("start"));
     assert_eq!(two.take_name(), Some("start"));
@@ -365,9 +367,9 @@ fn headers_and_trailing_bytes_are_refused_by_name() {
     assert!(message(b"MOCAPCF1").starts_with("byte 0: not a stored asset"), "{}", message(b"MOCAPCF1"));
     assert!(message(b"").starts_with("byte 0:"));
     assert!(message(&bytes[..10]).starts_with("byte 8: the file ends before its version"));
-    let mut v2 = bytes.clone();
-    v2[8] = 2;
-    assert!(message(&v2).starts_with("byte 8: version 2"), "{}", message(&v2));
+    let mut v3 = bytes.clone();
+    v3[8] = 3;
+    assert!(message(&v3).starts_with("byte 8: version 3"), "{}", message(&v3));
     let mut longer = bytes.clone();
     longer.extend_from_slice(b"xyz");
     assert_eq!(message(&longer), format!("byte {}: 3 bytes after the end of the stored asset", bytes.len()));
@@ -516,17 +518,29 @@ fn small_stores() -> Vec<(&'static str, Vec<u8>)> {
         skin: look_skin,
         colors: vec![[255, 0, 0, 255]; 3],
         surface: Some(surface),
+        morph: None,
     });
     let take = character.takes[0].clone();
     character.takes.push(mocap::model::character::Take { name: "again".into(), ..take });
+    // The same with one blend shape moving the second vertex and weights in its
+    // second take (version 2's section).
+    let mut morphing = character.clone();
+    if let Some(look) = morphing.look.as_mut() {
+        look.morph = Some(mocap::model::character::Morph { targets: vec![vec![(1, [0.0, 0.1, 0.0])]], rest: vec![0.25] });
+    }
+    let frames = morphing.takes[1].motion.frame_count();
+    morphing.takes[1].weights = (0..frames).map(|f| f as f32 / frames as f32).collect();
+
     clip = clip.with_character(Arc::new(character));
     assert!(clip.set_take("again"));
     clip.warnings.push(mocap::Warning { line: Some(3), message: "odd".into() });
     clip.metadata.push(("name".into(), "tiny".into()));
+    let morphing = clip.clone().with_character(Arc::new(morphing));
     vec![
         ("clip", round_trip("short", &Asset::Clip(short))),
         ("character", round_trip("tiny character", &Asset::Clip(clip))),
         ("model", round_trip("tiny model", &Asset::Model(model))),
+        ("morphing character", round_trip("tiny morphing character", &Asset::Clip(morphing))),
     ]
 }
 

@@ -17,6 +17,65 @@ pub struct Take {
     pub name: String,
     /// Its frames on the clip's skeleton.
     pub motion: Motion,
+    /// The look's morph-target weights at the motion's frames: [`Morph::targets`]
+    /// per frame, frame after frame; empty when the take sets none (the rest
+    /// weights hold).
+    pub weights: Vec<f32>,
+}
+
+impl Take {
+    /// The weights of `targets` morph targets at `time` seconds (frame times
+    /// `frame_time` apart, linear between frames, the ends held) into `out`;
+    /// false when the take sets none.
+    pub fn weights_at(&self, time: f64, targets: usize, out: &mut Vec<f32>) -> bool {
+        let frames = self.motion.frame_count();
+        if targets == 0 || frames == 0 || self.weights.len() != frames * targets {
+            return false;
+        }
+        let at = if self.motion.frame_time() > 0.0 { time / self.motion.frame_time() } else { 0.0 };
+        let at = if at.is_finite() { at.clamp(0.0, (frames - 1) as f64) } else { 0.0 };
+        let (k, u) = (at.floor() as usize, (at - at.floor()) as f32);
+        let next = (k + 1).min(frames - 1);
+        out.clear();
+        out.extend((0..targets).map(|i| {
+            let a = self.weights.get(k * targets + i).copied().unwrap_or(0.0);
+            let b = self.weights.get(next * targets + i).copied().unwrap_or(0.0);
+            a + (b - a) * u
+        }));
+        true
+    }
+}
+
+/// A look's morph targets (glTF blend shapes): offsets of its vertices in bind
+/// space, blended by weights: position = bind position + Σ weightᵢ · offsetᵢ,
+/// before skinning.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Morph {
+    /// Per target, the vertices it moves and by how much (bind space, the
+    /// look's units).
+    pub targets: Vec<Vec<(u32, [f32; 3])>>,
+    /// Each target's weight when no take sets it.
+    pub rest: Vec<f32>,
+}
+
+impl Morph {
+    /// The look's positions under `weights` (one per target; missing ones are
+    /// the rest weights) into `out`, from its bind positions `base`.
+    pub fn shape(&self, base: &[glam::Vec3], weights: &[f32], out: &mut Vec<glam::Vec3>) {
+        out.clear();
+        out.extend_from_slice(base);
+        for (i, target) in self.targets.iter().enumerate() {
+            let w = weights.get(i).or(self.rest.get(i)).copied().unwrap_or(0.0);
+            if w == 0.0 || !w.is_finite() {
+                continue;
+            }
+            for &(v, d) in target {
+                if let Some(p) = out.get_mut(v as usize) {
+                    *p += w * glam::Vec3::from_array(d);
+                }
+            }
+        }
+    }
 }
 
 /// A mesh bound to the clip's skeleton, with a colour per vertex.
@@ -31,6 +90,8 @@ pub struct Look {
     pub colors: Vec<[u8; 4]>,
     /// The base-colour texture to draw per pixel, when the look has one.
     pub surface: Option<Surface>,
+    /// Its morph targets, when it has some.
+    pub morph: Option<Morph>,
 }
 
 /// How a texture coordinate outside 0–1 is taken back into the image.

@@ -5,7 +5,9 @@
 //! first key the first value holds, after the last the last one.
 //!
 //! Inputs: an animation and the buffers. Output: [`Track`]s, one per channel on
-//! a node's translation, rotation or scale; [`Track::sample`] evaluates one.
+//! a node's translation, rotation or scale; [`Track::sample`] evaluates one; and
+//! [`WeightTrack`]s, one per channel on a mesh node's morph-target `weights`
+//! (each weight interpolated on its own: `STEP`, `LINEAR` or the Hermite form).
 
 use super::accessor;
 use crate::error::ParseError;
@@ -126,6 +128,72 @@ impl Track {
     }
 }
 
+/// One channel on a node's morph-target `weights`: `targets` weights per key.
+#[derive(Clone, Debug)]
+pub struct WeightTrack {
+    /// The mesh node whose weights it sets.
+    pub node: usize,
+    /// Weights per key (the mesh's morph targets).
+    pub targets: usize,
+    /// How keys are joined.
+    pub interpolation: Interpolation,
+    /// Key times in seconds, strictly increasing, at least one.
+    pub times: Vec<f32>,
+    /// `targets` values per key (three sets per key for cubic: in-tangents,
+    /// values, out-tangents).
+    pub values: Vec<f32>,
+}
+
+impl WeightTrack {
+    /// The weights at time `t` into `out` (its first `targets` slots; held before
+    /// the first key and after the last). `cursor` remembers the key interval
+    /// found last, as in [`Track::sample`].
+    pub fn sample(&self, t: f32, cursor: &mut usize, out: &mut [f32]) {
+        let n = self.times.len();
+        if n == 0 {
+            return;
+        }
+        let cubic = self.interpolation == Interpolation::CubicSpline;
+        let per_key = self.targets * if cubic { 3 } else { 1 };
+        let part = usize::from(cubic);
+        let value = |key: usize, set: usize, i: usize| {
+            self.values.get(key * per_key + set * self.targets + i).copied().unwrap_or(0.0)
+        };
+        let mut k = (*cursor).min(n - 1);
+        if self.times[k] > t {
+            k = self.times.partition_point(|&x| x <= t).saturating_sub(1);
+        }
+        while k + 1 < n && self.times[k + 1] <= t {
+            k += 1;
+        }
+        *cursor = k;
+        let next = (k + 1).min(n - 1);
+        let span = self.times[next] - self.times[k];
+        let u = if span > 0.0 && t > self.times[k] { ((t - self.times[k]) / span).clamp(0.0, 1.0) } else { 0.0 };
+        for (i, slot) in out.iter_mut().enumerate().take(self.targets) {
+            *slot = match self.interpolation {
+                _ if u == 0.0 => value(k, part, i),
+                Interpolation::Step => value(k, 0, i),
+                Interpolation::Linear => value(k, 0, i) * (1.0 - u) + value(next, 0, i) * u,
+                Interpolation::CubicSpline => {
+                    let (u2, u3) = (u * u, u * u * u);
+                    let (p0, p1) = (value(k, 1, i), value(next, 1, i));
+                    let (m0, m1) = (value(k, 2, i) * span, value(next, 0, i) * span);
+                    (2.0 * u3 - 3.0 * u2 + 1.0) * p0
+                        + (u3 - 2.0 * u2 + u) * m0
+                        + (-2.0 * u3 + 3.0 * u2) * p1
+                        + (u3 - u2) * m1
+                }
+            };
+        }
+    }
+
+    /// The last key's time.
+    pub fn end(&self) -> f32 {
+        self.times.last().copied().unwrap_or(0.0)
+    }
+}
+
 /// The specification's slerp: the shorter arc, linear when the two are nearly equal.
 fn slerp(a: glam::Quat, b: glam::Quat, s: f32) -> glam::Quat {
     let mut d = a.dot(b);
@@ -148,9 +216,9 @@ fn slerp(a: glam::Quat, b: glam::Quat, s: f32) -> glam::Quat {
 pub fn tracks(
     animation: &gltf::Animation<'_>,
     buffers: &[super::document::Buffer<'_>],
-) -> Result<(Vec<Track>, usize), ParseError> {
+) -> Result<(Vec<Track>, Vec<WeightTrack>), ParseError> {
     let mut out = Vec::new();
-    let mut weights = 0;
+    let mut weights = Vec::new();
     for (c, channel) in animation.channels().enumerate() {
         let pointer = format!("animations[{}].channels[{c}]", animation.index());
         let path = match channel.target().property() {
@@ -158,7 +226,7 @@ pub fn tracks(
             Property::Rotation => Path::Rotation,
             Property::Scale => Path::Scale,
             Property::MorphTargetWeights => {
-                weights += 1;
+                weights.push(weight_track(&channel, buffers, &pointer)?);
                 continue;
             }
         };
@@ -188,4 +256,28 @@ pub fn tracks(
         out.push(Track { node: channel.target().node().index(), path, interpolation, times, values });
     }
     Ok((out, weights))
+}
+
+/// Reads a `weights` channel: increasing key times, and a whole number of
+/// weights per key (the mesh's target count, checked where the mesh is known).
+pub(super) fn weight_track(
+    channel: &gltf::animation::Channel<'_>,
+    buffers: &[super::document::Buffer<'_>],
+    pointer: &str,
+) -> Result<WeightTrack, ParseError> {
+    let sampler = channel.sampler();
+    let fail = |m: String| ParseError::new(0, 0, format!("{pointer}: {m}"));
+    let times = accessor::floats(&sampler.input(), buffers, 1)?;
+    if let Some(k) = times.windows(2).position(|w| !(w[1] > w[0])) {
+        return Err(fail(format!("key times must increase, but key {} is at {} after {}", k + 1, times[k + 1], times[k])));
+    }
+    let values = accessor::floats(&sampler.output(), buffers, 1)?;
+    let interpolation = sampler.interpolation();
+    let sets = if interpolation == Interpolation::CubicSpline { 3 } else { 1 };
+    let per_key = sets * times.len();
+    if times.is_empty() || values.is_empty() || values.len() % per_key != 0 {
+        return Err(fail(format!("{} weights for {} keys ({interpolation:?})", values.len(), times.len())));
+    }
+    let targets = values.len() / per_key;
+    Ok(WeightTrack { node: channel.target().node().index(), targets, interpolation, times, values })
 }

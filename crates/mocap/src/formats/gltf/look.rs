@@ -15,7 +15,7 @@ use super::accessor::{floats, integers};
 use super::document::{Parsed, Resources, fetch};
 use super::graph::Graph;
 use crate::error::{ParseError, Warning};
-use crate::model::character::{Look, Surface, TextureImage, Wrap, linear_to_srgb, srgb_to_linear};
+use crate::model::character::{Look, Morph, Surface, TextureImage, Wrap, linear_to_srgb, srgb_to_linear};
 use crate::model::mesh::Rgba;
 use crate::runtime::skin::{MAX_INFLUENCES, Skin};
 use glam::{Mat3, Mat4, Vec2, Vec3};
@@ -37,7 +37,21 @@ struct Merged {
     tints: Vec<[u8; 4]>,
     /// Per image index: its wrap modes where a primitive first used it.
     wraps: Vec<(usize, [WrappingMode; 2])>,
+    /// Morph targets of every mesh node, one after another: the vertices each moves.
+    targets: Vec<Vec<(u32, [f32; 3])>>,
+    /// Their weights at rest (the node's or the mesh's `weights`, else 0).
+    rest: Vec<f32>,
+    /// Offsets kept so far, all targets together (bounded by [`MAX_MORPH_OFFSETS`]).
+    offsets: usize,
 }
+
+/// Most morph-target offsets (vertex, target) a look keeps (16 bytes each:
+/// about 128 MB); a file past it is drawn without its later targets' shapes.
+const MAX_MORPH_OFFSETS: usize = 8 << 20;
+
+/// Which of the look's morph targets a mesh node's `weights` are: the node
+/// index, the first target and how many.
+pub type MorphNodes = Vec<(usize, usize, usize)>;
 
 /// A decoded base-colour texture with how it is sampled.
 struct Texture<'i> {
@@ -49,13 +63,15 @@ struct Texture<'i> {
     transform: Mat3,
 }
 
-/// Builds the look; `None` when the scene has no drawable mesh.
+/// Builds the look (`None` when the scene has no drawable mesh) and where each
+/// mesh node's morph targets are among the look's.
 pub fn build(
     parsed: &Parsed<'_>,
     graph: &Graph,
     resources: Resources<'_>,
     warnings: &mut Vec<Warning>,
-) -> Result<Option<Look>, ParseError> {
+) -> Result<(Option<Look>, MorphNodes), ParseError> {
+    let mut morph_nodes = MorphNodes::new();
     let document = &parsed.document;
     let inverse_bind = inverse_binds(parsed, graph)?;
     let mut images: Vec<Option<Option<Rgba>>> = vec![None; document.images().len()];
@@ -84,20 +100,33 @@ pub fn build(
                 Binding::Rigid(j as u32, to_bind)
             }
         };
+        let first_target = merged.targets.len();
+        let targets = mesh.primitives().map(|p| p.morph_targets().len()).max().unwrap_or(0);
+        if targets > 0 {
+            let rest = node.weights().or(mesh.weights()).unwrap_or(&[]);
+            merged.targets.extend((0..targets).map(|_| Vec::new()));
+            merged.rest.extend((0..targets).map(|i| rest.get(i).copied().filter(|w| w.is_finite()).unwrap_or(0.0)));
+            morph_nodes.push((n, first_target, targets));
+        }
         for (p, primitive) in mesh.primitives().enumerate() {
             let pointer = format!("meshes[{}].primitives[{p}]", mesh.index());
             let texture = texture(parsed, &primitive, &mut images, resources, warnings);
-            add_primitive(parsed, &primitive, &pointer, &binding, texture.as_ref(), &mut merged, warnings)?;
+            let at = (pointer.as_str(), first_target);
+            add_primitive(parsed, &primitive, at, &binding, texture.as_ref(), &mut merged, warnings)?;
         }
     }
     if merged.positions.is_empty() {
-        return Ok(None);
+        return Ok((None, MorphNodes::new()));
+    }
+    if merged.offsets >= MAX_MORPH_OFFSETS {
+        warnings.push(note(format!("more than {MAX_MORPH_OFFSETS} morph-target offsets: the later ones are left out")));
     }
     let surface = surface(&merged, &images);
-    let Merged { positions, normals, indices, joints, weights, colors, .. } = merged;
+    let Merged { positions, normals, indices, joints, weights, colors, targets, rest, .. } = merged;
     let skin = Skin::with_inverse_bind(positions, normals, indices, joints, weights, inverse_bind)
         .map_err(|e| ParseError::new(0, 0, format!("the mesh cannot be skinned: {e}")))?;
-    Ok(Some(Look { skin, colors, surface }))
+    let morph = (!targets.is_empty()).then_some(Morph { targets, rest });
+    Ok((Some(Look { skin, colors, surface, morph }), morph_nodes))
 }
 
 /// The texture drawn per pixel: the image the most vertices use, with each
@@ -182,7 +211,7 @@ fn inverse_binds(parsed: &Parsed<'_>, graph: &Graph) -> Result<Vec<Mat4>, ParseE
 fn add_primitive(
     parsed: &Parsed<'_>,
     primitive: &gltf::Primitive<'_>,
-    pointer: &str,
+    (pointer, first_target): (&str, usize),
     binding: &Binding,
     texture: Option<&Texture<'_>>,
     merged: &mut Merged,
@@ -300,6 +329,42 @@ fn add_primitive(
         warnings.push(note(format!("{pointer}: {unweighted} vertices have no weights; they follow the first joint")));
     }
     merged.indices.extend(indices.iter().map(|i| i + base));
+    let to_bind = match binding {
+        Binding::Rigid(_, m) => *m,
+        Binding::Skinned(_) => Mat4::IDENTITY,
+    };
+    add_targets(parsed, primitive, (pointer, first_target), base, count, to_bind, merged)
+}
+
+/// Reads the primitive's morph-target position offsets (vertices from `base`,
+/// `count` of them, taken into bind space by `to_bind`) into the look's targets
+/// from `first_target` on, keeping only the vertices each moves.
+fn add_targets(
+    parsed: &Parsed<'_>,
+    primitive: &gltf::Primitive<'_>,
+    (pointer, first_target): (&str, usize),
+    base: u32,
+    count: usize,
+    to_bind: Mat4,
+    merged: &mut Merged,
+) -> Result<(), ParseError> {
+    for (t, target) in primitive.morph_targets().enumerate() {
+        let Some(accessor) = target.positions() else { continue };
+        let offsets = floats(&accessor, &parsed.buffers, 3)?;
+        if offsets.len() != count * 3 {
+            let n = offsets.len() / 3;
+            return Err(ParseError::new(0, 0, format!("{pointer}.targets[{t}].POSITION has {n} elements, POSITION {count}")));
+        }
+        let Some(list) = merged.targets.get_mut(first_target + t) else { continue };
+        for (v, d) in offsets.chunks_exact(3).enumerate() {
+            let d = to_bind.transform_vector3(Vec3::from_slice(d));
+            if d == Vec3::ZERO || !d.is_finite() || merged.offsets >= MAX_MORPH_OFFSETS {
+                continue;
+            }
+            list.push((base + v as u32, d.to_array()));
+            merged.offsets += 1;
+        }
+    }
     Ok(())
 }
 

@@ -22,7 +22,8 @@ use crate::error::ParseError;
 use crate::model::clip::Units;
 use crate::model::mesh::{Animation, FRAME_TIME, MeshParts, Model, MorphMesh, QUAKE_PLAYER_HEIGHT, Skin, SourceCounts};
 use glam::{Mat3, Mat4, Vec3};
-use gltf::animation::{Interpolation, Property};
+use super::animation::weight_track;
+use gltf::animation::Property;
 
 /// Most key frames × vertices read (24 bytes each: about 200 MB).
 pub const MAX_VALUES: usize = 8 << 20;
@@ -169,54 +170,26 @@ fn sample(
     channel: &gltf::animation::Channel<'_>,
     targets: usize,
 ) -> Result<Vec<Vec<f32>>, ParseError> {
-    let sampler = channel.sampler();
-    let times = floats(&sampler.input(), &parsed.buffers, 1)?;
-    let values = floats(&sampler.output(), &parsed.buffers, 1)?;
-    let cubic = sampler.interpolation() == Interpolation::CubicSpline;
-    let per_key = targets * if cubic { 3 } else { 1 };
-    if times.is_empty() || targets == 0 || values.len() != times.len() * per_key {
+    let pointer = format!("animations[{}]", channel.animation().index());
+    let track = weight_track(channel, &parsed.buffers, &pointer)?;
+    if track.targets != targets {
         return Err(ParseError::new(
             0,
             0,
-            format!(
-                "animations[{}]: {} weights for {} keys of {targets} targets",
-                channel.animation().index(),
-                values.len(),
-                times.len()
-            ),
+            format!("{pointer}: {} weights a key for a mesh of {targets} targets", track.targets),
         ));
     }
-    let (start, end) = (times[0], times[times.len() - 1]);
+    let (start, end) = (track.times[0], track.end());
     let steps = (((end - start) as f64 / FRAME_TIME) + 1e-6).floor().max(0.0) as usize;
     if steps >= MAX_VALUES {
         return Ok(Vec::new());
     }
-    let value =
-        |key: usize, part: usize, i: usize| values.get(key * per_key + part * targets + i).copied().unwrap_or(0.0);
     let mut out = Vec::with_capacity(steps + 1);
-    let mut key = 0;
+    let mut cursor = 0;
     for s in 0..=steps {
-        let t = start + (s as f64 * FRAME_TIME) as f32;
-        while key + 1 < times.len() && times[key + 1] <= t {
-            key += 1;
-        }
-        let next = (key + 1).min(times.len() - 1);
-        let span = times[next] - times[key];
-        let u = if span > 0.0 { ((t - times[key]) / span).clamp(0.0, 1.0) } else { 0.0 };
-        let at = |i: usize| match sampler.interpolation() {
-            Interpolation::Step => value(key, 0, i),
-            Interpolation::Linear => value(key, 0, i) * (1.0 - u) + value(next, 0, i) * u,
-            Interpolation::CubicSpline => {
-                let (u2, u3) = (u * u, u * u * u);
-                let (p0, p1) = (value(key, 1, i), value(next, 1, i));
-                let (m0, m1) = (value(key, 2, i) * span, value(next, 0, i) * span);
-                (2.0 * u3 - 3.0 * u2 + 1.0) * p0
-                    + (u3 - 2.0 * u2 + u) * m0
-                    + (-2.0 * u3 + 3.0 * u2) * p1
-                    + (u3 - u2) * m1
-            }
-        };
-        out.push((0..targets).map(at).collect());
+        let mut weights = vec![0.0; targets];
+        track.sample(start + (s as f64 * FRAME_TIME) as f32, &mut cursor, &mut weights);
+        out.push(weights);
     }
     Ok(out)
 }

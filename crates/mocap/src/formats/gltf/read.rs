@@ -12,7 +12,8 @@
 //! [`super::graph`] (nodes → joints), [`super::animation`] (channels → tracks),
 //! [`super::look`] (meshes → skinned look).
 
-use super::animation::{Path, Track, tracks};
+use super::animation::{Path, Track, WeightTrack, tracks};
+use super::look::MorphNodes;
 use super::document::{self, Resources};
 use super::graph::{Graph, Trs};
 use crate::error::{ParseError, Warning};
@@ -59,25 +60,32 @@ fn character(
     }
     let mut warnings = Vec::new();
     let mut all = Vec::new();
-    let mut morph_channels = 0;
+    let mut all_weights = Vec::new();
     for a in parsed.document.animations() {
         let (t, weights) = tracks(&a, &parsed.buffers)?;
-        morph_channels += weights;
         let name = a.name().map_or_else(|| format!("animation {}", a.index()), str::to_owned);
         all.push((name, t));
+        all_weights.push(weights);
     }
-    if morph_channels > 0 {
-        warnings.push(Warning {
-            line: None,
-            message: format!("{morph_channels} morph-target weight channels are not played"),
-        });
-    }
+    let (look, morph_nodes) = super::look::build(parsed, &graph, resources, &mut warnings)?;
     let layout = Layout::new(&graph, &all);
     let skeleton = skeleton(&parsed.document, &graph, &layout)?;
+    let rest = look.as_ref().and_then(|l| l.morph.as_ref()).map_or(&[][..], |m| m.rest.as_slice());
     let mut takes = Vec::new();
-    for (name, t) in &all {
+    for ((name, t), weight_tracks) in all.iter().zip(&all_weights) {
         warn_outside(&graph, name, t, &mut warnings);
-        takes.push(Take { name: name.clone(), motion: sample_take(&graph, &layout, &skeleton, t, name)? });
+        let mut played = played_weights(weight_tracks, &morph_nodes, name, &mut warnings);
+        let (_, frames) = frames_of(t, &played);
+        if !played.is_empty() && frames.saturating_mul(skeleton.channel_count().max(rest.len())) > MAX_VALUES {
+            warnings.push(Warning {
+                line: None,
+                message: format!("animation `{name}`: its weights last {frames} frames, too long to play; not played"),
+            });
+            played.clear();
+        }
+        let motion = sample_take(&graph, &layout, &skeleton, t, &played, name)?;
+        let weights = sample_weights(&motion, &played, rest);
+        takes.push(Take { name: name.clone(), motion, weights });
     }
     let start = match animation {
         None => 0,
@@ -88,9 +96,8 @@ fn character(
     };
     let motion = match takes.get(start) {
         Some(take) => take.motion.clone(),
-        None => sample_take(&graph, &layout, &skeleton, &[], "rest")?,
+        None => sample_take(&graph, &layout, &skeleton, &[], &[], "rest")?,
     };
-    let look = super::look::build(&parsed, &graph, resources, &mut warnings)?;
     let summary = summary(&parsed, &all);
     let character = Character { look, takes, summary };
     let mut clip = Clip::new(skeleton, motion)
@@ -173,12 +180,12 @@ fn warn_outside(graph: &Graph, name: &str, tracks: &[Track], warnings: &mut Vec<
 /// The frame time and count of an animation: its densest track's mean key
 /// interval (within 1/240–1/24 s; a common frame rate when within 0.1% of one,
 /// as f32 key times drift), adjusted so that the last key falls on the last frame.
-fn frames_of(tracks: &[Track]) -> (f64, usize) {
-    let end = tracks.iter().map(Track::end).fold(0.0f32, f32::max) as f64;
-    let mean = tracks
-        .iter()
-        .filter(|t| t.times.len() >= 2)
-        .map(|t| (t.end() as f64 - t.times[0] as f64) / (t.times.len() - 1) as f64)
+fn frames_of(tracks: &[Track], weights: &[Played<'_>]) -> (f64, usize) {
+    let times = || tracks.iter().map(|t| t.times.as_slice()).chain(weights.iter().map(|w| w.track.times.as_slice()));
+    let end = times().filter_map(|t| t.last().copied()).fold(0.0f32, f32::max) as f64;
+    let mean = times()
+        .filter(|t| t.len() >= 2)
+        .map(|t| (t[t.len() - 1] as f64 - t[0] as f64) / (t.len() - 1) as f64)
         .filter(|d| *d > 0.0)
         .fold(f64::INFINITY, f64::min);
     let mut step = if mean.is_finite() { mean.clamp(1.0 / 240.0, 1.0 / 24.0) } else { 1.0 / 30.0 };
@@ -196,15 +203,77 @@ fn frames_of(tracks: &[Track]) -> (f64, usize) {
     (end / intervals, intervals as usize + 1)
 }
 
+/// A `weights` channel played on the look: its track and the first of the
+/// look's targets it sets.
+struct Played<'a> {
+    track: &'a WeightTrack,
+    first: usize,
+}
+
+/// The `weights` channels of animation `name` that drive a mesh node with as
+/// many morph targets as they have weights; the others are warned about.
+fn played_weights<'a>(
+    tracks: &'a [WeightTrack],
+    nodes: &MorphNodes,
+    name: &str,
+    warnings: &mut Vec<Warning>,
+) -> Vec<Played<'a>> {
+    let mut played = Vec::new();
+    for track in tracks {
+        match nodes.iter().find(|(n, ..)| *n == track.node) {
+            Some(&(_, first, count)) if count == track.targets => played.push(Played { track, first }),
+            Some(&(_, _, count)) => warnings.push(Warning {
+                line: None,
+                message: format!(
+                    "animation `{name}`: nodes[{}] has {count} morph targets but its weights channel sets {}; not played",
+                    track.node, track.targets
+                ),
+            }),
+            None => warnings.push(Warning {
+                line: None,
+                message: format!("animation `{name}`: nodes[{}] has no drawn mesh with morph targets; its weights are not played", track.node),
+            }),
+        }
+    }
+    played
+}
+
+/// The look's morph-target weights at each of `motion`'s frames (`rest` where
+/// no played channel sets them): empty when no channel is played.
+fn sample_weights(motion: &Motion, played: &[Played<'_>], rest: &[f32]) -> Vec<f32> {
+    let (frames, targets) = (motion.frame_count(), rest.len());
+    if played.is_empty() || targets == 0 || frames.saturating_mul(targets) > MAX_VALUES {
+        return Vec::new();
+    }
+    let mut out = Vec::with_capacity(frames * targets);
+    for _ in 0..frames {
+        out.extend_from_slice(rest);
+    }
+    let mut scratch = Vec::new();
+    for p in played {
+        let mut cursor = 0;
+        scratch.resize(p.track.targets, 0.0);
+        for f in 0..frames {
+            p.track.sample((f as f64 * motion.frame_time()) as f32, &mut cursor, &mut scratch);
+            let row = f * targets + p.first;
+            if let Some(slots) = out.get_mut(row..row + p.track.targets) {
+                slots.copy_from_slice(&scratch);
+            }
+        }
+    }
+    out
+}
+
 /// Samples one animation (no tracks: the rest pose, one frame) into motion.
 fn sample_take(
     graph: &Graph,
     layout: &Layout,
     skeleton: &Skeleton,
     tracks: &[Track],
+    weights: &[Played<'_>],
     name: &str,
 ) -> Result<Motion, ParseError> {
-    let (frame_time, frames) = frames_of(tracks);
+    let (frame_time, frames) = frames_of(tracks, weights);
     let width = skeleton.channel_count();
     if frames.saturating_mul(width) > MAX_VALUES {
         return Err(ParseError::new(

@@ -9,8 +9,8 @@
 //! | bytes | what |
 //! |---|---|
 //! | 8 | magic `MOCAPAS1` |
-//! | 4 | version, 1 (u32, little-endian) |
-//! | rest | the asset in [postcard](https://docs.rs/postcard) (below) |
+//! | 4 | version, 1, or 2 when the asset has morph targets or weights (u32, little-endian) |
+//! | rest | the asset in [postcard](https://docs.rs/postcard) (below); version 2: then the morph section (see `morph.rs`) |
 //!
 //! Postcard writes serde's data model without names: integers (`usize` too) and
 //! every length as LEB128 varints, `f32`/`f64` raw little-endian, a bool or an
@@ -31,7 +31,7 @@
 //!   skin names, skin size, source counts), the skin (file name, width, height,
 //!   RGBA pixels) and the chosen animation.
 //!
-//! A change of this layout is a new version; [`parse`] reads version 1 only.
+//! A change of this layout is a new version; [`parse`] reads versions 1 and 2.
 //!
 //! **Guarantees.** `parse(&write(&a)) == a`, bit for bit (a NaN in a motion
 //! comes back as the same NaN, though `==` never calls NaN equal). [`parse`]
@@ -70,6 +70,7 @@
 //! [`Clip::new`]: crate::Clip::new
 //! [`Skin::with_inverse_bind`]: crate::runtime::skin::Skin::with_inverse_bind
 
+mod morph;
 mod parts;
 
 use crate::error::ParseError;
@@ -79,8 +80,11 @@ use serde::Deserialize;
 /// The file's first eight bytes.
 pub const MAGIC: &[u8; 8] = b"MOCAPAS1";
 
-/// The layout this module writes and reads.
+/// The layout of an asset without morph targets nor weights.
 const VERSION: u32 = 1;
+
+/// The same followed by the morph section.
+const VERSION_MORPH: u32 = 2;
 
 /// Bytes before the postcard body: magic and version.
 const HEADER: usize = 12;
@@ -91,12 +95,18 @@ const HEADER: usize = 12;
 /// skin image and chosen animation) losslessly: parse(write(a)) == a
 /// (PartialEq), bit for bit.
 pub fn write(asset: &Asset) -> Vec<u8> {
+    let section = morph::MorphSection::of(asset);
+    let version = if section.is_some() { VERSION_MORPH } else { VERSION };
     let mut out = Vec::with_capacity(HEADER + 64);
     out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
+    out.extend_from_slice(&version.to_le_bytes());
     // Postcard refuses only sequences of unknown length, and every sequence of
     // the stored form has its length.
-    postcard::to_extend(asset, out).expect("every sequence of the stored form has a known length")
+    let out = postcard::to_extend(asset, out).expect("every sequence of the stored form has a known length");
+    match section {
+        Some(section) => postcard::to_extend(&section, out).expect("every sequence of the section has a known length"),
+        None => out,
+    }
 }
 
 /// Reads what `write` wrote. Never panics, never allocates from a count in the
@@ -112,10 +122,10 @@ pub fn parse(bytes: &[u8]) -> Result<Asset, ParseError> {
         return Err(ParseError::at_byte(MAGIC.len(), "the file ends before its version (4 bytes)"));
     };
     let version = u32::from_le_bytes([version[0], version[1], version[2], version[3]]);
-    if version != VERSION {
+    if version != VERSION && version != VERSION_MORPH {
         return Err(ParseError::at_byte(
             MAGIC.len(),
-            format!("version {version}: this reader reads version {VERSION} only"),
+            format!("version {version}: this reader reads versions {VERSION} and {VERSION_MORPH}"),
         ));
     }
     let body = bytes.get(HEADER..).unwrap_or(&[]);
@@ -124,13 +134,30 @@ pub fn parse(bytes: &[u8]) -> Result<Asset, ParseError> {
     let end = de.finalize().unwrap_or(0);
     let parts = parts
         .map_err(|e| ParseError::at_byte(HEADER + end, format!("the stored asset is cut or damaged here: {e}")))?;
+    let (section, end) = if version == VERSION_MORPH {
+        let mut de = postcard::Deserializer::from_flavor(Tracked { bytes: body, at: end });
+        let section = morph::MorphSection::deserialize(&mut de);
+        let after = de.finalize().unwrap_or(end);
+        let section = section
+            .map_err(|e| ParseError::at_byte(HEADER + after, format!("the stored morph targets are cut or damaged here: {e}")))?;
+        (Some((section, end)), after)
+    } else {
+        (None, end)
+    };
     if end != body.len() {
         return Err(ParseError::at_byte(
             HEADER + end,
             format!("{} bytes after the end of the stored asset", body.len() - end),
         ));
     }
-    parts.build().map_err(|e| ParseError::at_byte(HEADER, format!("the stored asset does not hold together: {e}")))
+    let mut asset =
+        parts.build().map_err(|e| ParseError::at_byte(HEADER, format!("the stored asset does not hold together: {e}")))?;
+    if let Some((section, at)) = section {
+        section
+            .apply(&mut asset)
+            .map_err(|e| ParseError::at_byte(HEADER + at, format!("the stored morph targets do not hold together: {e}")))?;
+    }
+    Ok(asset)
 }
 
 /// Postcard's input: a slice and how far into it decoding has come (so an error

@@ -278,7 +278,7 @@ impl<'a> TakeParts<'a> {
 
     fn build(self) -> Result<Take, String> {
         let motion = self.motion.build().map_err(within(format_args!("`{}`: motion", self.name)))?;
-        Ok(Take { name: self.name.into_owned(), motion })
+        Ok(Take { name: self.name.into_owned(), motion, weights: Vec::new() })
     }
 }
 
@@ -343,7 +343,7 @@ impl<'a> LookParts<'a> {
             return Err(format!("{} colours for {n} vertices", self.colors.len()));
         }
         let surface = self.surface.map(|s| s.build(n).map_err(within("texture"))).transpose()?;
-        Ok(Look { skin, colors: self.colors.into_owned(), surface })
+        Ok(Look { skin, colors: self.colors.into_owned(), surface, morph: None })
     }
 }
 
