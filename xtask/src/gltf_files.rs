@@ -57,6 +57,7 @@ pub fn write(dir: &Path, corpus: Option<&Path>) -> Result<PathBuf, String> {
         mocap::ops::retarget::retarget(&source, &character, &Default::default()).map_err(|e| e.to_string())?;
     clips.push(("walk-z-up-on-walk.glb".into(), on, true, false));
     clips.push(("walk-textured.glb".into(), textured(&character)?, true, false));
+    clips.push(("walk-breathing.glb".into(), breathing(&character)?, true, false));
     let mut entries = Vec::new();
     for (file, clip, body, text) in &clips {
         let options = Options { name: file.split('.').next().unwrap_or("motion").to_owned(), body: *body };
@@ -138,6 +139,28 @@ fn textured(character: &Clip) -> Result<Clip, String> {
     let image = TextureImage { width: 64, height: 64, pixels, wrap: [Wrap::Repeat; 2] };
     let tints = vec![[255; 4]; uvs.len()];
     look.surface = Some(Surface { image: std::sync::Arc::new(image), uvs, tints });
+    Ok(character.clone().with_character(std::sync::Arc::new(c)))
+}
+
+/// `character` (a glTF character read back) with one morph target, `swell`,
+/// lifting the vertices of its top tenth by a tenth of its height, and weights
+/// from 0 at the first frame to 1 at the last in its take (validated and loaded
+/// by three.js with the other files).
+fn breathing(character: &Clip) -> Result<Clip, String> {
+    use mocap::model::character::Morph;
+    let mut c = (**character.character.as_ref().ok_or("walk-again.glb: no character")?).clone();
+    let look = c.look.as_mut().ok_or("walk-again.glb: no look")?;
+    let positions = look.skin.positions();
+    let (lo, hi) = positions.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), p| (a.min(p.y), b.max(p.y)));
+    let lift = 0.1 * (hi - lo);
+    let moved: Vec<(u32, [f32; 3])> = (positions.iter().enumerate())
+        .filter(|(_, p)| p.y > hi - lift)
+        .map(|(v, _)| (v as u32, [0.0, lift, 0.0]))
+        .collect();
+    look.morph = Some(Morph { targets: vec![moved], rest: vec![0.0] });
+    let take = c.takes.first_mut().ok_or("walk-again.glb: no take")?;
+    let frames = take.motion.frame_count();
+    take.weights = (0..frames).map(|f| f as f32 / (frames.max(2) - 1) as f32).collect();
     Ok(character.clone().with_character(std::sync::Arc::new(c)))
 }
 

@@ -369,6 +369,7 @@ impl StageView {
             if actor.asset.clip().is_some() {
                 actor.pose_at(time, self.interpolation, pose_scratch, pose);
             }
+            let shape = actor.asset.clip().and_then(|clip| mocap_scene::MorphShape::default().at(clip, time));
             let draw = ActorDraw {
                 drawable: &actor.extra,
                 pose,
@@ -378,6 +379,7 @@ impl StageView {
                 extent: actor.world_extent(),
                 selected: None,
                 ghost: &[],
+                shape: shape.as_ref(),
             };
             mocap_scene::push_actor(scene, &draw, &style);
         }

@@ -181,6 +181,11 @@ pub struct SkinnedDraw {
     pub tint: [u8; 4],
     /// Colour by bone influences instead of the tint.
     pub weights_view: bool,
+    /// Bind-pose positions to skin instead of the mesh's own, one per vertex
+    /// (its morph targets blended); `None` for the mesh as it is. The mesh's
+    /// GPU copy is rewritten when this changes, so two draws of one mesh in a
+    /// frame share the shape of the last.
+    pub shape: Option<Arc<[Vec3]>>,
 }
 
 impl SkinnedDraw {
@@ -248,6 +253,9 @@ struct GpuMesh {
     index_count: u32,
     /// Its colour texture (white when it has none).
     texture: wgpu::BindGroup,
+    /// The shape its vertex buffer holds ([`SkinnedDraw::shape`], by address),
+    /// `None` for the mesh's own positions.
+    shaped: Option<usize>,
 }
 
 /// The skinned meshes on the GPU, the joint texture and this frame's draws.
@@ -263,6 +271,8 @@ pub(crate) struct SkinnedCache {
     scratch: Vec<Instance>,
     texels: Vec<[f32; 4]>,
     draws: Vec<(usize, u32)>,
+    /// Vertices with a shape's positions, before they are written.
+    shaped: Vec<SkinnedVertex>,
 }
 
 impl SkinnedCache {
@@ -290,6 +300,7 @@ impl SkinnedCache {
             scratch: Vec::new(),
             texels: Vec::new(),
             draws: Vec::new(),
+            shaped: Vec::new(),
         }
     }
 
@@ -331,7 +342,12 @@ impl SkinnedCache {
                 let mesh = GpuMesh {
                     texture,
                     owner: Arc::downgrade(data),
-                    vertices: buffer("mocap skinned vertices", bytes, wgpu::BufferUsages::VERTEX),
+                    vertices: buffer(
+                        "mocap skinned vertices",
+                        bytes,
+                        wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                    ),
+                    shaped: None,
                     indices: buffer(
                         "mocap skinned indices",
                         bytemuck::cast_slice(&data.indices),
@@ -341,6 +357,7 @@ impl SkinnedCache {
                 };
                 self.meshes.insert(key, mesh);
             }
+            self.write_shape(queue, key, data, draw.shape.as_ref());
             let base = (self.texels.len() / TEXELS_PER_MATRIX as usize) as u32;
             for j in 0..data.joint_count as usize {
                 let m = draw.matrices.get(j).copied().filter(|m| m.is_finite()).unwrap_or(Mat4::IDENTITY);
@@ -355,6 +372,27 @@ impl SkinnedCache {
         }
         self.instances.upload(device, queue, &self.scratch);
         self.upload_matrices(device, queue);
+    }
+
+    /// Makes mesh `key`'s vertex buffer hold `shape`'s positions (one per
+    /// vertex; else the mesh's own), writing it only when that changes.
+    fn write_shape(&mut self, queue: &wgpu::Queue, key: usize, data: &SkinnedMeshData, shape: Option<&Arc<[Vec3]>>) {
+        let Some(mesh) = self.meshes.get_mut(&key) else { return };
+        let shape = shape.filter(|s| s.len() == data.vertices.len());
+        let wanted = shape.map(|s| Arc::as_ptr(s).cast::<Vec3>() as usize);
+        if mesh.shaped == wanted {
+            return;
+        }
+        match shape {
+            Some(shape) => {
+                self.shaped.clear();
+                let moved = data.vertices.iter().zip(shape.iter());
+                self.shaped.extend(moved.map(|(v, p)| SkinnedVertex { position: p.to_array(), ..*v }));
+                queue.write_buffer(&mesh.vertices, 0, bytemuck::cast_slice(&self.shaped));
+            }
+            None => queue.write_buffer(&mesh.vertices, 0, bytemuck::cast_slice(&data.vertices)),
+        }
+        mesh.shaped = wanted;
     }
 
     /// The white texture's bind group (made once).

@@ -403,7 +403,7 @@ fn gpu_skinning_matches_the_cpu_blend() {
     let tint = [200, 180, 160, 255];
     let mut scene = Scene { shadows: false, ..Scene::default() };
     scene.skinned =
-        vec![SkinnedDraw { mesh: mesh.clone(), coarse: None, matrices: matrices.clone(), tint, weights_view: false }];
+        vec![SkinnedDraw { mesh: mesh.clone(), coarse: None, matrices: matrices.clone(), tint, weights_view: false, shape: None }];
     renderer.render(&device, &queue, &target, &scene, &camera);
     let gpu = read_pixels(&device, &queue, &target);
     // The CPU blend: Σ wᵢ·Mᵢ applied to each vertex.
@@ -446,7 +446,7 @@ fn gpu_skinning_matches_the_cpu_blend() {
     assert!(columns_of(10..40) + 10.0 < columns_of(80..110), "bent toward -X at the top");
     // The weights view colours by joint, not by the tint.
     scene.meshes.clear();
-    scene.skinned = vec![SkinnedDraw { mesh, coarse: None, matrices, tint, weights_view: true }];
+    scene.skinned = vec![SkinnedDraw { mesh, coarse: None, matrices, tint, weights_view: true, shape: None }];
     renderer.render(&device, &queue, &target, &scene, &camera);
     let weights_view = read_pixels(&device, &queue, &target);
     let changed = gpu
@@ -1132,6 +1132,7 @@ fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
         matrices: vec![Mat4::IDENTITY],
         tint: [200, 60, 60, 255],
         weights_view: false,
+        shape: None,
     };
     let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
     let mut scene =
@@ -1220,6 +1221,7 @@ fn the_fast_look_draws_a_small_body_with_its_coarse_mesh_and_a_near_one_with_its
         matrices: vec![Mat4::IDENTITY],
         tint: [200, 60, 60, 255],
         weights_view: false,
+        shape: None,
     };
     let scene = Scene { skinned: vec![body], shadows: false, ..Scene::default() };
     let red_columns = |renderer: &mut SceneRenderer, camera: &Camera| {
@@ -1268,6 +1270,7 @@ fn bodies_are_drawn_from_outside_and_seen_through_from_inside() {
         matrices: vec![Mat4::IDENTITY],
         tint: [200, 60, 60, 255],
         weights_view: false,
+        shape: None,
     };
     let scene = Scene { skinned: vec![body], shadows: false, ..Scene::default() };
     let background = Scene::default().background;
@@ -1481,6 +1484,7 @@ fn a_skinned_mesh_draws_its_texture_per_pixel() {
         matrices: vec![Mat4::IDENTITY],
         tint: [255; 4],
         weights_view: false,
+        shape: None,
     };
     let mut scene = Scene { background, shadows: false, ..Scene::default() };
     scene.skinned = vec![draw(mesh)];

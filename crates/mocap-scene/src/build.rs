@@ -55,6 +55,9 @@ pub struct ActorDraw<'a> {
     /// The clip's own pose under a correction (world, metres), drawn as thin
     /// translucent lines over everything; empty for none.
     pub ghost: &'a [Transform],
+    /// A character's own look under its morph-target weights ([`crate::MorphShape`]),
+    /// when they move it.
+    pub shape: Option<&'a std::sync::Arc<[mocap::glam::Vec3]>>,
 }
 
 /// Appends one actor to `scene` in `style` ([`mocap_render::push_figure`] for a
@@ -91,6 +94,7 @@ pub fn push_actor(scene: &mut Scene, actor: &ActorDraw, style: &SceneStyle) {
             matrices,
             tint: if body.own { [255; 4] } else { actor.color },
             weights_view: style.show_weights,
+            shape: actor.shape.filter(|_| body.own).cloned(),
         });
         if body.own {
             // The look stands for the bones; joints and axes still show on request.

@@ -13,9 +13,11 @@
 mod build;
 mod camera;
 mod drawable;
+mod morph_shape;
 mod motion_marks;
 
 pub use build::{ActorDraw, SceneStyle, floor_grid, push_actor};
+pub use morph_shape::MorphShape;
 pub use motion_marks::{Onion, joint_path, push_onion, push_trail};
 pub use camera::{OrbitCamera, Waypoint, fit_distance};
 pub use drawable::{Body, Drawable, body_skin, mesh_data};

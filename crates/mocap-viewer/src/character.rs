@@ -31,6 +31,10 @@ pub struct Look {
     pub ghost: Vec<Transform>,
     /// Foot contacts and locks of a clip, found on first use (foot locking).
     pub foot_lock: Option<mocap::ops::contact::FootLock>,
+    /// A glTF look's blend shapes at the last [`pose_at`] (`None`: the mesh as it is).
+    pub shape: Option<std::sync::Arc<[mocap::glam::Vec3]>>,
+    /// The last shape made, kept while the weights stay.
+    pub shapes: mocap_scene::MorphShape,
 }
 
 /// Local rotations (and a root position) set by IK at one frame of a clip.
@@ -246,6 +250,7 @@ pub fn pose_at(c: &mut Character, time: f64, smooth: Option<Interpolation>, lock
     c.extra.pose = pose;
     c.extra.ghost = ghost;
     c.extra.morph = c.morph_at(time, interpolation);
+    c.extra.shape = c.asset.clip().and_then(|clip| c.extra.shapes.at(clip, time));
 }
 
 /// The first palette colour no open character uses, or the palette cycled by count.

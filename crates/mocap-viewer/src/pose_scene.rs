@@ -46,6 +46,7 @@ pub fn draw(c: &Character, color: [u8; 4], selected: Option<usize>) -> ActorDraw
         extent: c.world_extent(),
         selected,
         ghost: &c.extra.ghost,
+        shape: c.extra.shape.as_ref(),
     }
 }
 

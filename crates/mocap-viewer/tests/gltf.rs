@@ -136,3 +136,50 @@ fn a_damaged_glb_is_named_in_the_banner_and_what_was_open_stays() {
     );
     assert!(errors[0].contains("KHR_draco_mesh_compression"), "{}", errors[0]);
 }
+
+/// The walk as a glTF character with one blend shape lifting its top tenth,
+/// weighted from 0 at the first frame to 1 at the last.
+fn breathing() -> Vec<u8> {
+    let clip = mocap::formats::bvh::parse(WALK).unwrap();
+    let glb = to_glb(&clip, &Options { name: "walk".into(), body: true }).unwrap();
+    let none = |_: &str| None;
+    let read = mocap::formats::gltf::parse(&glb, &none, None).unwrap();
+    let mut c = (**read.character.as_ref().unwrap()).clone();
+    let look = c.look.as_mut().unwrap();
+    let top = look.skin.positions().iter().map(|p| p.y).fold(f32::NEG_INFINITY, f32::max);
+    let moved = (look.skin.positions().iter().enumerate())
+        .filter(|(_, p)| p.y > top - 0.1)
+        .map(|(v, _)| (v as u32, [0.0, 0.2, 0.0]))
+        .collect();
+    look.morph = Some(mocap::model::character::Morph { targets: vec![moved], rest: vec![0.0] });
+    let frames = c.takes[0].motion.frame_count();
+    c.takes[0].weights = (0..frames).map(|f| f as f32 / (frames - 1) as f32).collect();
+    let clip = read.clone().with_character(std::sync::Arc::new(c));
+    to_glb(&clip, &Options { name: "walk".into(), body: true }).unwrap()
+}
+
+#[test]
+fn blend_shapes_play_with_the_take() {
+    let mut v = Viewer::default();
+    v.load("breathing.glb", &breathing()).unwrap();
+    v.apply(Command::SetPlaying(false)).unwrap();
+    let shape_at = |v: &mut Viewer, frame: usize| {
+        v.apply(Command::Seek(frame)).unwrap();
+        v.pose();
+        let body = v.scene().skinned.first().expect("the look is drawn");
+        body.shape.clone()
+    };
+    assert!(shape_at(&mut v, 0).is_none(), "weight 0 at the first frame: the mesh as it is");
+    let last = v.state().stage.actors[0].clip().unwrap().frame_count() - 1;
+    let end = shape_at(&mut v, last).expect("weight 1 at the last frame");
+    let middle = shape_at(&mut v, last / 2).expect("a weight halfway");
+    let look = v.state().stage.actors[0].clip().unwrap().character.as_deref().unwrap().look.clone().unwrap();
+    let base = look.skin.positions();
+    let lifted = |shape: &[mocap::glam::Vec3]| shape.iter().zip(base).map(|(s, b)| s.y - b.y).fold(0.0, f32::max);
+    assert!((lifted(&end) - 0.2).abs() < 1e-4, "the top lifted 0.2 m at the end: {}", lifted(&end));
+    let half = 0.2 * (last / 2) as f32 / last as f32;
+    assert!((lifted(&middle) - half).abs() < 1e-4, "{} at the middle frame, {half} expected", lifted(&middle));
+    // Paused on one frame, the same shape is handed on (not made again).
+    let again = shape_at(&mut v, last / 2).unwrap();
+    assert!(std::sync::Arc::ptr_eq(&middle, &again));
+}

@@ -511,6 +511,14 @@ fn a_skinned_mesh_plays_its_morph_target_weights() {
     assert!(shape[2].distance(Vec3::new(0.0, 1.1, 0.0)) < 1e-6, "rest weight 0.1: {:?}", shape[2]);
     let warned = clip.warnings.iter().map(|w| w.message.clone()).collect::<Vec<_>>().join("\n");
     assert!(warned.contains("animation `bad`: nodes[1] has 2 morph targets but its weights channel sets 3"), "{warned}");
+    // Written as glTF and read back with them: the targets, the rest weights and
+    // the take's weights.
+    let glb = mocap::formats::gltf::to_glb(&clip, &mocap::formats::gltf::Options::default()).unwrap();
+    let again = read(&[("again.glb", &glb)]).unwrap();
+    let back = again.character.as_deref().unwrap();
+    assert_eq!(back.look.as_ref().unwrap().morph.as_ref(), Some(morph), "targets and rest weights");
+    assert!(back.takes[0].weights_at(0.5, 2, &mut w), "the take's weights");
+    assert!((w[0] - 0.5).abs() < 1e-5 && (w[1] - 0.25).abs() < 1e-5, "{w:?}");
     // Stored and read back with them.
     let asset = mocap::Asset::Clip(clip);
     assert_eq!(mocap::formats::store::parse(&mocap::formats::store::write(&asset)).unwrap(), asset);

@@ -214,6 +214,24 @@ impl Clip {
         true
     }
 
+    /// The look's morph-target weights at `time` seconds into `out`, one per
+    /// target ([`crate::model::character::Morph`]): the take's where it sets
+    /// them and the motion still has its frames (not trimmed or resampled),
+    /// else the rest weights. False when the look has no morph targets.
+    pub fn morph_weights_at(&self, time: f64, out: &mut Vec<f32>) -> bool {
+        let Some(character) = self.character.as_deref() else { return false };
+        let Some(morph) = character.look.as_ref().and_then(|l| l.morph.as_ref()) else { return false };
+        let targets = morph.targets.len();
+        let take = character.takes.get(self.take).filter(|t| {
+            t.motion.frame_count() == self.motion.frame_count() && t.motion.frame_time() == self.motion.frame_time()
+        });
+        if !take.is_some_and(|t| t.weights_at(time, targets, out)) {
+            out.clear();
+            out.extend_from_slice(&morph.rest);
+        }
+        true
+    }
+
     /// The name of the take the motion is, when the clip has takes.
     pub fn take_name(&self) -> Option<&str> {
         self.takes().get(self.take).map(|t| t.name.as_str())

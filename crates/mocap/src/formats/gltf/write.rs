@@ -177,6 +177,9 @@ fn document(clip: &Clip, options: &Options, inline: Option<()>) -> Result<(Value
             primitives = whole(&attributes, &mut accessors, &mut bin);
         }
         document["meshes"] = json!([{ "name": format!("{} body", options.name), "primitives": primitives }]);
+        if let Some(morph) = look.and_then(|l| l.morph.as_ref()) {
+            write_targets(morph, mesh.positions.len(), &mut document, &mut accessors, &mut bin);
+        }
         let factor = if look.is_some() { [1.0, 1.0, 1.0, 1.0] } else { [0.8, 0.8, 0.82, 1.0] };
         let material = |name: &str| json!({ "name": name, "pbrMetallicRoughness": { "baseColorFactor": factor, "metallicFactor": 0.0, "roughnessFactor": 0.7 } });
         let mut materials = vec![material("body")];
@@ -193,7 +196,14 @@ fn document(clip: &Clip, options: &Options, inline: Option<()>) -> Result<(Value
     document["nodes"] = Value::Array(nodes);
 
     if clip.frame_count() > 0 {
-        document["animations"] = json!([animation(clip, options, &convert, &rest, &mut accessors, &mut bin)?]);
+        let mut animation = animation(clip, options, &convert, &rest, &mut accessors, &mut bin)?;
+        let morphs = document.get("meshes").and_then(|m| m[0].get("weights")).is_some();
+        if morphs {
+            // The body node is the last one written.
+            let node = document["nodes"].as_array().map_or(0, |n| n.len().saturating_sub(1));
+            add_weights(clip, node, &mut animation, &mut accessors, &mut bin);
+        }
+        document["animations"] = json!([animation]);
     }
     document["accessors"] = Value::Array(accessors);
     let data = bin.finish(&mut document, inline.is_some())?;
@@ -427,6 +437,64 @@ fn textured_primitives(
         primitives.push(json!({ "attributes": attributes.clone(), "indices": indices, "material": material }));
     }
     Ok(primitives)
+}
+
+/// A look's morph targets on the written mesh: per target a `POSITION`
+/// accessor of every vertex's offset (with its bounds, as the specification
+/// asks) on each primitive, and the rest weights as the mesh's `weights`.
+fn write_targets(
+    morph: &crate::model::character::Morph,
+    vertices: usize,
+    document: &mut Value,
+    accessors: &mut Vec<Value>,
+    bin: &mut Binary,
+) {
+    let mut targets = Vec::with_capacity(morph.targets.len());
+    for target in &morph.targets {
+        let mut offsets = vec![Vec3::ZERO; vertices];
+        for &(v, d) in target {
+            if let Some(slot) = offsets.get_mut(v as usize) {
+                *slot = Vec3::from_array(d);
+            }
+        }
+        let values: Vec<f32> = offsets.iter().flat_map(|d| d.to_array()).collect();
+        let position = vertex_accessor(accessors, bin, &values, "VEC3", vertices, Some(bounds(&offsets)));
+        targets.push(json!({ "POSITION": position }));
+    }
+    if let Some(primitives) = document["meshes"][0]["primitives"].as_array_mut() {
+        for primitive in primitives {
+            primitive["targets"] = json!(targets);
+        }
+    }
+    document["meshes"][0]["weights"] = json!(morph.rest);
+}
+
+/// The clip's morph-target weights at each frame ([`Clip::morph_weights_at`])
+/// as a `LINEAR` weights channel on mesh node `node` of `animation`, when a
+/// take sets them (rest weights alone need no channel).
+fn add_weights(clip: &Clip, node: usize, animation: &mut Value, accessors: &mut Vec<Value>, bin: &mut Binary) {
+    let timeline = clip.timeline();
+    let frames = clip.frame_count();
+    let (mut values, mut weights) = (Vec::new(), Vec::new());
+    for f in 0..frames {
+        if !clip.morph_weights_at(timeline.time_of(f), &mut weights) {
+            return;
+        }
+        values.extend_from_slice(&weights);
+    }
+    let rest = clip.character.as_deref().and_then(|c| c.look.as_ref()?.morph.as_ref()).map(|m| m.rest.as_slice());
+    if rest.is_none_or(|rest| values.chunks(rest.len().max(1)).all(|w| w == rest)) {
+        return;
+    }
+    // The same key times as the joints' channels (their first sampler's input).
+    let Some(input) = animation["samplers"].get(0).and_then(|s| s.get("input")).cloned() else { return };
+    let output = accessor(accessors, bin, &values, "SCALAR", 5126, values.len(), None);
+    let Some(samplers) = animation["samplers"].as_array_mut() else { return };
+    samplers.push(json!({ "input": input, "output": output, "interpolation": "LINEAR" }));
+    let sampler = samplers.len() - 1;
+    if let Some(channels) = animation["channels"].as_array_mut() {
+        channels.push(json!({ "sampler": sampler, "target": { "node": node, "path": "weights" } }));
+    }
 }
 
 /// A character's look as the written mesh.
