@@ -16,10 +16,6 @@ pub struct ViewerApp {
     on_save_requested: Box<dyn FnMut(String, Vec<u8>)>,
     /// The panels' colour, which the window is cleared to (see [`ViewerApp::new`]).
     panel_fill: egui::Color32,
-    /// Applies a render scale to the whole window (see [`ViewerApp::on_render_scale`]).
-    on_render_scale: Option<Box<dyn FnMut(f32)>>,
-    /// The render scale last handed to `on_render_scale`.
-    render_scale: f32,
     /// Runs when the view state changed (see [`ViewerApp::on_view_change`]).
     on_view_change: Option<Box<dyn FnMut()>>,
     /// The view state at the end of the last frame.
@@ -53,22 +49,9 @@ impl ViewerApp {
             on_restore_requested: None,
             on_save_requested: Box::new(|_, _| {}),
             panel_fill,
-            on_render_scale: None,
-            render_scale: 1.0,
             on_view_change: None,
             last_view: String::new(),
         }
-    }
-
-    /// Sets how the host draws the whole window at a lower resolution: `f` gets
-    /// the scale per axis the view asks for whenever it changes
-    /// ([`crate::quality::FAST_RENDER_SCALE`] in the fast look, 1 otherwise) and
-    /// applies it from the next frame on. A change asks for that next frame, so
-    /// a view coming to rest is drawn again at full resolution. Without it, only
-    /// the 3D view's own look adapts.
-    pub fn on_render_scale(mut self, f: Box<dyn FnMut(f32)>) -> ViewerApp {
-        self.on_render_scale = Some(f);
-        self
     }
 
     /// Sets what runs after a frame whose view state ([`Viewer::view_fragment`])
@@ -87,18 +70,6 @@ impl ViewerApp {
         {
             self.last_view = view;
             f();
-        }
-    }
-
-    /// Hands the host the view's render scale when it changed.
-    fn update_render_scale(&mut self, ctx: &egui::Context, reduced: bool) {
-        let scale = if reduced { crate::quality::FAST_RENDER_SCALE } else { 1.0 };
-        if let Some(f) = self.on_render_scale.as_mut()
-            && scale != self.render_scale
-        {
-            self.render_scale = scale;
-            f(scale);
-            ctx.request_repaint();
         }
     }
 
@@ -140,15 +111,14 @@ impl eframe::App for ViewerApp {
     }
 
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
-        let (requests, reduced, view) = {
+        let (requests, view) = {
             let Ok(mut viewer) = self.viewer.try_borrow_mut() else { return };
             let mut requests = viewer.ui(ui, frame.wgpu_render_state());
             // Requests made by commands from the JS API between frames, too.
             requests.extend(viewer.take_requests());
             let view = self.on_view_change.is_some().then(|| viewer.state().view_fragment());
-            (requests, viewer.viewport.reduced, view)
+            (requests, view)
         };
-        self.update_render_scale(ui.ctx(), reduced);
         self.update_view(view);
         for request in requests {
             match request {

@@ -1,21 +1,16 @@
-//! How the 3D view trades looks for speed: full quality (multisampled edges, the
-//! display's resolution), a fast look (one sample per pixel, the renderer's
-//! `SceneRenderer::fast_look` (a smaller shadow map read once per pixel,
-//! capsules spanning under two pixels left out) and,
-//! where the host supports it, the window drawn at [`FAST_RENDER_SCALE`] of the
-//! display's resolution and scaled up), or the automatic rule between them.
+//! How the 3D view trades looks for speed: full quality (multisampled edges),
+//! a fast look (one sample per pixel and the renderer's
+//! `SceneRenderer::fast_look`: a smaller shadow map read once per pixel,
+//! capsules spanning under two pixels left out), or the automatic rule between
+//! them. Every look is drawn at the display's resolution, and the panels, tree,
+//! inspector and timeline around the view are never touched by it: their text
+//! stays sharp while the view moves.
 //!
 //! The automatic rule ([`Adaptive::decide`]): a view at rest (nothing playing,
 //! nothing dragged) is always drawn at full quality. While it moves, frames are
 //! drawn at full quality until three in a row take longer than [`SLOW_FRAME`]
 //! seconds; from then on, until the view comes to rest, they are drawn fast. On
 //! a software rasteriser multisampling is a large share of the frame's cost.
-
-/// The window's resolution per axis in the fast look, where the host can draw
-/// the whole window smaller and have it scaled up (the web page: about half the
-/// pixels). A software rasteriser's cost is mostly per pixel, and much of it
-/// outside the 3D view (clearing, presenting, compositing the window).
-pub const FAST_RENDER_SCALE: f32 = 0.6;
 
 /// A frame slower than this (seconds; under 24 frames per second) counts as slow.
 pub const SLOW_FRAME: f32 = 1.0 / 24.0;

@@ -30,17 +30,33 @@ struct Gpu {
 struct FrameCopy {
     blit: Blit,
     /// The (multisampled) `target`'s frame.
-    full: BlitSource,
+    full: Shown,
     /// The single-sampled target's frame.
-    single: Option<BlitSource>,
+    single: Option<Shown>,
 }
 
-/// The paint callback that copies the 3D view's finished frame onto its rect of
+/// A target's finished frame (single-sampled), as drawn and as copied.
+struct Shown {
+    source: BlitSource,
+    texture: wgpu::Texture,
+}
+
+/// The paint callback that shows the 3D view's finished frame on its rect of
 /// the window (instead of an egui image: egui's image shader and blending cost
-/// several times more per pixel on software rasterisers).
+/// several times more per pixel on software rasterisers). The web page's
+/// painter copies the frame's texture into the window's (`copy_source`),
+/// which costs a small part of even a plain draw there; elsewhere it is drawn.
 struct ShowFrame {
-    /// Copy the single-sampled target's frame.
+    /// Show the single-sampled target's frame.
     single: bool,
+}
+
+impl ShowFrame {
+    fn shown<'a>(&self, resources: &'a egui_wgpu::CallbackResources) -> Option<(&'a Blit, &'a Shown)> {
+        let copy = resources.get::<FrameCopy>()?;
+        let shown = if self.single { copy.single.as_ref()? } else { &copy.full };
+        Some((&copy.blit, shown))
+    }
 }
 
 impl egui_wgpu::CallbackTrait for ShowFrame {
@@ -50,12 +66,13 @@ impl egui_wgpu::CallbackTrait for ShowFrame {
         pass: &mut wgpu::RenderPass<'static>,
         resources: &egui_wgpu::CallbackResources,
     ) {
-        if let Some(copy) = resources.get::<FrameCopy>() {
-            let source = if self.single { copy.single.as_ref() } else { Some(&copy.full) };
-            if let Some(source) = source {
-                copy.blit.draw(pass, source);
-            }
+        if let Some((blit, shown)) = self.shown(resources) {
+            blit.draw(pass, &shown.source);
         }
+    }
+
+    fn copy_source<'a>(&self, resources: &'a egui_wgpu::CallbackResources) -> Option<&'a wgpu::Texture> {
+        self.shown(resources).map(|(_, shown)| &shown.texture)
     }
 }
 
@@ -123,7 +140,10 @@ impl Viewport {
             return (response, joint_drag);
         };
         let ppp = ui.ctx().pixels_per_point();
-        let size = [(rect.width() * ppp).round().max(1.0) as u32, (rect.height() * ppp).round().max(1.0) as u32];
+        // The rect's size in pixels as egui's painters round it (each edge
+        // rounded), so that the frame is copied texel for pixel.
+        let px = |a: f32, b: f32| ((b * ppp).round() - (a * ppp).round()).max(1.0) as u32;
+        let size = [px(rect.min.x, rect.max.x), px(rect.min.y, rect.max.y)];
         if self.backend.is_none() {
             self.backend = Some(format!("{:?}", rs.adapter.get_info().backend));
         }
@@ -209,17 +229,17 @@ fn bind_frame(rs: &egui_wgpu::RenderState, target: &RenderTarget, single: bool) 
     let resources = &mut renderer.callback_resources;
     match resources.get_mut::<FrameCopy>() {
         Some(copy) => {
-            let source = copy.blit.source(&rs.device, target);
+            let shown = Shown { source: copy.blit.source(&rs.device, target), texture: target.color.clone() };
             if single {
-                copy.single = Some(source);
+                copy.single = Some(shown);
             } else {
-                copy.full = source;
+                copy.full = shown;
             }
         }
         // The first target bound is the multisampled one (see `create_gpu`).
         None => {
             let blit = Blit::new(&rs.device, rs.target_format);
-            let full = blit.source(&rs.device, target);
+            let full = Shown { source: blit.source(&rs.device, target), texture: target.color.clone() };
             resources.insert(FrameCopy { blit, full, single: None });
         }
     }

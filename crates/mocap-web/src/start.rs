@@ -166,7 +166,6 @@ pub(crate) async fn run_on(canvas: web_sys::HtmlCanvasElement, shared: &Shared) 
                     .on_export_video(Box::new(export_video_event))
                     .on_restore_previous(Box::new(restore_previous_event))
                     .on_save(Box::new(save))
-                    .on_render_scale(Box::new(eframe::web::set_render_scale))
                     .on_view_change(Box::new(view_event));
                 Ok(Box::new(app))
             }),

@@ -39,6 +39,11 @@ impl Callback {
             callback: std::sync::Arc::new(Self(Box::new(callback))),
         }
     }
+
+    /// Vendored change: see [`CallbackTrait::copy_source`].
+    pub fn copy_source<'a>(&self, callback_resources: &'a CallbackResources) -> Option<&'a wgpu::Texture> {
+        self.0.copy_source(callback_resources)
+    }
 }
 
 /// A callback trait that can be used to compose an [`epaint::PaintCallback`] via [`Callback`]
@@ -118,6 +123,15 @@ pub trait CallbackTrait: Send + Sync {
         render_pass: &mut wgpu::RenderPass<'static>,
         callback_resources: &CallbackResources,
     );
+
+    /// Vendored change: a texture whose pixels are exactly what [`CallbackTrait::paint`]
+    /// draws (one texel per pixel of the callback's rect, opaque, no blending).
+    /// A painter that can copy into its target (eframe's web painter) copies
+    /// it onto the rect instead of calling `paint`, between two render passes;
+    /// on a software rasteriser a copy costs a small part of a draw.
+    fn copy_source<'a>(&self, _callback_resources: &'a CallbackResources) -> Option<&'a wgpu::Texture> {
+        None
+    }
 }
 
 /// Information about the screen used for rendering.
@@ -509,6 +523,19 @@ impl Renderer {
         paint_jobs: &[epaint::ClippedPrimitive],
         screen_descriptor: &ScreenDescriptor,
     ) {
+        self.render_range(render_pass, paint_jobs, 0..paint_jobs.len(), screen_descriptor);
+    }
+
+    /// Vendored change: [`Renderer::render`] of `paint_jobs[range]` only (the
+    /// jobs are the ones given to [`Renderer::update_buffers`]), for a
+    /// painter that splits its pass (see [`CallbackTrait::copy_source`]).
+    pub fn render_range(
+        &self,
+        render_pass: &mut wgpu::RenderPass<'static>,
+        paint_jobs: &[epaint::ClippedPrimitive],
+        range: std::ops::Range<usize>,
+        screen_descriptor: &ScreenDescriptor,
+    ) {
         profiling::function_scope!();
 
         let pixels_per_point = screen_descriptor.pixels_per_point;
@@ -518,13 +545,20 @@ impl Renderer {
         // run.
         let mut needs_reset = true;
 
-        let mut index_buffer_slices = self.index_buffer.slices.iter();
-        let mut vertex_buffer_slices = self.vertex_buffer.slices.iter();
+        // Each mesh before the range has its slices in the buffers.
+        let meshes_before = paint_jobs
+            .get(..range.start)
+            .unwrap_or_default()
+            .iter()
+            .filter(|job| matches!(job.primitive, Primitive::Mesh(_)))
+            .count();
+        let mut index_buffer_slices = self.index_buffer.slices.iter().skip(meshes_before);
+        let mut vertex_buffer_slices = self.vertex_buffer.slices.iter().skip(meshes_before);
 
         for epaint::ClippedPrimitive {
             clip_rect,
             primitive,
-        } in paint_jobs
+        } in paint_jobs.get(range).unwrap_or_default()
         {
             if needs_reset {
                 render_pass.set_viewport(

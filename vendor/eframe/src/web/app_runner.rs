@@ -25,10 +25,6 @@ pub struct AppRunner {
     // Output for the last run:
     textures_delta: TexturesDelta,
     clipped_primitives: Option<Vec<egui::ClippedPrimitive>>,
-
-    /// Vendored change: the canvas's size in device pixels as last observed
-    /// (before the render scale).
-    pub(crate) display_size: Option<(u32, u32)>,
 }
 
 impl Drop for AppRunner {
@@ -172,7 +168,6 @@ impl AppRunner {
             screenshot_commands_with_frame_delay: vec![],
             textures_delta: Default::default(),
             clipped_primitives: None,
-            display_size: None,
         };
 
         runner.input.raw.max_texture_side = Some(runner.painter.max_texture_side());
@@ -267,16 +262,6 @@ impl AppRunner {
     pub fn logic(&mut self) {
         // We sometimes miss blur/focus events due to the text agent, so let's just poll each frame:
         self.update_focus();
-
-        // Vendored change: a new render scale takes effect at the start of a
-        // frame, so that the frame's input, layout and painting agree on it.
-        if super::apply_render_scale().is_some()
-            && let Some(size) = self.display_size
-        {
-            let (width, height) = super::scaled_size(size);
-            self.canvas().set_width(width);
-            self.canvas().set_height(height);
-        }
 
         let canvas_size = super::canvas_size_in_points(self.canvas(), self.egui_ctx());
         let mut raw_input = self.input.new_frame(canvas_size);

@@ -459,8 +459,7 @@ fn install_window_events(runner_ref: &WebRunner, window: &EventTarget) -> Result
 }
 
 fn install_dpr_change_event(web_runner: &WebRunner) -> Result<(), JsValue> {
-    // Vendored change: the display's ratio, without the render scale.
-    let original_dpr = super::device_pixel_ratio();
+    let original_dpr = super::native_pixels_per_point();
 
     let window = web_sys::window().unwrap();
     let Some(media_query_list) =
@@ -473,12 +472,9 @@ fn install_dpr_change_event(web_runner: &WebRunner) -> Result<(), JsValue> {
     };
 
     let closure = move |_: web_sys::Event, app_runner: &mut AppRunner, web_runner: &WebRunner| {
-        let new_dpr = super::device_pixel_ratio();
+        let new_dpr = super::native_pixels_per_point();
         log::debug!("Device Pixel Ratio changed from {original_dpr} to {new_dpr}");
 
-        // Vendored change: the display size follows.
-        let ratio = new_dpr / original_dpr;
-        app_runner.display_size = app_runner.display_size.map(|(w, h)| ((w as f32 * ratio).round() as u32, (h as f32 * ratio).round() as u32));
         if true {
             // Explicitly resize canvas to match the new DPR.
             // This is a bit ugly, but I haven't found a better way to do it.
@@ -1055,10 +1051,6 @@ impl ResizeObserverContext {
                             web_sys::window().unwrap().device_pixel_ratio()
                         );
                     }
-                    // Vendored change: the display size is kept, and the canvas
-                    // drawn at the render scale in effect.
-                    runner_lock.display_size = Some((width, height));
-                    let (width, height) = super::scaled_size((width, height));
                     let canvas = runner_lock.canvas();
                     canvas.set_width(width);
                     canvas.set_height(height);

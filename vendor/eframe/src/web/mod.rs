@@ -109,19 +109,10 @@ pub fn now_sec() -> f64 {
         / 1000.0
 }
 
-/// The native GUI scale factor, taking into account the browser zoom and the
-/// render scale ([`set_render_scale`]; vendored change).
+/// The native GUI scale factor, taking into account the browser zoom.
 ///
-/// Corresponds to [`window.devicePixelRatio`](https://developer.mozilla.org/en-US/docs/Web/API/Window/devicePixelRatio) in JavaScript
-/// times the render scale in effect.
+/// Corresponds to [`window.devicePixelRatio`](https://developer.mozilla.org/en-US/docs/Web/API/Window/devicePixelRatio) in JavaScript.
 pub fn native_pixels_per_point() -> f32 {
-    device_pixel_ratio() * render_scale()
-}
-
-/// [`window.devicePixelRatio`](https://developer.mozilla.org/en-US/docs/Web/API/Window/devicePixelRatio):
-/// the display's pixels per CSS pixel (vendored change: split out of
-/// [`native_pixels_per_point`]).
-pub fn device_pixel_ratio() -> f32 {
     let pixels_per_point = web_sys::window().unwrap().device_pixel_ratio() as f32;
     if pixels_per_point > 0.0 && pixels_per_point.is_finite() {
         pixels_per_point
@@ -151,44 +142,6 @@ pub fn hold_paints(held: bool) {
 /// Whether paints are held (see [`hold_paints`]).
 pub(crate) fn paints_held() -> bool {
     PAINTS_HELD.load(std::sync::atomic::Ordering::Relaxed)
-}
-
-// Render scale (vendored change, see VENDORED.md).
-
-/// The render scale asked for by [`set_render_scale`] (`f32` bits).
-static RENDER_SCALE_WANTED: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0x3f80_0000);
-
-/// The render scale the canvas has now (`f32` bits).
-static RENDER_SCALE: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0x3f80_0000);
-
-/// Asks for the canvas to be drawn at `scale` (clamped to 0.25..=1) of the
-/// display's resolution from the next frame on: the canvas's backing store
-/// shrinks and the browser scales it up to the canvas's size on the page;
-/// layout, text sizes and pointer positions are unchanged. 1 is the display's
-/// resolution. Costs on a slow (software) GPU are mostly per pixel.
-pub fn set_render_scale(scale: f32) {
-    let scale = if scale.is_finite() { scale.clamp(0.25, 1.0) } else { 1.0 };
-    RENDER_SCALE_WANTED.store(scale.to_bits(), std::sync::atomic::Ordering::Relaxed);
-}
-
-/// The render scale the canvas is drawn at now (see [`set_render_scale`]).
-pub fn render_scale() -> f32 {
-    f32::from_bits(RENDER_SCALE.load(std::sync::atomic::Ordering::Relaxed))
-}
-
-/// Makes the asked-for render scale the one in effect, at the start of a frame;
-/// returns it when it changed.
-fn apply_render_scale() -> Option<f32> {
-    let wanted = RENDER_SCALE_WANTED.load(std::sync::atomic::Ordering::Relaxed);
-    (RENDER_SCALE.swap(wanted, std::sync::atomic::Ordering::Relaxed) != wanted).then(|| f32::from_bits(wanted))
-}
-
-/// The canvas's backing-store size for a display size (device pixels) at the
-/// render scale in effect.
-fn scaled_size((width, height): (u32, u32)) -> (u32, u32) {
-    let scale = render_scale();
-    let scaled = |v: u32| ((v as f32 * scale).round() as u32).max(1);
-    (scaled(width), scaled(height))
 }
 
 /// Ask the browser about the preferred system theme.

@@ -113,10 +113,18 @@ impl WebPainterWgpu {
             .get_default_config(&render_state.adapter, 0, 0) // Width/height is set later.
             .ok_or("The surface isn't supported by this adapter")?;
 
+        // Vendored change: the window's texture is a copy destination where the
+        // surface allows it, for paint callbacks shown by a copy (see
+        // `egui_wgpu::CallbackTrait::copy_source`).
+        let copy_dst = surface
+            .get_capabilities(&render_state.adapter)
+            .usages
+            .intersection(wgpu::TextureUsages::COPY_DST);
         let surface_configuration = wgpu::SurfaceConfiguration {
             format: render_state.target_format,
             present_mode: wgpu_options.surface.present_mode,
             view_formats: vec![render_state.target_format],
+            usage: default_configuration.usage | copy_dst,
             ..default_configuration
         };
 
@@ -291,58 +299,53 @@ impl WebPainter for WebPainterWgpu {
                 let target_view =
                     target_texture.create_view(&wgpu::TextureViewDescriptor::default());
 
-                let render_pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: &target_view,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(wgpu::Color {
-                                r: clear_color[0] as f64,
-                                g: clear_color[1] as f64,
-                                b: clear_color[2] as f64,
-                                a: clear_color[3] as f64,
-                            }),
-                            store: wgpu::StoreOp::Store,
+                // Vendored change: paint callbacks with a copy source are copied
+                // onto their rect between two passes (see `copies`).
+                let copies = if capture || self.depth_texture_view.is_some() {
+                    Vec::new()
+                } else {
+                    copies(
+                        &renderer,
+                        clipped_primitives,
+                        &screen_descriptor,
+                        target_texture,
+                        self.surface_configuration.usage,
+                    )
+                };
+                let mut start = 0;
+                for (index, copy) in copies.iter().enumerate() {
+                    let load = if index == 0 { clear_to(clear_color) } else { wgpu::LoadOp::Load };
+                    let mut pass = begin_pass(&mut encoder, &target_view, load, None).forget_lifetime();
+                    renderer.render_range(&mut pass, clipped_primitives, start..copy.primitive, &screen_descriptor);
+                    drop(pass);
+                    encoder.copy_texture_to_texture(
+                        wgpu::TexelCopyTextureInfo {
+                            texture: copy.source,
+                            mip_level: 0,
+                            origin: copy.from,
+                            aspect: wgpu::TextureAspect::All,
                         },
-                        depth_slice: None,
-                    })],
-                    depth_stencil_attachment: self.depth_texture_view.as_ref().map(|view| {
-                        wgpu::RenderPassDepthStencilAttachment {
-                            view,
-                            depth_ops: self
-                                .depth_stencil_format
-                                .is_some_and(|depth_stencil_format| {
-                                    depth_stencil_format.has_depth_aspect()
-                                })
-                                .then_some(wgpu::Operations {
-                                    load: wgpu::LoadOp::Clear(1.0),
-                                    // It is very unlikely that the depth buffer is needed after egui finished rendering
-                                    // so no need to store it. (this can improve performance on tiling GPUs like mobile chips or Apple Silicon)
-                                    store: wgpu::StoreOp::Discard,
-                                }),
-                            stencil_ops: self
-                                .depth_stencil_format
-                                .is_some_and(|depth_stencil_format| {
-                                    depth_stencil_format.has_stencil_aspect()
-                                })
-                                .then_some(wgpu::Operations {
-                                    load: wgpu::LoadOp::Clear(0),
-                                    store: wgpu::StoreOp::Discard,
-                                }),
-                        }
-                    }),
-                    label: Some("egui_render"),
-                    occlusion_query_set: None,
-                    timestamp_writes: None,
-                    multiview_mask: None,
-                });
+                        wgpu::TexelCopyTextureInfo {
+                            texture: target_texture,
+                            mip_level: 0,
+                            origin: copy.to,
+                            aspect: wgpu::TextureAspect::All,
+                        },
+                        copy.size,
+                    );
+                    start = copy.primitive + 1;
+                }
+                let load = if copies.is_empty() { clear_to(clear_color) } else { wgpu::LoadOp::Load };
+                let depth = self.depth_texture_view.as_ref().map(|view| (view, self.depth_stencil_format));
+                let render_pass = begin_pass(&mut encoder, &target_view, load, depth);
 
                 // Forgetting the pass' lifetime means that we are no longer compile-time protected from
                 // runtime errors caused by accessing the parent encoder before the render pass is dropped.
                 // Since we don't pass it on to the renderer, we should be perfectly safe against this mistake here!
-                renderer.render(
+                renderer.render_range(
                     &mut render_pass.forget_lifetime(),
                     clipped_primitives,
+                    start..clipped_primitives.len(),
                     &screen_descriptor,
                 );
             }
@@ -393,4 +396,116 @@ impl WebPainter for WebPainterWgpu {
     fn destroy(&mut self) {
         self.render_state = None;
     }
+}
+
+/// Vendored change: a paint callback shown by copying its texture onto the
+/// window's (see `egui_wgpu::CallbackTrait::copy_source`).
+struct Copy<'a> {
+    /// Its index in the frame's primitives.
+    primitive: usize,
+    source: &'a wgpu::Texture,
+    /// Where the visible part starts in `source`, and in the window.
+    from: wgpu::Origin3d,
+    to: wgpu::Origin3d,
+    size: wgpu::Extent3d,
+}
+
+/// The paint callbacks of `primitives` that can be copied into `target`
+/// instead of painted: with a copy source of the target's format (sRGB or not)
+/// and of their rect's size in pixels, where the target is a copy destination
+/// (`usage`). On a software rasteriser (SwiftShader, in virtual machines and
+/// headless browsers) a copy is a small part of the cost of a textured draw.
+fn copies<'a>(
+    renderer: &'a egui_wgpu::Renderer,
+    primitives: &[egui::ClippedPrimitive],
+    screen: &egui_wgpu::ScreenDescriptor,
+    target: &wgpu::Texture,
+    usage: wgpu::TextureUsages,
+) -> Vec<Copy<'a>> {
+    if !usage.contains(wgpu::TextureUsages::COPY_DST) {
+        return Vec::new();
+    }
+    let format = target.format().remove_srgb_suffix();
+    let [width, height] = screen.size_in_pixels.map(|v| v as i32);
+    let mut out = Vec::new();
+    for (index, primitive) in primitives.iter().enumerate() {
+        let egui::epaint::Primitive::Callback(callback) = &primitive.primitive else { continue };
+        let Some(source) = callback
+            .callback
+            .downcast_ref::<egui_wgpu::Callback>()
+            .and_then(|c| c.copy_source(&renderer.callback_resources))
+        else {
+            continue;
+        };
+        let info = egui::PaintCallbackInfo {
+            viewport: callback.rect,
+            clip_rect: primitive.clip_rect,
+            pixels_per_point: screen.pixels_per_point,
+            screen_size_px: screen.size_in_pixels,
+        };
+        let (view, clip) = (info.viewport_in_pixels(), info.clip_rect_in_pixels());
+        let fits = source.format().remove_srgb_suffix() == format
+            && source.sample_count() == 1
+            && source.usage().contains(wgpu::TextureUsages::COPY_SRC)
+            && source.width() as i32 == view.width_px
+            && source.height() as i32 == view.height_px;
+        if !fits {
+            continue;
+        }
+        let x0 = view.left_px.max(clip.left_px).max(0);
+        let y0 = view.top_px.max(clip.top_px).max(0);
+        let x1 = (view.left_px + view.width_px).min(clip.left_px + clip.width_px).min(width);
+        let y1 = (view.top_px + view.height_px).min(clip.top_px + clip.height_px).min(height);
+        if x1 <= x0 || y1 <= y0 {
+            continue;
+        }
+        out.push(Copy {
+            primitive: index,
+            source,
+            from: wgpu::Origin3d { x: (x0 - view.left_px) as u32, y: (y0 - view.top_px) as u32, z: 0 },
+            to: wgpu::Origin3d { x: x0 as u32, y: y0 as u32, z: 0 },
+            size: wgpu::Extent3d { width: (x1 - x0) as u32, height: (y1 - y0) as u32, depth_or_array_layers: 1 },
+        });
+    }
+    out
+}
+
+/// The clear of the window to `color`.
+fn clear_to(color: [f32; 4]) -> wgpu::LoadOp<wgpu::Color> {
+    let [r, g, b, a] = color.map(f64::from);
+    wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a })
+}
+
+/// egui's pass into `view`, loaded by `load`, with the depth buffer when there is one.
+fn begin_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    view: &wgpu::TextureView,
+    load: wgpu::LoadOp<wgpu::Color>,
+    depth: Option<(&wgpu::TextureView, Option<wgpu::TextureFormat>)>,
+) -> wgpu::RenderPass<'e> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view,
+            resolve_target: None,
+            ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+            depth_slice: None,
+        })],
+        depth_stencil_attachment: depth.map(|(view, format)| wgpu::RenderPassDepthStencilAttachment {
+            view,
+            depth_ops: format.is_some_and(|f| f.has_depth_aspect()).then_some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(1.0),
+                // It is very unlikely that the depth buffer is needed after egui finished rendering
+                // so no need to store it. (this can improve performance on tiling GPUs like mobile chips or Apple Silicon)
+                store: wgpu::StoreOp::Discard,
+            }),
+            stencil_ops: format.is_some_and(|f| f.has_stencil_aspect()).then_some(wgpu::Operations {
+                load: wgpu::LoadOp::Clear(0),
+                store: wgpu::StoreOp::Discard,
+            }),
+        }),
+        label: Some("egui_render"),
+        occlusion_query_set: None,
+        timestamp_writes: None,
+        multiview_mask: None,
+    })
 }

@@ -1376,6 +1376,11 @@ impl crate::Adapter for super::Adapter {
                 composite_alpha_modes: vec![wgt::CompositeAlphaMode::Opaque], //TODO
                 maximum_frame_latency: 2..=2, //TODO, unused currently
                 current_extent: None,
+                // Vendored change: on the web the swapchain is a texture of
+                // wgpu's own (web.rs), which can be copied into.
+                #[cfg(webgl)]
+                usage: wgt::TextureUses::COLOR_TARGET | wgt::TextureUses::COPY_DST,
+                #[cfg(not(webgl))]
                 usage: wgt::TextureUses::COLOR_TARGET,
             })
         } else {
