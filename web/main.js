@@ -345,6 +345,8 @@ async function main() {
     await init();
     viewer = await start('viewer', 'file-input', urls.length === 0 && !demo);
     window.mocapViewer = viewer;
+    // The page's start, for performance tools: opened to its first drawn frame.
+    nextRenderedFrame(viewer, 0).then(() => performance.mark('mocap-first-frame'));
     viewer.setEmbed(embed);
     wireFiles(viewer);
     watchGpu(viewer, 'viewer', 'gpu-notice', (kind) => saveWork(viewer, kind));

@@ -51,11 +51,11 @@ function repeatRows(text, frames) {
 
 // Side by side with the three.js BVH example's set-up (tests/browser/three/bvh.html:
 // BVHLoader + SkeletonHelper + a grid, three from npm), one after the other in
-// the same headless Chromium with software WebGL2 at 1280x800: frame time with
+// the same headless Chromium with software WebGL2 at 1280x720: frame time with
 // one character and with 16, and drop to first drawn frame, as ratios.
 {
   const walkText = fs.readFileSync(new URL('../../data/walk.bvh', import.meta.url), 'utf8');
-  const { context, page, close } = await launch(chromiumPath, 'webgl2');
+  const { context, page, close } = await launch(chromiumPath, 'webgl2', { viewport: { width: 1280, height: 720 } });
   const msPerFrame = async (p, counter) => p.evaluate(async (counter) => {
     const read = () => (counter === 'viewer' ? window.mocapViewer.state().framesRendered : window.threeBench.frames);
     await new Promise((r) => setTimeout(r, 1000));
@@ -66,7 +66,49 @@ function repeatRows(text, frames) {
   }, counter);
   try {
     const rows = [];
-    // The viewer: the default page (walk.bvh, capsules, shadows), then 16 characters.
+    // Three runs, each page brought to front in turn: the default look
+    // (capsules with shadows) with walk.bvh as 1 and as 16 characters, and the
+    // corpus's 3.6 MB take as 1. Runs on this machine vary a lot, so each run
+    // compares the two pages measured one right after the other.
+    const bigText = bigFile ? fs.readFileSync(bigFile, 'latin1') : null;
+    const threeRuns = await context.newPage();
+    await threeRuns.goto(`${url}bench/three/bvh.html`);
+    await threeRuns.waitForFunction(() => window.threeBench && window.threeBench.frames > 3, null, { timeout: 60000 });
+    await page.bringToFront();
+    await page.goto(url);
+    await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
+    const cases = [['walk.bvh, 1 character', walkText, 1], ['walk.bvh, 16 characters', walkText, 16]];
+    if (bigText) cases.push([`${path.basename(bigFile)} (${(bigText.length / 1048576).toFixed(1)} MB), 1 character`, bigText, 1]);
+    const runs = [];
+    for (let run = 0; run < 3; run++) {
+      for (const [what, text, copies] of cases) {
+        await page.bringToFront();
+        await page.evaluate(([text, copies]) => {
+          const v = window.mocapViewer;
+          while (v.state().clips.length > 0) v.remove(0);
+          const bytes = new TextEncoder().encode(text);
+          for (let i = 0; i < copies; i++) v.add(`clip${i}.bvh`, bytes);
+          v.play();
+        }, [text, copies]);
+        await waitState(page, (s, n) => s.clips.length === n, copies);
+        const ours = await msPerFrame(page, 'viewer');
+        await page.evaluate(() => window.mocapViewer.pause());
+        await threeRuns.bringToFront();
+        await threeRuns.evaluate(([text, copies]) => window.openBvh(text, copies), [text, copies]);
+        const theirs = await msPerFrame(threeRuns, 'three');
+        runs.push([what, run, 1000 / ours, 1000 / theirs]);
+        console.log(`  run ${run + 1}, ${what}: viewer ${(1000 / ours).toFixed(1)} fps, three.js ${(1000 / theirs).toFixed(1)} fps, ratio ${(theirs / ours).toFixed(2)}`);
+      }
+    }
+    await threeRuns.close();
+    for (const [what] of cases) {
+      const mine = runs.filter((r) => r[0] === what);
+      const ratios = mine.map((r) => r[2] / r[3]).sort((a, b) => a - b);
+      const median = (xs) => [...xs].sort((a, b) => a - b)[xs.length >> 1];
+      console.log(`frames per second, ${what}, 1280x720: viewer ${median(mine.map((r) => r[2])).toFixed(1)}, three.js ${median(mine.map((r) => r[3])).toFixed(1)} (medians of 3 runs); ratio per run ${ratios.map((r) => r.toFixed(2)).join(', ')} (aim: >= 1.0 in every run)`);
+    }
+    // The default page again for the cases below (walk.bvh, capsules, shadows).
+    await page.bringToFront();
     await page.goto(url);
     await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
     await page.evaluate(() => window.mocapViewer.play());
@@ -234,11 +276,38 @@ function repeatRows(text, frames) {
     }
     await three.close();
     fs.rmSync(dropDir, { recursive: true, force: true });
-    console.log('side by side with the three.js BVH example (software WebGL2, 1280x800):');
+    console.log('side by side with the three.js BVH example (software WebGL2, 1280x720):');
     for (const [what, ours, theirs, aim] of rows) {
       console.log(`  ${what.padEnd(48)} viewer ${ours.toFixed(1).padStart(7)}  three.js ${theirs.toFixed(1).padStart(7)}  ratio ${(ours / theirs).toFixed(2)} (${aim})`);
     }
   } finally {
     await close();
   }
+}
+
+// Cold start, side by side: a fresh browser (new profile: no cache, no compiled
+// shaders) opens the page, to its first drawn frame of the default clip
+// (walk.bvh; the three.js example's page fetches the same file at start), as the
+// performance marks each page sets (ms since navigation). Three runs, the order
+// of the two pages alternating.
+{
+  const firstFrame = async (pageUrl, mark) => {
+    const { page, close } = await launch(chromiumPath, 'webgl2', { viewport: { width: 1280, height: 720 } });
+    try {
+      await page.goto(pageUrl);
+      await page.waitForFunction((mark) => performance.getEntriesByName(mark).length > 0, mark, { timeout: 60000, polling: 50 });
+      return await page.evaluate((mark) => performance.getEntriesByName(mark)[0].startTime, mark);
+    } finally {
+      await close();
+    }
+  };
+  const viewer = () => firstFrame(url, 'mocap-first-frame');
+  const three = () => firstFrame(`${url}bench/three/bvh.html?bvh=${encodeURIComponent(`${url}data/walk.bvh`)}`, 'three-first-frame');
+  const ratios = [];
+  for (let run = 0; run < 3; run++) {
+    const [ours, theirs] = run % 2 === 0 ? [await viewer(), await three()] : (([t, v]) => [v, t])([await three(), await viewer()]);
+    ratios.push(ours / theirs);
+    console.log(`  cold start, run ${run + 1}: viewer ${ours.toFixed(0)} ms, three.js ${theirs.toFixed(0)} ms, ratio ${(ours / theirs).toFixed(2)}`);
+  }
+  console.log(`cold start to the first drawn frame (fresh browser, software WebGL2): ratio per run ${ratios.map((r) => r.toFixed(2)).join(', ')} (aim: <= 1.0)`);
 }

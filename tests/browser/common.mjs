@@ -19,14 +19,14 @@ export const MODES = {
 
 /**
  * Launches headless Chromium with a fresh profile; returns { context, page, close, errors }.
- * `options` may set `deviceScaleFactor` (default 1) and `keepStorage` (keep the
+ * `options` may set `viewport` (default 1280×800), `deviceScaleFactor` (default 1) and `keepStorage` (keep the
  * autosaved work between page loads; by default every load is a first visit).
  */
 export async function launch(executablePath, mode, options = {}) {
   const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'mocap-chromium-'));
   const context = await chromium.launchPersistentContext(userDataDir, {
     executablePath, headless: true, args: [...COMMON, ...MODES[mode]],
-    viewport: { width: 1280, height: 800 },
+    viewport: options.viewport ?? { width: 1280, height: 800 },
     deviceScaleFactor: options.deviceScaleFactor ?? 1,
   });
   // Each page load is a first visit: the work the page autosaved in an earlier
