@@ -43,6 +43,14 @@ pub(crate) struct Pipelines {
     pub(crate) spheres: wgpu::RenderPipeline,
     pub(crate) lines: wgpu::RenderPipeline,
     pub(crate) overlay_lines: wgpu::RenderPipeline,
+    /// Made with the others ahead of use ([`crate::SceneRenderer::prepare_pipelines`]),
+    /// else when a frame first has meshes: a page's first frame without any
+    /// does not wait for their shaders.
+    pub(crate) meshes: Option<MeshPipelines>,
+}
+
+/// The pipelines of vertex-animated and skinned meshes.
+pub(crate) struct MeshPipelines {
     pub(crate) morph: wgpu::RenderPipeline,
     pub(crate) morph_shadow: wgpu::RenderPipeline,
     pub(crate) skinned: wgpu::RenderPipeline,
@@ -89,29 +97,15 @@ pub(crate) struct Layouts<'a> {
 }
 
 impl Pipelines {
+    /// The pipelines for `key`, with the meshes' when `meshes`.
     pub(crate) fn new(
         device: &wgpu::Device,
         layouts: &Layouts,
         format: wgpu::TextureFormat,
         key: PipelineKey,
+        meshes: bool,
     ) -> Pipelines {
-        let sample_count = key.samples;
-        let (frame_layout, shadow_layout, skin_layout) = (layouts.frame, layouts.shadow, layouts.skin);
-        let skinned_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("mocap skinned"),
-            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(layouts.joints), Some(layouts.surface)],
-            immediate_size: 0,
-        });
-        let skinned_shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("mocap skinned shadow"),
-            bind_group_layouts: &[Some(frame_layout), None, Some(layouts.joints)],
-            immediate_size: 0,
-        });
-        let textured_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("mocap textured"),
-            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(skin_layout)],
-            immediate_size: 0,
-        });
+        let (frame_layout, shadow_layout) = (layouts.frame, layouts.shadow);
         let lit_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("mocap lit"),
             bind_group_layouts: &[Some(frame_layout), Some(shadow_layout)],
@@ -122,20 +116,11 @@ impl Pipelines {
             bind_group_layouts: &[Some(frame_layout)],
             immediate_size: 0,
         });
-        let module = |label: &str, body: &str| {
-            device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(format!("{LIT_PRELUDE}{body}").into()),
-            })
-        };
+        let module = |label: &str, body: &str| lit_module(device, label, body);
         let capsule_shader = module("mocap capsules", &capsule::shader_source());
         let floor_shader = module("mocap floor", include_str!("shaders/floor.wgsl"));
         let sphere_shader = module("mocap spheres", include_str!("shaders/spheres.wgsl"));
         let line_shader = module("mocap lines", include_str!("shaders/lines.wgsl"));
-        let morph_shader = module("mocap meshes", include_str!("shaders/morph.wgsl"));
-        let morph_buffers = crate::mesh::buffer_layouts();
-        let skinned_shader = module("mocap skinned", include_str!("shaders/skinned.wgsl"));
-        let skinned_buffers = crate::skinned::buffer_layouts();
         let capsule_buffers = [Some(wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
             step_mode: wgpu::VertexStepMode::Vertex,
@@ -143,36 +128,8 @@ impl Pipelines {
         })];
         let spheres = [quad_corners(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
         let line_buffers = [quad_corners(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
-        let base = PipelineSpec {
-            label: "mocap capsules",
-            shader: &capsule_shader,
-            vertex_entry: "vs_main",
-            fragment_entry: "fs_main",
-            buffers: &capsule_buffers,
-            color: Some((format, wgpu::BlendState::REPLACE)),
-            depth_format: crate::DEPTH_FORMAT,
-            depth_write: true,
-            depth_compare: wgpu::CompareFunction::LessEqual,
-            depth_bias: Default::default(),
-            cull_back: true,
-            sample_count,
-            alpha_to_coverage: false,
-            depth_fragment: false,
-            color_writes: wgpu::ColorWrites::ALL,
-            fast_look: key.fast_look,
-            shadows: key.shadows,
-            blend_outlines: key.blends_outlines(),
-        };
-        // Depth-only passes into the shadow map: every caster's `vs_shadow`, no colour.
-        let depth_only = PipelineSpec {
-            vertex_entry: "vs_shadow",
-            color: None,
-            depth_format: shadow::FORMAT,
-            depth_bias: wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 },
-            cull_back: false,
-            sample_count: 1,
-            ..base
-        };
+        let base = base_spec("mocap capsules", &capsule_shader, &capsule_buffers, format, key);
+        let depth_only = depth_only(&base);
         let shadow = pipeline::build(
             device,
             &shadow_pass_layout,
@@ -277,6 +234,50 @@ impl Pipelines {
                 ..base
             },
         );
+        Pipelines {
+            shadow,
+            floor,
+            floor_depth,
+            floor_shadow,
+            capsules,
+            spheres,
+            lines,
+            overlay_lines,
+            meshes: meshes.then(|| MeshPipelines::new(device, layouts, format, key)),
+        }
+    }
+}
+
+impl MeshPipelines {
+    /// The meshes' pipelines for `key`.
+    pub(crate) fn new(device: &wgpu::Device, layouts: &Layouts, format: wgpu::TextureFormat, key: PipelineKey) -> MeshPipelines {
+        let (frame_layout, shadow_layout) = (layouts.frame, layouts.shadow);
+        let skinned_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap skinned"),
+            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(layouts.joints), Some(layouts.surface)],
+            immediate_size: 0,
+        });
+        let skinned_shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap skinned shadow"),
+            bind_group_layouts: &[Some(frame_layout), None, Some(layouts.joints)],
+            immediate_size: 0,
+        });
+        let textured_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap textured"),
+            bind_group_layouts: &[Some(frame_layout), Some(shadow_layout), Some(layouts.skin)],
+            immediate_size: 0,
+        });
+        let shadow_pass_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap shadow pass"),
+            bind_group_layouts: &[Some(frame_layout)],
+            immediate_size: 0,
+        });
+        let morph_shader = lit_module(device, "mocap meshes", include_str!("shaders/morph.wgsl"));
+        let morph_buffers = crate::mesh::buffer_layouts();
+        let skinned_shader = lit_module(device, "mocap skinned", include_str!("shaders/skinned.wgsl"));
+        let skinned_buffers = crate::skinned::buffer_layouts();
+        let base = base_spec("mocap meshes", &morph_shader, &morph_buffers, format, key);
+        let depth_only = depth_only(&base);
         let morph = pipeline::build(
             device,
             &textured_layout,
@@ -319,19 +320,59 @@ impl Pipelines {
                 ..depth_only
             },
         );
-        Pipelines {
-            shadow,
-            floor,
-            floor_depth,
-            floor_shadow,
-            capsules,
-            spheres,
-            lines,
-            overlay_lines,
-            morph,
-            morph_shadow,
-            skinned,
-            skinned_shadow,
-        }
+        MeshPipelines { morph, morph_shadow, skinned, skinned_shadow }
+    }
+}
+
+/// A shader module of `body` after the shared uniform and lighting code.
+fn lit_module(device: &wgpu::Device, label: &str, body: &str) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(format!("{LIT_PRELUDE}{body}").into()),
+    })
+}
+
+/// The lit pipelines' common spec for `key`: `shader`'s `vs_main` and
+/// `fs_main` over `buffers`, opaque into `format`, depth tested and written,
+/// back faces culled.
+fn base_spec<'a>(
+    label: &'static str,
+    shader: &'a wgpu::ShaderModule,
+    buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    format: wgpu::TextureFormat,
+    key: PipelineKey,
+) -> PipelineSpec<'a> {
+    PipelineSpec {
+        label,
+        shader,
+        vertex_entry: "vs_main",
+        fragment_entry: "fs_main",
+        buffers,
+        color: Some((format, wgpu::BlendState::REPLACE)),
+        depth_format: crate::DEPTH_FORMAT,
+        depth_write: true,
+        depth_compare: wgpu::CompareFunction::LessEqual,
+        depth_bias: Default::default(),
+        cull_back: true,
+        sample_count: key.samples,
+        alpha_to_coverage: false,
+        depth_fragment: false,
+        color_writes: wgpu::ColorWrites::ALL,
+        fast_look: key.fast_look,
+        shadows: key.shadows,
+        blend_outlines: key.blends_outlines(),
+    }
+}
+
+/// Depth-only passes into the shadow map: every caster's `vs_shadow`, no colour.
+fn depth_only<'a>(base: &PipelineSpec<'a>) -> PipelineSpec<'a> {
+    PipelineSpec {
+        vertex_entry: "vs_shadow",
+        color: None,
+        depth_format: shadow::FORMAT,
+        depth_bias: wgpu::DepthBiasState { constant: 2, slope_scale: 2.0, clamp: 0.0 },
+        cull_back: false,
+        sample_count: 1,
+        ..*base
     }
 }

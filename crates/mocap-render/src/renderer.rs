@@ -14,7 +14,7 @@ use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
 use crate::floor_cache::{Copies, FloorCache, FloorCopy, FloorKey};
 use crate::lines::LineInstance;
 use crate::mesh::MeshCache;
-use crate::pipeline_set::{Layouts, PipelineKey, Pipelines, pipelines_for};
+use crate::pipeline_set::{Layouts, MeshPipelines, PipelineKey, Pipelines, pipelines_for};
 use crate::placed::PlacedMesh;
 use crate::shadow::{self, ShadowMap};
 use crate::skinned::SkinnedCache;
@@ -240,10 +240,12 @@ impl SceneRenderer {
     /// ([`SceneRenderer::encode`] does on first use; doing it ahead moves the
     /// shader compilation, slow on some platforms, to a chosen moment).
     pub fn prepare_pipelines(&mut self, device: &wgpu::Device, sample_count: u32, fast_look: bool, shadows: bool) {
-        let key = PipelineKey { samples: sample_count, fast_look, shadows };
-        if pipelines_for(&self.pipelines, key).is_some() {
-            return;
-        }
+        self.make_pipelines(device, PipelineKey { samples: sample_count, fast_look, shadows }, true);
+    }
+
+    /// Makes the pipelines for `key` if they are not made yet, the meshes'
+    /// too when `meshes`.
+    fn make_pipelines(&mut self, device: &wgpu::Device, key: PipelineKey, meshes: bool) {
         let layouts = Layouts {
             frame: &self.frame_layout,
             shadow: &self.shadow_layout,
@@ -251,8 +253,17 @@ impl SceneRenderer {
             joints: &self.skinned.layout,
             surface: &self.skinned.texture_layout,
         };
-        let pipelines = Pipelines::new(device, &layouts, self.format, key);
-        self.pipelines.push((key, pipelines));
+        match self.pipelines.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, made)) => {
+                if meshes && made.meshes.is_none() {
+                    made.meshes = Some(MeshPipelines::new(device, &layouts, self.format, key));
+                }
+            }
+            None => {
+                let pipelines = Pipelines::new(device, &layouts, self.format, key, meshes);
+                self.pipelines.push((key, pipelines));
+            }
+        }
     }
 
     /// The pipelines a frame into a target of `samples` samples draws with,
@@ -277,7 +288,8 @@ impl SceneRenderer {
         }
         let (shadows, uniforms) = self.upload(device, queue, target, scene, camera);
         let key = self.key_for(target.sample_count(), shadows);
-        self.prepare_pipelines(device, key.samples, key.fast_look, key.shadows);
+        // A first frame without meshes does not wait for their pipelines.
+        self.make_pipelines(device, key, self.meshes.has_draws() || self.skinned.has_draws());
         self.draw_calls = 0;
         let [r, g, b, a] = crate::color::for_target(scene.background, self.format);
         let samples = target.sample_count();
@@ -344,13 +356,15 @@ impl SceneRenderer {
             }
         }
         self.draw_calls += self.capsules.draw(&mut pass, &pipelines.capsules, self.lit_indices);
-        if self.meshes.has_draws() {
-            pass.set_pipeline(&pipelines.morph);
-            self.draw_calls += self.meshes.draw(&mut pass, true);
-        }
-        if self.skinned.has_draws() {
-            pass.set_pipeline(&pipelines.skinned);
-            self.draw_calls += self.skinned.draw(&mut pass, true);
+        if let Some(meshes) = &pipelines.meshes {
+            if self.meshes.has_draws() {
+                pass.set_pipeline(&meshes.morph);
+                self.draw_calls += self.meshes.draw(&mut pass, true);
+            }
+            if self.skinned.has_draws() {
+                pass.set_pipeline(&meshes.skinned);
+                self.draw_calls += self.skinned.draw(&mut pass, true);
+            }
         }
         // Blended outlines: the lines first, so that a joint's fringe is
         // blended over the bones entering it (else a bone's line behind a
@@ -467,13 +481,15 @@ impl SceneRenderer {
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
         self.draw_calls += self.capsules.draw(&mut pass, &pipelines.shadow, self.caster_indices);
-        if self.meshes.has_draws() {
-            pass.set_pipeline(&pipelines.morph_shadow);
-            self.draw_calls += self.meshes.draw(&mut pass, false);
-        }
-        if self.skinned.has_draws() && !self.bodies_cast_as_capsules {
-            pass.set_pipeline(&pipelines.skinned_shadow);
-            self.draw_calls += self.skinned.draw(&mut pass, false);
+        if let Some(meshes) = &pipelines.meshes {
+            if self.meshes.has_draws() {
+                pass.set_pipeline(&meshes.morph_shadow);
+                self.draw_calls += self.meshes.draw(&mut pass, false);
+            }
+            if self.skinned.has_draws() && !self.bodies_cast_as_capsules {
+                pass.set_pipeline(&meshes.skinned_shadow);
+                self.draw_calls += self.skinned.draw(&mut pass, false);
+            }
         }
     }
 
