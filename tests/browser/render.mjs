@@ -194,6 +194,27 @@ try {
         fs.writeFileSync(shot(`${name.replace(/ /g, '-')}-rest`), restingPanels[name]);
       }
     }
+    // On WebGL2 the window keeps its pixels and a frame redraws only what
+    // changed (the 3D view around the figure, the timeline): after playing,
+    // the window is what a whole redraw (after a resize there and back) shows.
+    const whole = async () => {
+      await page.waitForTimeout(300);
+      return page.screenshot();
+    };
+    const inParts = await whole();
+    const viewport = page.viewportSize();
+    for (const size of [{ width: viewport.width - 40, height: viewport.height }, viewport]) {
+      const f0 = (await state(page)).framesRendered;
+      await page.setViewportSize(size);
+      await waitState(page, (s, f) => s.framesRendered > f, f0);
+    }
+    const redrawn = await whole();
+    const sameWhole = inParts.equals(redrawn);
+    check(sameWhole, `the window redrawn in parts while playing has the pixels of a whole redraw (${sameWhole ? 'identical' : 'they differ'})`);
+    if (!sameWhole) {
+      fs.writeFileSync(shot('in-parts'), inParts);
+      fs.writeFileSync(shot('redrawn-whole'), redrawn);
+    }
     // Full: never reduced while playing.
     await page.evaluate(() => { window.mocapViewer.applyViewState('quality=full'); window.mocapViewer.play(); });
     let reduced = false;

@@ -30,6 +30,7 @@ mod buffer;
 mod camera;
 mod capsule;
 mod color;
+mod damage;
 mod figure;
 mod floor_cache;
 mod grid;

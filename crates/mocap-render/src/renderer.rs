@@ -9,6 +9,7 @@
 //! capsules). Under a still camera the floor is drawn once, into a third pass,
 //! and later frames start from copies of its colour and depth (floor_cache.rs).
 
+use crate::damage;
 use crate::buffer::GrowingBuffer;
 use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
 use crate::floor_cache::{Copies, FloorCache, FloorCopy, FloorKey};
@@ -72,6 +73,12 @@ pub struct SceneRenderer {
     floor_cache: FloorCache,
     /// Whether the last frame's floor was copied from the cache.
     floor_copied: bool,
+    /// The target texture the last frame was drawn into, and where its
+    /// figures were (damage.rs; `None`: not bounded on screen).
+    last_frame: Option<(wgpu::Texture, Option<damage::PxRect>)>,
+    /// The part of the target the last frame changed (min x, min y, max x,
+    /// max y; empty: none); `None`: all of it.
+    changed: Option<damage::PxRect>,
     /// Whether every capsule gets four corners (see [`TestPaths`]).
     four_corners_always: bool,
     line_scratch: Vec<LineInstance>,
@@ -186,6 +193,8 @@ impl SceneRenderer {
             bodies_cast_as_capsules: false,
             floor_cache: FloorCache::new(copies),
             floor_copied: false,
+            last_frame: None,
+            changed: None,
             four_corners_always,
             line_scratch: Vec::new(),
             capsule_order: Vec::new(),
@@ -226,6 +235,16 @@ impl SceneRenderer {
     /// platforms: a page whose first frame needs one set should make one.
     pub fn pipeline_sets(&self) -> usize {
         self.pipelines.len()
+    }
+
+    /// The part of its target the last frame changed, as `[x, y, width,
+    /// height]` in pixels (a zero size: nothing); `None`: maybe all of it.
+    /// A frame under a still camera, drawn into the target of the frame
+    /// before, redraws only the rect around both frames' figures (see
+    /// damage.rs); a view shown by copying the target (the web page's
+    /// painter) needs to copy only this part.
+    pub fn changed_rect(&self) -> Option<[u32; 4]> {
+        self.changed.map(|[x0, y0, x1, y1]| [x0, y0, x1.saturating_sub(x0), y1.saturating_sub(y0)])
     }
 
     /// Whether the last frame started from the floor drawn for an earlier one
@@ -297,23 +316,42 @@ impl SceneRenderer {
             scene.grid.is_some().then(|| FloorKey::new(&uniforms, [r, g, b, a], target.size(), samples, self.format));
         let copy = self.floor_cache.plan(device, floor);
         self.floor_copied = copy.is_some();
+        // Only around the figures when the last frame's pixels are there to
+        // start from (damage.rs): the same target, under the same floor.
+        let figures = damage::figures_rect(scene, &uniforms, shadows, self.pixels_per_point, target.size());
+        let texture = target.attachment_texture().clone();
+        let redraw = match (&self.last_frame, &copy, figures) {
+            (Some((last, Some(before))), Some(c), Some(now)) if !c.fill && *last == texture => {
+                Some(damage::union(*before, now))
+            }
+            _ => None,
+        };
+        self.last_frame = Some((texture, figures));
+        self.changed = redraw;
         let background = wgpu::Color { r: r as f64, g: g as f64, b: b as f64, a: a as f64 };
         if let Some(copy) = &copy {
             if copy.fill {
                 self.encode_floor_fill(encoder, copy, key, background);
             }
             let [width, height] = target.size();
-            let extent = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
-            encoder.copy_texture_to_texture(
-                copy.color.as_image_copy(),
-                target.attachment_texture().as_image_copy(),
-                extent,
-            );
+            let [x0, y0, x1, y1] = redraw.unwrap_or([0, 0, width, height]);
+            if x1 <= x0 || y1 <= y0 {
+                // Nothing moved: the target holds this frame already.
+                return;
+            }
+            // A multisampled texture is copied whole (WebGPU copies no part
+            // of one); the draws below still stay inside the rect.
+            let [x0, y0, x1, y1] = if samples == 1 { [x0, y0, x1, y1] } else { [0, 0, width, height] };
+            let extent = wgpu::Extent3d { width: x1 - x0, height: y1 - y0, depth_or_array_layers: 1 };
+            let origin = wgpu::Origin3d { x: x0, y: y0, z: 0 };
+            let at = |texture| wgpu::TexelCopyTextureInfo { origin, ..wgpu::Texture::as_image_copy(texture) };
+            encoder.copy_texture_to_texture(at(&copy.color), at(target.attachment_texture()), extent);
             if copy.copy_depth {
+                // Depth is copied whole (WebGPU copies no part of a depth texture).
                 encoder.copy_texture_to_texture(
                     copy.depth.as_image_copy(),
                     target.depth_texture().as_image_copy(),
-                    extent,
+                    wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
                 );
             }
         }
@@ -336,6 +374,9 @@ impl SceneRenderer {
             load_or_clear(depth_copied, 1.0),
             wgpu::StoreOp::Discard,
         );
+        if let Some([x0, y0, x1, y1]) = redraw {
+            pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
+        }
         // Made by `prepare_pipelines` above.
         let Some(pipelines) = pipelines_for(&self.pipelines, key) else { return };
         if scene.grid.is_some() {

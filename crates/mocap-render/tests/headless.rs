@@ -1096,6 +1096,76 @@ fn a_still_camera_starts_each_frame_from_the_floor_drawn_before_with_the_same_pi
 }
 
 #[test]
+fn a_still_camera_redraws_only_around_the_figures_with_the_pixels_of_a_full_frame() {
+    // Single-sampled and multisampled, copying everything and, as on OpenGL,
+    // the colour of single-sampled frames only.
+    for (samples, color_only) in [(1, false), (4, false), (1, true)] {
+        let Some((device, queue, _, target)) = setup(samples) else { return };
+        let paths = mocap_render::TestPaths { floor_color_only: color_only, ..Default::default() };
+        let mut renderer = SceneRenderer::with_test_paths(&device, FORMAT, samples, paths);
+        let label = format!("{samples} samples{}", if color_only { ", colour only" } else { "" });
+        // Each frame drawn whole by a new renderer, into a target of its own.
+        let whole = RenderTarget::new(&device, FORMAT, samples, [SIZE, SIZE]);
+        let fresh = |scene: &Scene, camera: &Camera| {
+            SceneRenderer::new(&device, FORMAT, samples).render(&device, &queue, &whole, scene, camera);
+            read_pixels(&device, &queue, &whole)
+        };
+        let differing = |a: &[u8], b: &[u8]| a.chunks(4).zip(b.chunks(4)).filter(|(p, q)| p != q).count();
+        let grid = Grid::floor(Vec3::new(-1.5, 0.0, -1.5), Vec3::new(1.5, 0.0, 1.5), 0.25, 0.5);
+        let camera = Camera::look_at(Vec3::new(1.0, 2.0, 4.0), Vec3::new(0.0, 0.4, 0.0), 0.8, 1.0);
+        // A small figure walking across, with a bone line, a joint and its
+        // shadow; one frame it jumps to the other side, one frame it is gone.
+        let figure = |x: f32| Scene {
+            background: [20, 30, 40, 255],
+            grid: Some(grid.clone()),
+            capsules: vec![Capsule {
+                a: Vec3::new(x, 0.1, 0.0),
+                b: Vec3::new(x + 0.1, 0.6, 0.1),
+                radius: 0.08,
+                color: [200, 60, 60, 255],
+            }],
+            spheres: vec![Sphere { center: Vec3::new(x + 0.1, 0.7, 0.1), radius: 0.06, color: [60, 60, 220, 255] }],
+            lines: vec![Line {
+                a: Vec3::new(x, 0.6, 0.0),
+                b: Vec3::new(x + 0.3, 0.9, 0.0),
+                color: [250, 250, 120, 255],
+                width_px: 2.0,
+            }],
+            shadows: true,
+            ..Scene::default()
+        };
+        let xs = [-1.0, -0.9, -0.8, -0.7, 0.9, 0.8];
+        for (frame, &x) in xs.iter().enumerate() {
+            let scene = if frame == 5 { Scene { capsules: vec![], spheres: vec![], lines: vec![], ..figure(x) } } else { figure(x) };
+            renderer.render(&device, &queue, &target, &scene, &camera);
+            let pixels = read_pixels(&device, &queue, &target);
+            assert_eq!(differing(&pixels, &fresh(&scene, &camera)), 0, "{label}, frame {frame}: the pixels of a whole frame");
+            let copies = !color_only || samples == 1;
+            match renderer.changed_rect() {
+                Some([_, _, w, h]) => {
+                    assert!(copies && frame >= 2, "{label}, frame {frame}: only from the third frame of a still camera");
+                    assert!(w > 0 && h > 0, "{label}, frame {frame}: the figure moved");
+                    if frame != 4 {
+                        assert!(w * h < SIZE * SIZE / 2, "{label}, frame {frame}: a small figure's rect ({w}x{h})");
+                    }
+                }
+                None => assert!(!copies || frame < 2, "{label}, frame {frame}: the figures' rect is found"),
+            }
+        }
+        // Nothing moves: the figure's rect alone is redrawn, to the same pixels.
+        let scene = figure(0.8);
+        for _ in 0..2 {
+            renderer.render(&device, &queue, &target, &scene, &camera);
+        }
+        if !color_only || samples == 1 {
+            let area = renderer.changed_rect().map(|r| r[2] * r[3]);
+            assert!(area.is_some_and(|a| a > 0 && a < SIZE * SIZE / 4), "{label}: the still figure's rect ({area:?})");
+        }
+        assert_eq!(differing(&read_pixels(&device, &queue, &target), &fresh(&scene, &camera)), 0, "{label}: still");
+    }
+}
+
+#[test]
 fn the_fast_look_leaves_out_capsules_under_two_pixels() {
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     let camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, 0.8, 1.0);

@@ -29,6 +29,9 @@ struct Gpu {
 /// What [`ShowFrame`] draws with: kept in egui-wgpu's callback resources.
 struct FrameCopy {
     blit: Blit,
+    /// What changed in the shown frame since the painter last asked
+    /// ([`ShowFrame::copy_changed`]).
+    changed: egui::mutex::Mutex<egui_wgpu::CopyChange>,
     /// The (multisampled) `target`'s frame.
     full: Shown,
     /// The single-sampled target's frame.
@@ -74,6 +77,12 @@ impl egui_wgpu::CallbackTrait for ShowFrame {
     fn copy_source<'a>(&self, resources: &'a egui_wgpu::CallbackResources) -> Option<&'a wgpu::Texture> {
         self.shown(resources).map(|(_, shown)| &shown.texture)
     }
+
+    fn copy_changed(&self, resources: &egui_wgpu::CallbackResources) -> egui_wgpu::CopyChange {
+        resources.get::<FrameCopy>().map_or(egui_wgpu::CopyChange::All, |copy| {
+            std::mem::replace(&mut *copy.changed.lock(), egui_wgpu::CopyChange::Nothing)
+        })
+    }
 }
 
 /// The 3D view widget's non-plain state (GPU objects).
@@ -100,6 +109,8 @@ pub struct Viewport {
     /// Whether the last frame started from the floor drawn for an earlier one
     /// (a still camera; see `mocap_render::SceneRenderer::floor_copied`).
     pub floor_copied: bool,
+    /// Whether the last frame was shown from the single-sampled target.
+    shown_single: Option<bool>,
 }
 
 impl Viewport {
@@ -174,6 +185,15 @@ impl Viewport {
         gpu.renderer.pixels_per_point = ppp;
         let cam = camera.to_camera(size[0] as f32 / size[1] as f32);
         gpu.renderer.render(&rs.device, &rs.queue, target, scene, &cam);
+        // What the copy of the frame into the window has to carry: the
+        // renderer's changed rect, or all of it for another target than the
+        // last frame's.
+        let change = match gpu.renderer.changed_rect() {
+            Some(rect) if self.shown_single == Some(single) => egui_wgpu::CopyChange::Rect(rect),
+            _ => egui_wgpu::CopyChange::All,
+        };
+        self.shown_single = Some(single);
+        mark_changed(rs, change);
         self.floor_copied = gpu.renderer.floor_copied();
         if self.frames_rendered == 1 {
             // The fast look's pipelines, after the first frame is out: compiled
@@ -240,8 +260,18 @@ fn bind_frame(rs: &egui_wgpu::RenderState, target: &RenderTarget, single: bool) 
         None => {
             let blit = Blit::new(&rs.device, rs.target_format);
             let full = Shown { source: blit.source(&rs.device, target), texture: target.color.clone() };
-            resources.insert(FrameCopy { blit, full, single: None });
+            let changed = egui::mutex::Mutex::new(egui_wgpu::CopyChange::All);
+            resources.insert(FrameCopy { blit, full, single: None, changed });
         }
+    }
+}
+
+/// Adds `change` to what changed in the shown frame since the painter last
+/// asked (see [`ShowFrame::copy_changed`]).
+fn mark_changed(rs: &egui_wgpu::RenderState, change: egui_wgpu::CopyChange) {
+    if let Some(copy) = rs.renderer.read().callback_resources.get::<FrameCopy>() {
+        let mut changed = copy.changed.lock();
+        *changed = changed.union(change);
     }
 }
 

@@ -44,6 +44,11 @@ impl Callback {
     pub fn copy_source<'a>(&self, callback_resources: &'a CallbackResources) -> Option<&'a wgpu::Texture> {
         self.0.copy_source(callback_resources)
     }
+
+    /// Vendored change: see [`CallbackTrait::copy_changed`].
+    pub fn copy_changed(&self, callback_resources: &CallbackResources) -> CopyChange {
+        self.0.copy_changed(callback_resources)
+    }
 }
 
 /// A callback trait that can be used to compose an [`epaint::PaintCallback`] via [`Callback`]
@@ -131,6 +136,79 @@ pub trait CallbackTrait: Send + Sync {
     /// on a software rasteriser a copy costs a small part of a draw.
     fn copy_source<'a>(&self, _callback_resources: &'a CallbackResources) -> Option<&'a wgpu::Texture> {
         None
+    }
+
+    /// Vendored change: what changed in [`CallbackTrait::copy_source`]'s texture
+    /// since the painter last asked (each call takes it), for a painter that
+    /// keeps the window's pixels between frames and redraws only what changed
+    /// (eframe's web painter on WebGL2). The default, [`CopyChange::All`], is
+    /// always right.
+    fn copy_changed(&self, _callback_resources: &CallbackResources) -> CopyChange {
+        CopyChange::All
+    }
+}
+
+/// Vendored change: see [`CallbackTrait::copy_changed`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CopyChange {
+    /// Nothing changed.
+    Nothing,
+    /// The texels `[x, y, width, height]` changed (maybe more than them
+    /// changed, nothing outside them did).
+    Rect([u32; 4]),
+    /// Anything may have changed.
+    All,
+}
+
+impl CopyChange {
+    /// Both changes together.
+    pub fn union(self, other: Self) -> Self {
+        match (self, other) {
+            (Self::Nothing, x) | (x, Self::Nothing) => x,
+            (Self::All, _) | (_, Self::All) => Self::All,
+            (Self::Rect([ax, ay, aw, ah]), Self::Rect([bx, by, bw, bh])) => {
+                let (x0, y0) = (ax.min(bx), ay.min(by));
+                let x1 = (ax + aw).max(bx + bw);
+                let y1 = (ay + ah).max(by + bh);
+                Self::Rect([x0, y0, x1 - x0, y1 - y0])
+            }
+        }
+    }
+}
+
+/// Vendored change: a quad covering the window in one colour, drawn by
+/// [`Renderer::render_fill`] (the background of a region redrawn alone).
+pub struct FillQuad {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+}
+
+impl FillQuad {
+    /// The quad's buffers, on `device`.
+    pub fn new(device: &wgpu::Device) -> Self {
+        let vertices = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("egui_fill_vertices"),
+            size: (4 * std::mem::size_of::<epaint::Vertex>()) as u64,
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let indices = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("egui_fill_indices"),
+            size: 6 * 4,
+            usage: wgpu::BufferUsages::INDEX | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self { vertices, indices }
+    }
+
+    /// Sets the quad to cover `screen` in `color` (writes on `queue`).
+    pub fn set(&self, queue: &wgpu::Queue, screen: &ScreenDescriptor, color: epaint::Color32) {
+        let [w, h] = screen.screen_size_in_points();
+        let uv = epaint::WHITE_UV;
+        let vertex = |x: f32, y: f32| epaint::Vertex { pos: epaint::pos2(x, y), uv, color };
+        let vertices = [vertex(0.0, 0.0), vertex(w, 0.0), vertex(0.0, h), vertex(w, h)];
+        queue.write_buffer(&self.vertices, 0, bytemuck::cast_slice(&vertices));
+        queue.write_buffer(&self.indices, 0, bytemuck::cast_slice(&[0u32, 1, 2, 2, 1, 3]));
     }
 }
 
@@ -536,6 +614,49 @@ impl Renderer {
         range: std::ops::Range<usize>,
         screen_descriptor: &ScreenDescriptor,
     ) {
+        self.render_range_within(render_pass, paint_jobs, range, screen_descriptor, None);
+    }
+
+    /// Vendored change: draws `fill` (see [`FillQuad::set`]) over `region`
+    /// (`[x, y, width, height]` in pixels).
+    pub fn render_fill(
+        &self,
+        render_pass: &mut wgpu::RenderPass<'static>,
+        fill: &FillQuad,
+        screen_descriptor: &ScreenDescriptor,
+        region: [u32; 4],
+    ) {
+        let Some(Texture { bind_group, .. }) = self.textures.get(&epaint::TextureId::default()) else {
+            return;
+        };
+        let [width, height] = screen_descriptor.size_in_pixels;
+        let [x, y, w, h] = region;
+        let (x0, y0) = (x.min(width), y.min(height));
+        let (x1, y1) = ((x + w).min(width), (y + h).min(height));
+        if x1 <= x0 || y1 <= y0 {
+            return;
+        }
+        render_pass.set_viewport(0.0, 0.0, width as f32, height as f32, 0.0, 1.0);
+        render_pass.set_pipeline(&self.pipeline);
+        render_pass.set_bind_group(0, &self.uniform_bind_group, &[]);
+        render_pass.set_bind_group(1, bind_group, &[]);
+        render_pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
+        render_pass.set_index_buffer(fill.indices.slice(..), wgpu::IndexFormat::Uint32);
+        render_pass.set_vertex_buffer(0, fill.vertices.slice(..));
+        render_pass.draw_indexed(0..6, 0, 0..1);
+    }
+
+    /// Vendored change: [`Renderer::render_range`] drawing only inside
+    /// `region` (`[x, y, width, height]` in pixels; `None`: everywhere): each
+    /// job's clip rect is cut to it, and jobs outside it are skipped.
+    pub fn render_range_within(
+        &self,
+        render_pass: &mut wgpu::RenderPass<'static>,
+        paint_jobs: &[epaint::ClippedPrimitive],
+        range: std::ops::Range<usize>,
+        screen_descriptor: &ScreenDescriptor,
+        region: Option<[u32; 4]>,
+    ) {
         profiling::function_scope!();
 
         let pixels_per_point = screen_descriptor.pixels_per_point;
@@ -575,7 +696,10 @@ impl Renderer {
             }
 
             {
-                let rect = ScissorRect::new(clip_rect, pixels_per_point, size_in_pixels);
+                let mut rect = ScissorRect::new(clip_rect, pixels_per_point, size_in_pixels);
+                if let Some(region) = region {
+                    rect = rect.within(region);
+                }
 
                 if rect.width == 0 || rect.height == 0 {
                     // Skip rendering zero-sized clip areas.
@@ -1264,6 +1388,17 @@ struct ScissorRect {
 }
 
 impl ScissorRect {
+    /// Vendored change: the part of this rect inside `region` (`[x, y,
+    /// width, height]`), empty where they do not meet.
+    fn within(&self, region: [u32; 4]) -> Self {
+        let [x, y, w, h] = region;
+        let x0 = self.x.max(x);
+        let y0 = self.y.max(y);
+        let x1 = (self.x + self.width).min(x + w).max(x0);
+        let y1 = (self.y + self.height).min(y + h).max(y0);
+        Self { x: x0, y: y0, width: x1 - x0, height: y1 - y0 }
+    }
+
     fn new(clip_rect: &epaint::Rect, pixels_per_point: f32, target_size: [u32; 2]) -> Self {
         // Transform clip rect to physical pixels:
         let clip_min_x = pixels_per_point * clip_rect.min.x;

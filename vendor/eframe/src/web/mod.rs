@@ -37,6 +37,10 @@ mod web_painter_glow;
 #[cfg(feature = "wgpu_no_default_features")]
 mod web_painter_wgpu;
 
+/// Vendored change: see `damage.rs`.
+#[cfg(feature = "wgpu_no_default_features")]
+mod damage;
+
 pub use backend::*;
 
 use egui::Theme;

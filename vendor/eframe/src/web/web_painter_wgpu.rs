@@ -20,6 +20,16 @@ pub(crate) struct WebPainterWgpu {
     ctx: egui::Context,
     needs_reconfigure: bool,
     needs_recreate: bool,
+    /// Vendored change: what the last frames drew, where the window keeps its
+    /// pixels between frames (WebGL2: wgpu draws straight into the canvas,
+    /// whose drawing buffer is preserved); see `damage.rs`.
+    damage: Option<super::damage::Damage>,
+    /// Vendored change: the background of a region redrawn alone.
+    fill: egui_wgpu::FillQuad,
+    /// Vendored change: where the window keeps its pixels, the canvas's
+    /// drawing buffer as a texture (`canvas_texture`), drawn into instead of
+    /// the surface's textures.
+    canvas_texture: Option<wgpu::Texture>,
 }
 
 /// Owned web display handle that is `Send + Sync`.
@@ -120,6 +130,11 @@ impl WebPainterWgpu {
             .get_capabilities(&render_state.adapter)
             .usages
             .intersection(wgpu::TextureUsages::COPY_DST);
+        // Vendored change: on WebGL2 wgpu draws straight into the canvas, whose
+        // drawing buffer is preserved between frames (see wgpu-hal's
+        // `VENDORED.md`): a frame redraws only what changed (`damage.rs`).
+        let keeps_pixels = render_state.adapter.get_info().backend == wgpu::Backend::Gl;
+        let fill = egui_wgpu::FillQuad::new(&render_state.device);
         let surface_configuration = wgpu::SurfaceConfiguration {
             format: render_state.target_format,
             present_mode: wgpu_options.surface.present_mode,
@@ -143,6 +158,9 @@ impl WebPainterWgpu {
             ctx,
             needs_reconfigure: false,
             needs_recreate: false,
+            damage: keeps_pixels.then(Default::default),
+            fill,
+            canvas_texture: None,
         })
     }
 }
@@ -207,6 +225,12 @@ impl WebPainter for WebPainterWgpu {
             pixels_per_point,
         };
 
+        // Vendored change: a texture replaced or freed (or any but the font
+        // atlas changed) may change pixels whose paint jobs did not change.
+        let textures_changed = !textures_delta.free.is_empty()
+            || textures_delta.set.iter().any(|(id, deltas)| {
+                *id != egui::TextureId::default() || deltas.iter().any(|d| d.pos.is_none())
+            });
         let user_cmd_bufs = {
             let mut renderer = render_state.renderer.write();
             #[expect(clippy::iter_over_hash_type)] // Order doesn't matter here
@@ -232,16 +256,28 @@ impl WebPainter for WebPainterWgpu {
 
         // Resize surface if needed
         let is_zero_sized_surface = size_in_pixels[0] == 0 || size_in_pixels[1] == 0;
+        let mut reconfigured = self.needs_reconfigure;
         let frame_and_capture_buffer = if is_zero_sized_surface {
             None
         } else {
+            let keeps_pixels = self.damage.is_some();
             if size_in_pixels[0] != self.surface_configuration.width
                 || size_in_pixels[1] != self.surface_configuration.height
+                || (keeps_pixels && self.canvas_texture.is_none())
             {
+                reconfigured = true;
                 self.surface_configuration.width = size_in_pixels[0];
                 self.surface_configuration.height = size_in_pixels[1];
-                self.surface
-                    .configure(&render_state.device, &self.surface_configuration);
+                if keeps_pixels {
+                    self.canvas_texture = Some(canvas_texture(
+                        &render_state.device,
+                        &self.canvas,
+                        &self.surface_configuration,
+                    ));
+                } else {
+                    self.surface
+                        .configure(&render_state.device, &self.surface_configuration);
+                }
                 self.depth_texture_view = self.generate_depth_texture_view(
                     render_state,
                     size_in_pixels[0],
@@ -249,13 +285,15 @@ impl WebPainter for WebPainterWgpu {
                 );
             }
 
-            if self.needs_reconfigure {
+            if self.needs_reconfigure && !keeps_pixels {
                 self.surface
                     .configure(&render_state.device, &self.surface_configuration);
                 self.needs_reconfigure = false;
             }
 
-            let output_frame = match self.surface.get_current_texture() {
+            let output_frame = match self.canvas_texture.as_ref().filter(|_| keeps_pixels) {
+                Some(_) => None,
+                None => Some(match self.surface.get_current_texture() {
                 wgpu::CurrentSurfaceTexture::Success(frame) => frame,
                 wgpu::CurrentSurfaceTexture::Suboptimal(frame) => {
                     self.needs_reconfigure = true;
@@ -279,14 +317,20 @@ impl WebPainter for WebPainterWgpu {
                     }
                     return Ok(());
                 }
+            }),
+            };
+            let window_texture = match (&output_frame, &self.canvas_texture) {
+                (Some(frame), _) => &frame.texture,
+                (None, Some(texture)) => texture,
+                (None, None) => return Ok(()),
             };
 
             {
                 let renderer = render_state.renderer.read();
 
                 let target_texture = if capture {
-                    let size = output_frame.texture.size();
-                    let format = output_frame.texture.format();
+                    let size = window_texture.size();
+                    let format = window_texture.format();
                     let capture_state = self.screen_capture_state.get_or_insert_with(|| {
                         CaptureState::new(&render_state.device, size, format)
                     });
@@ -294,7 +338,7 @@ impl WebPainter for WebPainterWgpu {
 
                     &capture_state.texture
                 } else {
-                    &output_frame.texture
+                    window_texture
                 };
                 let target_view =
                     target_texture.create_view(&wgpu::TextureViewDescriptor::default());
@@ -309,9 +353,50 @@ impl WebPainter for WebPainterWgpu {
                         clipped_primitives,
                         &screen_descriptor,
                         target_texture,
-                        self.surface_configuration.usage,
+                        target_texture.usage(),
                     )
                 };
+                // Vendored change: where the window keeps its pixels, only
+                // the regions that changed are redrawn (`damage.rs`).
+                let regions = match &mut self.damage {
+                    Some(damage) if !capture && self.depth_texture_view.is_none() => {
+                        if textures_changed || reconfigured || clear_color[3] < 1.0 {
+                            damage.forget();
+                        }
+                        damage.regions(clipped_primitives, size_in_pixels, pixels_per_point, |index| {
+                            callback_change(&renderer, clipped_primitives, index)
+                        })
+                    }
+                    Some(damage) => {
+                        damage.forget();
+                        None
+                    }
+                    None => None,
+                };
+                if let Some(regions) = regions {
+                    if !regions.is_empty() {
+                        let color = egui::Color32::from_rgba_premultiplied(
+                            (clear_color[0] * 255.0).round() as u8,
+                            (clear_color[1] * 255.0).round() as u8,
+                            (clear_color[2] * 255.0).round() as u8,
+                            255,
+                        );
+                        self.fill.set(&render_state.queue, &screen_descriptor, color);
+                    }
+                    for region in regions {
+                        redraw_region(
+                            &renderer,
+                            &mut encoder,
+                            &target_view,
+                            target_texture,
+                            clipped_primitives,
+                            &copies,
+                            &screen_descriptor,
+                            &self.fill,
+                            region,
+                        );
+                    }
+                } else {
                 let mut start = 0;
                 for (index, copy) in copies.iter().enumerate() {
                     let load = if index == 0 { clear_to(clear_color) } else { wgpu::LoadOp::Load };
@@ -348,15 +433,26 @@ impl WebPainter for WebPainterWgpu {
                     start..clipped_primitives.len(),
                     &screen_descriptor,
                 );
+                }
             }
 
             let capture_buffer =
                 if capture && let Some(capture_state) = &mut self.screen_capture_state {
-                    Some(capture_state.copy_textures(
+                    let buffer = capture_state.copy_textures(
                         &render_state.device,
-                        Some(&output_frame),
+                        output_frame.as_ref(),
                         &mut encoder,
-                    ))
+                    );
+                    // Vendored change: the canvas's texture gets the captured
+                    // frame as the surface's does above.
+                    if output_frame.is_none() {
+                        encoder.copy_texture_to_texture(
+                            capture_state.texture.as_image_copy(),
+                            window_texture.as_image_copy(),
+                            window_texture.size(),
+                        );
+                    }
+                    Some(buffer)
                 } else {
                     None
                 };
@@ -376,7 +472,9 @@ impl WebPainter for WebPainterWgpu {
                 capture_state.read_screen_rgba(capture_buffer, capture_data);
             }
 
-            render_state.queue.present(frame);
+            if let Some(frame) = frame {
+                render_state.queue.present(frame);
+            }
         }
 
         // Free textures marked for destruction **after** queue submit since they might still be used in the current frame.
@@ -468,6 +566,139 @@ fn copies<'a>(
         });
     }
     out
+}
+
+/// Vendored change: the drawing buffer of `canvas` (WebGL2's default
+/// framebuffer) as a texture of `config`'s size and format, with `canvas`
+/// mirrored back by its style: wgpu's GL backend draws the first row at the
+/// top of memory, which WebGL shows at the bottom (its own present flips
+/// it); the browser's compositor applies the style's `scaleY(-1)` at no cost,
+/// and pointer positions are the page's, so input is unaffected.
+#[expect(unsafe_code)]
+fn canvas_texture(
+    device: &wgpu::Device,
+    canvas: &HtmlCanvasElement,
+    config: &wgpu::SurfaceConfiguration,
+) -> wgpu::Texture {
+    if let Err(err) = canvas.style().set_property("transform", "scaleY(-1)") {
+        log::warn!("could not mirror the canvas: {err:?}");
+    }
+    let hal = wgpu::hal::gles::Texture::default_framebuffer(config.format);
+    let desc = wgpu::TextureDescriptor {
+        label: Some("egui_canvas"),
+        size: wgpu::Extent3d { width: config.width, height: config.height, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: config.format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    };
+    // SAFETY: the default framebuffer belongs to the device's WebGL2 context
+    // (the one the surface made), has the canvas's size (set just before)
+    // and is initialised (the first frame drawn into it is a full one).
+    unsafe { device.create_texture_from_hal::<wgpu::hal::api::Gles>(hal, &desc, wgpu::TextureUses::UNINITIALIZED) }
+}
+
+/// Vendored change: what changed in the copy source of the paint callback
+/// at `index` of `jobs` (see `egui_wgpu::CallbackTrait::copy_changed`).
+fn callback_change(
+    renderer: &egui_wgpu::Renderer,
+    jobs: &[egui::ClippedPrimitive],
+    index: usize,
+) -> egui_wgpu::CopyChange {
+    match jobs.get(index).map(|job| &job.primitive) {
+        Some(egui::epaint::Primitive::Callback(callback)) => callback
+            .callback
+            .downcast_ref::<egui_wgpu::Callback>()
+            .map_or(egui_wgpu::CopyChange::All, |c| c.copy_changed(&renderer.callback_resources)),
+        _ => egui_wgpu::CopyChange::All,
+    }
+}
+
+/// Vendored change: redraws `region` (`[x, y, width, height]` in pixels) of
+/// the window's texture: `fill` (the clear colour), then every job inside
+/// it, with the copies (see `copies`) cut to it.
+#[expect(clippy::too_many_arguments)]
+fn redraw_region(
+    renderer: &egui_wgpu::Renderer,
+    encoder: &mut wgpu::CommandEncoder,
+    view: &wgpu::TextureView,
+    texture: &wgpu::Texture,
+    jobs: &[egui::ClippedPrimitive],
+    copies: &[Copy<'_>],
+    screen: &egui_wgpu::ScreenDescriptor,
+    fill: &egui_wgpu::FillQuad,
+    region: [u32; 4],
+) {
+    let [rx, ry, rw, rh] = region;
+    let mut start = 0;
+    for (index, copy) in copies.iter().enumerate() {
+        let mut pass = begin_pass(encoder, view, wgpu::LoadOp::Load, None).forget_lifetime();
+        if index == 0 {
+            for band in uncovered(region, copies) {
+                renderer.render_fill(&mut pass, fill, screen, band);
+            }
+        }
+        renderer.render_range_within(&mut pass, jobs, start..copy.primitive, screen, Some(region));
+        drop(pass);
+        start = copy.primitive + 1;
+        let x0 = copy.to.x.max(rx);
+        let y0 = copy.to.y.max(ry);
+        let x1 = (copy.to.x + copy.size.width).min(rx + rw);
+        let y1 = (copy.to.y + copy.size.height).min(ry + rh);
+        if x1 <= x0 || y1 <= y0 {
+            continue;
+        }
+        encoder.copy_texture_to_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: copy.source,
+                mip_level: 0,
+                origin: wgpu::Origin3d { x: copy.from.x + x0 - copy.to.x, y: copy.from.y + y0 - copy.to.y, z: 0 },
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::TexelCopyTextureInfo {
+                texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d { x: x0, y: y0, z: 0 },
+                aspect: wgpu::TextureAspect::All,
+            },
+            wgpu::Extent3d { width: x1 - x0, height: y1 - y0, depth_or_array_layers: 1 },
+        );
+    }
+    let mut pass = begin_pass(encoder, view, wgpu::LoadOp::Load, None).forget_lifetime();
+    if copies.is_empty() {
+        renderer.render_fill(&mut pass, fill, screen, region);
+    }
+    renderer.render_range_within(&mut pass, jobs, start..jobs.len(), screen, Some(region));
+}
+
+/// Vendored change: `region` (`[x, y, width, height]`) less the rects
+/// `copies` cover, as a few rects (what the background has to be drawn over).
+fn uncovered(region: [u32; 4], copies: &[Copy<'_>]) -> Vec<[u32; 4]> {
+    let mut left = vec![region];
+    for copy in copies {
+        let (cx0, cy0) = (copy.to.x, copy.to.y);
+        let (cx1, cy1) = (cx0 + copy.size.width, cy0 + copy.size.height);
+        left = left
+            .into_iter()
+            .flat_map(|[x, y, w, h]| {
+                let (x1, y1) = (x + w, y + h);
+                if cx1 <= x || x1 <= cx0 || cy1 <= y || y1 <= cy0 {
+                    return vec![[x, y, w, h]];
+                }
+                let (mx0, mx1) = (x.max(cx0), x1.min(cx1));
+                let bands = [
+                    [x, y, w, cy0.saturating_sub(y)],
+                    [x, cy1.min(y1), w, y1.saturating_sub(cy1)],
+                    [x, y.max(cy0), mx0 - x, y1.min(cy1) - y.max(cy0)],
+                    [mx1, y.max(cy0), x1 - mx1, y1.min(cy1) - y.max(cy0)],
+                ];
+                bands.into_iter().filter(|b| b[2] > 0 && b[3] > 0).collect()
+            })
+            .collect();
+    }
+    left
 }
 
 /// The clear of the window to `color`.

@@ -397,6 +397,21 @@ impl crate::CommandEncoder for super::CommandEncoder {
         T: Iterator<Item = crate::TextureCopy>,
     {
         let (src_raw, src_target) = src.inner.as_native();
+        // Vendored change: a copy into the canvas's drawing buffer (a WebGL2
+        // surface drawn directly, see `web.rs`) is a blit.
+        if matches!(dst.inner, super::TextureInner::DefaultRenderbuffer) {
+            for mut copy in regions {
+                copy.clamp_size_to_virtual(&src.copy_size, &dst.copy_size);
+                self.cmd_buffer
+                    .commands
+                    .push(C::CopyTextureToDefaultFramebuffer {
+                        src: src_raw,
+                        src_target,
+                        copy,
+                    })
+            }
+            return;
+        }
         let (dst_raw, dst_target) = dst.inner.as_native();
         for mut copy in regions {
             copy.clamp_size_to_virtual(&src.copy_size, &dst.copy_size);
@@ -638,7 +653,16 @@ impl crate::CommandEncoder for super::CommandEncoder {
             depth: 0.0..1.0,
         });
 
-        if !rendering_to_external_framebuffer {
+        // Vendored change: nor for the canvas's own drawing buffer, whose
+        // only draw buffer is `BACK`.
+        let rendering_to_default_framebuffer = desc
+            .color_attachments
+            .first()
+            .and_then(|at| at.as_ref())
+            .is_some_and(|at| {
+                matches!(at.target.view.inner, super::TextureInner::DefaultRenderbuffer)
+            });
+        if !rendering_to_external_framebuffer && !rendering_to_default_framebuffer {
             // set the draw buffers and states
             self.cmd_buffer
                 .commands

@@ -964,6 +964,12 @@ enum Command {
         dst_target: BindTarget,
         copy: crate::TextureCopy,
     },
+    /// Vendored change: a copy into the canvas's drawing buffer (`web.rs`).
+    CopyTextureToDefaultFramebuffer {
+        src: glow::Texture,
+        src_target: BindTarget,
+        copy: crate::TextureCopy,
+    },
     CopyBufferToTexture {
         src: Buffer,
         #[allow(unused)]

@@ -751,6 +751,56 @@ impl super::Queue {
                     };
                 }
             }
+            C::CopyTextureToDefaultFramebuffer {
+                src,
+                src_target,
+                ref copy,
+            } => {
+                // Vendored change: see `CommandEncoder::copy_texture_to_texture`.
+                // Both are drawn the same way up, so the blit is not flipped.
+                unsafe { gl.bind_framebuffer(glow::READ_FRAMEBUFFER, Some(self.copy_fbo)) };
+                if is_layered_target(src_target) {
+                    unsafe {
+                        gl.framebuffer_texture_layer(
+                            glow::READ_FRAMEBUFFER,
+                            glow::COLOR_ATTACHMENT0,
+                            Some(src),
+                            copy.src_base.mip_level as i32,
+                            copy.src_base.array_layer as i32,
+                        )
+                    };
+                } else {
+                    unsafe {
+                        gl.framebuffer_texture_2d(
+                            glow::READ_FRAMEBUFFER,
+                            glow::COLOR_ATTACHMENT0,
+                            src_target,
+                            Some(src),
+                            copy.src_base.mip_level as i32,
+                        )
+                    };
+                }
+                unsafe { gl.bind_framebuffer(glow::DRAW_FRAMEBUFFER, None) };
+                // The blit is scissored; the next pass sets its scissor again.
+                unsafe { gl.disable(glow::SCISSOR_TEST) };
+                let (sx, sy) = (copy.src_base.origin.x as i32, copy.src_base.origin.y as i32);
+                let (dx, dy) = (copy.dst_base.origin.x as i32, copy.dst_base.origin.y as i32);
+                let (w, h) = (copy.size.width as i32, copy.size.height as i32);
+                unsafe {
+                    gl.blit_framebuffer(
+                        sx,
+                        sy,
+                        sx + w,
+                        sy + h,
+                        dx,
+                        dy,
+                        dx + w,
+                        dy + h,
+                        glow::COLOR_BUFFER_BIT,
+                        glow::NEAREST,
+                    )
+                };
+            }
             C::CopyBufferToTexture {
                 ref src,
                 src_target: _,

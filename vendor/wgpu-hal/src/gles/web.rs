@@ -104,6 +104,15 @@ impl Instance {
         let context_options = js_sys::Object::new();
         js_sys::Reflect::set(&context_options, &"antialias".into(), &JsValue::FALSE)
             .expect("Cannot create context options");
+        // Vendored change: no depth buffer in the canvas (wgpu draws depth
+        // into textures of its own; the browser would clear it every frame),
+        // and a drawing buffer that keeps its pixels between frames, so that
+        // a frame drawn straight into it (`Texture::default_framebuffer`, as
+        // eframe's web painter does) may redraw only what changed.
+        js_sys::Reflect::set(&context_options, &"depth".into(), &JsValue::FALSE)
+            .expect("Cannot create context options");
+        js_sys::Reflect::set(&context_options, &"preserveDrawingBuffer".into(), &JsValue::TRUE)
+            .expect("Cannot create context options");
         context_options
     }
 }

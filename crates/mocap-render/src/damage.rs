@@ -1,0 +1,148 @@
+//! The part of a target a frame has to redraw when it starts from the last
+//! frame's pixels: where this frame's and the last frame's figures are.
+//!
+//! Under a still camera (the floor copied from the floor cache, see
+//! floor_cache.rs) every pixel outside the figures (capsules, spheres, lines,
+//! meshes and the floor's shadow) is the floor's or the background's, the same
+//! as in the last frame. So a frame that starts from the last frame's pixels
+//! redraws only the screen rect around this frame's figures and the last
+//! frame's; on a software rasteriser (where every pixel of a pass costs) a
+//! clip playing under a still camera then costs about its figures' pixels
+//! rather than the view's.
+//!
+//! Input: the scene, the frame's uniforms (camera, viewport, the floor's
+//! shadow rect) and the pixels per point of line widths. Output: a rect of
+//! the target in pixels, or `None` where one cannot be found (a figure
+//! behind the eye): the whole target is redrawn.
+
+use crate::bounds;
+use crate::scene::Scene;
+use crate::uniforms::FrameUniforms;
+use glam::{Mat4, Vec3, Vec4};
+
+/// Pixels around the figures' projected boxes: capsules' and spheres'
+/// outlines and edges, and rounding.
+const MARGIN_PX: f32 = 4.0;
+
+/// A rect of a target in pixels: min x, min y, max x, max y (max exclusive).
+pub(crate) type PxRect = [u32; 4];
+
+/// The screen rect of everything `scene` draws besides the floor and the
+/// background (its figures and the floor's shadow, `uniforms.shadow_rect`
+/// when `shadows`), in a target of `size` pixels; an empty rect for a scene
+/// without figures; `None` when it cannot be bounded on screen.
+pub(crate) fn figures_rect(
+    scene: &Scene,
+    uniforms: &FrameUniforms,
+    shadows: bool,
+    pixels_per_point: f32,
+    size: [u32; 2],
+) -> Option<PxRect> {
+    let grow = |p: Vec3, r: f32| Some((p - Vec3::splat(r), p + Vec3::splat(r)));
+    let mut world: Option<(Vec3, Vec3)> = None;
+    for c in &scene.capsules {
+        world = bounds::union(world, bounds::union(grow(c.a, c.radius), grow(c.b, c.radius)));
+    }
+    for s in &scene.spheres {
+        world = bounds::union(world, grow(s.center, s.radius));
+    }
+    let mut line_px: f32 = 0.0;
+    for l in scene.lines.iter().chain(&scene.overlay_lines) {
+        world = bounds::union(world, bounds::union(grow(l.a, 0.0), grow(l.b, 0.0)));
+        line_px = line_px.max(l.width_px * pixels_per_point);
+    }
+    for b in scene.meshes.iter().filter_map(|m| m.world_bounds()) {
+        world = bounds::union(world, Some(b));
+    }
+    for b in scene.skinned.iter().filter_map(|s| s.world_bounds()) {
+        world = bounds::union(world, Some(b));
+    }
+    let view_proj = Mat4::from_cols_array_2d(&uniforms.projection) * Mat4::from_cols_array_2d(&uniforms.view);
+    let mut rect = world.map(|(lo, hi)| screen_box(&view_proj, corners(lo, hi), size)).unwrap_or(Some(EMPTY))?;
+    if shadows && scene.grid.is_some() {
+        let [x0, z0, x1, z1] = uniforms.shadow_rect;
+        let y = uniforms.floor_center[1];
+        let floor = [Vec3::new(x0, y, z0), Vec3::new(x1, y, z0), Vec3::new(x0, y, z1), Vec3::new(x1, y, z1)];
+        if x0 <= x1 && z0 <= z1 {
+            rect = join(rect, screen_box(&view_proj, floor, size)?);
+        }
+    }
+    Some(grown(rect, MARGIN_PX + line_px, size))
+}
+
+/// A rect holding nothing.
+pub(crate) const EMPTY: [f32; 4] = [f32::INFINITY, f32::INFINITY, f32::NEG_INFINITY, f32::NEG_INFINITY];
+
+/// The pixel rect holding `rect` (floating pixels) grown by `by` pixels,
+/// within a target of `size`; empty (`[0; 4]`) for an empty rect.
+fn grown(rect: [f32; 4], by: f32, size: [u32; 2]) -> PxRect {
+    if rect[0] > rect[2] || rect[1] > rect[3] {
+        return [0; 4];
+    }
+    let clamp = |v: f32, max: u32| v.clamp(0.0, max as f32) as u32;
+    let (x0, y0) = (clamp((rect[0] - by).floor(), size[0]), clamp((rect[1] - by).floor(), size[1]));
+    let (x1, y1) = (clamp((rect[2] + by).ceil(), size[0]), clamp((rect[3] + by).ceil(), size[1]));
+    if x1 <= x0 || y1 <= y0 { [0; 4] } else { [x0, y0, x1, y1] }
+}
+
+/// Both rects together (floating pixels).
+fn join(a: [f32; 4], b: [f32; 4]) -> [f32; 4] {
+    [a[0].min(b[0]), a[1].min(b[1]), a[2].max(b[2]), a[3].max(b[3])]
+}
+
+/// The rect in pixels (y down) around `points` projected by `view_proj`;
+/// `None` if one is at or behind the eye's plane (or not finite).
+fn screen_box<const N: usize>(view_proj: &Mat4, points: [Vec3; N], size: [u32; 2]) -> Option<[f32; 4]> {
+    let mut rect = EMPTY;
+    for p in points {
+        let clip: Vec4 = *view_proj * p.extend(1.0);
+        if !(clip.w > 1e-6) || !clip.is_finite() {
+            return None;
+        }
+        let x = (clip.x / clip.w * 0.5 + 0.5) * size[0] as f32;
+        let y = (0.5 - clip.y / clip.w * 0.5) * size[1] as f32;
+        rect = join(rect, [x, y, x, y]);
+    }
+    Some(rect)
+}
+
+/// The eight corners of the box `lo`–`hi`.
+fn corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
+    std::array::from_fn(|i| {
+        Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
+}
+
+/// Both pixel rects together; an empty one adds nothing.
+pub(crate) fn union(a: PxRect, b: PxRect) -> PxRect {
+    let empty = |r: PxRect| r[2] <= r[0] || r[3] <= r[1];
+    match (empty(a), empty(b)) {
+        (true, _) => b,
+        (_, true) => a,
+        _ => [a[0].min(b[0]), a[1].min(b[1]), a[2].max(b[2]), a[3].max(b[3])],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn union_ignores_empty_rects() {
+        assert_eq!(union([0; 4], [1, 2, 3, 4]), [1, 2, 3, 4]);
+        assert_eq!(union([1, 2, 3, 4], [0; 4]), [1, 2, 3, 4]);
+        assert_eq!(union([1, 2, 3, 4], [0, 5, 2, 6]), [0, 2, 3, 6]);
+    }
+
+    #[test]
+    fn points_behind_the_eye_have_no_rect() {
+        let view_proj = glam::camera::rh::proj::directx::perspective(1.0, 1.0, 0.1, 100.0);
+        let ahead = screen_box(&view_proj, [Vec3::new(0.0, 0.0, -5.0)], [100, 100]).unwrap();
+        assert!((ahead[0] - 50.0).abs() < 1e-3 && (ahead[1] - 50.0).abs() < 1e-3);
+        assert!(screen_box(&view_proj, [Vec3::new(0.0, 0.0, 5.0)], [100, 100]).is_none());
+    }
+}

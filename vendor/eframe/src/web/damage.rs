@@ -1,0 +1,253 @@
+//! Vendored change: which parts of the window a frame has to redraw, for a
+//! painter whose window keeps its pixels between frames (WebGL2, see
+//! `web_painter_wgpu.rs`).
+//!
+//! Each frame's paint jobs are compared with the last frame's, job by job in
+//! paint order: a job that differs (another mesh, clip rect or texture, or
+//! another place in the order) damages where it is drawn now and where the
+//! job at its place was drawn before. A paint callback with a copy source
+//! damages what its texture says changed ([`egui_wgpu::CopyChange`]). The
+//! damaged rects are merged into a few regions; redrawing every job inside
+//! each region (over the clear colour) gives the pixels of a full redraw.
+
+use egui::epaint::Primitive;
+
+/// A rect in pixels: `[x0, y0, x1, y1]`, `x0 <= x1`, `y0 <= y1`.
+pub(crate) type PxRect = [u32; 4];
+
+/// The most regions a frame is redrawn in (each costs two passes); more
+/// damaged rects are merged.
+const MAX_REGIONS: usize = 4;
+
+/// One paint job as drawn last frame.
+#[derive(Clone, Copy, PartialEq, Eq)]
+struct Drawn {
+    /// Its clip rect, mesh (vertices, indices, texture) or callback rect.
+    hash: u64,
+    /// Where it drew, in pixels.
+    rect: PxRect,
+}
+
+/// What the last frame drew; see the module docs.
+#[derive(Default)]
+pub(crate) struct Damage {
+    drawn: Vec<Drawn>,
+    /// Window size in pixels and pixels per point of the last frame; `None`
+    /// before the first one and after [`Damage::forget`].
+    screen: Option<([u32; 2], u32)>,
+}
+
+impl Damage {
+    /// Makes the next frame a full redraw (the window's pixels are lost or
+    /// were drawn by someone else).
+    pub fn forget(&mut self) {
+        self.screen = None;
+        self.drawn.clear();
+    }
+
+    /// The regions of the window (`[x, y, width, height]` in pixels) that
+    /// `jobs` must be redrawn in; `None` when everything must be.
+    /// `callback_change(index)` tells what changed in the copy source of the
+    /// paint callback at `index` (relative to its rect, in pixels).
+    pub fn regions(
+        &mut self,
+        jobs: &[egui::ClippedPrimitive],
+        size: [u32; 2],
+        pixels_per_point: f32,
+        mut callback_change: impl FnMut(usize) -> egui_wgpu::CopyChange,
+    ) -> Option<Vec<[u32; 4]>> {
+        let screen = (size, pixels_per_point.to_bits());
+        let full = self.screen != Some(screen);
+        let mut rects = Vec::new();
+        let mut drawn = Vec::with_capacity(jobs.len());
+        for (index, job) in jobs.iter().enumerate() {
+            let now = Drawn { hash: hash_job(job), rect: job_rect(job, pixels_per_point, size) };
+            match self.drawn.get(index) {
+                Some(before) if *before == now => {}
+                Some(before) => {
+                    rects.push(before.rect);
+                    rects.push(now.rect);
+                }
+                None => rects.push(now.rect),
+            }
+            if let Primitive::Callback(callback) = &job.primitive {
+                // Always asked, so that the change is taken.
+                let change = callback_change(index);
+                rects.push(changed_rect(change, callback.rect, job.clip_rect, pixels_per_point, size));
+            }
+            drawn.push(now);
+        }
+        rects.extend(self.drawn.iter().skip(jobs.len()).map(|d| d.rect));
+        self.drawn = drawn;
+        self.screen = Some(screen);
+        if full {
+            return None;
+        }
+        rects.retain(|r| r[2] > r[0] && r[3] > r[1]);
+        Some(merge(rects).into_iter().map(|[x0, y0, x1, y1]| [x0, y0, x1 - x0, y1 - y0]).collect())
+    }
+}
+
+/// `rects` merged into at most [`MAX_REGIONS`] rects covering them: rects
+/// that overlap or touch are joined, then the pair whose join adds the least
+/// area, until few enough are left.
+fn merge(mut rects: Vec<PxRect>) -> Vec<PxRect> {
+    loop {
+        let mut best: Option<(u64, usize, usize)> = None;
+        for i in 0..rects.len() {
+            for j in i + 1..rects.len() {
+                let joined = join(rects[i], rects[j]);
+                let added = area(joined).saturating_sub(area(rects[i]) + area(rects[j]));
+                let touching = touches(rects[i], rects[j]);
+                if touching || rects.len() > MAX_REGIONS {
+                    let cost = if touching { 0 } else { added };
+                    if best.is_none_or(|(c, _, _)| cost < c) {
+                        best = Some((cost, i, j));
+                    }
+                }
+            }
+        }
+        let Some((_, i, j)) = best else { return rects };
+        let joined = join(rects[i], rects[j]);
+        rects.swap_remove(j);
+        rects[i] = joined;
+    }
+}
+
+fn join(a: PxRect, b: PxRect) -> PxRect {
+    [a[0].min(b[0]), a[1].min(b[1]), a[2].max(b[2]), a[3].max(b[3])]
+}
+
+fn area(r: PxRect) -> u64 {
+    u64::from(r[2] - r[0]) * u64::from(r[3] - r[1])
+}
+
+fn touches(a: PxRect, b: PxRect) -> bool {
+    a[0] <= b[2] && b[0] <= a[2] && a[1] <= b[3] && b[1] <= a[3]
+}
+
+/// `rect` (points) in pixels, rounded as egui-wgpu rounds clip rects, and
+/// grown by `grow` pixels, within the window.
+fn to_pixels(rect: egui::Rect, pixels_per_point: f32, size: [u32; 2], grow: f32) -> PxRect {
+    let px = |v: f32, max: u32, d: f32| ((v * pixels_per_point).round() + d).clamp(0.0, max as f32) as u32;
+    [
+        px(rect.min.x, size[0], -grow),
+        px(rect.min.y, size[1], -grow),
+        px(rect.max.x, size[0], grow),
+        px(rect.max.y, size[1], grow),
+    ]
+}
+
+/// Where `job` draws: its mesh's bounds (a pixel more each way for edges'
+/// rounding) or its callback's rect, within its clip rect.
+fn job_rect(job: &egui::ClippedPrimitive, pixels_per_point: f32, size: [u32; 2]) -> PxRect {
+    let clip = to_pixels(job.clip_rect, pixels_per_point, size, 0.0);
+    let drawn = match &job.primitive {
+        Primitive::Mesh(mesh) => {
+            let bounds = mesh.calc_bounds();
+            if !bounds.is_positive() {
+                return [0; 4];
+            }
+            to_pixels(bounds, pixels_per_point, size, 1.0)
+        }
+        Primitive::Callback(callback) => to_pixels(callback.rect, pixels_per_point, size, 0.0),
+    };
+    intersect(clip, drawn)
+}
+
+fn intersect(a: PxRect, b: PxRect) -> PxRect {
+    let x0 = a[0].max(b[0]);
+    let y0 = a[1].max(b[1]);
+    [x0, y0, a[2].min(b[2]).max(x0), a[3].min(b[3]).max(y0)]
+}
+
+/// The pixels of a paint callback whose copy source changed by `change`.
+fn changed_rect(
+    change: egui_wgpu::CopyChange,
+    rect: egui::Rect,
+    clip: egui::Rect,
+    pixels_per_point: f32,
+    size: [u32; 2],
+) -> PxRect {
+    let whole = to_pixels(rect, pixels_per_point, size, 0.0);
+    let clip = to_pixels(clip, pixels_per_point, size, 0.0);
+    let changed = match change {
+        egui_wgpu::CopyChange::Nothing => return [0; 4],
+        egui_wgpu::CopyChange::All => whole,
+        egui_wgpu::CopyChange::Rect([x, y, w, h]) => {
+            let at = |o: u32, d: u32, max: u32| o.saturating_add(d).min(max);
+            [
+                at(whole[0], x, whole[2]),
+                at(whole[1], y, whole[3]),
+                at(whole[0], x.saturating_add(w), whole[2]),
+                at(whole[1], y.saturating_add(h), whole[3]),
+            ]
+        }
+    };
+    intersect(clip, changed)
+}
+
+/// A hash of what `job` draws and where (FxHash-style over its words).
+fn hash_job(job: &egui::ClippedPrimitive) -> u64 {
+    let mut h = Hasher::default();
+    let r = job.clip_rect;
+    h.floats(&[r.min.x, r.min.y, r.max.x, r.max.y]);
+    match &job.primitive {
+        Primitive::Mesh(mesh) => {
+            h.word(1);
+            h.word(match mesh.texture_id {
+                egui::TextureId::Managed(id) => id,
+                egui::TextureId::User(id) => id ^ (1 << 63),
+            });
+            h.words32(bytemuck::cast_slice(&mesh.vertices));
+            h.words32(&mesh.indices);
+        }
+        Primitive::Callback(callback) => {
+            h.word(2);
+            let r = callback.rect;
+            h.floats(&[r.min.x, r.min.y, r.max.x, r.max.y]);
+        }
+    }
+    h.0
+}
+
+#[derive(Default)]
+struct Hasher(u64);
+
+impl Hasher {
+    fn word(&mut self, w: u64) {
+        self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn words32(&mut self, words: &[u32]) {
+        let mut pairs = words.chunks_exact(2);
+        for pair in &mut pairs {
+            self.word(u64::from(pair[0]) | (u64::from(pair[1]) << 32));
+        }
+        for &w in pairs.remainder() {
+            self.word(u64::from(w));
+        }
+        self.word(words.len() as u64);
+    }
+
+    fn floats(&mut self, values: &[f32]) {
+        for v in values {
+            self.word(u64::from(v.to_bits()));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn merge_joins_overlapping_and_caps_the_count() {
+        let rects = vec![[0, 0, 10, 10], [5, 5, 20, 20], [100, 100, 110, 110]];
+        let merged = merge(rects);
+        assert_eq!(merged.len(), 2);
+        assert!(merged.contains(&[0, 0, 20, 20]));
+        let many: Vec<PxRect> = (0..10).map(|i| [i * 100, 0, i * 100 + 10, 10]).collect();
+        assert_eq!(merge(many).len(), MAX_REGIONS);
+    }
+}
