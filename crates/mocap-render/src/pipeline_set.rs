@@ -36,17 +36,25 @@ pub(crate) struct Pipelines {
     /// Capsule impostors into the shadow map.
     pub(crate) shadow: wgpu::RenderPipeline,
     pub(crate) floor: wgpu::RenderPipeline,
-    /// The floor's depth only (under a floor whose colour was copied).
-    pub(crate) floor_depth: wgpu::RenderPipeline,
     pub(crate) floor_shadow: wgpu::RenderPipeline,
     pub(crate) capsules: wgpu::RenderPipeline,
-    pub(crate) spheres: wgpu::RenderPipeline,
-    pub(crate) lines: wgpu::RenderPipeline,
-    pub(crate) overlay_lines: wgpu::RenderPipeline,
+    /// Made with the others ahead of use ([`crate::SceneRenderer::prepare_pipelines`]),
+    /// else when a frame first has spheres, lines or a copied floor: a page's
+    /// first frame of capsules does not wait for their shaders.
+    pub(crate) extras: Option<ExtraPipelines>,
     /// Made with the others ahead of use ([`crate::SceneRenderer::prepare_pipelines`]),
     /// else when a frame first has meshes: a page's first frame without any
     /// does not wait for their shaders.
     pub(crate) meshes: Option<MeshPipelines>,
+}
+
+/// The pipelines of spheres, lines and the floor's depth.
+pub(crate) struct ExtraPipelines {
+    /// The floor's depth only (under a floor whose colour was copied).
+    pub(crate) floor_depth: wgpu::RenderPipeline,
+    pub(crate) spheres: wgpu::RenderPipeline,
+    pub(crate) lines: wgpu::RenderPipeline,
+    pub(crate) overlay_lines: wgpu::RenderPipeline,
 }
 
 /// The pipelines of vertex-animated and skinned meshes.
@@ -97,12 +105,14 @@ pub(crate) struct Layouts<'a> {
 }
 
 impl Pipelines {
-    /// The pipelines for `key`, with the meshes' when `meshes`.
+    /// The pipelines for `key`, with the extras when `extras` and the
+    /// meshes' when `meshes`.
     pub(crate) fn new(
         device: &wgpu::Device,
         layouts: &Layouts,
         format: wgpu::TextureFormat,
         key: PipelineKey,
+        extras: bool,
         meshes: bool,
     ) -> Pipelines {
         let (frame_layout, shadow_layout) = (layouts.frame, layouts.shadow);
@@ -119,15 +129,11 @@ impl Pipelines {
         let module = |label: &str, body: &str| lit_module(device, label, body);
         let capsule_shader = module("mocap capsules", &capsule::shader_source());
         let floor_shader = module("mocap floor", include_str!("shaders/floor.wgsl"));
-        let sphere_shader = module("mocap spheres", include_str!("shaders/spheres.wgsl"));
-        let line_shader = module("mocap lines", include_str!("shaders/lines.wgsl"));
         let capsule_buffers = [Some(wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
             step_mode: wgpu::VertexStepMode::Vertex,
             attributes: &capsule::ATTRIBUTES,
         })];
-        let spheres = [quad_corners(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
-        let line_buffers = [quad_corners(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
         let base = base_spec("mocap capsules", &capsule_shader, &capsule_buffers, format, key);
         let depth_only = depth_only(&base);
         let shadow = pipeline::build(
@@ -148,19 +154,6 @@ impl Pipelines {
                 shader: &floor_shader,
                 buffers: &[],
                 color: Some((format, wgpu::BlendState::ALPHA_BLENDING)),
-                cull_back: false,
-                ..base
-            },
-        );
-        let floor_depth = pipeline::build(
-            device,
-            &lit_layout,
-            &PipelineSpec {
-                label: "mocap floor depth",
-                shader: &floor_shader,
-                fragment_entry: "fs_depth",
-                buffers: &[],
-                color_writes: wgpu::ColorWrites::empty(),
                 cull_back: false,
                 ..base
             },
@@ -193,6 +186,47 @@ impl Pipelines {
                 color: Some((format, wgpu::BlendState { color: coverage, alpha: KEEP })),
                 cull_back: false,
                 alpha_to_coverage: true,
+                ..base
+            },
+        );
+        Pipelines {
+            shadow,
+            floor,
+            floor_shadow,
+            capsules,
+            extras: extras.then(|| ExtraPipelines::new(device, layouts, format, key)),
+            meshes: meshes.then(|| MeshPipelines::new(device, layouts, format, key)),
+        }
+    }
+}
+
+impl ExtraPipelines {
+    /// The extra pipelines for `key`.
+    pub(crate) fn new(device: &wgpu::Device, layouts: &Layouts, format: wgpu::TextureFormat, key: PipelineKey) -> ExtraPipelines {
+        let lit_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mocap lit"),
+            bind_group_layouts: &[Some(layouts.frame), Some(layouts.shadow)],
+            immediate_size: 0,
+        });
+        let module = |label: &str, body: &str| lit_module(device, label, body);
+        let floor_shader = module("mocap floor", include_str!("shaders/floor.wgsl"));
+        let sphere_shader = module("mocap spheres", include_str!("shaders/spheres.wgsl"));
+        let line_shader = module("mocap lines", include_str!("shaders/lines.wgsl"));
+        let spheres = [quad_corners(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
+        let line_buffers = [quad_corners(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
+        let base = base_spec("mocap lines", &line_shader, &line_buffers, format, key);
+        let coverage =
+            if key.blends_outlines() { wgpu::BlendState::ALPHA_BLENDING.color } else { wgpu::BlendComponent::REPLACE };
+        let floor_depth = pipeline::build(
+            device,
+            &lit_layout,
+            &PipelineSpec {
+                label: "mocap floor depth",
+                shader: &floor_shader,
+                fragment_entry: "fs_depth",
+                buffers: &[],
+                color_writes: wgpu::ColorWrites::empty(),
+                cull_back: false,
                 ..base
             },
         );
@@ -234,17 +268,7 @@ impl Pipelines {
                 ..base
             },
         );
-        Pipelines {
-            shadow,
-            floor,
-            floor_depth,
-            floor_shadow,
-            capsules,
-            spheres,
-            lines,
-            overlay_lines,
-            meshes: meshes.then(|| MeshPipelines::new(device, layouts, format, key)),
-        }
+        ExtraPipelines { floor_depth, spheres, lines, overlay_lines }
     }
 }
 

@@ -15,7 +15,7 @@ use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
 use crate::floor_cache::{Copies, FloorCache, FloorCopy, FloorKey};
 use crate::lines::LineInstance;
 use crate::mesh::MeshCache;
-use crate::pipeline_set::{Layouts, MeshPipelines, PipelineKey, Pipelines, pipelines_for};
+use crate::pipeline_set::{ExtraPipelines, Layouts, MeshPipelines, PipelineKey, Pipelines, pipelines_for};
 use crate::placed::PlacedMesh;
 use crate::shadow::{self, ShadowMap};
 use crate::skinned::SkinnedCache;
@@ -259,12 +259,12 @@ impl SceneRenderer {
     /// ([`SceneRenderer::encode`] does on first use; doing it ahead moves the
     /// shader compilation, slow on some platforms, to a chosen moment).
     pub fn prepare_pipelines(&mut self, device: &wgpu::Device, sample_count: u32, fast_look: bool, shadows: bool) {
-        self.make_pipelines(device, PipelineKey { samples: sample_count, fast_look, shadows }, true);
+        self.make_pipelines(device, PipelineKey { samples: sample_count, fast_look, shadows }, true, true);
     }
 
-    /// Makes the pipelines for `key` if they are not made yet, the meshes'
-    /// too when `meshes`.
-    fn make_pipelines(&mut self, device: &wgpu::Device, key: PipelineKey, meshes: bool) {
+    /// Makes the pipelines for `key` if they are not made yet, the extras
+    /// too when `extras` and the meshes' when `meshes`.
+    fn make_pipelines(&mut self, device: &wgpu::Device, key: PipelineKey, extras: bool, meshes: bool) {
         let layouts = Layouts {
             frame: &self.frame_layout,
             shadow: &self.shadow_layout,
@@ -274,12 +274,15 @@ impl SceneRenderer {
         };
         match self.pipelines.iter_mut().find(|(k, _)| *k == key) {
             Some((_, made)) => {
+                if extras && made.extras.is_none() {
+                    made.extras = Some(ExtraPipelines::new(device, &layouts, self.format, key));
+                }
                 if meshes && made.meshes.is_none() {
                     made.meshes = Some(MeshPipelines::new(device, &layouts, self.format, key));
                 }
             }
             None => {
-                let pipelines = Pipelines::new(device, &layouts, self.format, key, meshes);
+                let pipelines = Pipelines::new(device, &layouts, self.format, key, extras, meshes);
                 self.pipelines.push((key, pipelines));
             }
         }
@@ -307,8 +310,6 @@ impl SceneRenderer {
         }
         let (shadows, uniforms) = self.upload(device, queue, target, scene, camera);
         let key = self.key_for(target.sample_count(), shadows);
-        // A first frame without meshes does not wait for their pipelines.
-        self.make_pipelines(device, key, self.meshes.has_draws() || self.skinned.has_draws());
         self.draw_calls = 0;
         let [r, g, b, a] = crate::color::for_target(scene.background, self.format);
         let samples = target.sample_count();
@@ -316,6 +317,13 @@ impl SceneRenderer {
             scene.grid.is_some().then(|| FloorKey::new(&uniforms, [r, g, b, a], target.size(), samples, self.format));
         let copy = self.floor_cache.plan(device, floor);
         self.floor_copied = copy.is_some();
+        // A first frame of capsules alone does not wait for the pipelines of
+        // spheres, lines and a copied floor's depth, nor of meshes.
+        let extras = !scene.spheres.is_empty()
+            || !scene.lines.is_empty()
+            || !scene.overlay_lines.is_empty()
+            || copy.as_ref().is_some_and(|c| !c.copy_depth);
+        self.make_pipelines(device, key, extras, self.meshes.has_draws() || self.skinned.has_draws());
         // Only around the figures when the last frame's pixels are there to
         // start from (damage.rs): the same target, under the same floor.
         let figures = damage::figures_rect(scene, &uniforms, shadows, self.pixels_per_point, target.size());
@@ -382,7 +390,7 @@ impl SceneRenderer {
         if scene.grid.is_some() {
             let floor = match &copy {
                 None => Some(&pipelines.floor),
-                Some(_) if !depth_copied => Some(&pipelines.floor_depth),
+                Some(_) if !depth_copied => pipelines.extras.as_ref().map(|e| &e.floor_depth),
                 Some(_) => None,
             };
             if let Some(floor) = floor {
@@ -410,14 +418,16 @@ impl SceneRenderer {
         // Blended outlines: the lines first, so that a joint's fringe is
         // blended over the bones entering it (else a bone's line behind a
         // joint's fringe would be hidden by the fringe's depth).
-        if key.blends_outlines() {
-            self.draw_calls += draw_lines(&mut pass, &pipelines.lines, &self.lines);
-            self.draw_calls += draw_spheres(&mut pass, &pipelines.spheres, &self.spheres);
-        } else {
-            self.draw_calls += draw_spheres(&mut pass, &pipelines.spheres, &self.spheres);
-            self.draw_calls += draw_lines(&mut pass, &pipelines.lines, &self.lines);
+        if let Some(extras) = &pipelines.extras {
+            if key.blends_outlines() {
+                self.draw_calls += draw_lines(&mut pass, &extras.lines, &self.lines);
+                self.draw_calls += draw_spheres(&mut pass, &extras.spheres, &self.spheres);
+            } else {
+                self.draw_calls += draw_spheres(&mut pass, &extras.spheres, &self.spheres);
+                self.draw_calls += draw_lines(&mut pass, &extras.lines, &self.lines);
+            }
+            self.draw_calls += draw_lines(&mut pass, &extras.overlay_lines, &self.overlay_lines);
         }
-        self.draw_calls += draw_lines(&mut pass, &pipelines.overlay_lines, &self.overlay_lines);
     }
 
     /// Draws `scene` into `target` and submits the work to `queue`.

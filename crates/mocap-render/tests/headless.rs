@@ -999,6 +999,18 @@ fn pipelines_are_made_for_the_sample_counts_and_looks_drawn_with() {
     let changed = read_pixels(&device, &queue, &single).chunks(4).zip(before.chunks(4)).filter(|(a, b)| a != b).count();
     assert!(changed > 100, "the mesh is drawn ({changed} pixels)");
     assert_eq!(renderer.pipeline_sets(), 1, "in the same set");
+    // Nor with the spheres' and lines' pipelines: the first frame with them
+    // adds them to it and draws them.
+    let joints = Scene {
+        spheres: vec![Sphere { center: Vec3::new(-0.6, 0.5, 0.0), radius: 0.1, color: [30, 30, 255, 255] }],
+        lines: vec![Line { a: Vec3::new(0.5, -0.5, 0.0), b: Vec3::new(0.5, 0.8, 0.0), color: [255, 255, 0, 255], width_px: 3.0 }],
+        ..capsules.clone()
+    };
+    renderer.render(&device, &queue, &single, &joints, &camera);
+    let pixels = read_pixels(&device, &queue, &single);
+    assert!(pixels.chunks(4).any(|p| p[2] > 150 && p[0] < 100), "the blue joint is drawn");
+    assert!(pixels.chunks(4).any(|p| p[0] > 200 && p[1] > 200 && p[2] < 60), "the yellow line is drawn");
+    assert_eq!(renderer.pipeline_sets(), 1, "in the same set");
     let sticks = Scene {
         spheres: vec![Sphere { center: Vec3::new(0.6, 0.5, 0.0), radius: 0.1, color: [30, 30, 255, 255] }],
         ..capsules.clone()

@@ -111,6 +111,11 @@ pub struct Viewport {
     pub floor_copied: bool,
     /// Whether the last frame was shown from the single-sampled target.
     shown_single: Option<bool>,
+    /// egui's number of the first painted frame that showed the view.
+    first_frame: Option<u64>,
+    /// Pipeline sets made ahead so far (the fast look's, then the
+    /// multisampled one), a painted frame apart after the first.
+    prepared: u8,
 }
 
 impl Viewport {
@@ -195,18 +200,23 @@ impl Viewport {
         self.shown_single = Some(single);
         mark_changed(rs, change);
         self.floor_copied = gpu.renderer.floor_copied();
-        if self.frames_rendered == 1 {
+        // Painted frames since the first (egui may lay a frame out twice,
+        // drawing the view each time, before it paints it).
+        let frame = ui.ctx().cumulative_frame_nr();
+        let since_first = frame - *self.first_frame.get_or_insert(frame);
+        if since_first >= 1 && self.prepared == 0 {
             // The fast look's pipelines, after the first frame is out: compiled
             // then, not in the middle of playback when frames are already slow.
             gpu.renderer.prepare_pipelines(&rs.device, 1, true, scene.shadows);
-        }
-        if self.frames_rendered == 2 {
+            self.prepared = 1;
+        } else if since_first >= 2 && self.prepared == 1 {
             // And the multisampled ones that bodies and models are drawn with
             // (capsules alone take one sample): a frame later, so that the
             // first file dropped with a mesh does not wait for its shaders
             // (some 100 ms on a software rasteriser).
             let samples = gpu.renderer.sample_count();
             gpu.renderer.prepare_pipelines(&rs.device, samples, false, scene.shadows);
+            self.prepared = 2;
         }
         self.frames_rendered += 1;
         ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ShowFrame { single }));
