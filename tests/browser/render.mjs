@@ -201,20 +201,29 @@ try {
       await page.waitForTimeout(300);
       return page.screenshot();
     };
-    const inParts = await whole();
     const viewport = page.viewportSize();
-    for (const size of [{ width: viewport.width - 40, height: viewport.height }, viewport]) {
-      const f0 = (await state(page)).framesRendered;
-      await page.setViewportSize(size);
-      await waitState(page, (s, f) => s.framesRendered > f, f0);
-    }
-    const redrawn = await whole();
-    const sameWhole = inParts.equals(redrawn);
-    check(sameWhole, `the window redrawn in parts while playing has the pixels of a whole redraw (${sameWhole ? 'identical' : 'they differ'})`);
-    if (!sameWhole) {
-      fs.writeFileSync(shot('in-parts'), inParts);
-      fs.writeFileSync(shot('redrawn-whole'), redrawn);
-    }
+    const redrawWhole = async () => {
+      for (const size of [{ width: viewport.width - 40, height: viewport.height }, viewport]) {
+        const f0 = (await state(page)).framesRendered;
+        await page.setViewportSize(size);
+        await waitState(page, (s, f) => s.framesRendered > f, f0);
+      }
+      return whole();
+    };
+    const compareWhole = async (what, name) => {
+      const inParts = await whole();
+      const redrawn = await redrawWhole();
+      const same = inParts.equals(redrawn);
+      check(same, `${what} has the pixels of a whole redraw (${same ? 'identical' : 'they differ'})`);
+      if (!same) {
+        fs.writeFileSync(shot(`${name}-in-parts`), inParts);
+        fs.writeFileSync(shot(`${name}-redrawn-whole`), redrawn);
+      }
+    };
+    await compareWhole('the window redrawn in parts while playing', 'played');
+    // The playhead jumps back along the timeline: where it was is redrawn too.
+    await changeAndRender(page, (v) => v.seek(0));
+    await compareWhole('the window after the playhead jumped back', 'jumped');
     // Full: never reduced while playing.
     await page.evaluate(() => { window.mocapViewer.applyViewState('quality=full'); window.mocapViewer.play(); });
     let reduced = false;

@@ -5,7 +5,8 @@
 //! Each frame's paint jobs are compared with the last frame's, job by job in
 //! paint order: a job that differs (another mesh, clip rect or texture, or
 //! another place in the order) damages where it is drawn now and where the
-//! job at its place was drawn before. A paint callback with a copy source
+//! job at its place was drawn before; within a mesh of the same clip rect and
+//! texture, only where its chunks of triangles differ. A paint callback with a copy source
 //! damages what its texture says changed ([`egui_wgpu::CopyChange`]). The
 //! damaged rects are merged into a few regions; redrawing every job inside
 //! each region (over the clear colour) gives the pixels of a full redraw.
@@ -19,13 +20,24 @@ pub(crate) type PxRect = [u32; 4];
 /// damaged rects are merged.
 const MAX_REGIONS: usize = 4;
 
+/// Triangles per chunk of a mesh compared on its own (see [`Drawn::chunks`]).
+const CHUNK_TRIANGLES: usize = 32;
+
 /// One paint job as drawn last frame.
-#[derive(Clone, Copy, PartialEq, Eq)]
+#[derive(Clone, PartialEq, Eq)]
 struct Drawn {
     /// Its clip rect, mesh (vertices, indices, texture) or callback rect.
     hash: u64,
     /// Where it drew, in pixels.
     rect: PxRect,
+    /// A mesh's clip rect and texture.
+    frame: u64,
+    /// A mesh's triangles in chunks of [`CHUNK_TRIANGLES`] in draw order:
+    /// a hash of each chunk's vertices and where it drew. Where a mesh
+    /// changed (the timeline's playhead, a number), only the chunks that
+    /// differ at their place are redrawn; a pixel that no differing chunk
+    /// reaches is drawn by the same triangles in the same order.
+    chunks: Vec<(u64, PxRect)>,
 }
 
 /// What the last frame drew; see the module docs.
@@ -61,9 +73,19 @@ impl Damage {
         let mut rects = Vec::new();
         let mut drawn = Vec::with_capacity(jobs.len());
         for (index, job) in jobs.iter().enumerate() {
-            let now = Drawn { hash: hash_job(job), rect: job_rect(job, pixels_per_point, size) };
+            let now = drawn_job(job, pixels_per_point, size);
             match self.drawn.get(index) {
-                Some(before) if *before == now => {}
+                Some(before) if before.hash == now.hash && before.rect == now.rect => {}
+                Some(before) if before.frame == now.frame && !now.chunks.is_empty() && !before.chunks.is_empty() => {
+                    let count = before.chunks.len().max(now.chunks.len());
+                    for i in 0..count {
+                        let (old, new) = (before.chunks.get(i), now.chunks.get(i));
+                        if old != new {
+                            rects.extend(old.map(|c| c.1));
+                            rects.extend(new.map(|c| c.1));
+                        }
+                    }
+                }
                 Some(before) => {
                     rects.push(before.rect);
                     rects.push(now.rect);
@@ -187,28 +209,69 @@ fn changed_rect(
     intersect(clip, changed)
 }
 
-/// A hash of what `job` draws and where (FxHash-style over its words).
-fn hash_job(job: &egui::ClippedPrimitive) -> u64 {
+/// What `job` draws and where: hashes (FxHash-style over its words) of the
+/// whole and, for a mesh, of each chunk of its triangles, with their rects.
+fn drawn_job(job: &egui::ClippedPrimitive, pixels_per_point: f32, size: [u32; 2]) -> Drawn {
+    let rect = job_rect(job, pixels_per_point, size);
     let mut h = Hasher::default();
     let r = job.clip_rect;
     h.floats(&[r.min.x, r.min.y, r.max.x, r.max.y]);
     match &job.primitive {
         Primitive::Mesh(mesh) => {
-            h.word(1);
             h.word(match mesh.texture_id {
                 egui::TextureId::Managed(id) => id,
                 egui::TextureId::User(id) => id ^ (1 << 63),
             });
-            h.words32(bytemuck::cast_slice(&mesh.vertices));
-            h.words32(&mesh.indices);
+            let frame = h.0;
+            let clip = to_pixels(job.clip_rect, pixels_per_point, size, 0.0);
+            let chunks = mesh
+                .indices
+                .chunks(CHUNK_TRIANGLES * 3)
+                .map(|indices| chunk(&mesh.vertices, indices, clip, pixels_per_point, size))
+                .collect::<Vec<_>>();
+            for (hash, _) in &chunks {
+                h.word(*hash);
+            }
+            h.word(chunks.len() as u64);
+            Drawn { hash: h.0, rect, frame, chunks }
         }
         Primitive::Callback(callback) => {
             h.word(2);
             let r = callback.rect;
             h.floats(&[r.min.x, r.min.y, r.max.x, r.max.y]);
+            Drawn { hash: h.0, rect, frame: 0, chunks: Vec::new() }
         }
     }
-    h.0
+}
+
+/// A hash of the vertices `indices` draw (in order) and their rect within
+/// `clip`, grown by a pixel; an index past the vertices (egui never makes
+/// one) hashes as itself.
+fn chunk(
+    vertices: &[egui::epaint::Vertex],
+    indices: &[u32],
+    clip: PxRect,
+    pixels_per_point: f32,
+    size: [u32; 2],
+) -> (u64, PxRect) {
+    let mut h = Hasher::default();
+    let mut bounds = egui::Rect::NOTHING;
+    for &i in indices {
+        match vertices.get(i as usize) {
+            Some(v) => {
+                h.floats(&[v.pos.x, v.pos.y, v.uv.x, v.uv.y]);
+                h.word(u64::from(u32::from_le_bytes(v.color.to_array())));
+                bounds.extend_with(v.pos);
+            }
+            None => h.word(u64::from(i) | (1 << 40)),
+        }
+    }
+    let rect = if bounds.min.x <= bounds.max.x && bounds.min.y <= bounds.max.y {
+        intersect(clip, to_pixels(bounds, pixels_per_point, size, 1.0))
+    } else {
+        [0; 4]
+    };
+    (h.0, rect)
 }
 
 #[derive(Default)]
@@ -217,17 +280,6 @@ struct Hasher(u64);
 impl Hasher {
     fn word(&mut self, w: u64) {
         self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    fn words32(&mut self, words: &[u32]) {
-        let mut pairs = words.chunks_exact(2);
-        for pair in &mut pairs {
-            self.word(u64::from(pair[0]) | (u64::from(pair[1]) << 32));
-        }
-        for &w in pairs.remainder() {
-            self.word(u64::from(w));
-        }
-        self.word(words.len() as u64);
     }
 
     fn floats(&mut self, values: &[f32]) {
