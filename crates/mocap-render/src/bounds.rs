@@ -29,6 +29,19 @@ pub(crate) fn union(a: Option<(Vec3, Vec3)>, b: Option<(Vec3, Vec3)>) -> Option<
     }
 }
 
+/// The box around every finite caster (ends `a`, `b` grown by the radius), if any.
+pub(crate) fn caster_bounds(casters: impl Iterator<Item = (Vec3, Vec3, f32)>) -> Option<(Vec3, Vec3)> {
+    let (mut min, mut max) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for (a, b, radius) in casters {
+        let r = Vec3::splat(radius.abs());
+        if a.is_finite() && b.is_finite() && r.is_finite() {
+            min = min.min(a.min(b) - r);
+            max = max.max(a.max(b) + r);
+        }
+    }
+    (min.x <= max.x).then_some((min, max))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -16,6 +16,7 @@
 //! textures: a frame whose floor differs from the last one's draws the floor
 //! directly.
 
+use crate::target::RenderTarget;
 use crate::uniforms::FrameUniforms;
 
 /// The largest colour texture cached (bytes; the depth is as large): a
@@ -106,6 +107,31 @@ pub(crate) struct FloorCopy {
     pub depth: wgpu::Texture,
     pub copy_depth: bool,
     pub fill: bool,
+}
+
+impl FloorCopy {
+    /// Records the copy of the floor into `target`: all of it, or the rect
+    /// `redraw` (min x, min y, max x, max y) of a frame redrawn there alone
+    /// (see damage.rs). A multisampled texture and depth are copied whole
+    /// (WebGPU copies no part of them); the frame's draws still stay inside
+    /// the rect. `false` (and nothing recorded) for an empty rect.
+    pub fn copy_into(&self, encoder: &mut wgpu::CommandEncoder, target: &RenderTarget, redraw: Option<[u32; 4]>) -> bool {
+        let [width, height] = target.size();
+        let [x0, y0, x1, y1] = redraw.unwrap_or([0, 0, width, height]);
+        if x1 <= x0 || y1 <= y0 {
+            return false;
+        }
+        let [x0, y0, x1, y1] = if target.sample_count() == 1 { [x0, y0, x1, y1] } else { [0, 0, width, height] };
+        let extent = wgpu::Extent3d { width: x1 - x0, height: y1 - y0, depth_or_array_layers: 1 };
+        let origin = wgpu::Origin3d { x: x0, y: y0, z: 0 };
+        let at = |texture| wgpu::TexelCopyTextureInfo { origin, ..wgpu::Texture::as_image_copy(texture) };
+        encoder.copy_texture_to_texture(at(&self.color), at(target.attachment_texture()), extent);
+        if self.copy_depth {
+            let whole = wgpu::Extent3d { width, height, depth_or_array_layers: 1 };
+            encoder.copy_texture_to_texture(self.depth.as_image_copy(), target.depth_texture().as_image_copy(), whole);
+        }
+        true
+    }
 }
 
 /// The texture holding the floor and what it holds.

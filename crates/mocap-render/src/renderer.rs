@@ -9,6 +9,7 @@
 //! capsules). Under a still camera the floor is drawn once, into a third pass,
 //! and later frames start from copies of its colour and depth (floor_cache.rs).
 
+use crate::bounds;
 use crate::damage;
 use crate::buffer::GrowingBuffer;
 use crate::capsule::{self, CapsuleInstance, CapsuleVertex};
@@ -341,26 +342,9 @@ impl SceneRenderer {
             if copy.fill {
                 self.encode_floor_fill(encoder, copy, key, background);
             }
-            let [width, height] = target.size();
-            let [x0, y0, x1, y1] = redraw.unwrap_or([0, 0, width, height]);
-            if x1 <= x0 || y1 <= y0 {
+            if !copy.copy_into(encoder, target, redraw) {
                 // Nothing moved: the target holds this frame already.
                 return;
-            }
-            // A multisampled texture is copied whole (WebGPU copies no part
-            // of one); the draws below still stay inside the rect.
-            let [x0, y0, x1, y1] = if samples == 1 { [x0, y0, x1, y1] } else { [0, 0, width, height] };
-            let extent = wgpu::Extent3d { width: x1 - x0, height: y1 - y0, depth_or_array_layers: 1 };
-            let origin = wgpu::Origin3d { x: x0, y: y0, z: 0 };
-            let at = |texture| wgpu::TexelCopyTextureInfo { origin, ..wgpu::Texture::as_image_copy(texture) };
-            encoder.copy_texture_to_texture(at(&copy.color), at(target.attachment_texture()), extent);
-            if copy.copy_depth {
-                // Depth is copied whole (WebGPU copies no part of a depth texture).
-                encoder.copy_texture_to_texture(
-                    copy.depth.as_image_copy(),
-                    target.depth_texture().as_image_copy(),
-                    wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-                );
             }
         }
         // The shadow map after the copies: lavapipe copies textures on its
@@ -573,7 +557,7 @@ impl SceneRenderer {
         let mesh_bounds =
             scene.meshes.iter().filter_map(|m| m.world_bounds()).chain(skinned_bounds).filter(|_| scene.shadows);
         let casters = scene.capsules.iter().map(|c| (c.a, c.b, c.radius)).chain(only_cast.clone());
-        let capsule_bounds = if scene.shadows { caster_bounds(casters) } else { None };
+        let capsule_bounds = if scene.shadows { bounds::caster_bounds(casters) } else { None };
         let bounds = mesh_bounds.chain(capsule_bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         // The look's map, fitted to the casters (see shadow.rs).
         let full =
@@ -706,19 +690,6 @@ fn body_span_px(draw: &SkinnedDraw, camera: &Camera, height_px: f32) -> f32 {
     draw.world_bounds().map_or(f32::INFINITY, |(lo, hi)| {
         capsule::span_px(&crate::Capsule { a: lo, b: hi, radius: 0.0, color: [0; 4] }, camera, height_px)
     })
-}
-
-/// The box around every finite caster (ends `a`, `b` grown by the radius), if any.
-fn caster_bounds(casters: impl Iterator<Item = (Vec3, Vec3, f32)>) -> Option<(Vec3, Vec3)> {
-    let (mut min, mut max) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    for (a, b, radius) in casters {
-        let r = Vec3::splat(radius.abs());
-        if a.is_finite() && b.is_finite() && r.is_finite() {
-            min = min.min(a.min(b) - r);
-            max = max.max(a.max(b) + r);
-        }
-    }
-    (min.x <= max.x).then_some((min, max))
 }
 
 #[cfg(test)]
