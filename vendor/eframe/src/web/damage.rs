@@ -110,10 +110,17 @@ impl Damage {
     }
 }
 
+/// More damaged rects than this are joined into one at once (the pairwise
+/// merge below takes the cube of their count).
+const MAX_MERGED: usize = 48;
+
 /// `rects` merged into at most [`MAX_REGIONS`] rects covering them: rects
 /// that overlap or touch are joined, then the pair whose join adds the least
 /// area, until few enough are left.
 fn merge(mut rects: Vec<PxRect>) -> Vec<PxRect> {
+    if rects.len() > MAX_MERGED {
+        return rects.into_iter().reduce(join).into_iter().collect();
+    }
     loop {
         let mut best: Option<(u64, usize, usize)> = None;
         for i in 0..rects.len() {
