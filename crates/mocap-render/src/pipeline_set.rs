@@ -65,6 +65,13 @@ pub(crate) struct MeshPipelines {
     pub(crate) skinned_shadow: wgpu::RenderPipeline,
 }
 
+/// How impostors' colour is blended: their alpha is the outline's coverage,
+/// blended where `key` blends outlines (one sample at full quality), else
+/// written (samples on a multisampled target).
+fn outline_coverage(key: PipelineKey) -> wgpu::BlendComponent {
+    if key.blends_outlines() { wgpu::BlendState::ALPHA_BLENDING.color } else { wgpu::BlendComponent::REPLACE }
+}
+
 /// Multiplies the colour below by the fragment's colour (floor shadows).
 pub(crate) const MULTIPLY: wgpu::BlendState = wgpu::BlendState {
     color: wgpu::BlendComponent {
@@ -177,8 +184,7 @@ impl Pipelines {
         // Impostors: triangles of either winding; alpha is the outline's coverage
         // (samples on a multisampled target, blended on one sample at full
         // quality) and the target keeps its alpha.
-        let coverage =
-            if key.blends_outlines() { wgpu::BlendState::ALPHA_BLENDING.color } else { wgpu::BlendComponent::REPLACE };
+        let coverage = outline_coverage(key);
         let capsules = pipeline::build(
             device,
             &lit_layout,
@@ -215,8 +221,7 @@ impl ExtraPipelines {
         let spheres = [quad_corners(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
         let line_buffers = [quad_corners(&LINE_ATTRIBUTES, std::mem::size_of::<LineInstance>())];
         let base = base_spec("mocap lines", &line_shader, &line_buffers, format, key);
-        let coverage =
-            if key.blends_outlines() { wgpu::BlendState::ALPHA_BLENDING.color } else { wgpu::BlendComponent::REPLACE };
+        let coverage = outline_coverage(key);
         let floor_depth = pipeline::build(
             device,
             &lit_layout,

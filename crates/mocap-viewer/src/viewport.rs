@@ -109,8 +109,6 @@ pub struct Viewport {
     /// Whether the last frame started from the floor drawn for an earlier one
     /// (a still camera; see `mocap_render::SceneRenderer::floor_copied`).
     pub floor_copied: bool,
-    /// Whether the last frame was shown from the single-sampled target.
-    shown_single: Option<bool>,
     /// egui's number of the first painted frame that showed the view.
     first_frame: Option<u64>,
     /// Pipeline sets made ahead so far (the fast look's, then the
@@ -191,13 +189,9 @@ impl Viewport {
         let cam = camera.to_camera(size[0] as f32 / size[1] as f32);
         gpu.renderer.render(&rs.device, &rs.queue, target, scene, &cam);
         // What the copy of the frame into the window has to carry: the
-        // renderer's changed rect, or all of it for another target than the
-        // last frame's.
-        let change = match gpu.renderer.changed_rect() {
-            Some(rect) if self.shown_single == Some(single) => egui_wgpu::CopyChange::Rect(rect),
-            _ => egui_wgpu::CopyChange::All,
-        };
-        self.shown_single = Some(single);
+        // renderer's changed rect (none, all of it, for another target than
+        // the last frame's).
+        let change = gpu.renderer.changed_rect().map_or(egui_wgpu::CopyChange::All, egui_wgpu::CopyChange::Rect);
         mark_changed(rs, change);
         self.floor_copied = gpu.renderer.floor_copied();
         // Painted frames since the first (egui may lay a frame out twice,
