@@ -28,6 +28,23 @@ const saves = (page) => page.evaluate(() => (window.mocapAutosave ? window.mocap
 async function stored(page, before) {
   await page.waitForFunction((n) => window.mocapAutosave && window.mocapAutosave.saves > n, before, { timeout: 20000 });
 }
+// Waits until the session stored in the page's IndexedDB says `unsaved` is
+// `want` (and, given `view`, its view holds that text): a store started before a change may finish after it, so a count of
+// stores alone does not say the latest state is the one kept.
+async function storedUnsaved(page, want, view = '') {
+  await page.waitForFunction(async ([w, v]) => {
+    const db = await new Promise((ok, no) => { const r = indexedDB.open('mocap-autosave', 1); r.onsuccess = () => ok(r.result); r.onerror = () => no(r.error); });
+    try {
+      const current = await new Promise((ok, no) => {
+        const r = db.transaction(['sessions'], 'readonly').objectStore('sessions').get('current');
+        r.onsuccess = () => ok(r.result); r.onerror = () => no(r.error);
+      });
+      return !!current && current.unsaved === w && String(current.view).includes(v);
+    } finally {
+      db.close();
+    }
+  }, [want, view], { timeout: 20000, polling: 200 });
+}
 
 const { context, page: first, close, errors } = await launch(chromiumPath, mode, { keepStorage: true });
 try {
@@ -40,6 +57,7 @@ try {
     check(error === undefined, `edit: ${error ?? 'done'}`);
     await changeAndRender(first, (v) => { v.pause(); v.seek(25); v.applyViewState('t=0.8333&cam=1.2,0.5,4,0,0.9,0'); });
     await stored(first, before);
+    await storedUnsaved(first, true, 'cam=1.2,0.5,4,');
     const s = await state(first);
     check(s.clips[0].unsaved && s.clips[0].edited, 'the edit is unsaved');
   });
@@ -71,6 +89,7 @@ try {
     const s = await state(page);
     check(s.clips[0].edited && !s.clips[0].unsaved, 'edited but saved');
     await stored(page, before);
+    await storedUnsaved(page, false);
     await page.reload();
     await ready(page);
     await waitState(page, (s) => s.clips.length === 1 && s.clips[0].frames === 41);
