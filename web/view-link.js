@@ -5,21 +5,42 @@
 const UPDATE_MS = 400;
 
 /**
+ * Minimum time between two fragment updates while the clip plays (ms): each would
+ * only move the time on, and every `history.replaceState` costs the browser a few
+ * milliseconds of two processes (a frame's worth on a software GPU). Pausing
+ * writes the fragment within UPDATE_MS again.
+ */
+const PLAYING_UPDATE_MS = 5000;
+
+/** Whether a view state string says the clip plays. */
+const playing = (view) => /(^|&)play=1(&|$)/.test(view);
+
+/** A view state string without its time. */
+const sansTime = (view) => view.replace(/(^|&)t=[^&]*/, '');
+
+/**
  * Keeps `location.hash` equal to the viewer's view state; returns a stop function.
  * The viewer sends `mocap-view` after a frame that changed the state; the fragment
- * follows at most every UPDATE_MS. Nothing runs while nothing changes.
+ * follows at most every UPDATE_MS (PLAYING_UPDATE_MS where only the playing
+ * clip's time moved on). Nothing runs while nothing changes.
  */
 export function followViewState(viewer) {
   let stopped = false;
   let last = '';
+  let lastWrite = -Infinity;
   let timer = null;
   const update = () => {
     timer = null;
     if (stopped) return;
     const view = viewer.viewState();
     // Without a clip (e.g. a link that failed) the fragment is left as the user gave it.
-    if (view && view !== last && viewer.state().clips.length > 0) {
+    if (!view || view === last) return;
+    // Only the time moved on while playing: the next frame's `mocap-view` asks again.
+    const timeOnly = playing(view) && sansTime(view) === sansTime(last);
+    if (timeOnly && performance.now() - lastWrite < PLAYING_UPDATE_MS) return;
+    if (viewer.state().clips.length > 0) {
       last = view;
+      lastWrite = performance.now();
       const url = new URL(location.href);
       url.hash = view;
       history.replaceState(history.state, '', url);

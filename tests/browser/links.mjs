@@ -211,6 +211,29 @@ try {
     await fresh.close();
   });
 
+  await step('while playing the fragment is rewritten rarely; pausing writes it at once', async () => {
+    await open(page, '');
+    await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
+    const seen = await page.evaluate(async () => {
+      window.mocapViewer.play();
+      const hashes = new Set();
+      const t0 = performance.now();
+      while (performance.now() - t0 < 3000) {
+        hashes.add(location.hash);
+        await new Promise((r) => setTimeout(r, 50));
+      }
+      return [...hashes];
+    });
+    // The play starts one write (play=1); the time alone moving on makes no other in 3 s.
+    check(seen.length <= 2, `fragments seen while playing 3 s: ${seen.length} (${seen.join(' | ')})`);
+    check(seen.some((h) => /(^#|&)play=1(&|$)/.test(h)), 'the fragment says it plays');
+    await page.evaluate(() => window.mocapViewer.pause());
+    await page.waitForTimeout(900);
+    const s = await state(page);
+    const hash = await page.evaluate(() => location.hash);
+    check(hash === `#${s.view}` && /play=0/.test(hash), `paused: the fragment follows the view (${hash})`);
+  });
+
   await step('Share after dropping a local file explains hosting', async () => {
     await dropFile(page, 'local.bvh', walk);
     await waitDropped(page, 'local.bvh');
