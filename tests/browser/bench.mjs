@@ -74,6 +74,8 @@ function repeatRows(text, frames) {
     const threeRuns = await context.newPage();
     await threeRuns.goto(`${url}bench/three/bvh.html`);
     await threeRuns.waitForFunction(() => window.threeBench && window.threeBench.frames > 3, null, { timeout: 60000 });
+    // Each page is still while the other is measured: the viewer paused, three.js's loop stopped.
+    await threeRuns.evaluate(() => window.threeBench.pause());
     await page.bringToFront();
     await page.goto(url);
     await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
@@ -94,8 +96,9 @@ function repeatRows(text, frames) {
         const ours = await msPerFrame(page, 'viewer');
         await page.evaluate(() => window.mocapViewer.pause());
         await threeRuns.bringToFront();
-        await threeRuns.evaluate(([text, copies]) => window.openBvh(text, copies), [text, copies]);
+        await threeRuns.evaluate(([text, copies]) => { window.openBvh(text, copies); window.threeBench.resume(); }, [text, copies]);
         const theirs = await msPerFrame(threeRuns, 'three');
+        await threeRuns.evaluate(() => window.threeBench.pause());
         runs.push([what, run, 1000 / ours, 1000 / theirs]);
         console.log(`  run ${run + 1}, ${what}: viewer ${(1000 / ours).toFixed(1)} fps, three.js ${(1000 / theirs).toFixed(1)} fps, ratio ${(theirs / ours).toFixed(2)}`);
       }

@@ -374,7 +374,24 @@ pub struct Queue {
     temp_query_results: Mutex<Vec<u64>>,
     draw_buffer_count: AtomicU8,
     current_index_buffer: Mutex<Option<glow::Buffer>>,
+    /// Vendored change: which of the capabilities `reset_state` and the render
+    /// commands switch are known to be on or off (see [`CapCache`]).
+    caps: CapCache,
+    /// Vendored change: the attachments of `draw_fbo` that may hold a texture
+    /// (bit `i`: `COLOR_ATTACHMENT0 + i`; bit 31: depth and stencil), so that a
+    /// pass detaches only those.
+    draw_fbo_attached: core::sync::atomic::AtomicU32,
 }
+
+/// Vendored change: the context's state of the capabilities the queue switches
+/// (depth, stencil and scissor tests, blending, culling, polygon offset, alpha
+/// to coverage, depth clamp): the low 32 bits say which are known, the high
+/// ones which of those are on. Forgotten at the start of each submission (the
+/// context may have been used between them, e.g. to present); within one, a
+/// `glEnable`/`glDisable` that would change nothing is skipped. On WebGL each
+/// call crosses into JavaScript and on to the GPU process, and every command
+/// buffer starts by switching all of them off.
+type CapCache = core::sync::atomic::AtomicU64;
 
 impl Drop for Queue {
     fn drop(&mut self) {

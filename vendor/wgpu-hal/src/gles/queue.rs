@@ -50,7 +50,54 @@ fn get_z_offset(target: u32, base: &crate::TextureCopyBase) -> u32 {
     }
 }
 
+/// Vendored change: the bit of `Queue::draw_fbo_attached` for its depth and
+/// stencil attachments.
+const DEPTH_STENCIL_BIT: u32 = 1 << 31;
+
 impl super::Queue {
+    /// Vendored change: the bit of [`super::CapCache`] that stands for `cap`, if any.
+    fn cap_bit(cap: u32) -> Option<u32> {
+        let index = match cap {
+            glow::DEPTH_TEST => 0,
+            glow::STENCIL_TEST => 1,
+            glow::SCISSOR_TEST => 2,
+            glow::BLEND => 3,
+            glow::CULL_FACE => 4,
+            glow::POLYGON_OFFSET_FILL => 5,
+            glow::SAMPLE_ALPHA_TO_COVERAGE => 6,
+            glow::DEPTH_CLAMP => 7,
+            _ => return None,
+        };
+        Some(1 << index)
+    }
+
+    /// Vendored change: `glEnable`/`glDisable` of `cap`, skipped where the
+    /// context is known to be so already (see [`super::CapCache`]).
+    fn set_cap(&self, gl: &glow::Context, cap: u32, on: bool) {
+        let bit = Self::cap_bit(cap);
+        if let Some(bit) = bit {
+            let cache = self.caps.load(Ordering::Relaxed);
+            let (known, enabled) = (cache as u32, (cache >> 32) as u32);
+            if known & bit != 0 && (enabled & bit != 0) == on {
+                return;
+            }
+            let enabled = if on { enabled | bit } else { enabled & !bit };
+            self.caps.store(u64::from(known | bit) | (u64::from(enabled) << 32), Ordering::Relaxed);
+        }
+        if on {
+            unsafe { gl.enable(cap) };
+        } else {
+            unsafe { gl.disable(cap) };
+        }
+    }
+
+    /// Vendored change: `cap` was changed some other way (by draw buffer).
+    fn forget_cap(&self, cap: u32) {
+        if let Some(bit) = Self::cap_bit(cap) {
+            self.caps.fetch_and(!u64::from(bit), Ordering::Relaxed);
+        }
+    }
+
     /// Performs a manual shader clear, used as a workaround for a clearing bug on mesa
     unsafe fn perform_shader_clear(&self, gl: &glow::Context, draw_buffer: u32, color: [f32; 4]) {
         let shader_clear = self
@@ -67,11 +114,11 @@ impl super::Queue {
                 color[3],
             )
         };
-        unsafe { gl.disable(glow::DEPTH_TEST) };
-        unsafe { gl.disable(glow::STENCIL_TEST) };
-        unsafe { gl.disable(glow::SCISSOR_TEST) };
-        unsafe { gl.disable(glow::BLEND) };
-        unsafe { gl.disable(glow::CULL_FACE) };
+        self.set_cap(gl, glow::DEPTH_TEST, false);
+        self.set_cap(gl, glow::STENCIL_TEST, false);
+        self.set_cap(gl, glow::SCISSOR_TEST, false);
+        self.set_cap(gl, glow::BLEND, false);
+        self.set_cap(gl, glow::CULL_FACE, false);
         unsafe { gl.draw_buffers(&[glow::COLOR_ATTACHMENT0 + draw_buffer]) };
         unsafe { gl.draw_arrays(glow::TRIANGLES, 0, 3) };
 
@@ -88,15 +135,15 @@ impl super::Queue {
     unsafe fn reset_state(&self, gl: &glow::Context) {
         unsafe { gl.use_program(None) };
         unsafe { gl.bind_framebuffer(glow::FRAMEBUFFER, None) };
-        unsafe { gl.disable(glow::DEPTH_TEST) };
-        unsafe { gl.disable(glow::STENCIL_TEST) };
-        unsafe { gl.disable(glow::SCISSOR_TEST) };
-        unsafe { gl.disable(glow::BLEND) };
-        unsafe { gl.disable(glow::CULL_FACE) };
-        unsafe { gl.disable(glow::POLYGON_OFFSET_FILL) };
-        unsafe { gl.disable(glow::SAMPLE_ALPHA_TO_COVERAGE) };
+        self.set_cap(gl, glow::DEPTH_TEST, false);
+        self.set_cap(gl, glow::STENCIL_TEST, false);
+        self.set_cap(gl, glow::SCISSOR_TEST, false);
+        self.set_cap(gl, glow::BLEND, false);
+        self.set_cap(gl, glow::CULL_FACE, false);
+        self.set_cap(gl, glow::POLYGON_OFFSET_FILL, false);
+        self.set_cap(gl, glow::SAMPLE_ALPHA_TO_COVERAGE, false);
         if self.features.contains(wgt::Features::DEPTH_CLIP_CONTROL) {
-            unsafe { gl.disable(glow::DEPTH_CLAMP) };
+            self.set_cap(gl, glow::DEPTH_CLAMP, false);
         }
 
         unsafe { gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, None) };
@@ -782,7 +829,7 @@ impl super::Queue {
                 }
                 unsafe { gl.bind_framebuffer(glow::DRAW_FRAMEBUFFER, None) };
                 // The blit is scissored; the next pass sets its scissor again.
-                unsafe { gl.disable(glow::SCISSOR_TEST) };
+                self.set_cap(gl, glow::SCISSOR_TEST, false);
                 let (sx, sy) = (copy.src_base.origin.x as i32, copy.src_base.origin.y as i32);
                 let (dx, dy) = (copy.dst_base.origin.x as i32, copy.dst_base.origin.y as i32);
                 let (w, h) = (copy.size.width as i32, copy.size.height as i32);
@@ -1159,16 +1206,23 @@ impl super::Queue {
                     unsafe { gl.bind_framebuffer(glow::DRAW_FRAMEBUFFER, None) };
                 } else {
                     unsafe { gl.bind_framebuffer(glow::DRAW_FRAMEBUFFER, Some(self.draw_fbo)) };
-                    unsafe {
-                        gl.framebuffer_texture_2d(
-                            glow::DRAW_FRAMEBUFFER,
-                            glow::DEPTH_STENCIL_ATTACHMENT,
-                            glow::TEXTURE_2D,
-                            None,
-                            0,
-                        )
-                    };
-                    for i in 0..self.shared.limits.max_color_attachments {
+                    // Vendored change: only what an earlier pass attached is detached.
+                    let attached = self.draw_fbo_attached.swap(0, Ordering::Relaxed);
+                    if attached & DEPTH_STENCIL_BIT != 0 {
+                        unsafe {
+                            gl.framebuffer_texture_2d(
+                                glow::DRAW_FRAMEBUFFER,
+                                glow::DEPTH_STENCIL_ATTACHMENT,
+                                glow::TEXTURE_2D,
+                                None,
+                                0,
+                            )
+                        };
+                    }
+                    for i in 0..self.shared.limits.max_color_attachments.min(31) {
+                        if attached & (1 << i) == 0 {
+                            continue;
+                        }
                         let target = glow::COLOR_ATTACHMENT0 + i;
                         unsafe {
                             gl.framebuffer_texture_2d(
@@ -1184,9 +1238,9 @@ impl super::Queue {
                 unsafe { gl.color_mask(true, true, true, true) };
                 unsafe { gl.depth_mask(true) };
                 unsafe { gl.stencil_mask(!0) };
-                unsafe { gl.disable(glow::DEPTH_TEST) };
-                unsafe { gl.disable(glow::STENCIL_TEST) };
-                unsafe { gl.disable(glow::SCISSOR_TEST) };
+                self.set_cap(gl, glow::DEPTH_TEST, false);
+                self.set_cap(gl, glow::STENCIL_TEST, false);
+                self.set_cap(gl, glow::SCISSOR_TEST, false);
             }
             C::BindAttachment {
                 attachment,
@@ -1194,6 +1248,14 @@ impl super::Queue {
                 depth_slice,
                 sample_count,
             } => {
+                // Vendored change: remembered for the next pass's detaching.
+                let bit = match attachment {
+                    glow::DEPTH_ATTACHMENT | glow::STENCIL_ATTACHMENT | glow::DEPTH_STENCIL_ATTACHMENT => {
+                        DEPTH_STENCIL_BIT
+                    }
+                    _ => 1u32.checked_shl(attachment.wrapping_sub(glow::COLOR_ATTACHMENT0)).unwrap_or(0),
+                };
+                self.draw_fbo_attached.fetch_or(bit, Ordering::Relaxed);
                 unsafe {
                     self.set_attachment(
                         gl,
@@ -1379,7 +1441,7 @@ impl super::Queue {
             }
             C::SetScissor(ref rect) => {
                 unsafe { gl.scissor(rect.x, rect.y, rect.w, rect.h) };
-                unsafe { gl.enable(glow::SCISSOR_TEST) };
+                self.set_cap(gl, glow::SCISSOR_TEST, true);
             }
             C::SetStencilFunc {
                 face,
@@ -1478,29 +1540,29 @@ impl super::Queue {
             }
             C::SetDepthBias(bias) => {
                 if bias.is_enabled() {
-                    unsafe { gl.enable(glow::POLYGON_OFFSET_FILL) };
+                    self.set_cap(gl, glow::POLYGON_OFFSET_FILL, true);
                     unsafe { gl.polygon_offset(bias.slope_scale, bias.constant as f32) };
                 } else {
-                    unsafe { gl.disable(glow::POLYGON_OFFSET_FILL) };
+                    self.set_cap(gl, glow::POLYGON_OFFSET_FILL, false);
                 }
             }
             C::ConfigureDepthStencil(aspects) => {
                 if aspects.contains(crate::FormatAspects::DEPTH) {
-                    unsafe { gl.enable(glow::DEPTH_TEST) };
+                    self.set_cap(gl, glow::DEPTH_TEST, true);
                 } else {
-                    unsafe { gl.disable(glow::DEPTH_TEST) };
+                    self.set_cap(gl, glow::DEPTH_TEST, false);
                 }
                 if aspects.contains(crate::FormatAspects::STENCIL) {
-                    unsafe { gl.enable(glow::STENCIL_TEST) };
+                    self.set_cap(gl, glow::STENCIL_TEST, true);
                 } else {
-                    unsafe { gl.disable(glow::STENCIL_TEST) };
+                    self.set_cap(gl, glow::STENCIL_TEST, false);
                 }
             }
             C::SetAlphaToCoverage(enabled) => {
                 if enabled {
-                    unsafe { gl.enable(glow::SAMPLE_ALPHA_TO_COVERAGE) };
+                    self.set_cap(gl, glow::SAMPLE_ALPHA_TO_COVERAGE, true);
                 } else {
-                    unsafe { gl.disable(glow::SAMPLE_ALPHA_TO_COVERAGE) };
+                    self.set_cap(gl, glow::SAMPLE_ALPHA_TO_COVERAGE, false);
                 }
             }
             C::SetProgram(program) => {
@@ -1509,17 +1571,17 @@ impl super::Queue {
             C::SetPrimitive(ref state) => {
                 unsafe { gl.front_face(state.front_face) };
                 if state.cull_face != 0 {
-                    unsafe { gl.enable(glow::CULL_FACE) };
+                    self.set_cap(gl, glow::CULL_FACE, true);
                     unsafe { gl.cull_face(state.cull_face) };
                 } else {
-                    unsafe { gl.disable(glow::CULL_FACE) };
+                    self.set_cap(gl, glow::CULL_FACE, false);
                 }
                 if self.features.contains(wgt::Features::DEPTH_CLIP_CONTROL) {
                     //Note: this is a bit tricky, since we are controlling the clip, not the clamp.
                     if state.unclipped_depth {
-                        unsafe { gl.enable(glow::DEPTH_CLAMP) };
+                        self.set_cap(gl, glow::DEPTH_CLAMP, true);
                     } else {
-                        unsafe { gl.disable(glow::DEPTH_CLAMP) };
+                        self.set_cap(gl, glow::DEPTH_CLAMP, false);
                     }
                 }
                 // POLYGON_MODE_LINE also implies POLYGON_MODE_POINT
@@ -1547,6 +1609,7 @@ impl super::Queue {
                     };
                     if let Some(ref blend) = *blend {
                         unsafe { gl.enable_draw_buffer(glow::BLEND, index) };
+                        self.forget_cap(glow::BLEND);
                         if blend.color != blend.alpha {
                             unsafe {
                                 gl.blend_equation_separate_draw_buffer(
@@ -1572,6 +1635,7 @@ impl super::Queue {
                         }
                     } else {
                         unsafe { gl.disable_draw_buffer(glow::BLEND, index) };
+                        self.forget_cap(glow::BLEND);
                     }
                 } else {
                     unsafe {
@@ -1583,7 +1647,7 @@ impl super::Queue {
                         )
                     };
                     if let Some(ref blend) = *blend {
-                        unsafe { gl.enable(glow::BLEND) };
+                        self.set_cap(gl, glow::BLEND, true);
                         if blend.color != blend.alpha {
                             unsafe {
                                 gl.blend_equation_separate(
@@ -1604,7 +1668,7 @@ impl super::Queue {
                             unsafe { gl.blend_func(blend.color.src, blend.color.dst) };
                         }
                     } else {
-                        unsafe { gl.disable(glow::BLEND) };
+                        self.set_cap(gl, glow::BLEND, false);
                     }
                 }
             }
@@ -1958,7 +2022,16 @@ impl crate::Queue for super::Queue {
     ) -> Result<(), crate::DeviceError> {
         let shared = Arc::clone(&self.shared);
         let gl = &shared.context.lock();
+        // Vendored change: the context may have been used since the last
+        // submission (see `CapCache`).
+        self.caps.store(0, Ordering::Relaxed);
         for cmd_buf in command_buffers.iter() {
+            // Vendored change: a command buffer with no commands (wgpu-core's
+            // barriers between passes, which GL has no use for) neither needs
+            // nor changes the state.
+            if cmd_buf.commands.is_empty() && cmd_buf.label.is_none() {
+                continue;
+            }
             // The command encoder assumes a default state when encoding the command buffer.
             // Always reset the state between command_buffers to reflect this assumption. Do
             // this at the beginning of the loop in case something outside of wgpu modified
