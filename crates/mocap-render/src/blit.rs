@@ -8,9 +8,14 @@
 
 use crate::target::RenderTarget;
 
-/// The copy pipeline for one output format (single-sampled).
+/// The copy pipeline for one output format (single-sampled), made on its first
+/// draw: where finished frames are shown by a texture copy instead (the web
+/// page on WebGL2) it never is, and a page's first frame compiles one shader
+/// program fewer.
 pub struct Blit {
-    pipeline: wgpu::RenderPipeline,
+    device: wgpu::Device,
+    format: wgpu::TextureFormat,
+    pipeline: std::sync::OnceLock<wgpu::RenderPipeline>,
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
 }
@@ -27,40 +32,15 @@ impl Blit {
     /// [`RenderTarget`]s drawn with such a format do): into an sRGB `format` they
     /// are decoded first, so the pass stores what the frame shows.
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("mocap blit"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("shaders/blit.wgsl").into()),
-        });
         let layout = crate::pipeline::color_texture_layout(device, "mocap blit");
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("mocap blit"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("mocap blit"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some(if format.is_srgb() { "fs_decode" } else { "fs_copy" }),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
         let sampler =
             device.create_sampler(&wgpu::SamplerDescriptor { label: Some("mocap blit"), ..Default::default() });
-        Blit { pipeline, layout, sampler }
+        Blit { device: device.clone(), format, pipeline: std::sync::OnceLock::new(), layout, sampler }
+    }
+
+    /// The copy pipeline, made when first asked for.
+    fn pipeline(&self) -> &wgpu::RenderPipeline {
+        self.pipeline.get_or_init(|| make_pipeline(&self.device, &self.layout, self.format))
     }
 
     /// Binds `target`'s colour texture.
@@ -79,8 +59,46 @@ impl Blit {
     /// Copies `source` onto `pass`'s current viewport (the caller sets it to
     /// where the frame goes, the frame's size for one texel per pixel).
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, source: &BlitSource) {
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(self.pipeline());
         pass.set_bind_group(0, &source.bind_group, &[]);
         pass.draw(0..3, 0..1);
     }
+}
+
+/// The copy's pipeline into `format` (see [`Blit::new`]), binding its source through `layout`.
+fn make_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("mocap blit"),
+        source: wgpu::ShaderSource::Wgsl(include_str!("shaders/blit.wgsl").into()),
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("mocap blit"),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("mocap blit"),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module: &shader,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: wgpu::PrimitiveState::default(),
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &shader,
+            entry_point: Some(if format.is_srgb() { "fs_decode" } else { "fs_copy" }),
+            compilation_options: Default::default(),
+            targets: &[Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL })],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }

@@ -65,4 +65,14 @@ impl GrowingBuffer {
     pub fn get(&self) -> Option<(&wgpu::Buffer, u32)> {
         self.buffer.as_ref().filter(|_| self.len > 0).map(|b| (b, self.len))
     }
+
+    /// Draws the vertices uploaded by [`GrowingBuffer::upload_quads`] (lines'
+    /// or spheres' quads) with `pipeline`; returns the draw calls made.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, pipeline: &wgpu::RenderPipeline) -> u32 {
+        let Some((buffer, count)) = self.get() else { return 0 };
+        pass.set_pipeline(pipeline);
+        pass.set_vertex_buffer(0, buffer.slice(..));
+        pass.draw(0..count, 0..1);
+        1
+    }
 }

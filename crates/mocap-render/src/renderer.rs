@@ -404,13 +404,13 @@ impl SceneRenderer {
         // joint's fringe would be hidden by the fringe's depth).
         if let Some(extras) = &pipelines.extras {
             if key.blends_outlines() {
-                self.draw_calls += draw_lines(&mut pass, &extras.lines, &self.lines);
-                self.draw_calls += draw_spheres(&mut pass, &extras.spheres, &self.spheres);
+                self.draw_calls += self.lines.draw(&mut pass, &extras.lines);
+                self.draw_calls += self.spheres.draw(&mut pass, &extras.spheres);
             } else {
-                self.draw_calls += draw_spheres(&mut pass, &extras.spheres, &self.spheres);
-                self.draw_calls += draw_lines(&mut pass, &extras.lines, &self.lines);
+                self.draw_calls += self.spheres.draw(&mut pass, &extras.spheres);
+                self.draw_calls += self.lines.draw(&mut pass, &extras.lines);
             }
-            self.draw_calls += draw_lines(&mut pass, &extras.overlay_lines, &self.overlay_lines);
+            self.draw_calls += self.overlay_lines.draw(&mut pass, &extras.overlay_lines);
         }
     }
 
@@ -647,36 +647,10 @@ impl SceneRenderer {
     }
 }
 
-/// Draws the uploaded `spheres` with `pipeline`; returns the draw calls made.
-fn draw_spheres<'a>(
-    pass: &mut wgpu::RenderPass<'a>,
-    pipeline: &'a wgpu::RenderPipeline,
-    spheres: &'a GrowingBuffer,
-) -> u32 {
-    let Some((buffer, count)) = spheres.get() else { return 0 };
-    pass.set_pipeline(pipeline);
-    pass.set_vertex_buffer(0, buffer.slice(..));
-    pass.draw(0..count, 0..1);
-    1
-}
-
 /// Orders `items` farthest first by their view-space depth `z` (more negative
 /// is farther): blended outlines need what lies behind them drawn first.
 fn sort_farthest_first<T>(items: &mut [T], z: impl Fn(&T) -> f32) {
     items.sort_unstable_by(|p, q| z(p).total_cmp(&z(q)));
-}
-
-/// Draws the uploaded `lines` with `pipeline`; returns the draw calls made.
-fn draw_lines<'a>(
-    pass: &mut wgpu::RenderPass<'a>,
-    pipeline: &'a wgpu::RenderPipeline,
-    lines: &'a GrowingBuffer,
-) -> u32 {
-    let Some((buffer, count)) = lines.get() else { return 0 };
-    pass.set_pipeline(pipeline);
-    pass.set_vertex_buffer(0, buffer.slice(..));
-    pass.draw(0..count, 0..1);
-    1
 }
 
 /// Keeps what an attachment holds (`load`), or else clears it to `clear`.

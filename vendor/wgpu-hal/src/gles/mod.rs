@@ -380,7 +380,7 @@ pub struct Queue {
     /// Vendored change: the attachments of `draw_fbo` that may hold a texture
     /// (bit `i`: `COLOR_ATTACHMENT0 + i`; bit 31: depth and stencil), so that a
     /// pass detaches only those.
-    draw_fbo_attached: core::sync::atomic::AtomicU32,
+    draw_fbo_attached: AtomicU32,
 }
 
 /// Vendored change: the context's state of the capabilities the queue switches
