@@ -1133,6 +1133,7 @@ impl crate::Adapter for super::Adapter {
                 draw_buffer_count: AtomicU8::new(1),
                 current_index_buffer: Mutex::new(None),
                 caps: Default::default(),
+                attribs: Default::default(),
                 draw_fbo_attached: Default::default(),
             },
         })

@@ -377,6 +377,9 @@ pub struct Queue {
     /// Vendored change: which of the capabilities `reset_state` and the render
     /// commands switch are known to be on or off (see [`CapCache`]).
     caps: CapCache,
+    /// Vendored change: the vertex attributes' state as the queue last set it
+    /// (see [`AttribCache`]).
+    attribs: Mutex<AttribCache>,
     /// Vendored change: the attachments of `draw_fbo` that may hold a texture
     /// (bit `i`: `COLOR_ATTACHMENT0 + i`; bit 31: depth and stencil), so that a
     /// pass detaches only those.
@@ -392,6 +395,21 @@ pub struct Queue {
 /// call crosses into JavaScript and on to the GPU process, and every command
 /// buffer starts by switching all of them off.
 type CapCache = core::sync::atomic::AtomicU64;
+
+/// Vendored change: which vertex attribute arrays of the bound vertex array
+/// are known to be enabled or disabled, and their known divisors, as
+/// [`CapCache`] for capabilities: forgotten at the start of each submission,
+/// and within one a call that would change nothing is skipped (every draw's
+/// attributes are set again, enabled and given their divisor).
+#[derive(Debug, Default)]
+struct AttribCache {
+    /// Bit `i`: attribute `i`'s state is known.
+    known: u32,
+    /// Bit `i`: attribute `i` is enabled (where known).
+    enabled: u32,
+    /// Each attribute's divisor, where known.
+    divisors: [Option<u32>; 16],
+}
 
 impl Drop for Queue {
     fn drop(&mut self) {

@@ -91,6 +91,39 @@ impl super::Queue {
         }
     }
 
+    /// Vendored change: `glEnableVertexAttribArray`/`glDisableVertexAttribArray`
+    /// of `location`, skipped where it is known to be so already (see
+    /// [`super::AttribCache`]).
+    fn set_attrib_array(&self, gl: &glow::Context, location: u32, on: bool) {
+        let mut cache = self.attribs.lock();
+        let bit = 1u32.checked_shl(location).unwrap_or(0);
+        if bit != 0 && cache.known & bit != 0 && (cache.enabled & bit != 0) == on {
+            return;
+        }
+        cache.known |= bit;
+        if on {
+            cache.enabled |= bit;
+            unsafe { gl.enable_vertex_attrib_array(location) };
+        } else {
+            cache.enabled &= !bit;
+            unsafe { gl.disable_vertex_attrib_array(location) };
+        }
+    }
+
+    /// Vendored change: `glVertexAttribDivisor` of `location`, skipped where
+    /// the divisor is known to be `divisor` already.
+    fn set_attrib_divisor(&self, gl: &glow::Context, location: u32, divisor: u32) {
+        let mut cache = self.attribs.lock();
+        let slot = cache.divisors.get_mut(location as usize);
+        if let Some(slot) = slot {
+            if *slot == Some(divisor) {
+                return;
+            }
+            *slot = Some(divisor);
+        }
+        unsafe { gl.vertex_attrib_divisor(location, divisor) };
+    }
+
     /// Vendored change: `cap` was changed some other way (by draw buffer).
     fn forget_cap(&self, cap: u32) {
         if let Some(bit) = Self::cap_bit(cap) {
@@ -1465,7 +1498,7 @@ impl super::Queue {
                 attribute_desc: ref vat,
             } => {
                 unsafe { gl.bind_buffer(glow::ARRAY_BUFFER, buffer) };
-                unsafe { gl.enable_vertex_attrib_array(vat.location) };
+                self.set_attrib_array(gl, vat.location, true);
 
                 if buffer.is_none() {
                     match vat.format_desc.attrib_kind {
@@ -1513,11 +1546,11 @@ impl super::Queue {
                             )
                         },
                     }
-                    unsafe { gl.vertex_attrib_divisor(vat.location, buffer_desc.step as u32) };
+                    self.set_attrib_divisor(gl, vat.location, buffer_desc.step as u32);
                 }
             }
             C::UnsetVertexAttribute(location) => {
-                unsafe { gl.disable_vertex_attrib_array(location) };
+                self.set_attrib_array(gl, location, false);
             }
             C::SetVertexBuffer {
                 index,
@@ -2023,8 +2056,9 @@ impl crate::Queue for super::Queue {
         let shared = Arc::clone(&self.shared);
         let gl = &shared.context.lock();
         // Vendored change: the context may have been used since the last
-        // submission (see `CapCache`).
+        // submission (see `CapCache` and `AttribCache`).
         self.caps.store(0, Ordering::Relaxed);
+        *self.attribs.lock() = super::AttribCache::default();
         for cmd_buf in command_buffers.iter() {
             // Vendored change: a command buffer with no commands (wgpu-core's
             // barriers between passes, which GL has no use for) neither needs
