@@ -3,7 +3,7 @@
 import fs from 'node:fs';
 import path from 'node:path';
 import os from 'node:os';
-import { launch, state, waitState, dropFile } from './common.mjs';
+import { launch, state, waitState, dropFile, playCopies } from './common.mjs';
 
 const [url, chromiumPath, bigFile, glbFile] = process.argv.slice(2);
 
@@ -85,14 +85,7 @@ function repeatRows(text, frames) {
     for (let run = 0; run < 3; run++) {
       for (const [what, text, copies] of cases) {
         await page.bringToFront();
-        await page.evaluate(([text, copies]) => {
-          const v = window.mocapViewer;
-          while (v.state().clips.length > 0) v.remove(0);
-          const bytes = new TextEncoder().encode(text);
-          for (let i = 0; i < copies; i++) v.add(`clip${i}.bvh`, bytes);
-          v.play();
-        }, [text, copies]);
-        await waitState(page, (s, n) => s.clips.length === n, copies);
+        await playCopies(page, text, copies);
         const ours = await msPerFrame(page, 'viewer');
         await page.evaluate(() => window.mocapViewer.pause());
         await threeRuns.bringToFront();

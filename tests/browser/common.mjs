@@ -78,6 +78,21 @@ export async function waitDropped(page, name) {
   return state(page);
 }
 
+/**
+ * Replaces what the viewer has open by `copies` characters of the BVH `text`
+ * (`clip0.bvh`, `clip1.bvh`, ...), plays them and waits until they are all open.
+ */
+export async function playCopies(page, text, copies) {
+  await page.evaluate(([text, copies]) => {
+    const v = window.mocapViewer;
+    while (v.state().clips.length > 0) v.remove(0);
+    const bytes = new TextEncoder().encode(text);
+    for (let i = 0; i < copies; i++) v.add(`clip${i}.bvh`, bytes);
+    v.play();
+  }, [text, copies]);
+  return waitState(page, (s, n) => s.clips.length === n, copies);
+}
+
 /** Dispatches a real `drop` event carrying `bytes` as a File named `name`; returns the drop time. */
 export async function dropFile(page, name, bytes) {
   const b64 = Buffer.from(bytes).toString('base64');

@@ -8,7 +8,7 @@
 // process type and thread name, the frame rate, and the total. The machine's cores are
 // shared by all of them, so the total per frame is what bounds the frame rate.
 import fs from 'node:fs';
-import { launch, waitState } from './common.mjs';
+import { launch, waitState, playCopies } from './common.mjs';
 
 const args = process.argv.slice(2);
 const url = args[0] ?? 'http://127.0.0.1:8000/';
@@ -59,13 +59,7 @@ try {
   } else {
     await page.goto(url + fragment);
     await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
-    await page.evaluate(([t, n]) => {
-      const v = window.mocapViewer;
-      while (v.state().clips.length > 0) v.remove(0);
-      const bytes = new TextEncoder().encode(t);
-      for (let i = 0; i < n; i++) v.add(`clip${i}.bvh`, bytes);
-      v.play();
-    }, [text, copies]);
+    await playCopies(page, text, copies);
     frames = () => page.evaluate(() => window.mocapViewer.state().framesRendered);
   }
   await new Promise((r) => setTimeout(r, 1500));

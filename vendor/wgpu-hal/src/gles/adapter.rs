@@ -1132,8 +1132,7 @@ impl crate::Adapter for super::Adapter {
                 temp_query_results: Mutex::new(Vec::new()),
                 draw_buffer_count: AtomicU8::new(1),
                 current_index_buffer: Mutex::new(None),
-                caps: Default::default(),
-                attribs: Default::default(),
+                gl_state: Default::default(),
                 draw_fbo_attached: Default::default(),
             },
         })

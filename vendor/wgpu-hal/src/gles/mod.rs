@@ -374,41 +374,57 @@ pub struct Queue {
     temp_query_results: Mutex<Vec<u64>>,
     draw_buffer_count: AtomicU8,
     current_index_buffer: Mutex<Option<glow::Buffer>>,
-    /// Vendored change: which of the capabilities `reset_state` and the render
-    /// commands switch are known to be on or off (see [`CapCache`]).
-    caps: CapCache,
-    /// Vendored change: the vertex attributes' state as the queue last set it
-    /// (see [`AttribCache`]).
-    attribs: Mutex<AttribCache>,
+    /// Vendored change: the context state the queue last set in this
+    /// submission (see [`GlState`]).
+    gl_state: Mutex<GlState>,
     /// Vendored change: the attachments of `draw_fbo` that may hold a texture
     /// (bit `i`: `COLOR_ATTACHMENT0 + i`; bit 31: depth and stencil), so that a
     /// pass detaches only those.
     draw_fbo_attached: AtomicU32,
 }
 
-/// Vendored change: the context's state of the capabilities the queue switches
-/// (depth, stencil and scissor tests, blending, culling, polygon offset, alpha
-/// to coverage, depth clamp): the low 32 bits say which are known, the high
-/// ones which of those are on. Forgotten at the start of each submission (the
-/// context may have been used between them, e.g. to present); within one, a
-/// `glEnable`/`glDisable` that would change nothing is skipped. On WebGL each
-/// call crosses into JavaScript and on to the GPU process, and every command
-/// buffer starts by switching all of them off.
-type CapCache = core::sync::atomic::AtomicU64;
-
-/// Vendored change: which vertex attribute arrays of the bound vertex array
-/// are known to be enabled or disabled, and their known divisors, as
-/// [`CapCache`] for capabilities: forgotten at the start of each submission,
-/// and within one a call that would change nothing is skipped (every draw's
-/// attributes are set again, enabled and given their divisor).
+/// Vendored change: the context state the queue last set in this submission,
+/// so that a call that would change nothing is skipped: the capabilities it
+/// switches (every command buffer starts by switching all of them off, and
+/// every pass again) and the vertex attribute arrays of the bound vertex array
+/// (every draw enables its attributes and gives them their divisors again).
+/// Forgotten at the start of each submission (the context may have been used
+/// between them, e.g. to present). On WebGL each call crosses into JavaScript
+/// and on to the GPU process.
 #[derive(Debug, Default)]
-struct AttribCache {
-    /// Bit `i`: attribute `i`'s state is known.
-    known: u32,
-    /// Bit `i`: attribute `i` is enabled (where known).
-    enabled: u32,
-    /// Each attribute's divisor, where known.
+struct GlState {
+    /// Depth, stencil and scissor tests, blending, culling, polygon offset,
+    /// alpha to coverage, depth clamp (`queue::cap_bit`).
+    caps: KnownBits,
+    /// Vertex attribute arrays enabled, by location.
+    attribs: KnownBits,
+    /// Each vertex attribute's divisor, where known.
     divisors: [Option<u32>; 16],
+}
+
+/// Vendored change: on/off flags of which some are known.
+#[derive(Debug, Default)]
+struct KnownBits {
+    /// Bit `i`: flag `i` is known.
+    known: u32,
+    /// Bit `i`: flag `i` is on (where known).
+    on: u32,
+}
+
+impl KnownBits {
+    /// Records flag `bit` (a mask of one bit; 0 for a flag not kept) as `on`;
+    /// whether it may have been otherwise, so that the call must be made.
+    fn set(&mut self, bit: u32, on: bool) -> bool {
+        let unchanged = self.known & bit != 0 && (self.on & bit != 0) == on;
+        self.known |= bit;
+        self.on = if on { self.on | bit } else { self.on & !bit };
+        !unchanged
+    }
+
+    /// Forgets flag `bit` (it was changed some other way).
+    fn forget(&mut self, bit: u32) {
+        self.known &= !bit;
+    }
 }
 
 impl Drop for Queue {

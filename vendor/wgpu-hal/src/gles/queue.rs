@@ -54,35 +54,29 @@ fn get_z_offset(target: u32, base: &crate::TextureCopyBase) -> u32 {
 /// stencil attachments.
 const DEPTH_STENCIL_BIT: u32 = 1 << 31;
 
-impl super::Queue {
-    /// Vendored change: the bit of [`super::CapCache`] that stands for `cap`, if any.
-    fn cap_bit(cap: u32) -> Option<u32> {
-        let index = match cap {
-            glow::DEPTH_TEST => 0,
-            glow::STENCIL_TEST => 1,
-            glow::SCISSOR_TEST => 2,
-            glow::BLEND => 3,
-            glow::CULL_FACE => 4,
-            glow::POLYGON_OFFSET_FILL => 5,
-            glow::SAMPLE_ALPHA_TO_COVERAGE => 6,
-            glow::DEPTH_CLAMP => 7,
-            _ => return None,
-        };
-        Some(1 << index)
-    }
+/// Vendored change: the bit of `GlState::caps` that stands for `cap` (0 for
+/// a capability not kept there).
+fn cap_bit(cap: u32) -> u32 {
+    let index = match cap {
+        glow::DEPTH_TEST => 0,
+        glow::STENCIL_TEST => 1,
+        glow::SCISSOR_TEST => 2,
+        glow::BLEND => 3,
+        glow::CULL_FACE => 4,
+        glow::POLYGON_OFFSET_FILL => 5,
+        glow::SAMPLE_ALPHA_TO_COVERAGE => 6,
+        glow::DEPTH_CLAMP => 7,
+        _ => return 0,
+    };
+    1 << index
+}
 
+impl super::Queue {
     /// Vendored change: `glEnable`/`glDisable` of `cap`, skipped where the
-    /// context is known to be so already (see [`super::CapCache`]).
+    /// context is known to be so already (see [`super::GlState`]).
     fn set_cap(&self, gl: &glow::Context, cap: u32, on: bool) {
-        let bit = Self::cap_bit(cap);
-        if let Some(bit) = bit {
-            let cache = self.caps.load(Ordering::Relaxed);
-            let (known, enabled) = (cache as u32, (cache >> 32) as u32);
-            if known & bit != 0 && (enabled & bit != 0) == on {
-                return;
-            }
-            let enabled = if on { enabled | bit } else { enabled & !bit };
-            self.caps.store(u64::from(known | bit) | (u64::from(enabled) << 32), Ordering::Relaxed);
+        if !self.gl_state.lock().caps.set(cap_bit(cap), on) {
+            return;
         }
         if on {
             unsafe { gl.enable(cap) };
@@ -92,20 +86,14 @@ impl super::Queue {
     }
 
     /// Vendored change: `glEnableVertexAttribArray`/`glDisableVertexAttribArray`
-    /// of `location`, skipped where it is known to be so already (see
-    /// [`super::AttribCache`]).
+    /// of `location`, skipped where it is known to be so already.
     fn set_attrib_array(&self, gl: &glow::Context, location: u32, on: bool) {
-        let mut cache = self.attribs.lock();
-        let bit = 1u32.checked_shl(location).unwrap_or(0);
-        if bit != 0 && cache.known & bit != 0 && (cache.enabled & bit != 0) == on {
+        if !self.gl_state.lock().attribs.set(1u32.checked_shl(location).unwrap_or(0), on) {
             return;
         }
-        cache.known |= bit;
         if on {
-            cache.enabled |= bit;
             unsafe { gl.enable_vertex_attrib_array(location) };
         } else {
-            cache.enabled &= !bit;
             unsafe { gl.disable_vertex_attrib_array(location) };
         }
     }
@@ -113,22 +101,13 @@ impl super::Queue {
     /// Vendored change: `glVertexAttribDivisor` of `location`, skipped where
     /// the divisor is known to be `divisor` already.
     fn set_attrib_divisor(&self, gl: &glow::Context, location: u32, divisor: u32) {
-        let mut cache = self.attribs.lock();
-        let slot = cache.divisors.get_mut(location as usize);
-        if let Some(slot) = slot {
+        if let Some(slot) = self.gl_state.lock().divisors.get_mut(location as usize) {
             if *slot == Some(divisor) {
                 return;
             }
             *slot = Some(divisor);
         }
         unsafe { gl.vertex_attrib_divisor(location, divisor) };
-    }
-
-    /// Vendored change: `cap` was changed some other way (by draw buffer).
-    fn forget_cap(&self, cap: u32) {
-        if let Some(bit) = Self::cap_bit(cap) {
-            self.caps.fetch_and(!u64::from(bit), Ordering::Relaxed);
-        }
     }
 
     /// Performs a manual shader clear, used as a workaround for a clearing bug on mesa
@@ -1580,23 +1559,11 @@ impl super::Queue {
                 }
             }
             C::ConfigureDepthStencil(aspects) => {
-                if aspects.contains(crate::FormatAspects::DEPTH) {
-                    self.set_cap(gl, glow::DEPTH_TEST, true);
-                } else {
-                    self.set_cap(gl, glow::DEPTH_TEST, false);
-                }
-                if aspects.contains(crate::FormatAspects::STENCIL) {
-                    self.set_cap(gl, glow::STENCIL_TEST, true);
-                } else {
-                    self.set_cap(gl, glow::STENCIL_TEST, false);
-                }
+                self.set_cap(gl, glow::DEPTH_TEST, aspects.contains(crate::FormatAspects::DEPTH));
+                self.set_cap(gl, glow::STENCIL_TEST, aspects.contains(crate::FormatAspects::STENCIL));
             }
             C::SetAlphaToCoverage(enabled) => {
-                if enabled {
-                    self.set_cap(gl, glow::SAMPLE_ALPHA_TO_COVERAGE, true);
-                } else {
-                    self.set_cap(gl, glow::SAMPLE_ALPHA_TO_COVERAGE, false);
-                }
+                self.set_cap(gl, glow::SAMPLE_ALPHA_TO_COVERAGE, enabled);
             }
             C::SetProgram(program) => {
                 unsafe { gl.use_program(Some(program)) };
@@ -1611,11 +1578,7 @@ impl super::Queue {
                 }
                 if self.features.contains(wgt::Features::DEPTH_CLIP_CONTROL) {
                     //Note: this is a bit tricky, since we are controlling the clip, not the clamp.
-                    if state.unclipped_depth {
-                        self.set_cap(gl, glow::DEPTH_CLAMP, true);
-                    } else {
-                        self.set_cap(gl, glow::DEPTH_CLAMP, false);
-                    }
+                    self.set_cap(gl, glow::DEPTH_CLAMP, state.unclipped_depth);
                 }
                 // POLYGON_MODE_LINE also implies POLYGON_MODE_POINT
                 if self.features.contains(wgt::Features::POLYGON_MODE_LINE) {
@@ -1642,7 +1605,7 @@ impl super::Queue {
                     };
                     if let Some(ref blend) = *blend {
                         unsafe { gl.enable_draw_buffer(glow::BLEND, index) };
-                        self.forget_cap(glow::BLEND);
+                        self.gl_state.lock().caps.forget(cap_bit(glow::BLEND));
                         if blend.color != blend.alpha {
                             unsafe {
                                 gl.blend_equation_separate_draw_buffer(
@@ -1668,7 +1631,7 @@ impl super::Queue {
                         }
                     } else {
                         unsafe { gl.disable_draw_buffer(glow::BLEND, index) };
-                        self.forget_cap(glow::BLEND);
+                        self.gl_state.lock().caps.forget(cap_bit(glow::BLEND));
                     }
                 } else {
                     unsafe {
@@ -2056,9 +2019,8 @@ impl crate::Queue for super::Queue {
         let shared = Arc::clone(&self.shared);
         let gl = &shared.context.lock();
         // Vendored change: the context may have been used since the last
-        // submission (see `CapCache` and `AttribCache`).
-        self.caps.store(0, Ordering::Relaxed);
-        *self.attribs.lock() = super::AttribCache::default();
+        // submission (see `GlState`).
+        *self.gl_state.lock() = super::GlState::default();
         for cmd_buf in command_buffers.iter() {
             // Vendored change: a command buffer with no commands (wgpu-core's
             // barriers between passes, which GL has no use for) neither needs
