@@ -18,6 +18,8 @@ pub struct Blit {
     pipeline: std::sync::OnceLock<wgpu::RenderPipeline>,
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
+    /// Bilinear, for frames drawn smaller than where they are shown.
+    linear: wgpu::Sampler,
 }
 
 /// A [`RenderTarget`]'s colour texture bound for [`Blit::draw`]; make a new one
@@ -35,7 +37,13 @@ impl Blit {
         let layout = crate::pipeline::color_texture_layout(device, "mocap blit");
         let sampler =
             device.create_sampler(&wgpu::SamplerDescriptor { label: Some("mocap blit"), ..Default::default() });
-        Blit { device: device.clone(), format, pipeline: std::sync::OnceLock::new(), layout, sampler }
+        let linear = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("mocap blit (scaled)"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        Blit { device: device.clone(), format, pipeline: std::sync::OnceLock::new(), layout, sampler, linear }
     }
 
     /// The copy pipeline, made when first asked for.
@@ -43,21 +51,32 @@ impl Blit {
         self.pipeline.get_or_init(|| make_pipeline(&self.device, &self.layout, self.format))
     }
 
-    /// Binds `target`'s colour texture.
+    /// Binds `target`'s colour texture, read one texel per pixel.
     pub fn source(&self, device: &wgpu::Device, target: &RenderTarget) -> BlitSource {
+        self.bind(device, target, &self.sampler)
+    }
+
+    /// Binds `target`'s colour texture, filtered bilinearly: for a frame drawn
+    /// at a lower resolution than the viewport it is shown on.
+    pub fn scaled_source(&self, device: &wgpu::Device, target: &RenderTarget) -> BlitSource {
+        self.bind(device, target, &self.linear)
+    }
+
+    fn bind(&self, device: &wgpu::Device, target: &RenderTarget, sampler: &wgpu::Sampler) -> BlitSource {
         let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("mocap blit"),
             layout: &self.layout,
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&target.color_view) },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(&self.sampler) },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(sampler) },
             ],
         });
         BlitSource { bind_group }
     }
 
     /// Copies `source` onto `pass`'s current viewport (the caller sets it to
-    /// where the frame goes, the frame's size for one texel per pixel).
+    /// where the frame goes: the frame's size for one texel per pixel, or
+    /// larger for a [`Blit::scaled_source`]).
     pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, source: &BlitSource) {
         pass.set_pipeline(self.pipeline());
         pass.set_bind_group(0, &source.bind_group, &[]);

@@ -28,13 +28,13 @@ const MARGIN_PX: f32 = 4.0;
 pub(crate) type PxRect = [u32; 4];
 
 /// The screen rect of everything `scene` draws besides the floor and the
-/// background (its figures and the floor's shadow, `uniforms.shadow_rect`
-/// when `shadows`), in a target of `size` pixels; an empty rect for a scene
-/// without figures; `None` when it cannot be bounded on screen.
+/// background (its figures and, when `shadows`, the floor's shadow of
+/// `casters`: see [`Casters`]), in a target of `size` pixels; an empty rect
+/// for a scene without figures; `None` when it cannot be bounded on screen.
 pub(crate) fn figures_rect(
     scene: &Scene,
     uniforms: &FrameUniforms,
-    shadows: bool,
+    shadows: Option<Casters<'_>>,
     pixels_per_point: f32,
     size: [u32; 2],
 ) -> Option<PxRect> {
@@ -59,15 +59,67 @@ pub(crate) fn figures_rect(
     }
     let view_proj = Mat4::from_cols_array_2d(&uniforms.projection) * Mat4::from_cols_array_2d(&uniforms.view);
     let mut rect = world.map(|(lo, hi)| screen_box(&view_proj, corners(lo, hi), size)).unwrap_or(Some(EMPTY))?;
-    if shadows && scene.grid.is_some() {
-        let [x0, z0, x1, z1] = uniforms.shadow_rect;
-        let y = uniforms.floor_center[1];
-        let floor = [Vec3::new(x0, y, z0), Vec3::new(x1, y, z0), Vec3::new(x0, y, z1), Vec3::new(x1, y, z1)];
-        if x0 <= x1 && z0 <= z1 {
-            rect = join(rect, screen_box(&view_proj, floor, size)?);
-        }
+    if let Some(casters) = shadows.filter(|_| scene.grid.is_some()) {
+        rect = join(rect, shadow_box(&casters, uniforms, &view_proj, size)?);
     }
     Some(grown(rect, MARGIN_PX + line_px, size))
+}
+
+/// What casts the floor's shadow this frame: capsules (their ends and
+/// radius; spheres have both ends at the centre) and boxes around meshes.
+pub(crate) struct Casters<'a> {
+    /// Capsules and spheres that cast.
+    pub capsules: &'a [(Vec3, Vec3, f32)],
+    /// World boxes of casting meshes.
+    pub boxes: &'a [(Vec3, Vec3)],
+}
+
+/// The screen box (floating pixels) of the floor's shadow of `casters`: each
+/// caster's shadow on the floor (its ends carried along the key light down
+/// to the floor, grown by its radius and by how far the shadow map's lookups
+/// reach, as `shadow::floor_shadow_rect` grows the drawn rect) within the
+/// rect the floor's shadow is drawn over (`uniforms.shadow_rect`), projected
+/// on screen one caster at a time. Much tighter than the screen box of the
+/// whole drawn rect, whose corners lie far from a long shadow falling across
+/// the view; `None` when one cannot be bounded on screen.
+fn shadow_box(casters: &Casters<'_>, uniforms: &FrameUniforms, view_proj: &Mat4, size: [u32; 2]) -> Option<[f32; 4]> {
+    let drawn = uniforms.shadow_rect;
+    if drawn[0] > drawn[2] || drawn[1] > drawn[3] {
+        return Some(EMPTY);
+    }
+    let light = crate::shadow::key_light_direction();
+    let floor_y = uniforms.floor_center[1];
+    let reach = crate::shadow::FLOOR_LOOKUP_REACH * uniforms.light_dir[3];
+    let on_floor = |p: Vec3| {
+        let q = p - light * ((p.y - floor_y).max(0.0) / light.y);
+        glam::Vec2::new(q.x, q.z)
+    };
+    let mut rect = EMPTY;
+    let mut add = |lo: glam::Vec2, hi: glam::Vec2, grow: f32| -> Option<()> {
+        let (lo, hi) = (lo - glam::Vec2::splat(grow), hi + glam::Vec2::splat(grow));
+        let (x0, z0) = (lo.x.max(drawn[0]), lo.y.max(drawn[1]));
+        let (x1, z1) = (hi.x.min(drawn[2]), hi.y.min(drawn[3]));
+        if x0 > x1 || z0 > z1 {
+            return Some(());
+        }
+        let y = floor_y;
+        let floor = [Vec3::new(x0, y, z0), Vec3::new(x1, y, z0), Vec3::new(x0, y, z1), Vec3::new(x1, y, z1)];
+        rect = join(rect, screen_box(view_proj, floor, size)?);
+        Some(())
+    };
+    for &(a, b, radius) in casters.capsules {
+        let (qa, qb) = (on_floor(a), on_floor(b));
+        add(qa.min(qb), qa.max(qb), (radius + reach) / light.y)?;
+    }
+    for &(lo, hi) in casters.boxes {
+        let mut floor = (glam::Vec2::splat(f32::INFINITY), glam::Vec2::splat(f32::NEG_INFINITY));
+        for p in corners(lo, hi) {
+            let q = on_floor(p);
+            floor = (floor.0.min(q), floor.1.max(q));
+        }
+        add(floor.0, floor.1, reach / light.y)?;
+    }
+    Some(rect)
 }
 
 /// A rect holding nothing.
@@ -136,6 +188,37 @@ mod tests {
         assert_eq!(union([0; 4], [1, 2, 3, 4]), [1, 2, 3, 4]);
         assert_eq!(union([1, 2, 3, 4], [0; 4]), [1, 2, 3, 4]);
         assert_eq!(union([1, 2, 3, 4], [0, 5, 2, 6]), [0, 2, 3, 6]);
+    }
+
+    #[test]
+    fn a_shadow_falling_across_the_floor_is_bounded_by_its_casters_shadows() {
+        // Two thin posts at opposite corners of a wide drawn rect: the
+        // shadows' box is each post's shadow, not the whole rect.
+        let camera = crate::Camera::look_at(Vec3::new(0.0, 6.0, 8.0), Vec3::ZERO, 0.8, 1.0);
+        let view_proj = camera.projection * camera.view;
+        let mut uniforms = <FrameUniforms as bytemuck::Zeroable>::zeroed();
+        uniforms.shadow_rect = [-4.0, -4.0, 4.0, 4.0];
+        uniforms.light_dir = crate::shadow::key_light_direction().extend(0.01).to_array();
+        let size = [400, 400];
+        let posts = [(Vec3::new(-1.0, 0.0, -1.0), Vec3::new(-1.0, 0.2, -1.0), 0.05)];
+        let boxed = shadow_box(&Casters { capsules: &posts, boxes: &[] }, &uniforms, &view_proj, size).unwrap();
+        let y = 0.0;
+        let [x0, z0, x1, z1] = uniforms.shadow_rect;
+        let floor = [Vec3::new(x0, y, z0), Vec3::new(x1, y, z0), Vec3::new(x0, y, z1), Vec3::new(x1, y, z1)];
+        let whole = screen_box(&view_proj, floor, size).unwrap();
+        let area = |r: [f32; 4]| (r[2] - r[0]).max(0.0) * (r[3] - r[1]).max(0.0);
+        assert!(area(boxed) > 0.0 && area(boxed) < area(whole) / 20.0, "{boxed:?} within {whole:?}");
+        // The post's foot and the end of its shadow (carried along the light) are inside.
+        let light = crate::shadow::key_light_direction();
+        let tip = posts[0].1 - light * (posts[0].1.y / light.y);
+        for p in [posts[0].0, tip] {
+            let s = screen_box(&view_proj, [p], size).unwrap();
+            assert!(s[0] >= boxed[0] && s[2] <= boxed[2] && s[1] >= boxed[1] && s[3] <= boxed[3], "{p} at {s:?} in {boxed:?}");
+        }
+        // Outside the drawn rect nothing is shadowed.
+        uniforms.shadow_rect = [2.0, 2.0, 3.0, 3.0];
+        let none = shadow_box(&Casters { capsules: &posts, boxes: &[] }, &uniforms, &view_proj, size).unwrap();
+        assert_eq!(none, EMPTY);
     }
 
     #[test]

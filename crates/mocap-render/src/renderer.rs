@@ -65,6 +65,10 @@ pub struct SceneRenderer {
     lit_indices: u32,
     /// Indices of every caster's triangles (none without a shadow this frame).
     caster_indices: u32,
+    /// This frame's shadow casters as capsules (ends, radius) and as mesh
+    /// boxes, when the scene has shadows: what the map is fitted to, and
+    /// where the floor's shadow can change (damage.rs).
+    casters: (Vec<(Vec3, Vec3, f32)>, Vec<(Vec3, Vec3)>),
     meshes: MeshCache,
     skinned: SkinnedCache,
     /// Whether this frame's bodies cast their shadows as their bones' capsules
@@ -189,6 +193,7 @@ impl SceneRenderer {
             capsules: PlacedMesh::new("mocap capsules"),
             lit_indices: 0,
             caster_indices: 0,
+            casters: (Vec::new(), Vec::new()),
             meshes,
             skinned,
             bodies_cast_as_capsules: false,
@@ -327,7 +332,9 @@ impl SceneRenderer {
         self.make_pipelines(device, key, extras, self.meshes.has_draws() || self.skinned.has_draws());
         // Only around the figures when the last frame's pixels are there to
         // start from (damage.rs): the same target, under the same floor.
-        let figures = damage::figures_rect(scene, &uniforms, shadows, self.pixels_per_point, target.size());
+        let casters = damage::Casters { capsules: &self.casters.0, boxes: &self.casters.1 };
+        let figures =
+            damage::figures_rect(scene, &uniforms, shadows.then_some(casters), self.pixels_per_point, target.size());
         let texture = target.attachment_texture().clone();
         let redraw = match (&self.last_frame, &copy, figures) {
             (Some((last, Some(before))), Some(c), Some(now)) if !c.fill && *last == texture => {
@@ -554,11 +561,15 @@ impl SceneRenderer {
             fast_look && body_span_px(d, camera, size[1] as f32) < crate::skinned::COARSE_BODY_SPAN_PX
         });
         let skinned_bounds = scene.skinned.iter().filter_map(SkinnedDraw::world_bounds);
-        let mesh_bounds =
-            scene.meshes.iter().filter_map(|m| m.world_bounds()).chain(skinned_bounds).filter(|_| scene.shadows);
-        let casters = scene.capsules.iter().map(|c| (c.a, c.b, c.radius)).chain(only_cast.clone());
-        let capsule_bounds = if scene.shadows { bounds::caster_bounds(casters) } else { None };
-        let bounds = mesh_bounds.chain(capsule_bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
+        let (caster_capsules, caster_boxes) = &mut self.casters;
+        caster_capsules.clear();
+        caster_boxes.clear();
+        if scene.shadows {
+            caster_capsules.extend(scene.capsules.iter().map(|c| (c.a, c.b, c.radius)).chain(only_cast.clone()));
+            caster_boxes.extend(scene.meshes.iter().filter_map(|m| m.world_bounds()).chain(skinned_bounds));
+        }
+        let capsule_bounds = bounds::caster_bounds(caster_capsules.iter().copied());
+        let bounds = caster_boxes.iter().copied().chain(capsule_bounds).reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         // The look's map, fitted to the casters (see shadow.rs).
         let full =
             if self.fast_look { shadow::FAST_SIZE } else { shadow::SIZE }.min(device.limits().max_texture_dimension_2d);

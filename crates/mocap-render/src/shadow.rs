@@ -201,7 +201,7 @@ fn grown(rect: [f32; 4], by: f32) -> [f32; 4] {
 /// whose shadow-map lookups can find them: the lookup point is raised three
 /// texels along the floor's normal (lighting.wgsl) and its four filtered taps
 /// read up to 1.75 texels beyond it; with room.
-const FLOOR_LOOKUP_REACH: f32 = 6.0;
+pub(crate) const FLOOR_LOOKUP_REACH: f32 = 6.0;
 
 /// The part of the floor the floor's shadow is drawn over (floor.wgsl's
 /// `vs_shadow`), for casters whose shadows fall in `shadows`

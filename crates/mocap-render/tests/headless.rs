@@ -1125,17 +1125,17 @@ fn a_still_camera_redraws_only_around_the_figures_with_the_pixels_of_a_full_fram
         let differing = |a: &[u8], b: &[u8]| a.chunks(4).zip(b.chunks(4)).filter(|(p, q)| p != q).count();
         let grid = Grid::floor(Vec3::new(-1.5, 0.0, -1.5), Vec3::new(1.5, 0.0, 1.5), 0.25, 0.5);
         let camera = Camera::look_at(Vec3::new(1.0, 2.0, 4.0), Vec3::new(0.0, 0.4, 0.0), 0.8, 1.0);
-        // A small figure walking across, with a bone line, a joint and its
-        // shadow; one frame it jumps to the other side, one frame it is gone.
+        // A small figure walking across, with a bone line, a joint, a raised
+        // arm (its shadow long and thin across the floor: the redrawn rect
+        // follows each caster's shadow) and their shadows; one frame it jumps
+        // to the other side, one frame it is gone.
         let figure = |x: f32| Scene {
             background: [20, 30, 40, 255],
             grid: Some(grid.clone()),
-            capsules: vec![Capsule {
-                a: Vec3::new(x, 0.1, 0.0),
-                b: Vec3::new(x + 0.1, 0.6, 0.1),
-                radius: 0.08,
-                color: [200, 60, 60, 255],
-            }],
+            capsules: vec![
+                Capsule { a: Vec3::new(x, 0.1, 0.0), b: Vec3::new(x + 0.1, 0.6, 0.1), radius: 0.08, color: [200, 60, 60, 255] },
+                Capsule { a: Vec3::new(x + 0.1, 0.6, 0.1), b: Vec3::new(x - 0.1, 1.1, -0.1), radius: 0.03, color: [60, 200, 60, 255] },
+            ],
             spheres: vec![Sphere { center: Vec3::new(x + 0.1, 0.7, 0.1), radius: 0.06, color: [60, 60, 220, 255] }],
             lines: vec![Line {
                 a: Vec3::new(x, 0.6, 0.0),

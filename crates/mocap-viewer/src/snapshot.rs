@@ -135,6 +135,10 @@ pub struct Snapshot {
     /// of capsules (outlines blended), 4 for lines, spheres and meshes where
     /// the adapter can; 0 before the first frame.
     pub samples: u32,
+    /// The last frame's 3D view as drawn, in pixels (width, height): the
+    /// view's pixels, or half of them per axis in the fast look, stretched
+    /// over the view; zero before the first frame.
+    pub view_pixels: [u32; 2],
     /// Whether the last frame started from the floor drawn for an earlier one
     /// (a still camera) instead of drawing it.
     pub floor_copied: bool,

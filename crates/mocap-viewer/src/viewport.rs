@@ -21,9 +21,29 @@ struct Gpu {
     /// it (meshes and bodies).
     target: RenderTarget,
     /// One sample, made when first needed beside a multisampled `target`:
-    /// the fast look, and full quality for scenes smooth on one sample
+    /// full quality for scenes smooth on one sample
     /// (`SceneRenderer::samples_for`).
     single: Option<RenderTarget>,
+    /// One sample at [`FAST_SCALE`] of the view's pixels per axis, made when
+    /// first needed: the fast look.
+    scaled: Option<RenderTarget>,
+}
+
+/// The fast look's resolution per axis, as a part of the view's pixels: a
+/// frame drawn while the view moves on a slow device (see [`crate::quality`])
+/// has a quarter of the pixels to fill, and is shown on the view's rect
+/// filtered bilinearly. The panels around the view are not touched by it.
+const FAST_SCALE: f32 = 0.5;
+
+/// Which of the view's targets a frame is drawn into and shown from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Which {
+    /// `Gpu::target`.
+    Full,
+    /// `Gpu::single`.
+    Single,
+    /// `Gpu::scaled`.
+    Scaled,
 }
 
 /// What [`ShowFrame`] draws with: kept in egui-wgpu's callback resources.
@@ -36,6 +56,8 @@ struct FrameCopy {
     full: Shown,
     /// The single-sampled target's frame.
     single: Option<Shown>,
+    /// The fast look's smaller target's frame.
+    scaled: Option<Shown>,
 }
 
 /// A target's finished frame (single-sampled), as drawn and as copied.
@@ -48,16 +70,21 @@ struct Shown {
 /// the window (instead of an egui image: egui's image shader and blending cost
 /// several times more per pixel on software rasterisers). The web page's
 /// painter copies the frame's texture into the window's (`copy_source`),
-/// which costs a small part of even a plain draw there; elsewhere it is drawn.
+/// which costs a small part of even a plain draw there; elsewhere, and for the
+/// fast look's smaller frame, it is drawn.
 struct ShowFrame {
-    /// Show the single-sampled target's frame.
-    single: bool,
+    /// The target whose frame is shown.
+    which: Which,
 }
 
 impl ShowFrame {
     fn shown<'a>(&self, resources: &'a egui_wgpu::CallbackResources) -> Option<(&'a Blit, &'a Shown)> {
         let copy = resources.get::<FrameCopy>()?;
-        let shown = if self.single { copy.single.as_ref()? } else { &copy.full };
+        let shown = match self.which {
+            Which::Full => &copy.full,
+            Which::Single => copy.single.as_ref()?,
+            Which::Scaled => copy.scaled.as_ref()?,
+        };
         Some((&copy.blit, shown))
     }
 }
@@ -75,6 +102,10 @@ impl egui_wgpu::CallbackTrait for ShowFrame {
     }
 
     fn copy_source<'a>(&self, resources: &'a egui_wgpu::CallbackResources) -> Option<&'a wgpu::Texture> {
+        // A copy is texel for pixel: the smaller frame is drawn, stretched.
+        if self.which == Which::Scaled {
+            return None;
+        }
         self.shown(resources).map(|(_, shown)| &shown.texture)
     }
 
@@ -106,6 +137,9 @@ pub struct Viewport {
     /// smooth on one sample; see `SceneRenderer::samples_for`); 0 before the
     /// first.
     pub samples: u32,
+    /// The last frame's size as drawn, in pixels (see [`FAST_SCALE`]); zero
+    /// before the first.
+    pub drawn_pixels: [u32; 2],
     /// Whether the last frame started from the floor drawn for an earlier one
     /// (a still camera; see `mocap_render::SceneRenderer::floor_copied`).
     pub floor_copied: bool,
@@ -173,25 +207,47 @@ impl Viewport {
         let single = gpu.renderer.sample_count() > 1 && gpu.renderer.samples_for(scene) == 1;
         if !gpu.target.matches(FORMAT, gpu.renderer.sample_count(), size) {
             gpu.target = RenderTarget::new(&rs.device, FORMAT, gpu.renderer.sample_count(), size);
-            bind_frame(rs, &gpu.target, false);
+            bind_frame(rs, &gpu.target, Which::Full);
         }
-        if single && !gpu.single.as_ref().is_some_and(|t| t.matches(FORMAT, 1, size)) {
-            let target = RenderTarget::new(&rs.device, FORMAT, 1, size);
-            bind_frame(rs, &target, true);
-            gpu.single = Some(target);
+        let which = if self.reduced {
+            Which::Scaled
+        } else if single {
+            Which::Single
+        } else {
+            Which::Full
+        };
+        let drawn_size = match which {
+            Which::Scaled => scaled_size(size),
+            _ => size,
+        };
+        let made = match which {
+            Which::Full => None,
+            Which::Single => Some(&mut gpu.single),
+            Which::Scaled => Some(&mut gpu.scaled),
+        };
+        if let Some(slot) = made {
+            if !slot.as_ref().is_some_and(|t| t.matches(FORMAT, 1, drawn_size)) {
+                let target = RenderTarget::new(&rs.device, FORMAT, 1, drawn_size);
+                bind_frame(rs, &target, which);
+                *slot = Some(target);
+            }
         }
-        let target = match &gpu.single {
-            Some(t) if single => t,
+        let target = match (which, &gpu.single, &gpu.scaled) {
+            (Which::Single, Some(t), _) | (Which::Scaled, _, Some(t)) => t,
             _ => &gpu.target,
         };
         self.samples = target.sample_count();
-        gpu.renderer.pixels_per_point = ppp;
+        self.drawn_pixels = target.size();
+        // Line widths and edges in the target's pixels.
+        gpu.renderer.pixels_per_point = ppp * drawn_size[0] as f32 / size[0] as f32;
         let cam = camera.to_camera(size[0] as f32 / size[1] as f32);
         gpu.renderer.render(&rs.device, &rs.queue, target, scene, &cam);
         // What the copy of the frame into the window has to carry: the
         // renderer's changed rect (none, all of it, for another target than
-        // the last frame's).
-        let change = gpu.renderer.changed_rect().map_or(egui_wgpu::CopyChange::All, egui_wgpu::CopyChange::Rect);
+        // the last frame's), in the view's pixels.
+        let change = gpu.renderer.changed_rect().map_or(egui_wgpu::CopyChange::All, |rect| {
+            egui_wgpu::CopyChange::Rect(shown_rect(rect, drawn_size, size))
+        });
         mark_changed(rs, change);
         self.floor_copied = gpu.renderer.floor_copied();
         // Painted frames since the first (egui may lay a frame out twice,
@@ -213,7 +269,7 @@ impl Viewport {
             self.prepared = 2;
         }
         self.frames_rendered += 1;
-        ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ShowFrame { single }));
+        ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ShowFrame { which }));
         (response, joint_drag)
     }
 
@@ -242,22 +298,56 @@ fn create_gpu(rs: &egui_wgpu::RenderState, size: [u32; 2]) -> Gpu {
     let samples = if rs.adapter.get_texture_format_features(FORMAT).flags.sample_count_supported(4) { 4 } else { 1 };
     let renderer = SceneRenderer::new(&rs.device, FORMAT, samples);
     let target = RenderTarget::new(&rs.device, FORMAT, samples, size);
-    bind_frame(rs, &target, false);
-    Gpu { owner: std::sync::Arc::downgrade(&rs.renderer), renderer, target, single: None }
+    bind_frame(rs, &target, Which::Full);
+    Gpu { owner: std::sync::Arc::downgrade(&rs.renderer), renderer, target, single: None, scaled: None }
 }
 
-/// Points [`ShowFrame`] at `target`, the multisampled or the `single`-sampled
-/// one (the first time, makes the copy pipeline for the window's format).
-fn bind_frame(rs: &egui_wgpu::RenderState, target: &RenderTarget, single: bool) {
+/// The fast look's target size for a view of `size` pixels ([`FAST_SCALE`]
+/// per axis, rounded up).
+fn scaled_size(size: [u32; 2]) -> [u32; 2] {
+    size.map(|v| ((v as f32 * FAST_SCALE).ceil() as u32).max(1))
+}
+
+/// Texels a bilinear lookup reaches beyond the texel a pixel falls in.
+const FILTER_REACH: u32 = 1;
+
+/// `rect` (`[x, y, width, height]` of a target of `drawn` pixels) as the
+/// pixels of a view of `shown` pixels it reaches when the target is stretched
+/// over the view, bilinearly filtered: grown by the filter's reach, within the
+/// view. The identity where the sizes are the same.
+fn shown_rect(rect: [u32; 4], drawn: [u32; 2], shown: [u32; 2]) -> [u32; 4] {
+    if drawn == shown || rect[2] == 0 || rect[3] == 0 {
+        return rect;
+    }
+    let axis = |start: u32, len: u32, from: u32, to: u32| {
+        let k = to as f64 / from.max(1) as f64;
+        let lo = start.saturating_sub(FILTER_REACH);
+        let hi = start.saturating_add(len).saturating_add(FILTER_REACH).min(from);
+        let a = ((lo as f64 * k).floor() as u32).min(to);
+        let b = ((hi as f64 * k).ceil() as u32).min(to);
+        (a, b.saturating_sub(a))
+    };
+    let (x, w) = axis(rect[0], rect[2], drawn[0], shown[0]);
+    let (y, h) = axis(rect[1], rect[3], drawn[1], shown[1]);
+    [x, y, w, h]
+}
+
+/// Points [`ShowFrame`] at `target` as the frame of `which` (the first time,
+/// makes the copy pipeline for the window's format).
+fn bind_frame(rs: &egui_wgpu::RenderState, target: &RenderTarget, which: Which) {
     let mut renderer = rs.renderer.write();
     let resources = &mut renderer.callback_resources;
     match resources.get_mut::<FrameCopy>() {
         Some(copy) => {
-            let shown = Shown { source: copy.blit.source(&rs.device, target), texture: target.color.clone() };
-            if single {
-                copy.single = Some(shown);
-            } else {
-                copy.full = shown;
+            let source = match which {
+                Which::Scaled => copy.blit.scaled_source(&rs.device, target),
+                _ => copy.blit.source(&rs.device, target),
+            };
+            let shown = Shown { source, texture: target.color.clone() };
+            match which {
+                Which::Full => copy.full = shown,
+                Which::Single => copy.single = Some(shown),
+                Which::Scaled => copy.scaled = Some(shown),
             }
         }
         // The first target bound is the multisampled one (see `create_gpu`).
@@ -265,7 +355,7 @@ fn bind_frame(rs: &egui_wgpu::RenderState, target: &RenderTarget, single: bool) 
             let blit = Blit::new(&rs.device, rs.target_format);
             let full = Shown { source: blit.source(&rs.device, target), texture: target.color.clone() };
             let changed = egui::mutex::Mutex::new(egui_wgpu::CopyChange::All);
-            resources.insert(FrameCopy { blit, full, single: None, changed });
+            resources.insert(FrameCopy { blit, full, single: None, scaled: None, changed });
         }
     }
 }

@@ -23,7 +23,8 @@ impl MocapViewer {
     /// `{clips:[{name, frames, frameTime, joints, jointNames, visible, color, offset,
     /// animation, animations, modelFrame, frameName, skin}],
     /// frame, time, playing, speed, selectedJoint, selectedCharacter, layout, error,
-    /// treeLabels, framesRendered, view, embed, backend, quality, reduced, samples, floorCopied}`
+    /// treeLabels, framesRendered, view, embed, backend, quality, reduced, samples, viewPixels,
+    /// floorCopied}`
     /// (`floorCopied`: the last frame started from the floor drawn for an earlier
     /// one, under a still camera). `color` is `#rrggbb`,
     /// `offset` `[x, y, z]` in metres (layout plus hand-set), `selectedCharacter` an

@@ -66,6 +66,8 @@ pub fn to_js(s: &Snapshot) -> JsValue {
     set(&o, "interpolation", s.interpolation);
     set(&o, "reduced", s.reduced);
     set(&o, "samples", f64::from(s.samples));
+    let view_pixels: Array = s.view_pixels.iter().map(|&v| JsValue::from_f64(f64::from(v))).collect();
+    set(&o, "viewPixels", view_pixels);
     set(&o, "floorCopied", s.floor_copied);
     set(&o, "error", opt(&s.error));
     set(&o, "errorNote", s.error_note.map_or(JsValue::NULL, JsValue::from_str));

@@ -345,6 +345,7 @@ impl Viewer {
         Snapshot {
             reduced: self.viewport.reduced,
             samples: self.viewport.samples,
+            view_pixels: self.viewport.drawn_pixels,
             floor_copied: self.viewport.floor_copied,
             frames_rendered: self.viewport.frames_rendered,
             backend: self.viewport.backend.clone(),

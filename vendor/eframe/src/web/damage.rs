@@ -6,7 +6,7 @@
 //! paint order: a job that differs (another mesh, clip rect or texture, or
 //! another place in the order) damages where it is drawn now and where the
 //! job at its place was drawn before; within a mesh of the same clip rect and
-//! texture, only where its chunks of triangles differ. A paint callback with a copy source
+//! texture, only where its triangles differ (found chunk by chunk). A paint callback with a copy source
 //! damages what its texture says changed ([`egui_wgpu::CopyChange`]). The
 //! damaged rects are merged into a few regions; redrawing every job inside
 //! each region (over the clear colour) gives the pixels of a full redraw.
@@ -33,11 +33,15 @@ struct Drawn {
     /// A mesh's clip rect and texture.
     frame: u64,
     /// A mesh's triangles in chunks of [`CHUNK_TRIANGLES`] in draw order:
-    /// a hash of each chunk's vertices and where it drew. Where a mesh
-    /// changed (the timeline's playhead, a number), only the chunks that
-    /// differ at their place are redrawn; a pixel that no differing chunk
-    /// reaches is drawn by the same triangles in the same order.
+    /// a hash of each chunk's vertices and where it drew.
     chunks: Vec<(u64, PxRect)>,
+    /// The same for each triangle. Where a mesh changed (the timeline's
+    /// playhead, a number), only the triangles that differ at their place
+    /// are redrawn, looked for in the chunks that differ; a pixel that no
+    /// differing triangle reaches is drawn by the same triangles in the same
+    /// order. (A chunk's rect would do, but a moving handle's chunk often
+    /// holds the end of the rail it moves along, as wide as the window.)
+    triangles: Vec<(u64, PxRect)>,
 }
 
 /// What the last frame drew; see the module docs.
@@ -79,10 +83,9 @@ impl Damage {
                 Some(before) if before.frame == now.frame && !now.chunks.is_empty() && !before.chunks.is_empty() => {
                     let count = before.chunks.len().max(now.chunks.len());
                     for i in 0..count {
-                        let (old, new) = (before.chunks.get(i), now.chunks.get(i));
-                        if old != new {
-                            rects.extend(old.map(|c| c.1));
-                            rects.extend(new.map(|c| c.1));
+                        if before.chunks.get(i) != now.chunks.get(i) {
+                            let at = i * CHUNK_TRIANGLES..(i + 1) * CHUNK_TRIANGLES;
+                            rects.push(differing(&before.triangles, &now.triangles, at));
                         }
                     }
                 }
@@ -231,30 +234,65 @@ fn drawn_job(job: &egui::ClippedPrimitive, pixels_per_point: f32, size: [u32; 2]
             });
             let frame = h.0;
             let clip = to_pixels(job.clip_rect, pixels_per_point, size, 0.0);
-            let chunks = mesh
+            let triangles = mesh
                 .indices
-                .chunks(CHUNK_TRIANGLES * 3)
-                .map(|indices| chunk(&mesh.vertices, indices, clip, pixels_per_point, size))
+                .chunks(3)
+                .map(|indices| triangle(&mesh.vertices, indices, clip, pixels_per_point, size))
                 .collect::<Vec<_>>();
+            let chunks = triangles.chunks(CHUNK_TRIANGLES).map(chunk).collect::<Vec<_>>();
             for (hash, _) in &chunks {
                 h.word(*hash);
             }
             h.word(chunks.len() as u64);
-            Drawn { hash: h.0, rect, frame, chunks }
+            Drawn { hash: h.0, rect, frame, chunks, triangles }
         }
         Primitive::Callback(callback) => {
             h.word(2);
             let r = callback.rect;
             h.floats(&[r.min.x, r.min.y, r.max.x, r.max.y]);
-            Drawn { hash: h.0, rect, frame: 0, chunks: Vec::new() }
+            Drawn { hash: h.0, rect, frame: 0, chunks: Vec::new(), triangles: Vec::new() }
         }
     }
+}
+
+/// The rect holding the triangles at `at` that differ between `before` and
+/// `now` (one of them missing counts as differing), where they drew then and
+/// now; an empty rect where none differ.
+fn differing(before: &[(u64, PxRect)], now: &[(u64, PxRect)], at: std::ops::Range<usize>) -> PxRect {
+    let empty = |r: &PxRect| r[2] <= r[0] || r[3] <= r[1];
+    let mut rect: Option<PxRect> = None;
+    for i in at {
+        let (old, new) = (before.get(i), now.get(i));
+        if old.is_none() && new.is_none() {
+            break;
+        }
+        if old != new {
+            for r in old.into_iter().chain(new).map(|t| t.1).filter(|r| !empty(r)) {
+                rect = Some(rect.map_or(r, |a| join(a, r)));
+            }
+        }
+    }
+    rect.unwrap_or([0; 4])
+}
+
+/// A hash of a chunk of triangles (each hashed by [`triangle`]) and the
+/// rect holding them.
+fn chunk(triangles: &[(u64, PxRect)]) -> (u64, PxRect) {
+    let mut h = Hasher::default();
+    let mut rect: Option<PxRect> = None;
+    for &(hash, r) in triangles {
+        h.word(hash);
+        if r[2] > r[0] && r[3] > r[1] {
+            rect = Some(rect.map_or(r, |a| join(a, r)));
+        }
+    }
+    (h.0, rect.unwrap_or([0; 4]))
 }
 
 /// A hash of the vertices `indices` draw (in order) and their rect within
 /// `clip`, grown by a pixel; an index past the vertices (egui never makes
 /// one) hashes as itself.
-fn chunk(
+fn triangle(
     vertices: &[egui::epaint::Vertex],
     indices: &[u32],
     clip: PxRect,
@@ -308,5 +346,39 @@ mod tests {
         assert!(merged.contains(&[0, 0, 20, 20]));
         let many: Vec<PxRect> = (0..10).map(|i| [i * 100, 0, i * 100 + 10, 10]).collect();
         assert_eq!(merge(many).len(), MAX_REGIONS);
+    }
+
+    #[test]
+    fn a_changed_chunk_damages_only_its_differing_triangles() {
+        use egui::epaint::{Mesh, Vertex};
+        // A rail as wide as the window and a small handle in the same mesh
+        // (and chunk); the handle moves a little.
+        let mesh = |handle_x: f32| {
+            let mut m = Mesh::default();
+            let quad = |m: &mut Mesh, x0: f32, y0: f32, x1: f32, y1: f32| {
+                let base = m.vertices.len() as u32;
+                for (x, y) in [(x0, y0), (x1, y0), (x1, y1), (x0, y1)] {
+                    m.vertices.push(Vertex { pos: egui::pos2(x, y), uv: egui::Pos2::ZERO, color: egui::Color32::WHITE });
+                }
+                m.indices.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
+            };
+            quad(&mut m, 0.0, 100.0, 1000.0, 104.0);
+            quad(&mut m, handle_x, 96.0, handle_x + 10.0, 108.0);
+            m
+        };
+        let job = |x: f32| egui::ClippedPrimitive {
+            clip_rect: egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1000.0, 200.0)),
+            primitive: Primitive::Mesh(mesh(x)),
+        };
+        let mut damage = Damage::default();
+        let size = [1000, 200];
+        assert!(damage.regions(&[job(500.0)], size, 1.0, |_| egui_wgpu::CopyChange::All).is_none(), "first frame: all");
+        let regions = damage.regions(&[job(503.0)], size, 1.0, |_| egui_wgpu::CopyChange::All).unwrap();
+        assert_eq!(regions.len(), 1, "{regions:?}");
+        let [x, y, w, h] = regions[0];
+        assert!(x >= 495 && x + w <= 520 && y >= 90 && y + h <= 112, "the handle's old and new place only: {regions:?}");
+        // Nothing changed: nothing to redraw.
+        let regions = damage.regions(&[job(503.0)], size, 1.0, |_| egui_wgpu::CopyChange::All).unwrap();
+        assert!(regions.is_empty(), "{regions:?}");
     }
 }
