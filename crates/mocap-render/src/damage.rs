@@ -27,17 +27,19 @@ const MARGIN_PX: f32 = 4.0;
 /// A rect of a target in pixels: min x, min y, max x, max y (max exclusive).
 pub(crate) type PxRect = [u32; 4];
 
-/// The screen rect of everything `scene` draws besides the floor and the
-/// background (its figures and, when `shadows`, the floor's shadow of
-/// `casters`: see [`Casters`]), in a target of `size` pixels; an empty rect
-/// for a scene without figures; `None` when it cannot be bounded on screen.
+/// Where a frame draws besides the floor and the background, as two screen
+/// rects of a target of `size` pixels: its figures', and the floor's shadow
+/// of `casters` when `shadows` (see [`Casters`]; empty without). Two, because
+/// a long shadow across the floor and a tall figure share a corner: one rect
+/// around both holds mostly floor that did not change. Empty rects for a
+/// scene without figures; `None` when they cannot be bounded on screen.
 pub(crate) fn figures_rect(
     scene: &Scene,
     uniforms: &FrameUniforms,
     shadows: Option<Casters<'_>>,
     pixels_per_point: f32,
     size: [u32; 2],
-) -> Option<PxRect> {
+) -> Option<[PxRect; 2]> {
     let grow = |p: Vec3, r: f32| Some((p - Vec3::splat(r), p + Vec3::splat(r)));
     let mut world: Option<(Vec3, Vec3)> = None;
     for c in &scene.capsules {
@@ -58,11 +60,12 @@ pub(crate) fn figures_rect(
         world = bounds::union(world, Some(b));
     }
     let view_proj = Mat4::from_cols_array_2d(&uniforms.projection) * Mat4::from_cols_array_2d(&uniforms.view);
-    let mut rect = world.map(|(lo, hi)| screen_box(&view_proj, corners(lo, hi), size)).unwrap_or(Some(EMPTY))?;
-    if let Some(casters) = shadows.filter(|_| scene.grid.is_some()) {
-        rect = join(rect, shadow_box(&casters, uniforms, &view_proj, size)?);
-    }
-    Some(grown(rect, MARGIN_PX + line_px, size))
+    let figures = world.map(|(lo, hi)| screen_box(&view_proj, corners(lo, hi), size)).unwrap_or(Some(EMPTY))?;
+    let shadow = match shadows.filter(|_| scene.grid.is_some()) {
+        Some(casters) => shadow_box(&casters, uniforms, &view_proj, size)?,
+        None => EMPTY,
+    };
+    Some([grown(figures, MARGIN_PX + line_px, size), grown(shadow, MARGIN_PX, size)])
 }
 
 /// What casts the floor's shadow this frame: capsules (their ends and

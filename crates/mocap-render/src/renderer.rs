@@ -79,11 +79,13 @@ pub struct SceneRenderer {
     /// Whether the last frame's floor was copied from the cache.
     floor_copied: bool,
     /// The target texture the last frame was drawn into, and where its
-    /// figures were (damage.rs; `None`: not bounded on screen).
-    last_frame: Option<(wgpu::Texture, Option<damage::PxRect>)>,
-    /// The part of the target the last frame changed (min x, min y, max x,
-    /// max y; empty: none); `None`: all of it.
-    changed: Option<damage::PxRect>,
+    /// figures and their shadow were (damage.rs; `None`: not bounded on
+    /// screen).
+    last_frame: Option<(wgpu::Texture, Option<[damage::PxRect; 2]>)>,
+    /// The parts of the target the last frame changed, around the figures
+    /// and around their shadow (each min x, min y, max x, max y; empty:
+    /// none); `None`: all of it.
+    changed: Option<[damage::PxRect; 2]>,
     /// Whether every capsule gets four corners (see [`TestPaths`]).
     four_corners_always: bool,
     line_scratch: Vec<LineInstance>,
@@ -250,7 +252,14 @@ impl SceneRenderer {
     /// damage.rs); a view shown by copying the target (the web page's
     /// painter) needs to copy only this part.
     pub fn changed_rect(&self) -> Option<[u32; 4]> {
-        self.changed.map(|[x0, y0, x1, y1]| [x0, y0, x1.saturating_sub(x0), y1.saturating_sub(y0)])
+        self.changed.map(|[a, b]| size_form(damage::union(a, b)))
+    }
+
+    /// [`SceneRenderer::changed_rect`] as two rects, around the figures and
+    /// around their shadow on the floor (either may be empty): a long shadow
+    /// and a tall figure leave much of the rect around both unchanged.
+    pub fn changed_rects(&self) -> Option<[[u32; 4]; 2]> {
+        self.changed.map(|rects| rects.map(size_form))
     }
 
     /// Whether the last frame started from the floor drawn for an earlier one
@@ -336,14 +345,17 @@ impl SceneRenderer {
         let figures =
             damage::figures_rect(scene, &uniforms, shadows.then_some(casters), self.pixels_per_point, target.size());
         let texture = target.attachment_texture().clone();
-        let redraw = match (&self.last_frame, &copy, figures) {
+        let changed = match (&self.last_frame, &copy, figures) {
             (Some((last, Some(before))), Some(c), Some(now)) if !c.fill && *last == texture => {
-                Some(damage::union(*before, now))
+                Some([damage::union(before[0], now[0]), damage::union(before[1], now[1])])
             }
             _ => None,
         };
         self.last_frame = Some((texture, figures));
-        self.changed = redraw;
+        self.changed = changed;
+        // The target is redrawn in one rect around both (cheap next to the
+        // window's: the two rects matter where the frame is copied on).
+        let redraw = changed.map(|[a, b]| damage::union(a, b));
         let background = wgpu::Color { r: r as f64, g: g as f64, b: b as f64, a: a as f64 };
         if let Some(copy) = &copy {
             if copy.fill {
@@ -660,6 +672,11 @@ impl SceneRenderer {
 
 /// Orders `items` farthest first by their view-space depth `z` (more negative
 /// is farther): blended outlines need what lies behind them drawn first.
+/// A rect as `[x, y, width, height]` from min x, min y, max x, max y.
+fn size_form([x0, y0, x1, y1]: damage::PxRect) -> [u32; 4] {
+    [x0, y0, x1.saturating_sub(x0), y1.saturating_sub(y0)]
+}
+
 fn sort_farthest_first<T>(items: &mut [T], z: impl Fn(&T) -> f32) {
     items.sort_unstable_by(|p, q| z(p).total_cmp(&z(q)));
 }

@@ -1154,8 +1154,13 @@ fn a_still_camera_redraws_only_around_the_figures_with_the_pixels_of_a_full_fram
             assert_eq!(differing(&pixels, &fresh(&scene, &camera)), 0, "{label}, frame {frame}: the pixels of a whole frame");
             let copies = !color_only || samples == 1;
             match renderer.changed_rect() {
-                Some([_, _, w, h]) => {
+                Some([x, y, w, h]) => {
                     assert!(copies && frame >= 2, "{label}, frame {frame}: only from the third frame of a still camera");
+                    // The same as two rects, the figures' and their shadow's (a shadow every frame here).
+                    let [a, b] = renderer.changed_rects().expect("rects with the rect");
+                    assert!(a[2] * a[3] > 0 && b[2] * b[3] > 0, "{label}, frame {frame}: {a:?} {b:?}");
+                    let around = [a[0].min(b[0]), a[1].min(b[1]), (a[0] + a[2]).max(b[0] + b[2]), (a[1] + a[3]).max(b[1] + b[3])];
+                    assert_eq!(around, [x, y, x + w, y + h], "{label}, frame {frame}: the rect around both");
                     assert!(w > 0 && h > 0, "{label}, frame {frame}: the figure moved");
                     if frame != 4 {
                         assert!(w * h < SIZE * SIZE / 2, "{label}, frame {frame}: a small figure's rect ({w}x{h})");

@@ -243,10 +243,11 @@ impl Viewport {
         let cam = camera.to_camera(size[0] as f32 / size[1] as f32);
         gpu.renderer.render(&rs.device, &rs.queue, target, scene, &cam);
         // What the copy of the frame into the window has to carry: the
-        // renderer's changed rect (none, all of it, for another target than
-        // the last frame's), in the view's pixels.
-        let change = gpu.renderer.changed_rect().map_or(egui_wgpu::CopyChange::All, |rect| {
-            egui_wgpu::CopyChange::Rect(shown_rect(rect, drawn_size, size))
+        // renderer's changed rects around the figures and their shadow (all
+        // of it for another target than the last frame's), in the view's
+        // pixels.
+        let change = gpu.renderer.changed_rects().map_or(egui_wgpu::CopyChange::All, |rects| {
+            egui_wgpu::CopyChange::Rects(rects.map(|rect| shown_rect(rect, drawn_size, size)))
         });
         mark_changed(rs, change);
         self.floor_copied = gpu.renderer.floor_copied();

@@ -156,22 +156,37 @@ pub enum CopyChange {
     /// The texels `[x, y, width, height]` changed (maybe more than them
     /// changed, nothing outside them did).
     Rect([u32; 4]),
+    /// The texels in two rects changed (either may be empty), where one rect
+    /// around both would hold many that did not.
+    Rects([[u32; 4]; 2]),
     /// Anything may have changed.
     All,
 }
 
 impl CopyChange {
-    /// Both changes together.
+    /// Both changes together (changes in rects as one rect around them all).
     pub fn union(self, other: Self) -> Self {
         match (self, other) {
             (Self::Nothing, x) | (x, Self::Nothing) => x,
             (Self::All, _) | (_, Self::All) => Self::All,
-            (Self::Rect([ax, ay, aw, ah]), Self::Rect([bx, by, bw, bh])) => {
-                let (x0, y0) = (ax.min(bx), ay.min(by));
-                let x1 = (ax + aw).max(bx + bw);
-                let y1 = (ay + ah).max(by + bh);
-                Self::Rect([x0, y0, x1 - x0, y1 - y0])
+            (a, b) => {
+                let rects = a.rects().into_iter().chain(b.rects()).filter(|r| r[2] > 0 && r[3] > 0);
+                let around = rects.reduce(|[ax, ay, aw, ah], [bx, by, bw, bh]| {
+                    let (x0, y0) = (ax.min(bx), ay.min(by));
+                    let (x1, y1) = ((ax + aw).max(bx + bw), (ay + ah).max(by + bh));
+                    [x0, y0, x1 - x0, y1 - y0]
+                });
+                Self::Rect(around.unwrap_or([0; 4]))
             }
+        }
+    }
+
+    /// The rects of a change in rects (none for the others).
+    pub fn rects(self) -> Vec<[u32; 4]> {
+        match self {
+            Self::Rect(r) => vec![r],
+            Self::Rects(rs) => rs.to_vec(),
+            Self::Nothing | Self::All => Vec::new(),
         }
     }
 }
