@@ -16,6 +16,7 @@
 //! behind the eye): the whole target is redrawn.
 
 use crate::bounds;
+use crate::shadow;
 use crate::scene::Scene;
 use crate::uniforms::FrameUniforms;
 use glam::{Mat4, Vec3, Vec4};
@@ -79,8 +80,8 @@ pub(crate) struct Casters<'a> {
 
 /// The screen box (floating pixels) of the floor's shadow of `casters`: each
 /// caster's shadow on the floor (its ends carried along the key light down
-/// to the floor, grown by its radius and by how far the shadow map's lookups
-/// reach, as `shadow::floor_shadow_rect` grows the drawn rect) within the
+/// to the floor, `shadow::on_floor`, grown by its radius and by how far the
+/// shadow map's lookups reach, `shadow::floor_lookup_reach`) within the
 /// rect the floor's shadow is drawn over (`uniforms.shadow_rect`), projected
 /// on screen one caster at a time. Much tighter than the screen box of the
 /// whole drawn rect, whose corners lie far from a long shadow falling across
@@ -90,13 +91,10 @@ fn shadow_box(casters: &Casters<'_>, uniforms: &FrameUniforms, view_proj: &Mat4,
     if drawn[0] > drawn[2] || drawn[1] > drawn[3] {
         return Some(EMPTY);
     }
-    let light = crate::shadow::key_light_direction();
     let floor_y = uniforms.floor_center[1];
-    let reach = crate::shadow::FLOOR_LOOKUP_REACH * uniforms.light_dir[3];
-    let on_floor = |p: Vec3| {
-        let q = p - light * ((p.y - floor_y).max(0.0) / light.y);
-        glam::Vec2::new(q.x, q.z)
-    };
+    let reach = shadow::floor_lookup_reach(uniforms.light_dir[3]);
+    // A sphere's shadow reaches its radius over the light's y from its centre's.
+    let per_radius = 1.0 / shadow::key_light_direction().y;
     let mut rect = EMPTY;
     let mut add = |lo: glam::Vec2, hi: glam::Vec2, grow: f32| -> Option<()> {
         let (lo, hi) = (lo - glam::Vec2::splat(grow), hi + glam::Vec2::splat(grow));
@@ -111,16 +109,12 @@ fn shadow_box(casters: &Casters<'_>, uniforms: &FrameUniforms, view_proj: &Mat4,
         Some(())
     };
     for &(a, b, radius) in casters.capsules {
-        let (qa, qb) = (on_floor(a), on_floor(b));
-        add(qa.min(qb), qa.max(qb), (radius + reach) / light.y)?;
+        let (qa, qb) = (shadow::on_floor(a, floor_y), shadow::on_floor(b, floor_y));
+        add(qa.min(qb), qa.max(qb), radius * per_radius + reach)?;
     }
     for &(lo, hi) in casters.boxes {
-        let mut floor = (glam::Vec2::splat(f32::INFINITY), glam::Vec2::splat(f32::NEG_INFINITY));
-        for p in corners(lo, hi) {
-            let q = on_floor(p);
-            floor = (floor.0.min(q), floor.1.max(q));
-        }
-        add(floor.0, floor.1, reach / light.y)?;
+        let [x0, z0, x1, z1] = shadow::shadows_on_floor(lo, hi, floor_y);
+        add(glam::Vec2::new(x0, z0), glam::Vec2::new(x1, z1), reach)?;
     }
     Some(rect)
 }

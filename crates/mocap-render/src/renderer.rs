@@ -670,13 +670,13 @@ impl SceneRenderer {
     }
 }
 
-/// Orders `items` farthest first by their view-space depth `z` (more negative
-/// is farther): blended outlines need what lies behind them drawn first.
 /// A rect as `[x, y, width, height]` from min x, min y, max x, max y.
 fn size_form([x0, y0, x1, y1]: damage::PxRect) -> [u32; 4] {
     [x0, y0, x1.saturating_sub(x0), y1.saturating_sub(y0)]
 }
 
+/// Orders `items` farthest first by their view-space depth `z` (more negative
+/// is farther): blended outlines need what lies behind them drawn first.
 fn sort_farthest_first<T>(items: &mut [T], z: impl Fn(&T) -> f32) {
     items.sort_unstable_by(|p, q| z(p).total_cmp(&z(q)));
 }

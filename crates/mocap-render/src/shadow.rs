@@ -179,17 +179,30 @@ fn floor_rect(shadows: [f32; 4]) -> [f32; 4] {
 
 /// The rectangle on the floor at `floor_y` holding the shadows of casters
 /// inside `min..max`: the box's corners carried along the key light down to
-/// the floor (corners below it stay where they are).
-fn shadows_on_floor(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
-    let l = key_light_direction();
+/// the floor ([`on_floor`]).
+pub(crate) fn shadows_on_floor(min: Vec3, max: Vec3, floor_y: f32) -> [f32; 4] {
     let (mut lo, mut hi) = (Vec2::splat(f32::INFINITY), Vec2::splat(f32::NEG_INFINITY));
     for p in corners(min, max) {
-        let q = p - l * ((p.y - floor_y).max(0.0) / l.y);
-        let q = Vec2::new(q.x, q.z);
+        let q = on_floor(p, floor_y);
         lo = lo.min(q);
         hi = hi.max(q);
     }
     [lo.x, lo.y, hi.x, hi.y]
+}
+
+/// Where `p`'s shadow falls on the floor at `floor_y` (x, z): `p` carried
+/// along the key light down to it (a point below the floor stays where it is).
+pub(crate) fn on_floor(p: Vec3, floor_y: f32) -> Vec2 {
+    let l = key_light_direction();
+    let q = p - l * ((p.y - floor_y).max(0.0) / l.y);
+    Vec2::new(q.x, q.z)
+}
+
+/// How far on the floor, from a caster's shadow, a map of `texel`-unit
+/// texels can still darken it: [`FLOOR_LOOKUP_REACH`] texels in the light's
+/// view are up to 1 / y of the light's direction as long on the floor.
+pub(crate) fn floor_lookup_reach(texel: f32) -> f32 {
+    FLOOR_LOOKUP_REACH * texel / key_light_direction().y
 }
 
 /// `rect` grown by `by` on every side.
@@ -201,7 +214,7 @@ fn grown(rect: [f32; 4], by: f32) -> [f32; 4] {
 /// whose shadow-map lookups can find them: the lookup point is raised three
 /// texels along the floor's normal (lighting.wgsl) and its four filtered taps
 /// read up to 1.75 texels beyond it; with room.
-pub(crate) const FLOOR_LOOKUP_REACH: f32 = 6.0;
+const FLOOR_LOOKUP_REACH: f32 = 6.0;
 
 /// The part of the floor the floor's shadow is drawn over (floor.wgsl's
 /// `vs_shadow`), for casters whose shadows fall in `shadows`
@@ -213,8 +226,7 @@ pub(crate) const FLOOR_LOOKUP_REACH: f32 = 6.0;
 /// rectangle the map is fitted to has a margin of a twentieth of its size
 /// on each side (about a fifth more floor at 64 characters).
 fn floor_shadow_rect(shadows: [f32; 4], texel: f32, fitted: [f32; 4]) -> [f32; 4] {
-    let reach = FLOOR_LOOKUP_REACH * texel / key_light_direction().y;
-    let [x0, z0, x1, z1] = grown(shadows, reach);
+    let [x0, z0, x1, z1] = grown(shadows, floor_lookup_reach(texel));
     [x0.max(fitted[0]), z0.max(fitted[1]), x1.min(fitted[2]), z1.min(fitted[3])]
 }
 
