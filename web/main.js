@@ -139,6 +139,23 @@ function nextRenderedFrame(viewer, since) {
   });
 }
 
+// The page's start, for performance tools: the performance mark
+// `mocap-first-frame` (time since the page opened) right after the viewer's
+// first drawn frame. The viewer draws its first frame in its canvas's resize
+// observer; this one, made after it, runs right after it in the same update.
+function markFirstFrame(viewer, canvas) {
+  let marked = false;
+  const mark = () => {
+    if (marked || viewer.state().framesRendered === 0) return;
+    marked = true;
+    observer.disconnect();
+    performance.mark('mocap-first-frame');
+  };
+  const observer = new ResizeObserver(mark);
+  observer.observe(canvas);
+  nextRenderedFrame(viewer, 0).then(mark);
+}
+
 // Reads `file` into `set` chunk by chunk, straight into the module's memory
 // (no whole-file ArrayBuffer and no second copy of it).
 async function readInto(set, file) {
@@ -340,13 +357,18 @@ async function main() {
   if (embed) document.body.classList.add('embed');
   // ?demo=tentacle[&bones=N] opens a demo instead of the default clip.
   const demo = urls.length === 0 ? params.get('demo') : null;
+  // Asked for now, a WebGPU adapter is answered while the module downloads and
+  // compiles; the viewer takes the answer (without one it goes straight to
+  // WebGL2). A browser without a GPU answers late in the start, as its GPU
+  // process is busy with the page's first frames.
+  const loading = init(); // the module's download and compilation start
+  const webgpuAdapter = navigator.gpu ? navigator.gpu.requestAdapter().catch(() => null) : undefined;
   let viewer;
   try {
-    await init();
-    viewer = await start('viewer', 'file-input', urls.length === 0 && !demo);
+    await loading;
+    viewer = await start('viewer', 'file-input', urls.length === 0 && !demo, webgpuAdapter);
     window.mocapViewer = viewer;
-    // The page's start, for performance tools: opened to its first drawn frame.
-    nextRenderedFrame(viewer, 0).then(() => performance.mark('mocap-first-frame'));
+    markFirstFrame(viewer, document.getElementById('viewer'));
     viewer.setEmbed(embed);
     wireFiles(viewer);
     watchGpu(viewer, 'viewer', 'gpu-notice', (kind) => saveWork(viewer, kind));

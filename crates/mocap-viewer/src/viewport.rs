@@ -200,6 +200,12 @@ impl Viewport {
         if self.gpu.as_ref().is_some_and(|g| !std::ptr::eq(g.owner.as_ptr(), std::sync::Arc::as_ptr(&rs.renderer))) {
             self.gpu = None;
         }
+        if self.gpu.is_none() {
+            // A new device (the first, or one after a loss): its pipelines
+            // are made ahead again, counting from its first frame.
+            self.first_frame = None;
+            self.prepared = 0;
+        }
         let gpu = self.gpu.get_or_insert_with(|| create_gpu(rs, size));
         self.reduced = self.adaptive.decide(quality, moving, dt);
         gpu.renderer.fast_look = self.reduced;
@@ -268,6 +274,11 @@ impl Viewport {
             let samples = gpu.renderer.sample_count();
             gpu.renderer.prepare_pipelines(&rs.device, samples, false, scene.shadows);
             self.prepared = 2;
+        }
+        if self.prepared < 2 {
+            // The frames that make the next sets, even where nothing else
+            // changes (a paused view draws nothing otherwise).
+            ui.ctx().request_repaint();
         }
         self.frames_rendered += 1;
         ui.painter().add(egui_wgpu::Callback::new_paint_callback(rect, ShowFrame { which }));

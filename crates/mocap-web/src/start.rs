@@ -14,17 +14,24 @@ use wasm_bindgen::prelude::*;
 /// `<input type=file>` that the "Open…" and "Add…" buttons click, after setting its
 /// `data-mode` attribute to `replace` or `add` (the page reads it). With `default_clip` the
 /// generated walk cycle is open at once. The "Share" button dispatches a
-/// `mocap-share` event on `window`. Fails (with a message) when the browser has
-/// neither WebGPU nor WebGL2.
+/// `mocap-share` event on `window`. `webgpu_adapter` (optional) is a
+/// `navigator.gpu.requestAdapter()` the page made early, while the module
+/// compiled (see [`ViewerOptions`]'s `webgpuAdapter`). Fails (with a message)
+/// when the browser has neither WebGPU nor WebGL2.
 #[wasm_bindgen]
-pub async fn start(canvas_id: &str, file_input_id: &str, default_clip: bool) -> Result<MocapViewer, JsValue> {
+pub async fn start(
+    canvas_id: &str,
+    file_input_id: &str,
+    default_clip: bool,
+    webgpu_adapter: Option<js_sys::Promise>,
+) -> Result<MocapViewer, JsValue> {
     let document = web_sys::window().and_then(|w| w.document()).ok_or("no document")?;
     let canvas = document
         .get_element_by_id(canvas_id)
         .ok_or_else(|| format!("no element #{canvas_id}"))?
         .dyn_into::<web_sys::HtmlCanvasElement>()
         .map_err(|_| format!("#{canvas_id} is not a canvas"))?;
-    start_on(canvas, Some(file_input_id.to_owned()), default_clip, false).await
+    start_on(canvas, Some(file_input_id.to_owned()), default_clip, false, webgpu_adapter).await
 }
 
 #[wasm_bindgen(typescript_custom_section)]
@@ -37,12 +44,20 @@ export interface ViewerOptions {
   embed?: boolean;
   /** Id of an `<input type=file>` that the "Open…" button clicks. */
   fileInput?: string;
+  /**
+   * A `navigator.gpu.requestAdapter()` made early (before the module was
+   * loaded): where it resolves to `null` the viewer goes straight to WebGL2
+   * without asking for a WebGPU adapter again. Browsers without a GPU answer
+   * that request late in the page's start; asked early, the wait overlaps the
+   * download and compilation.
+   */
+  webgpuAdapter?: Promise<unknown>;
 }
 "#;
 
 /// Starts the viewer on `canvas` and returns its handle (`load`, `add`, `loadClip`,
 /// `addClip`, `seek`, `play`, `pause`, `state`, ...). Options (optional):
-/// `{defaultClip, embed, fileInput}`.
+/// `{defaultClip, embed, fileInput, webgpuAdapter}`.
 #[wasm_bindgen(js_name = startViewer)]
 pub async fn start_viewer(
     canvas: web_sys::HtmlCanvasElement,
@@ -54,7 +69,8 @@ pub async fn start_viewer(
     let default_clip = get("defaultClip").is_some_and(|v| v.is_truthy());
     let embed = get("embed").is_some_and(|v| v.is_truthy());
     let file_input = get("fileInput").and_then(|v| v.as_string());
-    start_on(canvas, file_input, default_clip, embed).await
+    let webgpu_adapter = get("webgpuAdapter").and_then(|v| v.dyn_into::<js_sys::Promise>().ok());
+    start_on(canvas, file_input, default_clip, embed, webgpu_adapter).await
 }
 
 async fn start_on(
@@ -62,6 +78,7 @@ async fn start_on(
     file_input_id: Option<String>,
     default_clip: bool,
     embed: bool,
+    webgpu_adapter: Option<js_sys::Promise>,
 ) -> Result<MocapViewer, JsValue> {
     let mut viewer = Viewer::default();
     let _ = viewer.apply(mocap_viewer::Command::SetPanels(mocap_viewer::Panels { embed, ..Default::default() }));
@@ -76,6 +93,7 @@ async fn start_on(
         runner: Rc::default(),
         render_state: Rc::default(),
         video: Rc::default(),
+        webgpu_adapter,
     };
     run_on(canvas, &shared).await?;
     Ok(MocapViewer { viewer: shared.viewer.clone(), saved: shared.saved.clone(), ctx: shared.ctx.clone(), shared })
@@ -95,6 +113,9 @@ pub(crate) struct Shared {
     pub render_state: Rc<RefCell<Option<eframe::egui_wgpu::RenderState>>>,
     /// The video exporter's GPU objects (`crate::video`), made on first use.
     pub video: Rc<RefCell<Option<crate::video::VideoGpu>>>,
+    /// The page's early WebGPU adapter request, if it made one (see
+    /// `eframe::WebOptions::webgpu_probe`, a vendored change).
+    pub webgpu_adapter: Option<js_sys::Promise>,
 }
 
 /// Which runner is current: a device-lost callback of an earlier one (its device
@@ -148,15 +169,14 @@ pub(crate) async fn run_on(canvas: web_sys::HtmlCanvasElement, shared: &Shared) 
     let memory = shared.ctx.borrow().as_ref().map(|c| c.memory(|m| m.clone()));
     let runner = eframe::WebRunner::new();
     let (app_viewer, app_ctx) = (shared.viewer.clone(), shared.ctx.clone());
-    let render_state = shared.render_state.clone();
     runner
         .start(
             canvas,
-            eframe::WebOptions::default(),
+            eframe::WebOptions { webgpu_probe: shared.webgpu_adapter.clone(), ..Default::default() },
+            // The app is made before the graphics device is ready (eframe lays
+            // its first pass out meanwhile; see vendor/eframe/VENDORED.md): the
+            // device is watched once `start` has it.
             Box::new(move |cc| {
-                let Some(rs) = cc.wgpu_render_state.as_ref() else { return Err("no wgpu renderer".into()) };
-                watch_device(&rs.device, generation);
-                *render_state.borrow_mut() = Some(rs.clone());
                 if let Some(memory) = memory {
                     cc.egui_ctx.memory_mut(|m| *m = memory);
                 }
@@ -171,6 +191,12 @@ pub(crate) async fn run_on(canvas: web_sys::HtmlCanvasElement, shared: &Shared) 
             }),
         )
         .await?;
+    let Some(rs) = runner.wgpu_render_state() else {
+        runner.destroy();
+        return Err("no wgpu renderer".into());
+    };
+    watch_device(&rs.device, generation);
+    *shared.render_state.borrow_mut() = Some(rs);
     *shared.runner.borrow_mut() = Some(runner);
     Ok(())
 }

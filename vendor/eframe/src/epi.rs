@@ -562,6 +562,18 @@ pub struct WebOptions {
     /// Maximum rate at which to repaint. This can be used to artificially reduce the repaint rate below
     /// vsync in order to save resources.
     pub max_fps: Option<u32>,
+
+    /// Vendored change: a WebGPU adapter request the page made early (the
+    /// promise of `navigator.gpu.requestAdapter()`, made while the module
+    /// compiled). The painter awaits it, after the app's first pass is laid
+    /// out, and where it resolves to no adapter (`null`, or it fails) wgpu
+    /// goes straight to WebGL without asking for one again. On a software
+    /// rasteriser the browser answers that request late in the start (its
+    /// GPU process is busy with the page's first frames), and the early
+    /// request's wait overlaps the module's compilation instead of following
+    /// it. `None` (the default): wgpu asks itself, as upstream.
+    #[cfg(feature = "wgpu_no_default_features")]
+    pub webgpu_probe: Option<js_sys::Promise>,
 }
 
 #[cfg(target_arch = "wasm32")]
@@ -588,6 +600,9 @@ impl Default for WebOptions {
             should_prevent_default: Box::new(|_| true),
 
             max_fps: None,
+
+            #[cfg(feature = "wgpu_no_default_features")]
+            webgpu_probe: None,
         }
     }
 }

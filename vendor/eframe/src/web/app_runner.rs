@@ -36,6 +36,18 @@ impl Drop for AppRunner {
 impl AppRunner {
     /// # Errors
     /// Failure to initialize WebGL renderer, or failure to create app.
+    ///
+    /// Vendored change: the app is created before the painter, with
+    /// `CreationContext::wgpu_render_state` (and `gl`) `None`;
+    /// `Frame::wgpu_render_state` has it from the first frame on, and
+    /// `WebRunner::wgpu_render_state` once `WebRunner::start` has returned.
+    /// Its first pass is laid out before the painter is made: fonts loaded,
+    /// text shaped, glyphs drawn into the atlas (see
+    /// [`Self::first_pass_early`]), and the first frame reuses that text. Why:
+    /// on a software rasteriser the browser's GPU process is busy with the
+    /// page's first composited frame for a large part of a second after the
+    /// page opens, and asking it for a graphics device waits for it, so work
+    /// that needs no device is best done first.
     #[cfg_attr(
         not(feature = "wgpu_no_default_features"),
         expect(clippy::unused_async)
@@ -48,50 +60,6 @@ impl AppRunner {
     ) -> Result<Self, String> {
         let egui_ctx = egui::Context::default();
         egui_ctx.add_glyph_rasterizer(super::canvas_glyphs::glyph_rasterizer());
-
-        #[allow(clippy::allow_attributes, unused_assignments)]
-        #[cfg(feature = "glow")]
-        let mut gl = None;
-
-        #[allow(clippy::allow_attributes, unused_assignments)]
-        #[cfg(feature = "wgpu_no_default_features")]
-        let mut wgpu_render_state = None;
-
-        let painter = match web_options.renderer {
-            #[cfg(feature = "glow")]
-            epi::Renderer::Glow => {
-                log::debug!("Using the glow renderer");
-                let painter = super::web_painter_glow::WebPainterGlow::new(
-                    egui_ctx.clone(),
-                    canvas,
-                    &web_options,
-                )?;
-                gl = Some(Arc::clone(painter.gl()));
-                Box::new(painter) as Box<dyn WebPainter>
-            }
-
-            #[cfg(feature = "wgpu_no_default_features")]
-            epi::Renderer::Wgpu => {
-                log::debug!("Using the wgpu renderer");
-                let painter = super::web_painter_wgpu::WebPainterWgpu::new(
-                    egui_ctx.clone(),
-                    canvas,
-                    &web_options,
-                )
-                .await?;
-                wgpu_render_state = painter.render_state();
-                Box::new(painter) as Box<dyn WebPainter>
-            }
-        };
-
-        let info = epi::IntegrationInfo {
-            web_info: epi::WebInfo {
-                user_agent: super::user_agent().unwrap_or_default(),
-                location: super::web_location(),
-            },
-            cpu_usage: None,
-        };
-        let storage = LocalStorage::default();
 
         egui_ctx.set_os(egui::os::OperatingSystem::from_user_agent(
             &super::user_agent().unwrap_or_default(),
@@ -114,38 +82,68 @@ impl AppRunner {
             i.pixels_per_point = super::native_pixels_per_point();
         });
 
+        let info = epi::IntegrationInfo {
+            web_info: epi::WebInfo {
+                user_agent: super::user_agent().unwrap_or_default(),
+                location: super::web_location(),
+            },
+            cpu_usage: None,
+        };
+        let storage = LocalStorage::default();
+
+        // Vendored change: the app is made before the painter, without a
+        // graphics device, and its first pass laid out (see above).
         let cc = epi::CreationContext {
             egui_ctx: egui_ctx.clone(),
             integration_info: info.clone(),
             storage: Some(&storage),
 
             #[cfg(feature = "glow")]
-            gl: gl.clone(),
+            gl: None,
 
             #[cfg(feature = "glow")]
             get_proc_address: None,
 
             #[cfg(feature = "wgpu_no_default_features")]
-            wgpu_render_state: wgpu_render_state.clone(),
+            wgpu_render_state: None,
         };
-        let app = app_creator(&cc).map_err(|err| err.to_string())?;
+        let mut app = app_creator(&cc).map_err(|err| err.to_string())?;
 
-        let frame = epi::Frame {
+        let mut frame = epi::Frame {
             info,
             storage: Some(Box::new(storage)),
 
             #[cfg(feature = "glow")]
-            gl,
+            gl: None,
 
             #[cfg(feature = "wgpu_no_default_features")]
-            // We only care about the surface config if we are using wgpu
-            wgpu_surface_config: wgpu_render_state
-                .is_some()
-                .then_some(web_options.wgpu_options.surface),
+            wgpu_surface_config: None,
 
+            #[cfg(feature = "wgpu_no_default_features")]
+            wgpu_render_state: None,
+        };
+        let textures_delta = Self::first_pass_early(&egui_ctx, &canvas, &mut *app, &mut frame);
+
+        let made = make_painter(egui_ctx.clone(), canvas, &web_options).await?;
+        let Made {
+            painter,
+            #[cfg(feature = "glow")]
+            gl,
             #[cfg(feature = "wgpu_no_default_features")]
             wgpu_render_state,
-        };
+        } = made;
+        #[cfg(feature = "glow")]
+        {
+            frame.gl = gl;
+        }
+        #[cfg(feature = "wgpu_no_default_features")]
+        {
+            // We only care about the surface config if we are using wgpu
+            frame.wgpu_surface_config = wgpu_render_state
+                .is_some()
+                .then_some(web_options.wgpu_options.surface);
+            frame.wgpu_render_state = wgpu_render_state;
+        }
 
         let needs_repaint: Arc<NeedRepaint> = Arc::new(NeedRepaint::new(web_options.max_fps));
         {
@@ -166,7 +164,7 @@ impl AppRunner {
             last_save_time: now_sec(),
             text_agent,
             screenshot_commands_with_frame_delay: vec![],
-            textures_delta: Default::default(),
+            textures_delta,
             clipped_primitives: None,
         };
 
@@ -181,6 +179,36 @@ impl AppRunner {
         runner.input.raw.system_theme = super::system_theme();
 
         Ok(runner)
+    }
+
+    /// Vendored change: the app's first pass, laid out before the graphics
+    /// device exists (`frame` has no render state yet) at the canvas's size
+    /// from its layout (the resize observer has not sized it yet), and thrown
+    /// away but for its change to the font atlas, which is returned for the
+    /// first frame to upload. The first frame's pass reuses its shaped text
+    /// (egui keeps the last pass's galleys) and glyphs. The maximum texture
+    /// side is [`FIRST_PASS_TEXTURE_SIDE`], which the painter keeps to (see
+    /// [`WebPainter::max_texture_side`]): with another side egui would start
+    /// a new atlas.
+    fn first_pass_early(
+        egui_ctx: &egui::Context,
+        canvas: &web_sys::HtmlCanvasElement,
+        app: &mut dyn epi::App,
+        frame: &mut epi::Frame,
+    ) -> TexturesDelta {
+        let mut input = super::WebInput::default();
+        input.raw.max_texture_side = Some(super::FIRST_PASS_TEXTURE_SIDE);
+        input.raw.system_theme = super::system_theme();
+        let rect = canvas.get_bounding_client_rect();
+        let dpr = super::native_pixels_per_point() as f64;
+        let ppp = egui_ctx.zoom_factor() * super::native_pixels_per_point();
+        let points = |css: f64| ((css.round() * dpr) as f32 / ppp).max(1.0);
+        let raw_input = input.new_frame(egui::vec2(points(rect.width()), points(rect.height())));
+        let output = egui_ctx.run_ui(raw_input, |ui| {
+            app.logic(ui.ctx(), frame);
+            app.ui(ui, frame);
+        });
+        output.textures_delta
     }
 
     pub fn egui_ctx(&self) -> &egui::Context {
@@ -469,4 +497,55 @@ impl epi::Storage for LocalStorage {
     }
 
     fn flush(&mut self) {}
+}
+
+/// Vendored change: what [`make_painter`] makes.
+struct Made {
+    painter: Box<dyn WebPainter>,
+    #[cfg(feature = "glow")]
+    gl: Option<Arc<glow::Context>>,
+    #[cfg(feature = "wgpu_no_default_features")]
+    wgpu_render_state: Option<egui_wgpu::RenderState>,
+}
+
+/// Vendored change: the painter of `web_options.renderer` on `canvas`, as a
+/// future (upstream made it in `AppRunner::new`).
+#[cfg_attr(
+    not(feature = "wgpu_no_default_features"),
+    expect(clippy::unused_async)
+)]
+async fn make_painter(
+    egui_ctx: egui::Context,
+    canvas: web_sys::HtmlCanvasElement,
+    web_options: &crate::WebOptions,
+) -> Result<Made, String> {
+    match web_options.renderer {
+        #[cfg(feature = "glow")]
+        epi::Renderer::Glow => {
+            log::debug!("Using the glow renderer");
+            let painter =
+                super::web_painter_glow::WebPainterGlow::new(egui_ctx, canvas, web_options)?;
+            let gl = Some(Arc::clone(painter.gl()));
+            Ok(Made {
+                painter: Box::new(painter),
+                gl,
+                #[cfg(feature = "wgpu_no_default_features")]
+                wgpu_render_state: None,
+            })
+        }
+
+        #[cfg(feature = "wgpu_no_default_features")]
+        epi::Renderer::Wgpu => {
+            log::debug!("Using the wgpu renderer");
+            let painter =
+                super::web_painter_wgpu::WebPainterWgpu::new(egui_ctx, canvas, web_options).await?;
+            let wgpu_render_state = painter.render_state();
+            Ok(Made {
+                painter: Box::new(painter),
+                #[cfg(feature = "glow")]
+                gl: None,
+                wgpu_render_state,
+            })
+        }
+    }
 }

@@ -59,6 +59,13 @@ use input::{
 /// Debug browser resizing?
 const DEBUG_RESIZE: bool = false;
 
+/// Vendored change: the largest texture side egui is told of on the web (where
+/// the device allows more, egui is told this): the app's first pass is laid out
+/// before the device exists (see `AppRunner::new`) with this side, and egui
+/// starts a new font atlas when the side changes. 8192 is what software
+/// rasterisers and most devices allow; the font atlas never needs more.
+pub(crate) const FIRST_PASS_TEXTURE_SIDE: usize = 8192;
+
 pub(crate) fn string_from_js_value(value: &JsValue) -> String {
     value.as_string().unwrap_or_else(|| format!("{value:#?}"))
 }

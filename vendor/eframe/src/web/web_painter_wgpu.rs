@@ -98,6 +98,17 @@ impl WebPainterWgpu {
             // create_new.instance_descriptor.backends = wgpu::Backends::GL;
             create_new.display_handle = Some(Box::new(WebDisplay));
         }
+        // Vendored change: the page's early WebGPU adapter request (see
+        // `WebOptions::webgpu_probe`) found none: straight to WebGL.
+        if let Some(probe) = &options.webgpu_probe
+            && !has_webgpu(probe).await
+            && let egui_wgpu::WgpuSetup::CreateNew(ref mut create_new) = wgpu_options.wgpu_setup
+        {
+            create_new
+                .instance_descriptor
+                .backends
+                .remove(wgpu::Backends::BROWSER_WEBGPU);
+        }
 
         let instance = wgpu_options.wgpu_setup.new_instance().await;
         let surface = instance
@@ -171,8 +182,11 @@ impl WebPainter for WebPainterWgpu {
     }
 
     fn max_texture_side(&self) -> usize {
+        // Vendored change: at most the side egui's first pass was laid out
+        // with (see `FIRST_PASS_TEXTURE_SIDE`).
         self.render_state.as_ref().map_or(0, |state| {
-            state.device.limits().max_texture_dimension_2d as _
+            (state.device.limits().max_texture_dimension_2d as usize)
+                .min(super::FIRST_PASS_TEXTURE_SIDE)
         })
     }
 
@@ -739,4 +753,12 @@ fn begin_pass<'e>(
         timestamp_writes: None,
         multiview_mask: None,
     })
+}
+
+/// Vendored change: whether the page's early WebGPU adapter request (see
+/// `WebOptions::webgpu_probe`) found an adapter.
+async fn has_webgpu(probe: &js_sys::Promise) -> bool {
+    js_sys::futures::JsFuture::from(probe.clone())
+        .await
+        .is_ok_and(|adapter| !adapter.is_null() && !adapter.is_undefined())
 }

@@ -103,6 +103,15 @@ impl WebRunner {
         Ok(())
     }
 
+    /// Vendored change: the started app's wgpu render state (`None` before
+    /// [`Self::start`] returns, after [`Self::destroy`], and without wgpu). The
+    /// app's `CreationContext` does not have it (see `AppRunner::new`).
+    #[cfg(feature = "wgpu_no_default_features")]
+    pub fn wgpu_render_state(&self) -> Option<egui_wgpu::RenderState> {
+        let runner = self.app_runner.try_borrow().ok()?;
+        runner.as_ref()?.frame.wgpu_render_state.clone()
+    }
+
     /// Has there been a panic?
     pub fn has_panicked(&self) -> bool {
         self.panic_handler.has_panicked()

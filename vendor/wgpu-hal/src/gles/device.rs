@@ -14,8 +14,8 @@ use glow::HasContext;
 use naga::FastHashMap;
 
 use super::{conv, lock, MaybeMutex, PrivateCapabilities};
-use crate::auxil::map_naga_stage;
 use crate::TlasInstance;
+use crate::auxil::map_naga_stage;
 
 type ShaderStage<'a> = (
     naga::ShaderStage,
@@ -272,17 +272,39 @@ impl super::Device {
 
         log::debug!("\tCompiled shader {raw:?}");
 
+        // Vendored change: on WebGL every status or log query waits for the
+        // GPU process; a shader's compile status is asked for only when its
+        // program fails to link (`compile_error`), where the program's
+        // shaders are compiled before it is linked.
+        #[cfg(webgl)]
+        return Ok(raw);
+
+        #[cfg_attr(webgl, allow(unreachable_code))]
+        match unsafe { Self::compile_error(gl, raw, naga_stage) } {
+            None => Ok(raw),
+            Some(err) => {
+                unsafe { gl.delete_shader(raw) };
+                Err(err)
+            }
+        }
+    }
+
+    /// The error of `raw`'s compilation, if it failed.
+    unsafe fn compile_error(
+        gl: &glow::Context,
+        raw: glow::Shader,
+        naga_stage: naga::ShaderStage,
+    ) -> Option<crate::PipelineError> {
         let compiled_ok = unsafe { gl.get_shader_compile_status(raw) };
         let msg = unsafe { gl.get_shader_info_log(raw) };
         if compiled_ok {
             if !msg.is_empty() {
                 log::debug!("\tCompile message: {msg}");
             }
-            Ok(raw)
+            None
         } else {
             log::error!("\tShader compilation failed: {msg}");
-            unsafe { gl.delete_shader(raw) };
-            Err(crate::PipelineError::Linkage(
+            Some(crate::PipelineError::Linkage(
                 map_naga_stage(naga_stage),
                 msg,
             ))
@@ -503,7 +525,7 @@ impl super::Device {
             };
 
             let shader = Self::create_shader(gl, naga_stage, stage, context, program)?;
-            shaders_to_delete.push(shader);
+            shaders_to_delete.push((shader, naga_stage));
         }
 
         // Create empty fragment shader if only vertex shader is present
@@ -518,27 +540,41 @@ impl super::Device {
                     Some("(wgpu internal) dummy fragment shader"),
                 )
             }?;
-            shaders_to_delete.push(shader);
+            shaders_to_delete.push((shader, naga::ShaderStage::Fragment));
         }
 
-        for &shader in shaders_to_delete.iter() {
+        for &(shader, _) in shaders_to_delete.iter() {
             unsafe { gl.attach_shader(program, shader) };
         }
         unsafe { gl.link_program(program) };
 
-        for shader in shaders_to_delete {
-            unsafe { gl.delete_shader(shader) };
-        }
-
         log::debug!("\tLinked program {program:?}");
 
+        // Vendored change: the program's info log is read only where linking
+        // failed, and then (on WebGL, where `compile_shader` did not) each
+        // shader's compile status, for the error of the stage that failed.
         let linked_ok = unsafe { gl.get_program_link_status(program) };
-        let msg = unsafe { gl.get_program_info_log(program) };
-        if !linked_ok {
-            return Err(crate::PipelineError::Linkage(has_stages, msg));
+        let link_error = if linked_ok {
+            None
+        } else {
+            let compile_error = if cfg!(webgl) {
+                shaders_to_delete
+                    .iter()
+                    .find_map(|&(shader, stage)| unsafe { Self::compile_error(gl, shader, stage) })
+            } else {
+                None
+            };
+            Some(compile_error.unwrap_or_else(|| {
+                let msg = unsafe { gl.get_program_info_log(program) };
+                crate::PipelineError::Linkage(has_stages, msg)
+            }))
+        };
+
+        for (shader, _) in shaders_to_delete {
+            unsafe { gl.delete_shader(shader) };
         }
-        if !msg.is_empty() {
-            log::debug!("\tLink message: {msg}");
+        if let Some(err) = link_error {
+            return Err(err);
         }
 
         if !private_caps.contains(PrivateCapabilities::SHADER_BINDING_LAYOUT) {
