@@ -43,6 +43,7 @@ mod radius;
 mod readback;
 mod renderer;
 mod scene;
+mod shader_source;
 mod shadow;
 mod skinned;
 mod spheres;
@@ -65,6 +66,7 @@ pub use renderer::SceneRenderer;
 #[cfg(feature = "test-support")]
 pub use renderer::TestPaths;
 pub use scene::{Capsule, Line, Scene, Sphere};
+pub use shader_source::parse_shaders_ahead;
 pub use shadow::key_light_direction;
 pub use skinned::{COARSE_BODY_SPAN_PX, SkinnedDraw, SkinnedMeshData, SkinnedTexture, SkinnedVertex};
 pub use target::RenderTarget;

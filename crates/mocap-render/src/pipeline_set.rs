@@ -133,9 +133,8 @@ impl Pipelines {
             bind_group_layouts: &[Some(frame_layout)],
             immediate_size: 0,
         });
-        let module = |label: &str, body: &str| lit_module(device, label, body);
-        let capsule_shader = module("mocap capsules", &capsule::shader_source());
-        let floor_shader = module("mocap floor", include_str!("shaders/floor.wgsl"));
+        let capsule_shader = crate::shader_source::module(device, "mocap capsules", lit_source(&capsule::shader_source()));
+        let floor_shader = crate::shader_source::module(device, "mocap floor", floor_source());
         let capsule_buffers = [Some(wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
             step_mode: wgpu::VertexStepMode::Vertex,
@@ -215,7 +214,7 @@ impl ExtraPipelines {
             immediate_size: 0,
         });
         let module = |label: &str, body: &str| lit_module(device, label, body);
-        let floor_shader = module("mocap floor", include_str!("shaders/floor.wgsl"));
+        let floor_shader = crate::shader_source::module(device, "mocap floor", floor_source());
         let sphere_shader = module("mocap spheres", include_str!("shaders/spheres.wgsl"));
         let line_shader = module("mocap lines", include_str!("shaders/lines.wgsl"));
         let spheres = [quad_corners(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];
@@ -353,12 +352,19 @@ impl MeshPipelines {
     }
 }
 
+/// `body` after the shared uniform and lighting code.
+pub(crate) fn lit_source(body: &str) -> String {
+    format!("{LIT_PRELUDE}{body}")
+}
+
+/// The floor's module source.
+pub(crate) fn floor_source() -> String {
+    lit_source(include_str!("shaders/floor.wgsl"))
+}
+
 /// A shader module of `body` after the shared uniform and lighting code.
 fn lit_module(device: &wgpu::Device, label: &str, body: &str) -> wgpu::ShaderModule {
-    device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(format!("{LIT_PRELUDE}{body}").into()),
-    })
+    crate::shader_source::module(device, label, lit_source(body))
 }
 
 /// The lit pipelines' common spec for `key`: `shader`'s `vs_main` and

@@ -372,7 +372,29 @@ pub struct Renderer {
     pub callback_resources: CallbackResources,
 }
 
+thread_local! {
+    /// Vendored change: `egui.wgsl` parsed by [`Renderer::parse_shader_ahead`].
+    static PARSED_SHADER: std::cell::RefCell<Option<wgpu::naga::Module>> =
+        const { std::cell::RefCell::new(None) };
+}
+
 impl Renderer {
+    /// Vendored change: parses egui's shader now, for [`Renderer::new`] to
+    /// hand wgpu the parsed module on its GL back end (WebGL2), where wgpu
+    /// would parse the WGSL itself when the renderer is made. A web page's
+    /// start waits for the graphics device; parsed while it waits, the parse
+    /// (about a third of making the renderer there, in a browser's first,
+    /// unoptimised tier of WebAssembly) is off the way to the first frame.
+    /// Elsewhere the WGSL is used as upstream.
+    pub fn parse_shader_ahead() {
+        if PARSED_SHADER.with(|p| p.borrow().is_some()) {
+            return;
+        }
+        if let Ok(parsed) = wgpu::naga::front::wgsl::parse_str(include_str!("egui.wgsl")) {
+            PARSED_SHADER.with(|p| *p.borrow_mut() = Some(parsed));
+        }
+    }
+
     /// Creates a renderer for a egui UI.
     ///
     /// `output_color_format` should preferably be [`wgpu::TextureFormat::Rgba8Unorm`] or
@@ -384,9 +406,16 @@ impl Renderer {
     ) -> Self {
         profiling::function_scope!();
 
+        // Vendored change: the module parsed ahead on the GL back end (see
+        // `Renderer::parse_shader_ahead`).
+        let gl = device.adapter_info().backend == wgpu::Backend::Gl;
+        let source = match PARSED_SHADER.with(|p| p.borrow().clone()).filter(|_| gl) {
+            Some(parsed) => wgpu::ShaderSource::Naga(Cow::Owned(parsed)),
+            None => wgpu::ShaderSource::Wgsl(Cow::Borrowed(include_str!("egui.wgsl"))),
+        };
         let shader = wgpu::ShaderModuleDescriptor {
             label: Some("egui"),
-            source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(include_str!("egui.wgsl"))),
+            source,
         };
         let module = {
             profiling::scope!("create_shader_module");
