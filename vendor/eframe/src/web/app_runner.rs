@@ -48,10 +48,6 @@ impl AppRunner {
     /// page's first composited frame for a large part of a second after the
     /// page opens, and asking it for a graphics device waits for it, so work
     /// that needs no device is best done first.
-    #[cfg_attr(
-        not(feature = "wgpu_no_default_features"),
-        expect(clippy::unused_async)
-    )]
     pub async fn new(
         canvas: web_sys::HtmlCanvasElement,
         web_options: crate::WebOptions,

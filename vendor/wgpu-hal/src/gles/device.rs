@@ -14,8 +14,8 @@ use glow::HasContext;
 use naga::FastHashMap;
 
 use super::{conv, lock, MaybeMutex, PrivateCapabilities};
-use crate::TlasInstance;
 use crate::auxil::map_naga_stage;
+use crate::TlasInstance;
 
 type ShaderStage<'a> = (
     naga::ShaderStage,
@@ -273,9 +273,8 @@ impl super::Device {
         log::debug!("\tCompiled shader {raw:?}");
 
         // Vendored change: on WebGL every status or log query waits for the
-        // GPU process; a shader's compile status is asked for only when its
-        // program fails to link (`compile_error`), where the program's
-        // shaders are compiled before it is linked.
+        // GPU process; there a shader's compile status is read only if its
+        // program fails to link (`create_program` calls `compile_error`).
         #[cfg(webgl)]
         return Ok(raw);
 
