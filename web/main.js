@@ -139,10 +139,19 @@ function nextRenderedFrame(viewer, since) {
   });
 }
 
+// Runs `task` once the page is idle (or after `ms` at the latest).
+const whenIdle = (task, ms) => (window.requestIdleCallback
+  ? window.requestIdleCallback(task, { timeout: ms })
+  : setTimeout(task, ms));
+
 // The page's start, for performance tools: the performance mark
 // `mocap-first-frame` (time since the page opened) right after the viewer's
 // first drawn frame. The viewer draws its first frame in its canvas's resize
 // observer; this one, made after it, runs right after it in the same update.
+// Then, once idle, the glTF reader's and writer's code is made ready
+// (`warmUp`; the mark `mocap-warm-up`, its detail whether it ran): the browser
+// compiles WebAssembly a function at a time on first use, which the first
+// glTF file opened or saved would otherwise wait for.
 function markFirstFrame(viewer, canvas) {
   let marked = false;
   const mark = () => {
@@ -150,6 +159,7 @@ function markFirstFrame(viewer, canvas) {
     marked = true;
     observer.disconnect();
     performance.mark('mocap-first-frame');
+    whenIdle(() => performance.mark('mocap-warm-up', { detail: viewer.warmUp() }), 1000);
   };
   const observer = new ResizeObserver(mark);
   observer.observe(canvas);

@@ -27,6 +27,17 @@ try {
     check(errors.length === 0, `no console errors (${errors.join(' | ')})`);
   });
 
+  await step('once idle after its first frame the page readies the glTF code, changing nothing', async () => {
+    const warm = await page.waitForFunction(() => {
+      const mark = performance.getEntriesByName('mocap-warm-up')[0];
+      return mark ? { detail: mark.detail } : null;
+    }, null, { timeout: 10000 }).then((h) => h.jsonValue()).catch(() => null);
+    check(warm !== null && warm.detail === true, `the page's warm-up ran (${JSON.stringify(warm && warm.detail)})`);
+    const s = await state(page);
+    check(s.clips.length === 1 && s.clips[0].name === 'walk.bvh' && !s.error, `the stage is as it was (${s.clips.map((c) => c.name)}, error ${s.error})`);
+    check(await page.evaluate(() => window.mocapViewer.warmUp()), 'warmUp() runs again on demand');
+  });
+
   await step('clicking a joint in the hierarchy selects it', async () => {
     await slowClick(page, 62, 130); // "Spine", second joint row of the default clip's tree (under the character and offset rows)
     const s = await waitState(page, (s) => s.selectedJoint !== null, null, 20000);

@@ -183,3 +183,17 @@ fn blend_shapes_play_with_the_take() {
     let again = shape_at(&mut v, last / 2).unwrap();
     assert!(std::sync::Arc::ptr_eq(&middle, &again));
 }
+
+#[test]
+fn warming_up_the_gltf_code_writes_and_reads_a_glb_and_changes_nothing() {
+    let mut v = Viewer::default();
+    assert!(!v.warm_up_gltf(), "nothing open: nothing to write");
+    let errors = v.open_files(&[("walk.bvh", WALK)], OpenMode::Replace);
+    assert!(errors.is_empty(), "{errors:?}");
+    v.apply(Command::Seek(12)).unwrap();
+    let before = v.snapshot();
+    assert!(before.clips[0].frames > mocap_viewer::WARM_UP_FRAMES, "the walk is cut to the warm-up's frames");
+    assert!(v.warm_up_gltf());
+    assert_eq!(v.snapshot(), before, "nothing the user sees changed");
+    assert_eq!(v.state().stage.actors.len(), 1, "nothing was opened");
+}

@@ -218,6 +218,18 @@ impl MocapViewer {
         Some(js_sys::Array::of2(&name.into(), &js_sys::Uint8Array::from(bytes.as_slice())))
     }
 
+    /// Makes the glTF writer's and reader's code ready before their first use:
+    /// writes the current character's first 60 frames as a GLB in memory and
+    /// reads it back, keeping nothing (see `Viewer::warm_up_gltf`). The browser
+    /// compiles WebAssembly a function at a time when first called; the page
+    /// calls this once, when idle after its first frames, so that the first
+    /// glTF file opened or saved does not wait for that. Returns whether it ran
+    /// (`false` for a model, with nothing open, or while the viewer is busy).
+    #[wasm_bindgen(js_name = warmUp)]
+    pub fn warm_up(&self) -> bool {
+        self.viewer.try_borrow().is_ok_and(|v| v.warm_up_gltf())
+    }
+
     /// Character `index` (the current one by default) as a binary glTF (`.glb`):
     /// skeleton, skin, a generated body and the animation, every edit baked in,
     /// metres and Y up. Returns the bytes; throws the reason for a model.

@@ -23,6 +23,9 @@ mod rig;
 mod session;
 mod view;
 mod views;
+mod warm_up;
+
+pub use warm_up::FRAMES as WARM_UP_FRAMES;
 use mocap_render::Scene;
 use mocap_scene::OrbitCamera;
 

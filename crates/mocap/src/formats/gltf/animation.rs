@@ -113,6 +113,40 @@ impl Track {
         self.finish(out);
     }
 
+    /// Whether key `f` lies at `(f as f64 * frame_time) as f32` for every one of
+    /// `frames` frames (within a ten-thousandth of a frame plus the rounding of
+    /// an `f32` time that large), so that sampling frame `f` is reading key `f`
+    /// ([`Track::key`]): a take baked a key per frame, as this project's exports
+    /// and most tools' are. Only for `LINEAR` tracks, where a time a rounding
+    /// error off a key moves the value by that fraction of the key interval's
+    /// change, under what an `f32` angle shows; `STEP` and cubic tracks are
+    /// always sampled.
+    pub fn on_grid(&self, frame_time: f64, frames: usize) -> bool {
+        let slack = |grid: f32| (frame_time * 1e-4) as f32 + grid.abs() * 4.0 * f32::EPSILON;
+        self.interpolation == Interpolation::Linear
+            && self.times.len() == frames
+            && self.values.len() == frames * self.width()
+            && self.times.iter().enumerate().all(|(f, &t)| {
+                let grid = (f as f64 * frame_time) as f32;
+                (t - grid).abs() <= slack(grid)
+            })
+    }
+
+    /// Key `k`'s value into `out` (rotations normalised, as [`Track::sample`]
+    /// gives them); nothing when there is no key `k`.
+    pub fn key(&self, k: usize, out: &mut [f32; 4]) {
+        let w = self.width();
+        if let Some(v) = self.values.get(k * w..(k + 1) * w) {
+            // By pattern: a copy of a run-time length is a call to `memcpy`.
+            match *v {
+                [x, y, z, w] => *out = [x, y, z, w],
+                [x, y, z] => (out[0], out[1], out[2]) = (x, y, z),
+                _ => {}
+            }
+            self.finish(out);
+        }
+    }
+
     /// Normalises a rotation.
     fn finish(&self, out: &mut [f32; 4]) {
         if self.path == Path::Rotation {

@@ -289,12 +289,14 @@ fn sample_take(
         }
     }
     let mut cursors: Vec<Vec<usize>> = by_joint.iter().map(|t| vec![0; t.len()]).collect();
+    let on_grid: Vec<Vec<bool>> =
+        by_joint.iter().map(|ts| ts.iter().map(|t| t.on_grid(frame_time, frames)).collect()).collect();
     let unrest: Vec<Quat> = skeleton.joints().iter().map(|j| j.rest_rotation.inverse()).collect();
     let mut data = Vec::with_capacity(frames * width);
     let mut previous: Vec<[f32; 3]> = vec![[0.0; 3]; graph.joints.len()];
-    let take = TakeSampler { graph, layout, by_joint: &by_joint, unrest: &unrest };
+    let take = TakeSampler { graph, layout, by_joint: &by_joint, on_grid: &on_grid, unrest: &unrest };
     for f in 0..frames {
-        take.frame((f as f64 * frame_time) as f32, f > 0, &mut cursors, &mut previous, &mut data);
+        take.frame(f, (f as f64 * frame_time) as f32, &mut cursors, &mut previous, &mut data);
     }
     if let Some(k) = data.iter().position(|v| !v.is_finite()) {
         return Err(ParseError::new(0, 0, format!("animation `{name}`: frame {} is not finite", k / width.max(1))));
@@ -303,31 +305,39 @@ fn sample_take(
         .ok_or_else(|| ParseError::new(0, 0, format!("animation `{name}`: the motion does not fit its channels")))
 }
 
-/// What [`sample_take`] samples each frame from: the joints' tracks, the
-/// node graph, the channel layout and the rest rotations' inverses.
+/// What [`sample_take`] samples each frame from: the joints' tracks, which
+/// of them have a key on every frame ([`Track::on_grid`]: frame `f` is key
+/// `f`), the node graph, the channel layout and the rest rotations' inverses.
 struct TakeSampler<'a> {
     graph: &'a Graph,
     layout: &'a Layout,
     by_joint: &'a [Vec<&'a Track>],
+    on_grid: &'a [Vec<bool>],
     unrest: &'a [Quat],
 }
 
 impl TakeSampler<'_> {
-    /// Appends the channels of the frame at `time` to `data` (`cursors`: each
+    /// Appends the channels of frame `f`, at `time`, to `data` (`cursors`: each
     /// track's key interval; `previous`: each joint's angles a frame before,
-    /// when `continues`). A call per frame, not inlined: a browser's WebAssembly
+    /// for every frame after the first). A call per frame, not inlined: a browser's WebAssembly
     /// engine first runs code unoptimised and optimises a function after it is
     /// called often, so a loop over every frame in one call ran slowly throughout.
     #[inline(never)]
-    fn frame(&self, time: f32, continues: bool, cursors: &mut [Vec<usize>], previous: &mut [[f32; 3]], data: &mut Vec<f32>) {
+    fn frame(&self, f: usize, time: f32, cursors: &mut [Vec<usize>], previous: &mut [[f32; 3]], data: &mut Vec<f32>) {
         let graph = self.graph;
+        let continues = f > 0;
         for (j, joint_tracks) in self.by_joint.iter().enumerate() {
             let n = graph.joints[j];
             let mut trs = graph.rest[n];
             let mut value = [0.0f32; 4];
             let Some(cursors) = cursors.get_mut(j) else { continue };
-            for (track, cursor) in joint_tracks.iter().zip(cursors.iter_mut()) {
-                track.sample(time, cursor, &mut value);
+            let on_grid = self.on_grid.get(j).map_or(&[][..], Vec::as_slice);
+            for (i, (track, cursor)) in joint_tracks.iter().zip(cursors.iter_mut()).enumerate() {
+                if on_grid.get(i).copied().unwrap_or(false) {
+                    track.key(f, &mut value);
+                } else {
+                    track.sample(time, cursor, &mut value);
+                }
                 match track.path {
                     Path::Translation => trs.t = Vec3::new(value[0], value[1], value[2]),
                     Path::Rotation => trs.r = Quat::from_array(value),
