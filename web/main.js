@@ -367,12 +367,20 @@ async function main() {
   if (embed) document.body.classList.add('embed');
   // ?demo=tentacle[&bones=N] opens a demo instead of the default clip.
   const demo = urls.length === 0 ? params.get('demo') : null;
-  // Asked for now, a WebGPU adapter is answered while the module downloads and
-  // compiles; the viewer takes the answer (without one it goes straight to
-  // WebGL2). A browser without a GPU answers late in the start, as its GPU
-  // process is busy with the page's first frames.
+  // The canvas's style as the viewer sets it, set before the page's first
+  // paint: a change to the page while the viewer starts makes the browser
+  // composite a frame of it, which on a software rasteriser holds the GPU
+  // process (and the graphics context the viewer waits for) for ~100 ms.
+  const canvas = document.getElementById('viewer');
+  canvas.style.setProperty('outline', 'none');
+  canvas.style.setProperty('cursor', 'default');
   const loading = init(); // the module's download and compilation start
-  const webgpuAdapter = navigator.gpu ? navigator.gpu.requestAdapter().catch(() => null) : undefined;
+  // A WebGPU adapter, asked for once the module is ready, is answered while
+  // the viewer starts; the viewer takes the answer (without one it goes
+  // straight to WebGL2). Not asked earlier: the first request waits for the
+  // browser's GPU process, which without a GPU is busy with the page's first
+  // frame, and would hold the module's compilation up meanwhile.
+  const webgpuAdapter = navigator.gpu ? loading.then(() => navigator.gpu.requestAdapter()).catch(() => null) : undefined;
   let viewer;
   try {
     await loading;

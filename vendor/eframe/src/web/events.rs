@@ -1058,6 +1058,11 @@ impl ResizeObserverContext {
                     // force an immediate repaint
                     runner_lock.needs_repaint.repaint_asap();
                     paint_if_needed(&mut runner_lock);
+                    // Vendored change: the text agent joins the page after
+                    // its first frame (see `TextAgent::attach`).
+                    if let Err(err) = runner_lock.text_agent.insert(runner_lock.canvas()) {
+                        log::error!("{}", super::string_from_js_value(&err));
+                    }
                     drop(runner_lock);
                     // we rely on the resize observer to trigger the first `request_animation_frame`:
                     if let Err(err) = runner_ref.request_animation_frame() {

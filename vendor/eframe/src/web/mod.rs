@@ -226,10 +226,14 @@ fn canvas_size_in_points(canvas: &web_sys::HtmlCanvasElement, ctx: &egui::Contex
 
 /// Set the cursor icon.
 fn set_cursor_icon(canvas: &web_sys::HtmlCanvasElement, cursor: egui::CursorIcon) -> Option<()> {
-    canvas
-        .style()
-        .set_property("cursor", cursor_web_name(cursor))
-        .ok()
+    // Vendored change: only when it changes (a write of the same value is
+    // still a change of the page's style, each frame).
+    let style = canvas.style();
+    let name = cursor_web_name(cursor);
+    if style.get_property_value("cursor").ok()? == name {
+        return Some(());
+    }
+    style.set_property("cursor", name).ok()
 }
 
 /// Set the clipboard text.

@@ -44,30 +44,15 @@ impl TextAgent {
         style.set_property("height", "1px")?;
         style.set_property("caret-color", "transparent")?;
         style.set_property("position", "absolute")?;
-        style.set_property("top", &format!("{}px", canvas.offset_top()))?;
-        style.set_property("left", &format!("{}px", canvas.offset_left()))?;
         // Prevent auto-zoom on mobile browsers (requires at least 16px).
         style.set_property("font-size", "16px")?;
 
-        // Insert the input as a sibling of the canvas, so that its
-        // `position: absolute` resolves against the same containing block
-        // as the canvas' `offset_top`/`offset_left`.
-        // This anchors the input to the canvas regardless of how the page
-        // is scrolled or how the canvas is embedded, and also works when
-        // the canvas is inside a shadow DOM.
-        if let Some(parent) = canvas.parent_node() {
-            parent.insert_before(&input, canvas.next_sibling().as_ref())?;
-        } else if let Some(body) = document.body() {
-            log::warn!("Canvas has no parent element - appending text agent to document body");
-            body.append_child(&input)?;
-        }
-
-        // Focus the app on startup, without scrolling the page.
-        // We do this instead of setting the `autofocus` attribute,
-        // since the browser scrolls the focused element into view when
-        // honoring `autofocus`, and there is no way to prevent that.
-        // See https://github.com/emilk/egui/issues/8295
-        super::focus_without_scroll(&input).ok();
+        // Vendored change: the input joins the document (and takes the
+        // focus) in `insert`, after the first frame: a change to the page
+        // before that makes the browser composite a frame of it, which on a
+        // software rasteriser holds its GPU process (and the WebGL context
+        // the app is waiting for) for about 100 ms.
+        let _ = (&document, canvas);
 
         // attach event listeners
 
@@ -121,6 +106,39 @@ impl TextAgent {
         })?;
 
         Ok(Self { input, input_state })
+    }
+
+    /// Vendored change: puts the input into the document beside the canvas
+    /// and focuses it, once (the page's first frame is out by then; see
+    /// `attach`).
+    pub fn insert(&self, canvas: &web_sys::HtmlCanvasElement) -> Result<(), JsValue> {
+        if self.input.is_connected() {
+            return Ok(());
+        }
+        let style = self.input.style();
+        style.set_property("top", &format!("{}px", canvas.offset_top()))?;
+        style.set_property("left", &format!("{}px", canvas.offset_left()))?;
+
+        // Insert the input as a sibling of the canvas, so that its
+        // `position: absolute` resolves against the same containing block
+        // as the canvas' `offset_top`/`offset_left`.
+        // This anchors the input to the canvas regardless of how the page
+        // is scrolled or how the canvas is embedded, and also works when
+        // the canvas is inside a shadow DOM.
+        if let Some(parent) = canvas.parent_node() {
+            parent.insert_before(&self.input, canvas.next_sibling().as_ref())?;
+        } else if let Some(body) = web_sys::window().and_then(|w| w.document()).and_then(|d| d.body()) {
+            log::warn!("Canvas has no parent element - appending text agent to document body");
+            body.append_child(&self.input)?;
+        }
+
+        // Focus the app on startup, without scrolling the page.
+        // We do this instead of setting the `autofocus` attribute,
+        // since the browser scrolls the focused element into view when
+        // honoring `autofocus`, and there is no way to prevent that.
+        // See https://github.com/emilk/egui/issues/8295
+        super::focus_without_scroll(&self.input).ok();
+        Ok(())
     }
 
     pub fn update(

@@ -64,12 +64,19 @@ impl WebRunner {
         self.destroy();
 
         {
+            // Vendored change: each only where the page has not set it
+            // already, so that the page does not change before its first
+            // frame (see `TextAgent::attach`).
             // Make sure the canvas can be given focus.
             // https://developer.mozilla.org/en-US/docs/Web/HTML/Global_attributes/tabindex
-            canvas.set_tab_index(0);
+            if canvas.tab_index() != 0 {
+                canvas.set_tab_index(0);
+            }
 
             // Don't outline the canvas when it has focus:
-            canvas.style().set_property("outline", "none")?;
+            if canvas.style().get_property_value("outline")? != "none" {
+                canvas.style().set_property("outline", "none")?;
+            }
         }
 
         {
