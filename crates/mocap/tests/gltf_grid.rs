@@ -76,6 +76,9 @@ fn a_zero_key_reads_as_no_turn() {
     let mut out = [9.0f32; 4];
     t.key(1, &mut out);
     assert_eq!(out, [0.0, 0.0, 0.0, 1.0]);
+    out = [9.0; 4];
     t.key(2, &mut out);
-    assert_eq!(out, [0.0, 0.0, 0.0, 1.0], "no key 2: left as it was");
+    assert_eq!(out, [9.0; 4], "no key 2: left as it was");
+    t.key(usize::MAX, &mut out);
+    assert_eq!(out, [9.0; 4], "nor a key past any length");
 }

@@ -136,7 +136,8 @@ impl Track {
     /// gives them); nothing when there is no key `k`.
     pub fn key(&self, k: usize, out: &mut [f32; 4]) {
         let w = self.width();
-        if let Some(v) = self.values.get(k * w..(k + 1) * w) {
+        let at = k.checked_mul(w).and_then(|start| Some(start..start.checked_add(w)?));
+        if let Some(v) = at.and_then(|at| self.values.get(at)) {
             // By pattern: a copy of a run-time length is a call to `memcpy`.
             match *v {
                 [x, y, z, w] => *out = [x, y, z, w],

@@ -317,11 +317,12 @@ struct TakeSampler<'a> {
 }
 
 impl TakeSampler<'_> {
-    /// Appends the channels of frame `f`, at `time`, to `data` (`cursors`: each
-    /// track's key interval; `previous`: each joint's angles a frame before,
-    /// for every frame after the first). A call per frame, not inlined: a browser's WebAssembly
-    /// engine first runs code unoptimised and optimises a function after it is
-    /// called often, so a loop over every frame in one call ran slowly throughout.
+    /// Appends the channels of frame `f`, at `time`, to `data` (`cursors`:
+    /// each track's key interval; `previous`: each joint's angles a frame
+    /// before, for every frame after the first). A call per frame, not
+    /// inlined: a browser's WebAssembly engine first runs code unoptimised and
+    /// optimises a function after it is called often, so a loop over every
+    /// frame in one call ran slowly throughout.
     #[inline(never)]
     fn frame(&self, f: usize, time: f32, cursors: &mut [Vec<usize>], previous: &mut [[f32; 3]], data: &mut Vec<f32>) {
         let graph = self.graph;
