@@ -55,4 +55,4 @@ pub use snapshot::{ClipSummary, Snapshot};
 pub use stage::Stage;
 pub use state::AppState;
 pub use view_state::ViewState;
-pub use viewer::{VideoDefaults, Viewer, WARM_UP_FRAMES};
+pub use viewer::{VideoDefaults, Viewer, WARM_UP_FRAMES, WARM_UP_MAX_JOINTS};

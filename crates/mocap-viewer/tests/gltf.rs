@@ -197,3 +197,27 @@ fn warming_up_the_gltf_code_writes_and_reads_a_glb_and_changes_nothing() {
     assert_eq!(v.snapshot(), before, "nothing the user sees changed");
     assert_eq!(v.state().stage.actors.len(), 1, "nothing was opened");
 }
+
+#[test]
+fn a_skeleton_too_large_to_warm_up_with_is_left_alone() {
+    // A chain of joints one over the warm-up's limit, two frames.
+    let joints = mocap_viewer::WARM_UP_MAX_JOINTS + 1;
+    let mut text = String::from(
+        "HIERARCHY\nROOT j0\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n",
+    );
+    for j in 1..joints {
+        text += &format!("JOINT j{j}\n{{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n");
+    }
+    text += "End Site\n{\nOFFSET 0 1 0\n}\n";
+    text += &"}\n".repeat(joints);
+    let channels = 6 + 3 * (joints - 1);
+    text += &format!(
+        "MOTION\nFrames: 2\nFrame Time: 0.033333\n{}\n{}\n",
+        vec!["0"; channels].join(" "),
+        vec!["1"; channels].join(" ")
+    );
+    let mut v = Viewer::default();
+    let errors = v.open_files(&[("chain.bvh", text.as_bytes())], OpenMode::Replace);
+    assert!(errors.is_empty(), "{errors:?}");
+    assert!(!v.warm_up_gltf());
+}

@@ -25,7 +25,7 @@ mod view;
 mod views;
 mod warm_up;
 
-pub use warm_up::FRAMES as WARM_UP_FRAMES;
+pub use warm_up::{FRAMES as WARM_UP_FRAMES, MAX_JOINTS as WARM_UP_MAX_JOINTS};
 use mocap_render::Scene;
 use mocap_scene::OrbitCamera;
 

@@ -14,16 +14,24 @@ use super::Viewer;
 /// every path of the two, little enough to take a few milliseconds.
 pub const FRAMES: usize = 60;
 
+/// A skeleton with more joints than this is not written (a 200,000-joint file
+/// is valid): the code is as ready after a smaller one.
+pub const MAX_JOINTS: usize = 256;
+
 impl Viewer {
     /// Writes the current character's first [`FRAMES`] frames (skeleton, a
     /// generated body, the motion) as a GLB in memory and reads it back through
     /// the loader a dropped file goes through; nothing is kept and nothing the
     /// user sees changes. Returns whether both ran without an error (`false`
-    /// for a model, or with nothing open).
+    /// for a model, a skeleton over [`MAX_JOINTS`] joints, or with nothing
+    /// open).
     pub fn warm_up_gltf(&self) -> bool {
         let Some(clip) = self.state.current_character().and_then(|c| c.clip()) else {
             return false;
         };
+        if clip.skeleton().len() > MAX_JOINTS {
+            return false;
+        }
         let motion = clip.motion();
         let frames = motion.frame_count().min(FRAMES);
         let width = motion.channel_count();
