@@ -14,11 +14,9 @@ pub struct TextAgent {
 }
 
 impl TextAgent {
-    /// Attach the agent to the document.
-    pub fn attach(
-        runner_ref: &WebRunner,
-        canvas: &web_sys::HtmlCanvasElement,
-    ) -> Result<Self, JsValue> {
+    /// Makes the agent and its input's listeners; the input joins the
+    /// document in `insert` (vendored change).
+    pub fn attach(runner_ref: &WebRunner) -> Result<Self, JsValue> {
         let window = web_sys::window().unwrap();
         let document = window.document().unwrap();
 
@@ -52,7 +50,6 @@ impl TextAgent {
         // before that makes the browser composite a frame of it, which on a
         // software rasteriser holds its GPU process (and the WebGL context
         // the app is waiting for) for about 100 ms.
-        let _ = (&document, canvas);
 
         // attach event listeners
 

@@ -364,8 +364,6 @@ impl TakeSampler<'_> {
     }
 }
 
-/// Each angle moved by whole turns to the one nearest the previous frame's, so
-/// that interpolating between frames never goes the long way round.
 /// `q`'s ZXY Euler angles in radians, `(z, x, y)`: what
 /// `q.to_euler(EulerRot::ZXY)` returns, to the bit (the same products as
 /// glam's `Mat3::from_quat` for the five entries used, the same square root
@@ -389,6 +387,8 @@ fn zxy(q: Quat) -> (f32, f32, f32) {
     (-a, -b, -c)
 }
 
+/// Each angle moved by whole turns to the one nearest the previous frame's, so
+/// that interpolating between frames never goes the long way round.
 fn unwrap(angles: [f32; 3], previous: [f32; 3], has_previous: bool) -> [f32; 3] {
     if !has_previous {
         return angles;
