@@ -17,6 +17,23 @@ try {
     const backend = { webgl2: 'Gl', webgpu: 'BrowserWebGpu' }[mode];
     check(s.backend === backend, `3D view drawn with wgpu backend ${s.backend} (expected ${backend})`);
     await page.screenshot({ path: shot('page') });
+    // index.html preloads the modules main.js imports and the WebAssembly: each
+    // is fetched once, the modules asked for before main.js itself arrived (not
+    // found in it), the WebAssembly by its preload (a preload that init() did not
+    // match would download the 6 MB module twice).
+    const imports = [...fs.readFileSync(new URL('../../web/main.js', import.meta.url), 'utf8')
+      .matchAll(/^import[^'"]*['"]([^'"]+)['"]/gm)].map((m) => new URL(m[1], `${url}web/main.js`).pathname);
+    const fetched = await page.evaluate(() => performance.getEntriesByType('resource')
+      .map((r) => ({ path: new URL(r.name).pathname, by: r.initiatorType, start: r.startTime, end: r.responseEnd })));
+    const once = (want) => fetched.filter((r) => r.path.endsWith(want));
+    const main = once('/web/main.js');
+    check(imports.length >= 4 && main.length === 1, `main.js fetched once, its ${imports.length} imports read`);
+    for (const want of imports) {
+      const hits = once(want);
+      check(hits.length === 1 && main.length === 1 && hits[0].start < main[0].end, `${want} fetched once, asked for before main.js arrived (${JSON.stringify(hits)})`);
+    }
+    const wasm = once('/pkg/mocap_web_bg.wasm');
+    check(wasm.length === 1 && wasm[0].by === 'link', `the WebAssembly fetched once, by its preload (${JSON.stringify(wasm)})`);
     const a = await view3d(page, shot('anim-a'));
     await page.waitForTimeout(600);
     await waitFrames(page, 3);
