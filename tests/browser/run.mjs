@@ -32,6 +32,13 @@ try {
       const hits = once(want);
       check(hits.length === 1 && main.length === 1 && hits[0].start < main[0].end, `${want} fetched once, asked for before main.js arrived (${JSON.stringify(hits)})`);
     }
+    // And index.html preloads nothing else (a module no longer imported would
+    // be downloaded for nothing).
+    const preloaded = [...fs.readFileSync(new URL('../../index.html', import.meta.url), 'utf8')
+      .matchAll(/<link rel="modulepreload" href="([^"]+)">/g)].map((m) => new URL(m[1], url).pathname);
+    const mainPath = new URL('web/main.js', url).pathname;
+    const stray = preloaded.filter((p) => p !== mainPath && !imports.includes(p));
+    check(preloaded.length === imports.length + 1 && stray.length === 0, `index.html preloads main.js and its imports only (${preloaded.length} preloads, stray: ${stray.join(', ') || 'none'})`);
     const wasm = once('/pkg/mocap_web_bg.wasm');
     check(wasm.length === 1 && wasm[0].by === 'link', `the WebAssembly fetched once, by its preload (${JSON.stringify(wasm)})`);
     const a = await view3d(page, shot('anim-a'));

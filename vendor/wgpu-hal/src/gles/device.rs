@@ -310,6 +310,38 @@ impl super::Device {
         }
     }
 
+    /// Vendored change: `naga` (the source of `module`) with its override
+    /// constants replaced by `constants`, made once per module and set of
+    /// constants and kept with the module.
+    ///
+    /// Upstream processed the module for each stage of each pipeline with
+    /// that stage's entry point, which for a module of several entry points
+    /// clones, compacts and revalidates it every time (naga's
+    /// `process_overrides`): on WebGL, in a browser's baseline tier of
+    /// WebAssembly, a part of a page's first frame, and again for every later
+    /// pipeline of the same shader and constants (another sample count,
+    /// blending or depth state). Done once for all entry points, the GLSL
+    /// writer still writes only what the stage's entry point uses (its
+    /// globals, and the functions its stage can call).
+    fn processed(
+        module: &super::ShaderModule,
+        naga: &crate::NagaShader,
+        constants: &naga::back::PipelineConstants,
+    ) -> Result<Arc<(naga::Module, naga::valid::ModuleInfo)>, naga::back::pipeline_constants::PipelineConstantError>
+    {
+        let mut key: super::ConstantsKey = constants.iter().map(|(name, value)| (name.clone(), value.to_bits())).collect();
+        key.sort();
+        let mut cache = module.processed.lock();
+        if let Some((_, done)) = cache.iter().find(|(k, _)| *k == key) {
+            return Ok(Arc::clone(done));
+        }
+        let (processed, info) =
+            naga::back::pipeline_constants::process_overrides(&naga.module, &naga.info, None, constants)?;
+        let done = Arc::new((processed.into_owned(), info.into_owned()));
+        cache.push((key, Arc::clone(&done)));
+        Ok(done)
+    }
+
     fn create_shader(
         gl: &glow::Context,
         naga_stage: naga::ShaderStage,
@@ -334,21 +366,18 @@ impl super::Device {
                 }
             };
 
-            let (module, info) = naga::back::pipeline_constants::process_overrides(
-                &naga.module,
-                &naga.info,
-                Some((naga_stage, stage.entry_point)),
-                stage.constants,
-            )
-            .map_err(|e| {
+            // Vendored change: the module with its override constants
+            // replaced, made once per module and constants (see `processed`).
+            let processed = Self::processed(stage.module, naga, stage.constants).map_err(|e| {
                 let msg = format!("{e}");
                 crate::PipelineError::PipelineConstants(map_naga_stage(naga_stage), msg)
             })?;
+            let (module, info) = (&processed.0, &processed.1);
 
             let entry_point_index = module
                 .entry_points
                 .iter()
-                .position(|ep| ep.name.as_str() == stage.entry_point)
+                .position(|ep| ep.stage == naga_stage && ep.name.as_str() == stage.entry_point)
                 .ok_or(crate::PipelineError::EntryPoint(naga_stage))?;
 
             use naga::proc::BoundsCheckPolicy;
@@ -1516,6 +1545,7 @@ impl crate::Device for super::Device {
         self.counters.shader_modules.add(1);
 
         Ok(super::ShaderModule {
+            processed: Default::default(),
             source: match shader {
                 crate::ShaderInput::Naga(naga) => super::ShaderModuleSource::Naga(naga),
                 // The backend doesn't yet expose this feature so it should be fine

@@ -731,7 +731,14 @@ pub struct ShaderModule {
     source: ShaderModuleSource,
     label: Option<String>,
     id: ShaderId,
+    /// Vendored change: the module with its override constants replaced, by
+    /// the constants (see `Device::processed` in `device.rs`).
+    processed: Mutex<Vec<(ConstantsKey, Arc<(naga::Module, naga::valid::ModuleInfo)>)>>,
 }
+
+/// Vendored change: pipeline constants as a comparable key (names and value
+/// bits, sorted by name).
+type ConstantsKey = Vec<(String, u64)>;
 
 impl crate::DynShaderModule for ShaderModule {}
 
