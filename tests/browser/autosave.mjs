@@ -29,21 +29,30 @@ async function stored(page, before) {
   await page.waitForFunction((n) => window.mocapAutosave && window.mocapAutosave.saves > n, before, { timeout: 20000 });
 }
 // Waits until the session stored in the page's IndexedDB says `unsaved` is
-// `want` (and, given `view`, its view holds that text): a store started before a change may finish after it, so a count of
-// stores alone does not say the latest state is the one kept.
+// `want` (and, given `view`, its view holds that text): a store started before a
+// change may finish after it, so a count of stores alone does not say the latest
+// state is the one kept. Polled from here: `waitForFunction` does not await a
+// predicate's promise (a promise is truthy, so it would return at once).
 async function storedUnsaved(page, want, view = '') {
-  await page.waitForFunction(async ([w, v]) => {
-    const db = await new Promise((ok, no) => { const r = indexedDB.open('mocap-autosave', 1); r.onsuccess = () => ok(r.result); r.onerror = () => no(r.error); });
-    try {
-      const current = await new Promise((ok, no) => {
-        const r = db.transaction(['sessions'], 'readonly').objectStore('sessions').get('current');
-        r.onsuccess = () => ok(r.result); r.onerror = () => no(r.error);
-      });
-      return !!current && current.unsaved === w && String(current.view).includes(v);
-    } finally {
-      db.close();
-    }
-  }, [want, view], { timeout: 20000, polling: 200 });
+  const deadline = Date.now() + 20000;
+  let last = null;
+  for (;;) {
+    last = await page.evaluate(async () => {
+      const db = await new Promise((ok, no) => { const r = indexedDB.open('mocap-autosave', 1); r.onsuccess = () => ok(r.result); r.onerror = () => no(r.error); });
+      try {
+        const current = await new Promise((ok, no) => {
+          const r = db.transaction(['sessions'], 'readonly').objectStore('sessions').get('current');
+          r.onsuccess = () => ok(r.result); r.onerror = () => no(r.error);
+        });
+        return current ? { unsaved: current.unsaved, view: String(current.view) } : null;
+      } finally {
+        db.close();
+      }
+    });
+    if (last && last.unsaved === want && last.view.includes(view)) return;
+    if (Date.now() > deadline) throw new Error(`the stored session is not unsaved=${want} with "${view}": ${JSON.stringify(last)}`);
+    await new Promise((r) => setTimeout(r, 200));
+  }
 }
 
 const { context, page: first, close, errors } = await launch(chromiumPath, mode, { keepStorage: true });
