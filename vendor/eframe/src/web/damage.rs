@@ -24,8 +24,13 @@ const MAX_REGIONS: usize = 4;
 const CHUNK_TRIANGLES: usize = 32;
 
 /// One paint job as drawn last frame.
-#[derive(Clone, PartialEq, Eq)]
+#[derive(Clone, Default, PartialEq, Eq)]
 struct Drawn {
+    /// A hash of the job's bytes as egui gave them (clip rect, texture,
+    /// vertices and indices, or the callback's rect) with the window's size
+    /// and scale: where it is the same the frame after, the job is the same
+    /// and nothing below is computed again (see [`quick_hash`]).
+    quick: u64,
     /// Its clip rect, mesh (vertices, indices, texture) or callback rect.
     hash: u64,
     /// Where it drew, in pixels.
@@ -76,9 +81,19 @@ impl Damage {
         let full = self.screen != Some(screen);
         let mut rects = Vec::new();
         let mut drawn = Vec::with_capacity(jobs.len());
+        let mut last = std::mem::take(&mut self.drawn);
         for (index, job) in jobs.iter().enumerate() {
-            let now = drawn_job(job, pixels_per_point, size);
-            match self.drawn.get(index) {
+            let quick = quick_hash(job, pixels_per_point, size);
+            // Unchanged: it damages nothing, and its triangles were found and
+            // hashed last frame.
+            let unchanged = last.get(index).is_some_and(|before| before.quick == quick);
+            let now = if unchanged {
+                last.get_mut(index).map(std::mem::take).unwrap_or_default()
+            } else {
+                Drawn { quick, ..drawn_job(job, pixels_per_point, size) }
+            };
+            match last.get(index) {
+                _ if unchanged => {}
                 Some(before) if before.hash == now.hash && before.rect == now.rect => {}
                 Some(before) if before.frame == now.frame && !now.chunks.is_empty() && !before.chunks.is_empty() => {
                     let count = before.chunks.len().max(now.chunks.len());
@@ -102,7 +117,7 @@ impl Damage {
             }
             drawn.push(now);
         }
-        rects.extend(self.drawn.iter().skip(jobs.len()).map(|d| d.rect));
+        rects.extend(last.iter().skip(jobs.len()).map(|d| d.rect));
         self.drawn = drawn;
         self.screen = Some(screen);
         if full {
@@ -235,6 +250,36 @@ fn changed_rects(
     }
 }
 
+/// A hash of `job` as egui gave it, with the window's `size` and
+/// `pixels_per_point` (what [`drawn_job`] reads): the clip rect, the texture,
+/// the vertices' and indices' bytes, or the callback's rect. Several times
+/// quicker than [`drawn_job`]'s hash of every triangle, which is needed only
+/// where this one changed.
+fn quick_hash(job: &egui::ClippedPrimitive, pixels_per_point: f32, size: [u32; 2]) -> u64 {
+    let mut h = Hasher::default();
+    let r = job.clip_rect;
+    h.floats(&[r.min.x, r.min.y, r.max.x, r.max.y, pixels_per_point]);
+    h.word(u64::from(size[0]) << 32 | u64::from(size[1]));
+    match &job.primitive {
+        Primitive::Mesh(mesh) => {
+            h.word(match mesh.texture_id {
+                egui::TextureId::Managed(id) => id,
+                egui::TextureId::User(id) => id ^ (1 << 63),
+            });
+            h.bytes(bytemuck::cast_slice(&mesh.vertices));
+            h.word(mesh.vertices.len() as u64);
+            h.bytes(bytemuck::cast_slice(&mesh.indices));
+            h.word(mesh.indices.len() as u64);
+        }
+        Primitive::Callback(callback) => {
+            let r = callback.rect;
+            h.word(2);
+            h.floats(&[r.min.x, r.min.y, r.max.x, r.max.y]);
+        }
+    }
+    h.0
+}
+
 /// What `job` draws and where: hashes (FxHash-style over its words) of the
 /// whole and, for a mesh, of each chunk of its triangles, with their rects.
 fn drawn_job(job: &egui::ClippedPrimitive, pixels_per_point: f32, size: [u32; 2]) -> Drawn {
@@ -260,13 +305,13 @@ fn drawn_job(job: &egui::ClippedPrimitive, pixels_per_point: f32, size: [u32; 2]
                 h.word(*hash);
             }
             h.word(chunks.len() as u64);
-            Drawn { hash: h.0, rect, frame, chunks, triangles }
+            Drawn { quick: 0, hash: h.0, rect, frame, chunks, triangles }
         }
         Primitive::Callback(callback) => {
             h.word(2);
             let r = callback.rect;
             h.floats(&[r.min.x, r.min.y, r.max.x, r.max.y]);
-            Drawn { hash: h.0, rect, frame: 0, chunks: Vec::new(), triangles: Vec::new() }
+            Drawn { quick: 0, hash: h.0, rect, frame: 0, chunks: Vec::new(), triangles: Vec::new() }
         }
     }
 }
@@ -341,6 +386,22 @@ struct Hasher(u64);
 impl Hasher {
     fn word(&mut self, w: u64) {
         self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    /// `bytes` eight at a time (the last word padded with zeros).
+    fn bytes(&mut self, bytes: &[u8]) {
+        let mut words = bytes.chunks_exact(8);
+        for w in &mut words {
+            let mut word = [0u8; 8];
+            word.copy_from_slice(w);
+            self.word(u64::from_le_bytes(word));
+        }
+        let rest = words.remainder();
+        if !rest.is_empty() {
+            let mut word = [0u8; 8];
+            word[..rest.len()].copy_from_slice(rest);
+            self.word(u64::from_le_bytes(word));
+        }
     }
 
     fn floats(&mut self, values: &[f32]) {
@@ -426,5 +487,44 @@ mod tests {
         // Nothing changed: nothing to redraw.
         let regions = damage.regions(&[job(503.0)], size, 1.0, |_| egui_wgpu::CopyChange::All).unwrap();
         assert!(regions.is_empty(), "{regions:?}");
+        // After a frame the same as the one before (its triangles kept, not
+        // found again), a move is still found, and only there.
+        let regions = damage.regions(&[job(503.0)], size, 1.0, |_| egui_wgpu::CopyChange::All).unwrap();
+        assert!(regions.is_empty(), "{regions:?}");
+        let regions = damage.regions(&[job(520.0)], size, 1.0, |_| egui_wgpu::CopyChange::All).unwrap();
+        let [x, y, w, h] = regions.first().copied().unwrap_or_default();
+        assert!(regions.len() == 1 && x >= 495 && x + w <= 540 && y >= 90 && y + h <= 112, "{regions:?}");
+        // A new window size redraws everything.
+        assert!(damage.regions(&[job(520.0)], [900, 200], 1.0, |_| egui_wgpu::CopyChange::All).is_none());
+    }
+
+    #[test]
+    fn the_quick_hash_sees_every_part_of_a_job() {
+        use egui::epaint::{Mesh, Vertex};
+        let vertex = |x: f32, c: u8| Vertex { pos: egui::pos2(x, 1.0), uv: egui::Pos2::ZERO, color: egui::Color32::from_gray(c) };
+        let mesh = |x: f32, c: u8, i: u32| {
+            let mut m = Mesh::default();
+            m.vertices.extend([vertex(0.0, c), vertex(x, c), vertex(x, 255)]);
+            m.indices.extend([0, 1, i]);
+            m
+        };
+        let clip = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(100.0, 100.0));
+        let job = |m: Mesh, clip: egui::Rect| egui::ClippedPrimitive { clip_rect: clip, primitive: Primitive::Mesh(m) };
+        let base = quick_hash(&job(mesh(10.0, 9, 2), clip), 1.0, [100, 100]);
+        assert_eq!(base, quick_hash(&job(mesh(10.0, 9, 2), clip), 1.0, [100, 100]));
+        let others = [
+            quick_hash(&job(mesh(11.0, 9, 2), clip), 1.0, [100, 100]),
+            quick_hash(&job(mesh(10.0, 8, 2), clip), 1.0, [100, 100]),
+            quick_hash(&job(mesh(10.0, 9, 1), clip), 1.0, [100, 100]),
+            quick_hash(&job(mesh(10.0, 9, 2), clip.translate(egui::vec2(1.0, 0.0))), 1.0, [100, 100]),
+            quick_hash(&job(mesh(10.0, 9, 2), clip), 2.0, [100, 100]),
+            quick_hash(&job(mesh(10.0, 9, 2), clip), 1.0, [100, 101]),
+        ];
+        for (i, other) in others.iter().enumerate() {
+            assert_ne!(base, *other, "change {i}");
+        }
+        let mut textured = mesh(10.0, 9, 2);
+        textured.texture_id = egui::TextureId::User(1);
+        assert_ne!(base, quick_hash(&job(textured, clip), 1.0, [100, 100]));
     }
 }
