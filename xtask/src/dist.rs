@@ -10,14 +10,16 @@ const TARGET: &str = "wasm32-unknown-unknown";
 
 /// Builds `dist/`; `fast` skips LTO and wasm-opt for quicker iteration. Returns the dist path.
 pub fn dist(fast: bool) -> Result<PathBuf, String> {
-    dist_with(fast, false)
+    dist_with(fast, false, false)
 }
 
 /// [`dist`], and with `opt` wasm-opt even where the system has none recent enough:
 /// then binaryen from npm (its JavaScript build: minutes on two cores, so only on
-/// request: `cargo xtask dist --opt`). Prints the wasm's size, raw
-/// and gzipped, before and after.
-pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
+/// request: `cargo xtask dist --opt`). With `names` the wasm keeps its name
+/// section (`cargo xtask dist --names`, about twice the size: for CPU profiles
+/// that name each function, see `tests/browser/profile.mjs`). Prints the wasm's
+/// size, raw and gzipped, before and after.
+pub fn dist_with(fast: bool, opt: bool, names: bool) -> Result<PathBuf, String> {
     let root = root();
     let profile = if fast { "web-fast" } else { "web-release" };
     let target_dir = root.join("target/wasm");
@@ -53,7 +55,7 @@ pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
     run(&mut cargo)?;
     let wasm = target_dir.join(TARGET).join(profile).join("mocap_web.wasm");
     if !fast {
-        optimize(&wasm, opt);
+        optimize(&wasm, opt, names);
     }
 
     let dist = root.join("dist");
@@ -61,10 +63,12 @@ pub fn dist_with(fast: bool, opt: bool) -> Result<PathBuf, String> {
     let pkg = dist.join("pkg");
     std::fs::create_dir_all(&pkg).map_err(|e| format!("{}: {e}", pkg.display()))?;
     let bindgen = setup::wasm_bindgen_cli()?;
-    run(Command::new(bindgen)
-        .args(["--target", "web", "--remove-name-section", "--remove-producers-section", "--out-dir"])
-        .arg(&pkg)
-        .arg(&wasm))?;
+    let mut bindgen = Command::new(bindgen);
+    bindgen.args(["--target", "web", "--remove-producers-section"]);
+    if !names {
+        bindgen.arg("--remove-name-section");
+    }
+    run(bindgen.arg("--out-dir").arg(&pkg).arg(&wasm))?;
     let (raw, gz) = sizes(&pkg.join("mocap_web_bg.wasm"));
     println!("xtask: mocap_web_bg.wasm {raw} bytes, {gz} gzipped");
     copy(&root.join("index.html"), &dist.join("index.html"))?;
@@ -116,8 +120,9 @@ const MIN_WASM_OPT: u32 = 116;
 
 /// Shrinks the cargo output with `wasm-opt -Os --strip-debug` (before
 /// wasm-bindgen) when a recent enough binaryen is available (the system's, or with
-/// `npm_fallback` npm's); keeps the input on any failure.
-fn optimize(wasm: &Path, npm_fallback: bool) {
+/// `npm_fallback` npm's); keeps the input on any failure. With `names` it keeps
+/// the name section (`-g` for `--strip-debug`).
+fn optimize(wasm: &Path, npm_fallback: bool, names: bool) {
     let system = setup::wasm_opt().map(PathBuf::from).filter(|w| wasm_opt_version(w) >= MIN_WASM_OPT);
     let Some(wasm_opt) = system.or_else(|| npm_fallback.then(setup::npm_wasm_opt).flatten()) else {
         eprintln!(
@@ -137,8 +142,8 @@ fn optimize(wasm: &Path, npm_fallback: bool) {
     ];
     let before = sizes(wasm);
     let started = std::time::Instant::now();
-    let ok = run(Command::new(&wasm_opt).args(["-Os", "--strip-debug"]).args(features).arg(wasm).arg("-o").arg(&out))
-        .is_ok();
+    let debug = if names { "-g" } else { "--strip-debug" };
+    let ok = run(Command::new(&wasm_opt).args(["-Os", debug]).args(features).arg(wasm).arg("-o").arg(&out)).is_ok();
     if ok && std::fs::rename(&out, wasm).is_ok() {
         let after = sizes(wasm);
         println!(

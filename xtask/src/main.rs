@@ -32,7 +32,10 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("gen-walk") => gen_walk(),
         Some("gen-fonts") => fonts::gen_fonts(),
-        Some("dist") => dist::dist_with(args.iter().any(|a| a == "--fast"), args.iter().any(|a| a == "--opt")).map(|_| ()),
+        Some("dist") => {
+            let flag = |name: &str| args.iter().any(|a| a == name);
+            dist::dist_with(flag("--fast"), flag("--opt"), flag("--names")).map(|_| ())
+        }
         Some("serve") => serve::serve_command(&args[1..]),
         Some("test") => browser::test_all(&args[1..]),
         Some("bench-web") => browser::bench(),
