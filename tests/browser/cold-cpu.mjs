@@ -7,17 +7,11 @@
 // `three-first-frame`). Prints for each page the median first frame, the median CPU
 // in all, and the mean milliseconds per process type and thread name. On a machine
 // whose cores are all busy until the first frame, the CPU in all is what sets it.
-import { launch } from './common.mjs';
+import { launch, toolArgs } from './common.mjs';
 import { threads, spentByThread } from './thread-cpu.mjs';
 
-const args = process.argv.slice(2);
-const url = args[0] ?? 'http://127.0.0.1:8000/';
-const opt = (name, fallback) => {
-  const i = args.indexOf(name);
-  return i >= 0 && i + 1 < args.length ? args[i + 1] : fallback;
-};
-const runs = Number(opt('--runs', '4'));
-const chromium = opt('--chromium', '/usr/bin/chromium');
+const { url, option, chromium } = toolArgs();
+const runs = Number(option('--runs', '4'));
 const pages = [
   ['viewer', url, 'mocap-first-frame'],
   ['three.js', `${url}bench/three/bvh.html?bvh=${encodeURIComponent(`${url}data/walk.bvh`)}`, 'three-first-frame'],

@@ -93,6 +93,36 @@ export async function playCopies(page, text, copies) {
   return waitState(page, (s, n) => s.clips.length === n, copies);
 }
 
+/**
+ * Opens the viewer at `url`, waits for its default clip, then plays `copies`
+ * characters of the BVH `text` ([`playCopies`]). For the performance tools.
+ */
+export async function openPlaying(page, url, text, copies) {
+  await page.goto(url);
+  await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
+  return playCopies(page, text, copies);
+}
+
+/**
+ * The command line of a performance tool (frame-cpu.mjs, cold-cpu.mjs, profile.mjs):
+ * `url`, its first argument (default: `cargo xtask serve`'s address);
+ * `flag(name)`, whether `name` is given; `option(name, fallback)`, the value after
+ * `name`; `chromium`, `--chromium` or Debian's; `clip`, `--file` or data/walk.bvh.
+ */
+export function toolArgs(args = process.argv.slice(2)) {
+  const option = (name, fallback) => {
+    const i = args.indexOf(name);
+    return i >= 0 && i + 1 < args.length ? args[i + 1] : fallback;
+  };
+  return {
+    url: args[0] && !args[0].startsWith('--') ? args[0] : 'http://127.0.0.1:8080/',
+    flag: (name) => args.includes(name),
+    option,
+    chromium: option('--chromium', '/usr/bin/chromium'),
+    clip: option('--file', new URL('../../data/walk.bvh', import.meta.url).pathname),
+  };
+}
+
 /** Dispatches a real `drop` event carrying `bytes` as a File named `name`; returns the drop time. */
 export async function dropFile(page, name, bytes) {
   const b64 = Buffer.from(bytes).toString('base64');

@@ -8,21 +8,14 @@
 // process type and thread name, the frame rate, and the total. The machine's cores are
 // shared by all of them, so the total per frame is what bounds the frame rate.
 import fs from 'node:fs';
-import { launch, waitState, playCopies } from './common.mjs';
+import { launch, openPlaying, toolArgs } from './common.mjs';
 import { threads, spentByThread } from './thread-cpu.mjs';
 
-const args = process.argv.slice(2);
-const url = args[0] ?? 'http://127.0.0.1:8000/';
-const opt = (name, fallback) => {
-  const i = args.indexOf(name);
-  return i >= 0 && i + 1 < args.length ? args[i + 1] : fallback;
-};
-const three = args.includes('--three');
-const file = opt('--file', new URL('../../data/walk.bvh', import.meta.url).pathname);
-const copies = Number(opt('--n', '1'));
-const secs = Number(opt('--secs', '4'));
-const fragment = opt('--fragment', '');
-const chromium = opt('--chromium', '/usr/bin/chromium');
+const { url, flag, option, chromium, clip: file } = toolArgs();
+const three = flag('--three');
+const copies = Number(option('--n', '1'));
+const secs = Number(option('--secs', '4'));
+const fragment = option('--fragment', '');
 const text = fs.readFileSync(file, 'latin1');
 const { page, close } = await launch(chromium, 'webgl2', { viewport: { width: 1280, height: 720 } });
 try {
@@ -33,9 +26,7 @@ try {
     await page.evaluate(([t, n]) => window.openBvh(t, n), [text, copies]);
     frames = () => page.evaluate(() => window.threeBench.frames);
   } else {
-    await page.goto(url + fragment);
-    await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
-    await playCopies(page, text, copies);
+    await openPlaying(page, url + fragment, text, copies);
     frames = () => page.evaluate(() => window.mocapViewer.state().framesRendered);
   }
   await new Promise((r) => setTimeout(r, 1500));

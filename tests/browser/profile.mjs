@@ -12,17 +12,11 @@
 // `(program)` is V8's and Blink's own work (compiling, collecting, the bindings),
 // `(idle)` the thread waiting; the sampling adds to every figure.
 import fs from 'node:fs';
-import { launch, waitState, playCopies } from './common.mjs';
+import { launch, openPlaying, toolArgs } from './common.mjs';
 
-const args = process.argv.slice(2);
-const url = args[0] ?? 'http://127.0.0.1:8080/';
-const opt = (name, fallback) => {
-  const i = args.indexOf(name);
-  return i >= 0 && i + 1 < args.length ? args[i + 1] : fallback;
-};
-const start = args.includes('--start');
-const who = opt('--who', null);
-const chromium = opt('--chromium', '/usr/bin/chromium');
+const { url, flag, option, chromium, clip } = toolArgs();
+const start = flag('--start');
+const who = option('--who', null);
 const MARK = 'mocap-first-frame';
 // The function that marks the first frame, found in the samples: the profile's own
 // clock is not the page's, so the cut is where the page was seen setting the mark.
@@ -59,11 +53,8 @@ try {
     const at = await page.evaluate((m) => performance.getEntriesByName(m)[0].startTime, MARK);
     console.log(`first frame at ${at.toFixed(0)} ms (under the profiler)`);
   } else {
-    const file = opt('--file', new URL('../../data/walk.bvh', import.meta.url).pathname);
-    const secs = Number(opt('--secs', '4'));
-    await page.goto(url);
-    await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 3);
-    await playCopies(page, fs.readFileSync(file, 'latin1'), Number(opt('--n', '1')));
+    const secs = Number(option('--secs', '4'));
+    await openPlaying(page, url, fs.readFileSync(clip, 'latin1'), Number(option('--n', '1')));
     await new Promise((r) => setTimeout(r, 2000));
     const drawn = () => page.evaluate(() => window.mocapViewer.state().framesRendered);
     const f0 = await drawn();

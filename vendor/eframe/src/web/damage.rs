@@ -84,32 +84,16 @@ impl Damage {
         let mut last = std::mem::take(&mut self.drawn);
         for (index, job) in jobs.iter().enumerate() {
             let quick = quick_hash(job, pixels_per_point, size);
-            // Unchanged: it damages nothing, and its triangles were found and
-            // hashed last frame.
-            let unchanged = last.get(index).is_some_and(|before| before.quick == quick);
-            let now = if unchanged {
-                last.get_mut(index).map(std::mem::take).unwrap_or_default()
-            } else {
-                Drawn { quick, ..drawn_job(job, pixels_per_point, size) }
+            let now = match last.get_mut(index) {
+                // The same job as last frame: it damages nothing, and its
+                // triangles were found and hashed then.
+                Some(before) if before.quick == quick => std::mem::take(before),
+                before => {
+                    let now = drawn_job(job, quick, pixels_per_point, size);
+                    damaged(before.as_deref(), &now, &mut rects);
+                    now
+                }
             };
-            match last.get(index) {
-                _ if unchanged => {}
-                Some(before) if before.hash == now.hash && before.rect == now.rect => {}
-                Some(before) if before.frame == now.frame && !now.chunks.is_empty() && !before.chunks.is_empty() => {
-                    let count = before.chunks.len().max(now.chunks.len());
-                    for i in 0..count {
-                        if before.chunks.get(i) != now.chunks.get(i) {
-                            let at = i * CHUNK_TRIANGLES..(i + 1) * CHUNK_TRIANGLES;
-                            rects.push(differing(&before.triangles, &now.triangles, at));
-                        }
-                    }
-                }
-                Some(before) => {
-                    rects.push(before.rect);
-                    rects.push(now.rect);
-                }
-                None => rects.push(now.rect),
-            }
             if let Primitive::Callback(callback) = &job.primitive {
                 // Always asked, so that the change is taken.
                 let change = callback_change(index);
@@ -250,6 +234,28 @@ fn changed_rects(
     }
 }
 
+/// Pushes onto `rects` where the job drawn as `now` damages the window, given
+/// the job drawn at its place last frame (`before`, none for a new place).
+fn damaged(before: Option<&Drawn>, now: &Drawn, rects: &mut Vec<PxRect>) {
+    match before {
+        Some(before) if before.hash == now.hash && before.rect == now.rect => {}
+        Some(before) if before.frame == now.frame && !now.chunks.is_empty() && !before.chunks.is_empty() => {
+            let count = before.chunks.len().max(now.chunks.len());
+            for i in 0..count {
+                if before.chunks.get(i) != now.chunks.get(i) {
+                    let at = i * CHUNK_TRIANGLES..(i + 1) * CHUNK_TRIANGLES;
+                    rects.push(differing(&before.triangles, &now.triangles, at));
+                }
+            }
+        }
+        Some(before) => {
+            rects.push(before.rect);
+            rects.push(now.rect);
+        }
+        None => rects.push(now.rect),
+    }
+}
+
 /// A hash of `job` as egui gave it, with the window's `size` and
 /// `pixels_per_point` (what [`drawn_job`] reads): the clip rect, the texture,
 /// the vertices' and indices' bytes, or the callback's rect. Several times
@@ -262,10 +268,7 @@ fn quick_hash(job: &egui::ClippedPrimitive, pixels_per_point: f32, size: [u32; 2
     h.word(u64::from(size[0]) << 32 | u64::from(size[1]));
     match &job.primitive {
         Primitive::Mesh(mesh) => {
-            h.word(match mesh.texture_id {
-                egui::TextureId::Managed(id) => id,
-                egui::TextureId::User(id) => id ^ (1 << 63),
-            });
+            h.word(texture_word(mesh.texture_id));
             h.bytes(bytemuck::cast_slice(&mesh.vertices));
             h.word(mesh.vertices.len() as u64);
             h.bytes(bytemuck::cast_slice(&mesh.indices));
@@ -280,19 +283,24 @@ fn quick_hash(job: &egui::ClippedPrimitive, pixels_per_point: f32, size: [u32; 2
     h.0
 }
 
-/// What `job` draws and where: hashes (FxHash-style over its words) of the
+/// `id` as one word, managed and user textures apart.
+fn texture_word(id: egui::TextureId) -> u64 {
+    match id {
+        egui::TextureId::Managed(id) => id,
+        egui::TextureId::User(id) => id ^ (1 << 63),
+    }
+}
+
+/// What `job` (whose [`quick_hash`] is `quick`) draws and where: hashes (FxHash-style over its words) of the
 /// whole and, for a mesh, of each chunk of its triangles, with their rects.
-fn drawn_job(job: &egui::ClippedPrimitive, pixels_per_point: f32, size: [u32; 2]) -> Drawn {
+fn drawn_job(job: &egui::ClippedPrimitive, quick: u64, pixels_per_point: f32, size: [u32; 2]) -> Drawn {
     let rect = job_rect(job, pixels_per_point, size);
     let mut h = Hasher::default();
     let r = job.clip_rect;
     h.floats(&[r.min.x, r.min.y, r.max.x, r.max.y]);
     match &job.primitive {
         Primitive::Mesh(mesh) => {
-            h.word(match mesh.texture_id {
-                egui::TextureId::Managed(id) => id,
-                egui::TextureId::User(id) => id ^ (1 << 63),
-            });
+            h.word(texture_word(mesh.texture_id));
             let frame = h.0;
             let clip = to_pixels(job.clip_rect, pixels_per_point, size, 0.0);
             let triangles = mesh
@@ -305,13 +313,13 @@ fn drawn_job(job: &egui::ClippedPrimitive, pixels_per_point: f32, size: [u32; 2]
                 h.word(*hash);
             }
             h.word(chunks.len() as u64);
-            Drawn { quick: 0, hash: h.0, rect, frame, chunks, triangles }
+            Drawn { quick, hash: h.0, rect, frame, chunks, triangles }
         }
         Primitive::Callback(callback) => {
             h.word(2);
             let r = callback.rect;
             h.floats(&[r.min.x, r.min.y, r.max.x, r.max.y]);
-            Drawn { quick: 0, hash: h.0, rect, frame: 0, chunks: Vec::new(), triangles: Vec::new() }
+            Drawn { quick, hash: h.0, rect, frame: 0, chunks: Vec::new(), triangles: Vec::new() }
         }
     }
 }
