@@ -658,7 +658,7 @@ impl Renderer {
         range: std::ops::Range<usize>,
         screen_descriptor: &ScreenDescriptor,
     ) {
-        self.render_range_within(render_pass, paint_jobs, range, screen_descriptor, None);
+        self.render_range_within(render_pass, paint_jobs, range, screen_descriptor, None, &|_| None);
     }
 
     /// Vendored change: draws `fill` (see [`FillQuad::set`]) over `region`
@@ -692,7 +692,10 @@ impl Renderer {
 
     /// Vendored change: [`Renderer::render_range`] drawing only inside
     /// `region` (`[x, y, width, height]` in pixels; `None`: everywhere): each
-    /// job's clip rect is cut to it, and jobs outside it are skipped.
+    /// job's clip rect is cut to it, and jobs outside it are skipped. Of a
+    /// mesh job at index `i` of `paint_jobs`, only the ranges of its indices
+    /// `index_runs(i)` gives are drawn, in order (`None`: all of them): the
+    /// caller knows which triangles may reach the region.
     pub fn render_range_within(
         &self,
         render_pass: &mut wgpu::RenderPass<'static>,
@@ -700,6 +703,7 @@ impl Renderer {
         range: std::ops::Range<usize>,
         screen_descriptor: &ScreenDescriptor,
         region: Option<[u32; 4]>,
+        index_runs: &dyn Fn(usize) -> Option<Vec<std::ops::Range<u32>>>,
     ) {
         profiling::function_scope!();
 
@@ -720,10 +724,9 @@ impl Renderer {
         let mut index_buffer_slices = self.index_buffer.slices.iter().skip(meshes_before);
         let mut vertex_buffer_slices = self.vertex_buffer.slices.iter().skip(meshes_before);
 
-        for epaint::ClippedPrimitive {
-            clip_rect,
-            primitive,
-        } in paint_jobs.get(range).unwrap_or_default()
+        let first = range.start;
+        for (job, epaint::ClippedPrimitive { clip_rect, primitive }) in
+            paint_jobs.get(range).unwrap_or_default().iter().enumerate()
         {
             if needs_reset {
                 render_pass.set_viewport(
@@ -739,13 +742,23 @@ impl Renderer {
                 needs_reset = false;
             }
 
+            // A mesh's index ranges to draw (vendored change): none when
+            // none of its triangles reaches the region.
+            let runs = match primitive {
+                Primitive::Mesh(mesh) => {
+                    let count = mesh.indices.len() as u32;
+                    index_runs(first + job).unwrap_or_else(|| vec![0..count])
+                }
+                Primitive::Callback(_) => Vec::new(),
+            };
+            let nothing = matches!(primitive, Primitive::Mesh(_)) && runs.is_empty();
             {
                 let mut rect = ScissorRect::new(clip_rect, pixels_per_point, size_in_pixels);
                 if let Some(region) = region {
                     rect = rect.within(region);
                 }
 
-                if rect.width == 0 || rect.height == 0 {
+                if rect.width == 0 || rect.height == 0 || nothing {
                     // Skip rendering zero-sized clip areas.
                     if let Primitive::Mesh(_) = primitive {
                         // If this is a mesh, we need to advance the index and vertex buffer iterators:
@@ -771,6 +784,7 @@ impl Renderer {
                         .next()
                         .expect("You must call .update_buffers() before .render()");
 
+                    let count = mesh.indices.len() as u32;
                     if let Some(Texture { bind_group, .. }) = self.textures.get(&mesh.texture_id) {
                         render_pass.set_bind_group(1, bind_group, &[]);
                         render_pass.set_index_buffer(
@@ -785,7 +799,9 @@ impl Renderer {
                                 vertex_buffer_slice.start as u64..vertex_buffer_slice.end as u64,
                             ),
                         );
-                        render_pass.draw_indexed(0..mesh.indices.len() as u32, 0, 0..1);
+                        for run in runs {
+                            render_pass.draw_indexed(run.start.min(count)..run.end.min(count), 0, 0..1);
+                        }
                     } else {
                         log::warn!("Missing texture: {:?}", mesh.texture_id);
                     }

@@ -110,6 +110,42 @@ impl Damage {
         rects.retain(|r| r[2] > r[0] && r[3] > r[1]);
         Some(merge(rects).into_iter().map(|[x0, y0, x1, y1]| [x0, y0, x1 - x0, y1 - y0]).collect())
     }
+
+    /// The ranges of the indices of this frame's mesh job `job` (as given
+    /// to the last [`Damage::regions`]) whose triangles may draw inside
+    /// `region` (`[x, y, width, height]` in pixels), in draw order: the
+    /// chunks of [`CHUNK_TRIANGLES`] triangles whose rect meets it, adjacent
+    /// ones joined; `None`: all of them (the job is not known here).
+    ///
+    /// A triangle draws only inside its rect, so a redraw of `region` that
+    /// draws only these ranges (in order, with the region as the scissor)
+    /// gives its pixels as a draw of the whole mesh does; a software
+    /// rasteriser no longer shades and sets up every vertex and triangle of
+    /// a window-wide mesh (a panel's text, the timeline) for a few pixels.
+    pub fn index_runs(&self, job: usize, region: [u32; 4]) -> Option<Vec<std::ops::Range<u32>>> {
+        let drawn = self.drawn.get(job)?;
+        if drawn.chunks.is_empty() {
+            return None;
+        }
+        let [x, y, w, h] = region;
+        let region: PxRect = [x, y, x.saturating_add(w), y.saturating_add(h)];
+        let meets = |r: &PxRect| r[0] < region[2] && region[0] < r[2] && r[1] < region[3] && region[1] < r[3];
+        let triangles = drawn.triangles.len();
+        let mut runs: Vec<std::ops::Range<u32>> = Vec::new();
+        for (i, (_, rect)) in drawn.chunks.iter().enumerate() {
+            if !meets(rect) {
+                continue;
+            }
+            let first = i * CHUNK_TRIANGLES;
+            let end = (first + CHUNK_TRIANGLES).min(triangles);
+            let (start, end) = ((first * 3) as u32, (end * 3) as u32);
+            match runs.last_mut() {
+                Some(last) if last.end == start => last.end = end,
+                _ => runs.push(start..end),
+            }
+        }
+        Some(runs)
+    }
 }
 
 /// More damaged rects than this are joined into one at once (the pairwise
@@ -460,7 +496,10 @@ mod tests {
         assert_eq!(merge(rects).len(), 2);
         // Cut to the callback's rect.
         let change = egui_wgpu::CopyChange::Rects([[700, 500, 500, 500], [0; 4]]);
-        assert_eq!(changed_rects(change, rect, rect, 1.0, [1000, 800]), vec![[800, 600, 900, 700], [100, 100, 100, 100]]);
+        assert_eq!(
+            changed_rects(change, rect, rect, 1.0, [1000, 800]),
+            vec![[800, 600, 900, 700], [100, 100, 100, 100]]
+        );
     }
 
     #[test]
@@ -473,7 +512,11 @@ mod tests {
             let quad = |m: &mut Mesh, x0: f32, y0: f32, x1: f32, y1: f32| {
                 let base = m.vertices.len() as u32;
                 for (x, y) in [(x0, y0), (x1, y0), (x1, y1), (x0, y1)] {
-                    m.vertices.push(Vertex { pos: egui::pos2(x, y), uv: egui::Pos2::ZERO, color: egui::Color32::WHITE });
+                    m.vertices.push(Vertex {
+                        pos: egui::pos2(x, y),
+                        uv: egui::Pos2::ZERO,
+                        color: egui::Color32::WHITE,
+                    });
                 }
                 m.indices.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
             };
@@ -491,7 +534,10 @@ mod tests {
         let regions = damage.regions(&[job(503.0)], size, 1.0, |_| egui_wgpu::CopyChange::All).unwrap();
         assert_eq!(regions.len(), 1, "{regions:?}");
         let [x, y, w, h] = regions[0];
-        assert!(x >= 495 && x + w <= 520 && y >= 90 && y + h <= 112, "the handle's old and new place only: {regions:?}");
+        assert!(
+            x >= 495 && x + w <= 520 && y >= 90 && y + h <= 112,
+            "the handle's old and new place only: {regions:?}"
+        );
         // Nothing changed: nothing to redraw.
         let regions = damage.regions(&[job(503.0)], size, 1.0, |_| egui_wgpu::CopyChange::All).unwrap();
         assert!(regions.is_empty(), "{regions:?}");
@@ -509,7 +555,11 @@ mod tests {
     #[test]
     fn the_quick_hash_sees_every_part_of_a_job() {
         use egui::epaint::{Mesh, Vertex};
-        let vertex = |x: f32, c: u8| Vertex { pos: egui::pos2(x, 1.0), uv: egui::Pos2::ZERO, color: egui::Color32::from_gray(c) };
+        let vertex = |x: f32, c: u8| Vertex {
+            pos: egui::pos2(x, 1.0),
+            uv: egui::Pos2::ZERO,
+            color: egui::Color32::from_gray(c),
+        };
         let mesh = |x: f32, c: u8, i: u32| {
             let mut m = Mesh::default();
             m.vertices.extend([vertex(0.0, c), vertex(x, c), vertex(x, 255)]);
@@ -534,5 +584,47 @@ mod tests {
         let mut textured = mesh(10.0, 9, 2);
         textured.texture_id = egui::TextureId::User(1);
         assert_ne!(base, quick_hash(&job(textured, clip), 1.0, [100, 100]));
+    }
+
+    #[test]
+    fn a_region_draws_only_the_chunks_of_triangles_that_reach_it() {
+        use egui::epaint::{Mesh, Vertex};
+        // A row of 100 small quads (200 triangles: chunks of 32) across the
+        // window, as a panel's text; the quad at `moved` moves down a pixel.
+        let mesh = |moved: usize| {
+            let mut m = Mesh::default();
+            for i in 0..100 {
+                let (x, y) = (i as f32 * 10.0, if i == moved { 11.0 } else { 10.0 });
+                let base = m.vertices.len() as u32;
+                for (dx, dy) in [(0.0, 0.0), (8.0, 0.0), (8.0, 8.0), (0.0, 8.0)] {
+                    m.vertices.push(Vertex {
+                        pos: egui::pos2(x + dx, y + dy),
+                        uv: egui::Pos2::ZERO,
+                        color: egui::Color32::WHITE,
+                    });
+                }
+                m.indices.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
+            }
+            m
+        };
+        let clip = egui::Rect::from_min_max(egui::pos2(0.0, 0.0), egui::pos2(1000.0, 100.0));
+        let job = |moved| egui::ClippedPrimitive { clip_rect: clip, primitive: Primitive::Mesh(mesh(moved)) };
+        let mut damage = Damage::default();
+        let size = [1000, 100];
+        assert!(damage.regions(&[job(40)], size, 1.0, |_| egui_wgpu::CopyChange::All).is_none());
+        let regions = damage.regions(&[job(41)], size, 1.0, |_| egui_wgpu::CopyChange::All).unwrap();
+        assert_eq!(regions.len(), 1, "{regions:?}");
+        // Quads 40 and 41 are triangles 80..84: the chunk of triangles 64..96.
+        assert_eq!(damage.index_runs(0, regions[0]), Some(vec![64 * 3..96 * 3]));
+        // A region across two chunks gets one run; one reaching none, none.
+        assert_eq!(damage.index_runs(0, [300, 0, 40, 30]), Some(vec![32 * 3..96 * 3]));
+        assert_eq!(damage.index_runs(0, [0, 50, 1000, 30]), Some(Vec::new()));
+        // The first chunk alone; all of them as one run.
+        assert_eq!(damage.index_runs(0, [0, 0, 5, 30]), Some(vec![0..32 * 3]));
+        assert_eq!(damage.index_runs(0, [0, 0, 1000, 30]), Some(vec![0..200 * 3]));
+        // The last chunk ends at the last triangle.
+        assert_eq!(damage.index_runs(0, [990, 0, 10, 30]), Some(vec![192 * 3..200 * 3]));
+        // A job this frame does not have: all of it.
+        assert_eq!(damage.index_runs(1, regions[0]), None);
     }
 }

@@ -387,7 +387,7 @@ impl WebPainter for WebPainterWgpu {
                     }
                     None => None,
                 };
-                if let Some(regions) = regions {
+                if let (Some(regions), Some(damage)) = (regions, self.damage.as_ref()) {
                     if !regions.is_empty() {
                         let color = egui::Color32::from_rgba_premultiplied(
                             (clear_color[0] * 255.0).round() as u8,
@@ -408,6 +408,7 @@ impl WebPainter for WebPainterWgpu {
                             &screen_descriptor,
                             &self.fill,
                             region,
+                            damage,
                         );
                     }
                 } else {
@@ -632,7 +633,9 @@ fn callback_change(
 
 /// Vendored change: redraws `region` (`[x, y, width, height]` in pixels) of
 /// the window's texture: `fill` (the clear colour), then every job inside
-/// it, with the copies (see `copies`) cut to it.
+/// it, with the copies (see `copies`) cut to it; of each mesh only the
+/// triangles `damage` (which made the regions) says may reach it
+/// ([`super::damage::Damage::index_runs`]).
 #[expect(clippy::too_many_arguments)]
 fn redraw_region(
     renderer: &egui_wgpu::Renderer,
@@ -644,7 +647,9 @@ fn redraw_region(
     screen: &egui_wgpu::ScreenDescriptor,
     fill: &egui_wgpu::FillQuad,
     region: [u32; 4],
+    damage: &super::damage::Damage,
 ) {
+    let index_runs = &|job| damage.index_runs(job, region);
     let [rx, ry, rw, rh] = region;
     let mut start = 0;
     for (index, copy) in copies.iter().enumerate() {
@@ -654,7 +659,7 @@ fn redraw_region(
                 renderer.render_fill(&mut pass, fill, screen, band);
             }
         }
-        renderer.render_range_within(&mut pass, jobs, start..copy.primitive, screen, Some(region));
+        renderer.render_range_within(&mut pass, jobs, start..copy.primitive, screen, Some(region), index_runs);
         drop(pass);
         start = copy.primitive + 1;
         let x0 = copy.to.x.max(rx);
@@ -684,7 +689,7 @@ fn redraw_region(
     if copies.is_empty() {
         renderer.render_fill(&mut pass, fill, screen, region);
     }
-    renderer.render_range_within(&mut pass, jobs, start..jobs.len(), screen, Some(region));
+    renderer.render_range_within(&mut pass, jobs, start..jobs.len(), screen, Some(region), index_runs);
 }
 
 /// Vendored change: `region` (`[x, y, width, height]`) less the rects
