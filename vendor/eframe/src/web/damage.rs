@@ -16,8 +16,8 @@ use egui::epaint::Primitive;
 /// A rect in pixels: `[x0, y0, x1, y1]`, `x0 <= x1`, `y0 <= y1`.
 pub(crate) type PxRect = [u32; 4];
 
-/// The most regions a frame is redrawn in (each costs two passes); more
-/// damaged rects are merged.
+/// The most regions damaged rects are merged into (each region is its own
+/// scissored draws, and apart from the others: see [`disjoint`]).
 const MAX_REGIONS: usize = 4;
 
 /// Triangles per chunk of a mesh compared on its own (see [`Drawn::chunks`]).
@@ -66,8 +66,9 @@ impl Damage {
         self.drawn.clear();
     }
 
-    /// The regions of the window (`[x, y, width, height]` in pixels) that
-    /// `jobs` must be redrawn in; `None` when everything must be.
+    /// The regions of the window (`[x, y, width, height]` in pixels, apart
+    /// from each other) that `jobs` must be redrawn in; `None` when
+    /// everything must be.
     /// `callback_change(index)` tells what changed in the copy source of the
     /// paint callback at `index` (relative to its rect, in pixels).
     pub fn regions(
@@ -108,7 +109,7 @@ impl Damage {
             return None;
         }
         rects.retain(|r| r[2] > r[0] && r[3] > r[1]);
-        Some(merge(rects).into_iter().map(|[x0, y0, x1, y1]| [x0, y0, x1 - x0, y1 - y0]).collect())
+        Some(disjoint(merge(rects)).into_iter().map(|[x0, y0, x1, y1]| [x0, y0, x1 - x0, y1 - y0]).collect())
     }
 
     /// The ranges of the indices of this frame's mesh job `job` (as given
@@ -193,6 +194,38 @@ fn merge(mut rects: Vec<PxRect>) -> Vec<PxRect> {
         rects.swap_remove(j);
         rects[i] = joined;
     }
+}
+
+/// `rects` as rects apart from each other covering the same pixels: each
+/// less the ones before it, in bands. Regions apart can be redrawn in any
+/// order, all in one pass (the web painter's `redraw_regions`); overlapping
+/// ones would draw translucent jobs twice where they overlap.
+fn disjoint(rects: Vec<PxRect>) -> Vec<PxRect> {
+    let mut apart: Vec<PxRect> = Vec::with_capacity(rects.len());
+    for rect in rects {
+        let mut left = vec![rect];
+        for &hole in &apart {
+            left = left.into_iter().flat_map(|r| subtract(r, hole)).collect();
+        }
+        apart.extend(left);
+    }
+    apart
+}
+
+/// `a` less `b`: up to four bands (above, below, left, right of `b`).
+fn subtract(a: PxRect, b: PxRect) -> Vec<PxRect> {
+    let [x0, y0, x1, y1] = a;
+    if b[2] <= x0 || x1 <= b[0] || b[3] <= y0 || y1 <= b[1] {
+        return vec![a];
+    }
+    let (top, bottom) = (b[1].max(y0), b[3].min(y1));
+    let bands = [
+        [x0, y0, x1, top],
+        [x0, bottom, x1, y1],
+        [x0, top, b[0].max(x0), bottom],
+        [b[2].min(x1), top, x1, bottom],
+    ];
+    bands.into_iter().filter(|r| r[2] > r[0] && r[3] > r[1]).collect()
 }
 
 fn join(a: PxRect, b: PxRect) -> PxRect {
@@ -626,5 +659,26 @@ mod tests {
         assert_eq!(damage.index_runs(0, [990, 0, 10, 30]), Some(vec![192 * 3..200 * 3]));
         // A job this frame does not have: all of it.
         assert_eq!(damage.index_runs(1, regions[0]), None);
+    }
+
+    #[test]
+    fn regions_are_apart_and_cover_what_was_damaged() {
+        // A tall figure and its long shadow sharing a corner stay two rects
+        // (see above); what they share belongs to one of them only.
+        let figure = [540, 90, 670, 490];
+        let shadow = [540, 450, 890, 540];
+        let apart = disjoint(merge(vec![figure, shadow]));
+        let covered = |x: u32, y: u32| apart.iter().filter(|r| r[0] <= x && x < r[2] && r[1] <= y && y < r[3]).count();
+        for y in (80..560).step_by(5) {
+            for x in (530..900).step_by(5) {
+                let inside = [figure, shadow].iter().any(|r| r[0] <= x && x < r[2] && r[1] <= y && y < r[3]);
+                assert_eq!(covered(x, y), usize::from(inside), "({x}, {y}) in {apart:?}");
+            }
+        }
+        // A rect inside another is gone; ones apart are kept as they are.
+        assert_eq!(disjoint(vec![[0, 0, 100, 100], [10, 10, 20, 20]]), vec![[0, 0, 100, 100]]);
+        assert_eq!(disjoint(vec![[0, 0, 10, 10], [20, 0, 30, 10]]), vec![[0, 0, 10, 10], [20, 0, 30, 10]]);
+        // A rect across the middle of another: its two ends.
+        assert_eq!(disjoint(vec![[10, 0, 20, 100], [0, 40, 30, 50]]), vec![[10, 0, 20, 100], [0, 40, 10, 50], [20, 40, 30, 50]]);
     }
 }

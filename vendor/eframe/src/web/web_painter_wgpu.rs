@@ -397,20 +397,18 @@ impl WebPainter for WebPainterWgpu {
                         );
                         self.fill.set(&render_state.queue, &screen_descriptor, color);
                     }
-                    for region in regions {
-                        redraw_region(
-                            &renderer,
-                            &mut encoder,
-                            &target_view,
-                            target_texture,
-                            clipped_primitives,
-                            &copies,
-                            &screen_descriptor,
-                            &self.fill,
-                            region,
-                            damage,
-                        );
-                    }
+                    redraw_regions(
+                        &renderer,
+                        &mut encoder,
+                        &target_view,
+                        target_texture,
+                        clipped_primitives,
+                        &copies,
+                        &screen_descriptor,
+                        &self.fill,
+                        &regions,
+                        damage,
+                    );
                 } else {
                 let mut start = 0;
                 for (index, copy) in copies.iter().enumerate() {
@@ -631,13 +629,16 @@ fn callback_change(
     }
 }
 
-/// Vendored change: redraws `region` (`[x, y, width, height]` in pixels) of
-/// the window's texture: `fill` (the clear colour), then every job inside
-/// it, with the copies (see `copies`) cut to it; of each mesh only the
-/// triangles `damage` (which made the regions) says may reach it
-/// ([`super::damage::Damage::index_runs`]).
+/// Vendored change: redraws `regions` (`[x, y, width, height]` in pixels,
+/// apart from each other) of the window's texture: in each, `fill` (the
+/// clear colour), then every job inside it, with the copies (see `copies`)
+/// cut to it; of each mesh only the triangles `damage` (which made the
+/// regions) says may reach it ([`super::damage::Damage::index_runs`]). All
+/// regions are drawn in one pass before each copy and one after the last
+/// (scissored to each region in turn): regions apart from each other can be
+/// drawn in any order, and a pass costs some thirty WebGL calls.
 #[expect(clippy::too_many_arguments)]
-fn redraw_region(
+fn redraw_regions(
     renderer: &egui_wgpu::Renderer,
     encoder: &mut wgpu::CommandEncoder,
     view: &wgpu::TextureView,
@@ -646,50 +647,68 @@ fn redraw_region(
     copies: &[Copy<'_>],
     screen: &egui_wgpu::ScreenDescriptor,
     fill: &egui_wgpu::FillQuad,
-    region: [u32; 4],
+    regions: &[[u32; 4]],
     damage: &super::damage::Damage,
 ) {
-    let index_runs = &|job| damage.index_runs(job, region);
-    let [rx, ry, rw, rh] = region;
+    if regions.is_empty() {
+        return;
+    }
+    let draw = |pass: &mut wgpu::RenderPass<'static>, jobs_range: std::ops::Range<usize>, region: [u32; 4]| {
+        let index_runs = |job| damage.index_runs(job, region);
+        renderer.render_range_within(pass, jobs, jobs_range, screen, Some(region), &index_runs);
+    };
     let mut start = 0;
     for (index, copy) in copies.iter().enumerate() {
         let mut pass = begin_pass(encoder, view, wgpu::LoadOp::Load, None).forget_lifetime();
-        if index == 0 {
-            for band in uncovered(region, copies) {
-                renderer.render_fill(&mut pass, fill, screen, band);
+        for &region in regions {
+            if index == 0 {
+                for band in uncovered(region, copies) {
+                    renderer.render_fill(&mut pass, fill, screen, band);
+                }
             }
+            draw(&mut pass, start..copy.primitive, region);
         }
-        renderer.render_range_within(&mut pass, jobs, start..copy.primitive, screen, Some(region), index_runs);
         drop(pass);
         start = copy.primitive + 1;
-        let x0 = copy.to.x.max(rx);
-        let y0 = copy.to.y.max(ry);
-        let x1 = (copy.to.x + copy.size.width).min(rx + rw);
-        let y1 = (copy.to.y + copy.size.height).min(ry + rh);
-        if x1 <= x0 || y1 <= y0 {
-            continue;
+        for &region in regions {
+            copy_within(encoder, copy, texture, region);
         }
-        encoder.copy_texture_to_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: copy.source,
-                mip_level: 0,
-                origin: wgpu::Origin3d { x: copy.from.x + x0 - copy.to.x, y: copy.from.y + y0 - copy.to.y, z: 0 },
-                aspect: wgpu::TextureAspect::All,
-            },
-            wgpu::TexelCopyTextureInfo {
-                texture,
-                mip_level: 0,
-                origin: wgpu::Origin3d { x: x0, y: y0, z: 0 },
-                aspect: wgpu::TextureAspect::All,
-            },
-            wgpu::Extent3d { width: x1 - x0, height: y1 - y0, depth_or_array_layers: 1 },
-        );
     }
     let mut pass = begin_pass(encoder, view, wgpu::LoadOp::Load, None).forget_lifetime();
-    if copies.is_empty() {
-        renderer.render_fill(&mut pass, fill, screen, region);
+    for &region in regions {
+        if copies.is_empty() {
+            renderer.render_fill(&mut pass, fill, screen, region);
+        }
+        draw(&mut pass, start..jobs.len(), region);
     }
-    renderer.render_range_within(&mut pass, jobs, start..jobs.len(), screen, Some(region), index_runs);
+}
+
+/// Vendored change: the part of `copy` inside `region` (`[x, y, width,
+/// height]` in pixels) copied into `texture`.
+fn copy_within(encoder: &mut wgpu::CommandEncoder, copy: &Copy<'_>, texture: &wgpu::Texture, region: [u32; 4]) {
+    let [rx, ry, rw, rh] = region;
+    let x0 = copy.to.x.max(rx);
+    let y0 = copy.to.y.max(ry);
+    let x1 = (copy.to.x + copy.size.width).min(rx + rw);
+    let y1 = (copy.to.y + copy.size.height).min(ry + rh);
+    if x1 <= x0 || y1 <= y0 {
+        return;
+    }
+    encoder.copy_texture_to_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture: copy.source,
+            mip_level: 0,
+            origin: wgpu::Origin3d { x: copy.from.x + x0 - copy.to.x, y: copy.from.y + y0 - copy.to.y, z: 0 },
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d { x: x0, y: y0, z: 0 },
+            aspect: wgpu::TextureAspect::All,
+        },
+        wgpu::Extent3d { width: x1 - x0, height: y1 - y0, depth_or_array_layers: 1 },
+    );
 }
 
 /// Vendored change: `region` (`[x, y, width, height]`) less the rects
