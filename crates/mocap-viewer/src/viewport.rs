@@ -109,6 +109,11 @@ impl egui_wgpu::CallbackTrait for ShowFrame {
         self.shown(resources).map(|(_, shown)| &shown.texture)
     }
 
+    fn covers(&self, resources: &egui_wgpu::CallbackResources) -> bool {
+        // `paint` draws the frame over the whole rect, without blending.
+        self.shown(resources).is_some()
+    }
+
     fn copy_changed(&self, resources: &egui_wgpu::CallbackResources) -> egui_wgpu::CopyChange {
         resources.get::<FrameCopy>().map_or(egui_wgpu::CopyChange::All, |copy| {
             std::mem::replace(&mut *copy.changed.lock(), egui_wgpu::CopyChange::Nothing)

@@ -49,6 +49,11 @@ impl Callback {
     pub fn copy_changed(&self, callback_resources: &CallbackResources) -> CopyChange {
         self.0.copy_changed(callback_resources)
     }
+
+    /// Vendored change: see [`CallbackTrait::covers`].
+    pub fn covers(&self, callback_resources: &CallbackResources) -> bool {
+        self.0.covers(callback_resources)
+    }
 }
 
 /// A callback trait that can be used to compose an [`epaint::PaintCallback`] via [`Callback`]
@@ -145,6 +150,18 @@ pub trait CallbackTrait: Send + Sync {
     /// always right.
     fn copy_changed(&self, _callback_resources: &CallbackResources) -> CopyChange {
         CopyChange::All
+    }
+
+    /// Vendored change: whether [`CallbackTrait::paint`] writes every pixel
+    /// of the callback's rect (within its clip rect), opaque or not, without
+    /// blending, so that what lies under it never shows. A painter that
+    /// redraws parts of its window over a background (eframe's web painter
+    /// on WebGL2) then does not draw the background there first: on a
+    /// software rasteriser that is a blended draw of every pixel of the
+    /// 3D view's changed part, each frame. The default, `false`, is always
+    /// right.
+    fn covers(&self, _callback_resources: &CallbackResources) -> bool {
+        false
     }
 }
 

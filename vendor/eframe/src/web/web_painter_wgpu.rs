@@ -397,6 +397,7 @@ impl WebPainter for WebPainterWgpu {
                         );
                         self.fill.set(&render_state.queue, &screen_descriptor, color);
                     }
+                    let covered = covered(&renderer, clipped_primitives, &screen_descriptor, &copies);
                     redraw_regions(
                         &renderer,
                         &mut encoder,
@@ -404,6 +405,7 @@ impl WebPainter for WebPainterWgpu {
                         target_texture,
                         clipped_primitives,
                         &copies,
+                        &covered,
                         &screen_descriptor,
                         &self.fill,
                         &regions,
@@ -537,7 +539,6 @@ fn copies<'a>(
         return Vec::new();
     }
     let format = target.format().remove_srgb_suffix();
-    let [width, height] = screen.size_in_pixels.map(|v| v as i32);
     let mut out = Vec::new();
     for (index, primitive) in primitives.iter().enumerate() {
         let egui::epaint::Primitive::Callback(callback) = &primitive.primitive else { continue };
@@ -548,13 +549,7 @@ fn copies<'a>(
         else {
             continue;
         };
-        let info = egui::PaintCallbackInfo {
-            viewport: callback.rect,
-            clip_rect: primitive.clip_rect,
-            pixels_per_point: screen.pixels_per_point,
-            screen_size_px: screen.size_in_pixels,
-        };
-        let (view, clip) = (info.viewport_in_pixels(), info.clip_rect_in_pixels());
+        let view = callback_info(primitive, callback, screen).viewport_in_pixels();
         let fits = source.format().remove_srgb_suffix() == format
             && source.sample_count() == 1
             && source.usage().contains(wgpu::TextureUsages::COPY_SRC)
@@ -563,13 +558,7 @@ fn copies<'a>(
         if !fits {
             continue;
         }
-        let x0 = view.left_px.max(clip.left_px).max(0);
-        let y0 = view.top_px.max(clip.top_px).max(0);
-        let x1 = (view.left_px + view.width_px).min(clip.left_px + clip.width_px).min(width);
-        let y1 = (view.top_px + view.height_px).min(clip.top_px + clip.height_px).min(height);
-        if x1 <= x0 || y1 <= y0 {
-            continue;
-        }
+        let Some([x0, y0, x1, y1]) = callback_pixels(primitive, callback, screen, 0) else { continue };
         out.push(Copy {
             primitive: index,
             source,
@@ -579,6 +568,67 @@ fn copies<'a>(
         });
     }
     out
+}
+
+/// Vendored change: the paint information of `callback`, the primitive of `job`.
+fn callback_info(
+    job: &egui::ClippedPrimitive,
+    callback: &egui::PaintCallback,
+    screen: &egui_wgpu::ScreenDescriptor,
+) -> egui::PaintCallbackInfo {
+    egui::PaintCallbackInfo {
+        viewport: callback.rect,
+        clip_rect: job.clip_rect,
+        pixels_per_point: screen.pixels_per_point,
+        screen_size_px: screen.size_in_pixels,
+    }
+}
+
+/// Vendored change: the pixels `callback` (the primitive of `job`) paints,
+/// its rect within its clip rect and the window, as `[x0, y0, x1, y1]`, less
+/// `inset` pixels each side; `None` where that is empty.
+fn callback_pixels(
+    job: &egui::ClippedPrimitive,
+    callback: &egui::PaintCallback,
+    screen: &egui_wgpu::ScreenDescriptor,
+    inset: i32,
+) -> Option<[i32; 4]> {
+    let info = callback_info(job, callback, screen);
+    let (view, clip) = (info.viewport_in_pixels(), info.clip_rect_in_pixels());
+    let [width, height] = screen.size_in_pixels.map(|v| v as i32);
+    let x0 = view.left_px.max(clip.left_px).max(0) + inset;
+    let y0 = view.top_px.max(clip.top_px).max(0) + inset;
+    let x1 = (view.left_px + view.width_px).min(clip.left_px + clip.width_px).min(width) - inset;
+    let y1 = (view.top_px + view.height_px).min(clip.top_px + clip.height_px).min(height) - inset;
+    (x1 > x0 && y1 > y0).then_some([x0, y0, x1, y1])
+}
+
+/// Vendored change: the rects (`[x, y, width, height]` in pixels) whose
+/// pixels `copies` or paint callbacks that cover their rect
+/// ([`egui_wgpu::CallbackTrait::covers`]) write whatever lies under them:
+/// a redrawn region needs no background there. A painted callback's rect is
+/// taken a pixel in from each side (the painter's scissor may round its
+/// edges otherwise).
+fn covered(
+    renderer: &egui_wgpu::Renderer,
+    jobs: &[egui::ClippedPrimitive],
+    screen: &egui_wgpu::ScreenDescriptor,
+    copies: &[Copy<'_>],
+) -> Vec<[u32; 4]> {
+    let copied = copies.iter().map(|c| [c.to.x, c.to.y, c.size.width, c.size.height]);
+    let painted = jobs.iter().enumerate().filter_map(|(index, job)| {
+        let egui::epaint::Primitive::Callback(callback) = &job.primitive else { return None };
+        if copies.iter().any(|c| c.primitive == index) {
+            return None;
+        }
+        let covers = callback
+            .callback
+            .downcast_ref::<egui_wgpu::Callback>()
+            .is_some_and(|c| c.covers(&renderer.callback_resources));
+        let [x0, y0, x1, y1] = callback_pixels(job, callback, screen, 1).filter(|_| covers)?;
+        Some([x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32])
+    });
+    copied.chain(painted).collect()
 }
 
 /// Vendored change: the drawing buffer of `canvas` (WebGL2's default
@@ -645,6 +695,7 @@ fn redraw_regions(
     texture: &wgpu::Texture,
     jobs: &[egui::ClippedPrimitive],
     copies: &[Copy<'_>],
+    covered: &[[u32; 4]],
     screen: &egui_wgpu::ScreenDescriptor,
     fill: &egui_wgpu::FillQuad,
     regions: &[[u32; 4]],
@@ -657,29 +708,27 @@ fn redraw_regions(
         let index_runs = |job| damage.index_runs(job, region);
         renderer.render_range_within(pass, jobs, jobs_range, screen, Some(region), &index_runs);
     };
+    // A pass before each copy, then one after the last; the first draws the
+    // background where nothing covers the region.
     let mut start = 0;
-    for (index, copy) in copies.iter().enumerate() {
+    for (index, copy) in copies.iter().map(Some).chain([None]).enumerate() {
+        let end = copy.map_or(jobs.len(), |c| c.primitive);
         let mut pass = begin_pass(encoder, view, wgpu::LoadOp::Load, None).forget_lifetime();
         for &region in regions {
             if index == 0 {
-                for band in uncovered(region, copies) {
+                for band in uncovered(region, covered) {
                     renderer.render_fill(&mut pass, fill, screen, band);
                 }
             }
-            draw(&mut pass, start..copy.primitive, region);
+            draw(&mut pass, start..end, region);
         }
         drop(pass);
-        start = copy.primitive + 1;
-        for &region in regions {
-            copy_within(encoder, copy, texture, region);
+        if let Some(copy) = copy {
+            start = copy.primitive + 1;
+            for &region in regions {
+                copy_within(encoder, copy, texture, region);
+            }
         }
-    }
-    let mut pass = begin_pass(encoder, view, wgpu::LoadOp::Load, None).forget_lifetime();
-    for &region in regions {
-        if copies.is_empty() {
-            renderer.render_fill(&mut pass, fill, screen, region);
-        }
-        draw(&mut pass, start..jobs.len(), region);
     }
 }
 
@@ -712,12 +761,12 @@ fn copy_within(encoder: &mut wgpu::CommandEncoder, copy: &Copy<'_>, texture: &wg
 }
 
 /// Vendored change: `region` (`[x, y, width, height]`) less the rects
-/// `copies` cover, as a few rects (what the background has to be drawn over).
-fn uncovered(region: [u32; 4], copies: &[Copy<'_>]) -> Vec<[u32; 4]> {
+/// `covered` (the same form), as a few rects (what the background has to be
+/// drawn over).
+fn uncovered(region: [u32; 4], covered: &[[u32; 4]]) -> Vec<[u32; 4]> {
     let mut left = vec![region];
-    for copy in copies {
-        let (cx0, cy0) = (copy.to.x, copy.to.y);
-        let (cx1, cy1) = (cx0 + copy.size.width, cy0 + copy.size.height);
+    for &[cx0, cy0, cw, ch] in covered {
+        let (cx1, cy1) = (cx0 + cw, cy0 + ch);
         left = left
             .into_iter()
             .flat_map(|[x, y, w, h]| {
