@@ -167,6 +167,12 @@ fn corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
 }
 
 /// Both pixel rects together; an empty one adds nothing.
+/// The pixels both `a` and `b` hold (an empty rect where none).
+pub(crate) fn intersection(a: PxRect, b: PxRect) -> PxRect {
+    let (x0, y0) = (a[0].max(b[0]), a[1].max(b[1]));
+    [x0, y0, a[2].min(b[2]).max(x0), a[3].min(b[3]).max(y0)]
+}
+
 pub(crate) fn union(a: PxRect, b: PxRect) -> PxRect {
     let empty = |r: PxRect| r[2] <= r[0] || r[3] <= r[1];
     match (empty(a), empty(b)) {
@@ -179,6 +185,13 @@ pub(crate) fn union(a: PxRect, b: PxRect) -> PxRect {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn intersection_is_what_both_hold() {
+        assert_eq!(intersection([0, 0, 10, 10], [5, 2, 20, 8]), [5, 2, 10, 8]);
+        let apart = intersection([0, 0, 10, 10], [20, 20, 30, 30]);
+        assert!(apart[2] <= apart[0] && apart[3] <= apart[1], "{apart:?}");
+    }
 
     #[test]
     fn union_ignores_empty_rects() {

@@ -401,10 +401,23 @@ impl SceneRenderer {
                 pass.draw(0..6, 0..1);
                 self.draw_calls += 1;
             }
-            if shadows {
+            // The floor's shadow only where it falls this frame (the floor
+            // drawn or copied above holds no shadow): on a software
+            // rasteriser every pixel of the pass is a lookup and a blend.
+            let shadow_area = match (figures, redraw) {
+                (Some([_, fallen]), Some(redraw)) => Some(damage::intersection(fallen, redraw)),
+                (Some([_, fallen]), None) => Some(fallen),
+                (None, _) => redraw,
+            };
+            if shadows && shadow_area.is_none_or(|r| r[2] > r[0] && r[3] > r[1]) {
+                if let Some([x0, y0, x1, y1]) = shadow_area {
+                    pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
+                }
                 pass.set_pipeline(&pipelines.floor_shadow);
                 pass.draw(0..6, 0..1);
                 self.draw_calls += 1;
+                let [x0, y0, x1, y1] = redraw.unwrap_or([0, 0, target.size()[0], target.size()[1]]);
+                pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
             }
         }
         self.draw_calls += self.capsules.draw(&mut pass, &pipelines.capsules, self.lit_indices);
