@@ -675,60 +675,70 @@ impl Renderer {
         range: std::ops::Range<usize>,
         screen_descriptor: &ScreenDescriptor,
     ) {
-        self.render_range_within(render_pass, paint_jobs, range, screen_descriptor, None, &|_| None);
+        self.render_range_within(render_pass, paint_jobs, range, screen_descriptor, None, &|_, _| None);
     }
 
-    /// Vendored change: draws `fill` (see [`FillQuad::set`]) over `region`
-    /// (`[x, y, width, height]` in pixels).
+    /// Vendored change: draws `fill` (see [`FillQuad::set`]) over each of
+    /// `regions` (`[x, y, width, height]` in pixels), its state set once.
     pub fn render_fill(
         &self,
         render_pass: &mut wgpu::RenderPass<'static>,
         fill: &FillQuad,
         screen_descriptor: &ScreenDescriptor,
-        region: [u32; 4],
+        regions: &[[u32; 4]],
     ) {
         let Some(Texture { bind_group, .. }) = self.textures.get(&epaint::TextureId::default()) else {
             return;
         };
         let [width, height] = screen_descriptor.size_in_pixels;
-        let [x, y, w, h] = region;
-        let (x0, y0) = (x.min(width), y.min(height));
-        let (x1, y1) = ((x + w).min(width), (y + h).min(height));
-        if x1 <= x0 || y1 <= y0 {
-            return;
+        let mut bound = false;
+        for &[x, y, w, h] in regions {
+            let (x0, y0) = (x.min(width), y.min(height));
+            let (x1, y1) = (x.saturating_add(w).min(width), y.saturating_add(h).min(height));
+            if x1 <= x0 || y1 <= y0 {
+                continue;
+            }
+            if !bound {
+                render_pass.set_viewport(0.0, 0.0, width as f32, height as f32, 0.0, 1.0);
+                render_pass.set_pipeline(&self.pipeline);
+                render_pass.set_bind_group(0, &self.uniform_bind_group, &[]);
+                render_pass.set_bind_group(1, bind_group, &[]);
+                render_pass.set_index_buffer(fill.indices.slice(..), wgpu::IndexFormat::Uint32);
+                render_pass.set_vertex_buffer(0, fill.vertices.slice(..));
+                bound = true;
+            }
+            render_pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
+            render_pass.draw_indexed(0..6, 0, 0..1);
         }
-        render_pass.set_viewport(0.0, 0.0, width as f32, height as f32, 0.0, 1.0);
-        render_pass.set_pipeline(&self.pipeline);
-        render_pass.set_bind_group(0, &self.uniform_bind_group, &[]);
-        render_pass.set_bind_group(1, bind_group, &[]);
-        render_pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
-        render_pass.set_index_buffer(fill.indices.slice(..), wgpu::IndexFormat::Uint32);
-        render_pass.set_vertex_buffer(0, fill.vertices.slice(..));
-        render_pass.draw_indexed(0..6, 0, 0..1);
     }
 
     /// Vendored change: [`Renderer::render_range`] drawing only inside
-    /// `region` (`[x, y, width, height]` in pixels; `None`: everywhere): each
-    /// job's clip rect is cut to it, and jobs outside it are skipped. Of a
-    /// mesh job at index `i` of `paint_jobs`, only the ranges of its indices
-    /// `index_runs(i)` gives are drawn, in order (`None`: all of them): the
-    /// caller knows which triangles may reach the region.
+    /// `regions` (`[x, y, width, height]` in pixels, apart from each other;
+    /// `None`: everywhere): each job is drawn in each region in turn, its
+    /// clip rect cut to it (skipped where they do not meet), so that a job's
+    /// state is set once for all regions. Of a mesh job at index `i` of
+    /// `paint_jobs`, only the ranges of its indices `index_runs(i, region)`
+    /// gives are drawn in a region, in order (`None`: all of them): the
+    /// caller knows which triangles may reach it. Regions that overlap would
+    /// have translucent jobs drawn twice there.
     pub fn render_range_within(
         &self,
         render_pass: &mut wgpu::RenderPass<'static>,
         paint_jobs: &[epaint::ClippedPrimitive],
         range: std::ops::Range<usize>,
         screen_descriptor: &ScreenDescriptor,
-        region: Option<[u32; 4]>,
-        index_runs: &dyn Fn(usize) -> Option<Vec<std::ops::Range<u32>>>,
+        regions: Option<&[[u32; 4]]>,
+        index_runs: &dyn Fn(usize, [u32; 4]) -> Option<Vec<std::ops::Range<u32>>>,
     ) {
         profiling::function_scope!();
 
         let pixels_per_point = screen_descriptor.pixels_per_point;
         let size_in_pixels = screen_descriptor.size_in_pixels;
+        let everywhere = [[0, 0, size_in_pixels[0], size_in_pixels[1]]];
+        let areas = regions.unwrap_or(&everywhere);
 
         // Whether or not we need to reset the render pass because a paint callback has just
-        // run.
+        // run (or nothing was drawn yet).
         let mut needs_reset = true;
 
         // Each mesh before the range has its slices in the buffers.
@@ -745,53 +755,7 @@ impl Renderer {
         for (job, epaint::ClippedPrimitive { clip_rect, primitive }) in
             paint_jobs.get(range).unwrap_or_default().iter().enumerate()
         {
-            if needs_reset {
-                render_pass.set_viewport(
-                    0.0,
-                    0.0,
-                    size_in_pixels[0] as f32,
-                    size_in_pixels[1] as f32,
-                    0.0,
-                    1.0,
-                );
-                render_pass.set_pipeline(&self.pipeline);
-                render_pass.set_bind_group(0, &self.uniform_bind_group, &[]);
-                needs_reset = false;
-            }
-
-            // A mesh's index ranges to draw (vendored change): none when
-            // none of its triangles reaches the region.
-            let runs = match primitive {
-                Primitive::Mesh(mesh) => {
-                    let count = mesh.indices.len() as u32;
-                    index_runs(first + job).unwrap_or_else(|| vec![0..count])
-                }
-                Primitive::Callback(_) => Vec::new(),
-            };
-            let nothing = matches!(primitive, Primitive::Mesh(_)) && runs.is_empty();
-            {
-                let mut rect = ScissorRect::new(clip_rect, pixels_per_point, size_in_pixels);
-                if let Some(region) = region {
-                    rect = rect.within(region);
-                }
-
-                if rect.width == 0 || rect.height == 0 || nothing {
-                    // Skip rendering zero-sized clip areas.
-                    if let Primitive::Mesh(_) = primitive {
-                        // If this is a mesh, we need to advance the index and vertex buffer iterators:
-                        index_buffer_slices
-                            .next()
-                            .expect("You must call .update_buffers() before .render()");
-                        vertex_buffer_slices
-                            .next()
-                            .expect("You must call .update_buffers() before .render()");
-                    }
-                    continue;
-                }
-
-                render_pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
-            }
-
+            let clip = ScissorRect::new(clip_rect, pixels_per_point, size_in_pixels);
             match primitive {
                 Primitive::Mesh(mesh) => {
                     let index_buffer_slice = index_buffer_slices
@@ -800,27 +764,58 @@ impl Renderer {
                     let vertex_buffer_slice = vertex_buffer_slices
                         .next()
                         .expect("You must call .update_buffers() before .render()");
-
+                    let Some(Texture { bind_group, .. }) = self.textures.get(&mesh.texture_id) else {
+                        log::warn!("Missing texture: {:?}", mesh.texture_id);
+                        continue;
+                    };
                     let count = mesh.indices.len() as u32;
-                    if let Some(Texture { bind_group, .. }) = self.textures.get(&mesh.texture_id) {
-                        render_pass.set_bind_group(1, bind_group, &[]);
-                        render_pass.set_index_buffer(
-                            self.index_buffer.buffer.slice(
-                                index_buffer_slice.start as u64..index_buffer_slice.end as u64,
-                            ),
-                            wgpu::IndexFormat::Uint32,
-                        );
-                        render_pass.set_vertex_buffer(
-                            0,
-                            self.vertex_buffer.buffer.slice(
-                                vertex_buffer_slice.start as u64..vertex_buffer_slice.end as u64,
-                            ),
-                        );
+                    let mut bound = false;
+                    for &area in areas {
+                        let rect = clip.within(area);
+                        // Skip rendering zero-sized clip areas.
+                        if rect.width == 0 || rect.height == 0 {
+                            continue;
+                        }
+                        let runs = match regions {
+                            Some(_) => index_runs(first + job, area).unwrap_or_else(|| vec![0..count]),
+                            None => vec![0..count],
+                        };
+                        if runs.is_empty() {
+                            continue;
+                        }
+                        if needs_reset {
+                            render_pass.set_viewport(
+                                0.0,
+                                0.0,
+                                size_in_pixels[0] as f32,
+                                size_in_pixels[1] as f32,
+                                0.0,
+                                1.0,
+                            );
+                            render_pass.set_pipeline(&self.pipeline);
+                            render_pass.set_bind_group(0, &self.uniform_bind_group, &[]);
+                            needs_reset = false;
+                        }
+                        if !bound {
+                            render_pass.set_bind_group(1, bind_group, &[]);
+                            render_pass.set_index_buffer(
+                                self.index_buffer.buffer.slice(
+                                    index_buffer_slice.start as u64..index_buffer_slice.end as u64,
+                                ),
+                                wgpu::IndexFormat::Uint32,
+                            );
+                            render_pass.set_vertex_buffer(
+                                0,
+                                self.vertex_buffer.buffer.slice(
+                                    vertex_buffer_slice.start as u64..vertex_buffer_slice.end as u64,
+                                ),
+                            );
+                            bound = true;
+                        }
+                        render_pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
                         for run in runs {
                             render_pass.draw_indexed(run.start.min(count)..run.end.min(count), 0, 0..1);
                         }
-                    } else {
-                        log::warn!("Missing texture: {:?}", mesh.texture_id);
                     }
                 }
                 Primitive::Callback(callback) => {
@@ -829,18 +824,26 @@ impl Renderer {
                         continue;
                     };
 
-                    let info = PaintCallbackInfo {
+                    let info = || PaintCallbackInfo {
                         viewport: callback.rect,
                         clip_rect: *clip_rect,
                         pixels_per_point,
                         screen_size_px: size_in_pixels,
                     };
 
-                    let viewport_px = info.viewport_in_pixels();
-                    if viewport_px.width_px > 0 && viewport_px.height_px > 0 {
+                    let viewport_px = info().viewport_in_pixels();
+                    if viewport_px.width_px <= 0 || viewport_px.height_px <= 0 {
+                        continue;
+                    }
+                    for &area in areas {
+                        let rect = clip.within(area);
+                        if rect.width == 0 || rect.height == 0 {
+                            continue;
+                        }
                         profiling::scope!("callback");
 
                         needs_reset = true;
+                        render_pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
 
                         // We're setting a default viewport for the render pass as a
                         // courtesy for the user, so that they don't have to think about
@@ -859,13 +862,15 @@ impl Renderer {
                             1.0,
                         );
 
-                        cbfn.0.paint(info, render_pass, &self.callback_resources);
+                        cbfn.0.paint(info(), render_pass, &self.callback_resources);
                     }
                 }
             }
         }
 
-        render_pass.set_scissor_rect(0, 0, size_in_pixels[0], size_in_pixels[1]);
+        if regions.is_none() {
+            render_pass.set_scissor_rect(0, 0, size_in_pixels[0], size_in_pixels[1]);
+        }
     }
 
     /// Should be called before [`Self::render`].

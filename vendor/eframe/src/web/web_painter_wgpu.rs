@@ -684,9 +684,10 @@ fn callback_change(
 /// clear colour), then every job inside it, with the copies (see `copies`)
 /// cut to it; of each mesh only the triangles `damage` (which made the
 /// regions) says may reach it ([`super::damage::Damage::index_runs`]). All
-/// regions are drawn in one pass before each copy and one after the last
-/// (scissored to each region in turn): regions apart from each other can be
-/// drawn in any order, and a pass costs some thirty WebGL calls.
+/// regions are drawn in one pass before each copy and one after the last,
+/// each job in every region before the next job (its state set once):
+/// regions apart from each other can be drawn in any order, and a pass
+/// costs some thirty WebGL calls.
 #[expect(clippy::too_many_arguments)]
 fn redraw_regions(
     renderer: &egui_wgpu::Renderer,
@@ -704,24 +705,18 @@ fn redraw_regions(
     if regions.is_empty() {
         return;
     }
-    let draw = |pass: &mut wgpu::RenderPass<'static>, jobs_range: std::ops::Range<usize>, region: [u32; 4]| {
-        let index_runs = |job| damage.index_runs(job, region);
-        renderer.render_range_within(pass, jobs, jobs_range, screen, Some(region), &index_runs);
-    };
+    let index_runs = |job, region| damage.index_runs(job, region);
     // A pass before each copy, then one after the last; the first draws the
-    // background where nothing covers the region.
+    // background where nothing covers the regions.
     let mut start = 0;
     for (index, copy) in copies.iter().map(Some).chain([None]).enumerate() {
         let end = copy.map_or(jobs.len(), |c| c.primitive);
         let mut pass = begin_pass(encoder, view, wgpu::LoadOp::Load, None).forget_lifetime();
-        for &region in regions {
-            if index == 0 {
-                for band in uncovered(region, covered) {
-                    renderer.render_fill(&mut pass, fill, screen, band);
-                }
-            }
-            draw(&mut pass, start..end, region);
+        if index == 0 {
+            let bands: Vec<[u32; 4]> = regions.iter().flat_map(|&region| uncovered(region, covered)).collect();
+            renderer.render_fill(&mut pass, fill, screen, &bands);
         }
+        renderer.render_range_within(&mut pass, jobs, start..end, screen, Some(regions), &index_runs);
         drop(pass);
         if let Some(copy) = copy {
             start = copy.primitive + 1;
