@@ -386,8 +386,10 @@ pub struct Queue {
 /// Vendored change: the context state the queue last set in this submission,
 /// so that a call that would change nothing is skipped: the capabilities it
 /// switches (every command buffer starts by switching all of them off, and
-/// every pass again) and the vertex attribute arrays of the bound vertex array
-/// (every draw enables its attributes and gives them their divisors again).
+/// every pass again), the vertex attribute arrays of the bound vertex array
+/// (every draw enables its attributes and gives them their divisors again),
+/// the viewport with its depth range and the scissor rect (egui sets them for
+/// every paint job).
 /// Forgotten at the start of each submission (the context may have been used
 /// between them, e.g. to present). On WebGL each call crosses into JavaScript
 /// and on to the GPU process.
@@ -400,6 +402,10 @@ struct GlState {
     attribs: KnownBits,
     /// Each vertex attribute's divisor, where known.
     divisors: [Option<u32>; 16],
+    /// The viewport and depth range (its ends' bits), where known.
+    viewport: Option<([i32; 4], [u32; 2])>,
+    /// The scissor rect, where known.
+    scissor: Option<[i32; 4]>,
 }
 
 /// Vendored change: on/off flags of which some are known.

@@ -281,7 +281,7 @@ impl super::Queue {
                     }
                 } else {
                     unsafe {
-                        gl.uniform_1_u32(first_instance_location.as_ref(), first_instance);
+                        uniform_if_used(gl, first_instance_location.as_ref(), first_instance);
                     }
 
                     // Don't use `gl.draw_arrays` for `instance_count == 1`.
@@ -325,7 +325,7 @@ impl super::Queue {
                         )
                     }
                 } else {
-                    unsafe { gl.uniform_1_u32(first_instance_location.as_ref(), first_instance) };
+                    unsafe { uniform_if_used(gl, first_instance_location.as_ref(), first_instance) };
 
                     if base_vertex == 0 {
                         unsafe {
@@ -361,7 +361,7 @@ impl super::Queue {
                 indirect_offset,
                 ref first_instance_location,
             } => {
-                unsafe { gl.uniform_1_u32(first_instance_location.as_ref(), 0) };
+                unsafe { uniform_if_used(gl, first_instance_location.as_ref(), 0) };
 
                 unsafe { gl.bind_buffer(glow::DRAW_INDIRECT_BUFFER, Some(indirect_buf)) };
                 unsafe { gl.draw_arrays_indirect_offset(topology, indirect_offset as i32) };
@@ -373,7 +373,7 @@ impl super::Queue {
                 indirect_offset,
                 ref first_instance_location,
             } => {
-                unsafe { gl.uniform_1_u32(first_instance_location.as_ref(), 0) };
+                unsafe { uniform_if_used(gl, first_instance_location.as_ref(), 0) };
 
                 unsafe { gl.bind_buffer(glow::DRAW_INDIRECT_BUFFER, Some(indirect_buf)) };
                 unsafe {
@@ -1448,11 +1448,26 @@ impl super::Queue {
                 ref rect,
                 ref depth,
             } => {
-                unsafe { gl.viewport(rect.x, rect.y, rect.w, rect.h) };
-                unsafe { gl.depth_range_f32(depth.start, depth.end) };
+                // Vendored change: set only where it changed (`GlState`).
+                let now = ([rect.x, rect.y, rect.w, rect.h], [depth.start.to_bits(), depth.end.to_bits()]);
+                let mut state = self.gl_state.lock();
+                if state.viewport != Some(now) {
+                    if state.viewport.is_none_or(|(r, _)| r != now.0) {
+                        unsafe { gl.viewport(rect.x, rect.y, rect.w, rect.h) };
+                    }
+                    if state.viewport.is_none_or(|(_, d)| d != now.1) {
+                        unsafe { gl.depth_range_f32(depth.start, depth.end) };
+                    }
+                    state.viewport = Some(now);
+                }
             }
             C::SetScissor(ref rect) => {
-                unsafe { gl.scissor(rect.x, rect.y, rect.w, rect.h) };
+                // Vendored change: set only where it changed (`GlState`).
+                let now = [rect.x, rect.y, rect.w, rect.h];
+                let changed = self.gl_state.lock().scissor.replace(now) != Some(now);
+                if changed {
+                    unsafe { gl.scissor(rect.x, rect.y, rect.w, rect.h) };
+                }
                 self.set_cap(gl, glow::SCISSOR_TEST, true);
             }
             C::SetStencilFunc {
@@ -2097,3 +2112,13 @@ impl crate::Queue for super::Queue {
 unsafe impl Sync for super::Queue {}
 #[cfg(send_sync)]
 unsafe impl Send for super::Queue {}
+
+/// Vendored change: sets the first-instance uniform only where the program
+/// has it (a draw's `first_instance_location` is `None` where its shader does
+/// not read it): on WebGL a call with no location still crosses into
+/// JavaScript, every draw.
+unsafe fn uniform_if_used(gl: &glow::Context, location: Option<&glow::UniformLocation>, value: u32) {
+    if location.is_some() {
+        unsafe { gl.uniform_1_u32(location, value) };
+    }
+}
