@@ -167,6 +167,18 @@ fn corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
 }
 
 /// Both pixel rects together; an empty one adds nothing.
+/// Where a frame draws the floor's shadow (with `shadows`): where it falls
+/// this frame (`figures`' second rect, see [`figures_rect`]) within the
+/// redrawn rect (`redraw`; `None`: `whole`); `None` where that is empty or
+/// there are no shadows. The floor drawn or copied under it holds no shadow,
+/// and on a software rasteriser every pixel of the pass is a lookup and a
+/// blend.
+pub(crate) fn shadow_area(shadows: bool, figures: Option<[PxRect; 2]>, redraw: Option<PxRect>, whole: PxRect) -> Option<PxRect> {
+    let within = redraw.unwrap_or(whole);
+    let area = figures.map_or(within, |[_, fallen]| intersection(fallen, within));
+    (shadows && area[2] > area[0] && area[3] > area[1]).then_some(area)
+}
+
 /// The pixels both `a` and `b` hold (an empty rect where none).
 pub(crate) fn intersection(a: PxRect, b: PxRect) -> PxRect {
     let (x0, y0) = (a[0].max(b[0]), a[1].max(b[1]));
@@ -185,6 +197,18 @@ pub(crate) fn union(a: PxRect, b: PxRect) -> PxRect {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_floor_shadow_is_drawn_where_it_falls_within_the_redrawn_rect() {
+        let whole = [0, 0, 100, 100];
+        let figures = Some([[10, 10, 30, 60], [20, 50, 90, 70]]);
+        assert_eq!(shadow_area(true, figures, None, whole), Some([20, 50, 90, 70]));
+        assert_eq!(shadow_area(true, figures, Some([0, 0, 60, 60]), whole), Some([20, 50, 60, 60]));
+        assert_eq!(shadow_area(true, None, Some([0, 0, 60, 60]), whole), Some([0, 0, 60, 60]));
+        assert_eq!(shadow_area(true, None, None, whole), Some(whole));
+        assert_eq!(shadow_area(false, figures, None, whole), None);
+        assert_eq!(shadow_area(true, Some([[10, 10, 30, 60], [0; 4]]), None, whole), None);
+    }
 
     #[test]
     fn intersection_is_what_both_hold() {

@@ -385,9 +385,9 @@ impl SceneRenderer {
             load_or_clear(depth_copied, 1.0),
             wgpu::StoreOp::Discard,
         );
-        if let Some([x0, y0, x1, y1]) = redraw {
-            pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
-        }
+        let whole = [0, 0, target.size()[0], target.size()[1]];
+        let [x0, y0, x1, y1] = redraw.unwrap_or(whole);
+        pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
         // Made by `prepare_pipelines` above.
         let Some(pipelines) = pipelines_for(&self.pipelines, key) else { return };
         if scene.grid.is_some() {
@@ -401,22 +401,13 @@ impl SceneRenderer {
                 pass.draw(0..6, 0..1);
                 self.draw_calls += 1;
             }
-            // The floor's shadow only where it falls this frame (the floor
-            // drawn or copied above holds no shadow): on a software
-            // rasteriser every pixel of the pass is a lookup and a blend.
-            let shadow_area = match (figures, redraw) {
-                (Some([_, fallen]), Some(redraw)) => Some(damage::intersection(fallen, redraw)),
-                (Some([_, fallen]), None) => Some(fallen),
-                (None, _) => redraw,
-            };
-            if shadows && shadow_area.is_none_or(|r| r[2] > r[0] && r[3] > r[1]) {
-                if let Some([x0, y0, x1, y1]) = shadow_area {
-                    pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
-                }
+            // The floor's shadow only where it falls (see damage::shadow_area).
+            if let Some([x0, y0, x1, y1]) = damage::shadow_area(shadows, figures, redraw, whole) {
+                pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
                 pass.set_pipeline(&pipelines.floor_shadow);
                 pass.draw(0..6, 0..1);
                 self.draw_calls += 1;
-                let [x0, y0, x1, y1] = redraw.unwrap_or([0, 0, target.size()[0], target.size()[1]]);
+                let [x0, y0, x1, y1] = redraw.unwrap_or(whole);
                 pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
             }
         }
