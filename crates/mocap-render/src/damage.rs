@@ -166,15 +166,12 @@ fn corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
     })
 }
 
-/// Both pixel rects together; an empty one adds nothing.
 /// Where a frame draws the floor's shadow (with `shadows`): where it falls
 /// this frame (`figures`' second rect, see [`figures_rect`]) within the
-/// redrawn rect (`redraw`; `None`: `whole`); `None` where that is empty or
-/// there are no shadows. The floor drawn or copied under it holds no shadow,
-/// and on a software rasteriser every pixel of the pass is a lookup and a
-/// blend.
-pub(crate) fn shadow_area(shadows: bool, figures: Option<[PxRect; 2]>, redraw: Option<PxRect>, whole: PxRect) -> Option<PxRect> {
-    let within = redraw.unwrap_or(whole);
+/// rect the frame redraws (`within`); `None` where that is empty or there
+/// are no shadows. The floor drawn or copied under it holds no shadow, and
+/// on a software rasteriser every pixel of the pass is a lookup and a blend.
+pub(crate) fn shadow_area(shadows: bool, figures: Option<[PxRect; 2]>, within: PxRect) -> Option<PxRect> {
     let area = figures.map_or(within, |[_, fallen]| intersection(fallen, within));
     (shadows && area[2] > area[0] && area[3] > area[1]).then_some(area)
 }
@@ -185,6 +182,7 @@ pub(crate) fn intersection(a: PxRect, b: PxRect) -> PxRect {
     [x0, y0, a[2].min(b[2]).max(x0), a[3].min(b[3]).max(y0)]
 }
 
+/// Both pixel rects together; an empty one adds nothing.
 pub(crate) fn union(a: PxRect, b: PxRect) -> PxRect {
     let empty = |r: PxRect| r[2] <= r[0] || r[3] <= r[1];
     match (empty(a), empty(b)) {
@@ -202,12 +200,12 @@ mod tests {
     fn the_floor_shadow_is_drawn_where_it_falls_within_the_redrawn_rect() {
         let whole = [0, 0, 100, 100];
         let figures = Some([[10, 10, 30, 60], [20, 50, 90, 70]]);
-        assert_eq!(shadow_area(true, figures, None, whole), Some([20, 50, 90, 70]));
-        assert_eq!(shadow_area(true, figures, Some([0, 0, 60, 60]), whole), Some([20, 50, 60, 60]));
-        assert_eq!(shadow_area(true, None, Some([0, 0, 60, 60]), whole), Some([0, 0, 60, 60]));
-        assert_eq!(shadow_area(true, None, None, whole), Some(whole));
-        assert_eq!(shadow_area(false, figures, None, whole), None);
-        assert_eq!(shadow_area(true, Some([[10, 10, 30, 60], [0; 4]]), None, whole), None);
+        assert_eq!(shadow_area(true, figures, whole), Some([20, 50, 90, 70]));
+        assert_eq!(shadow_area(true, figures, [0, 0, 60, 60]), Some([20, 50, 60, 60]));
+        assert_eq!(shadow_area(true, None, [0, 0, 60, 60]), Some([0, 0, 60, 60]));
+        assert_eq!(shadow_area(true, None, whole), Some(whole));
+        assert_eq!(shadow_area(false, figures, whole), None);
+        assert_eq!(shadow_area(true, Some([[10, 10, 30, 60], [0; 4]]), whole), None);
     }
 
     #[test]

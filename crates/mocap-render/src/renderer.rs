@@ -386,7 +386,8 @@ impl SceneRenderer {
             wgpu::StoreOp::Discard,
         );
         let whole = [0, 0, target.size()[0], target.size()[1]];
-        let [x0, y0, x1, y1] = redraw.unwrap_or(whole);
+        let scissor = redraw.unwrap_or(whole);
+        let [x0, y0, x1, y1] = scissor;
         pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
         // Made by `prepare_pipelines` above.
         let Some(pipelines) = pipelines_for(&self.pipelines, key) else { return };
@@ -402,13 +403,12 @@ impl SceneRenderer {
                 self.draw_calls += 1;
             }
             // The floor's shadow only where it falls (see damage::shadow_area).
-            if let Some([x0, y0, x1, y1]) = damage::shadow_area(shadows, figures, redraw, whole) {
+            if let Some([x0, y0, x1, y1]) = damage::shadow_area(shadows, figures, scissor) {
                 pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
                 pass.set_pipeline(&pipelines.floor_shadow);
                 pass.draw(0..6, 0..1);
                 self.draw_calls += 1;
-                let [x0, y0, x1, y1] = redraw.unwrap_or(whole);
-                pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
+                pass.set_scissor_rect(scissor[0], scissor[1], scissor[2] - scissor[0], scissor[3] - scissor[1]);
             }
         }
         self.draw_calls += self.capsules.draw(&mut pass, &pipelines.capsules, self.lit_indices);
