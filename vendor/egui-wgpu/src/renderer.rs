@@ -675,7 +675,7 @@ impl Renderer {
         range: std::ops::Range<usize>,
         screen_descriptor: &ScreenDescriptor,
     ) {
-        self.render_range_within(render_pass, paint_jobs, range, screen_descriptor, None, &|_, _| None);
+        self.render_range_within(render_pass, paint_jobs, range, screen_descriptor, None, &|_, _, _| false);
     }
 
     /// Vendored change: draws `fill` (see [`FillQuad::set`]) over each of
@@ -717,9 +717,10 @@ impl Renderer {
     /// `None`: everywhere): each job is drawn in each region in turn, its
     /// clip rect cut to it (skipped where they do not meet), so that a job's
     /// state is set once for all regions. Of a mesh job at index `i` of
-    /// `paint_jobs`, only the ranges of its indices `index_runs(i, region)`
-    /// gives are drawn in a region, in order (`None`: all of them): the
-    /// caller knows which triangles may reach it. Regions that overlap would
+    /// `paint_jobs`, only the ranges of its indices `index_runs(i, region,
+    /// runs)` puts in `runs` are drawn in a region, in order (where it
+    /// returns `false`: all of them): the caller knows which triangles may
+    /// reach it. Regions that overlap would
     /// have translucent jobs drawn twice there.
     pub fn render_range_within(
         &self,
@@ -728,7 +729,7 @@ impl Renderer {
         range: std::ops::Range<usize>,
         screen_descriptor: &ScreenDescriptor,
         regions: Option<&[[u32; 4]]>,
-        index_runs: &dyn Fn(usize, [u32; 4]) -> Option<Vec<std::ops::Range<u32>>>,
+        index_runs: &dyn Fn(usize, [u32; 4], &mut Vec<std::ops::Range<u32>>) -> bool,
     ) {
         profiling::function_scope!();
 
@@ -751,6 +752,8 @@ impl Renderer {
         let mut index_buffer_slices = self.index_buffer.slices.iter().skip(meshes_before);
         let mut vertex_buffer_slices = self.vertex_buffer.slices.iter().skip(meshes_before);
 
+        // Index ranges of one mesh in one region, kept between draws.
+        let mut runs: Vec<std::ops::Range<u32>> = Vec::new();
         let first = range.start;
         for (job, epaint::ClippedPrimitive { clip_rect, primitive }) in
             paint_jobs.get(range).unwrap_or_default().iter().enumerate()
@@ -776,10 +779,10 @@ impl Renderer {
                         if rect.width == 0 || rect.height == 0 {
                             continue;
                         }
-                        let runs = match regions {
-                            Some(_) => index_runs(first + job, area).unwrap_or_else(|| vec![0..count]),
-                            None => vec![0..count],
-                        };
+                        if !(regions.is_some() && index_runs(first + job, area, &mut runs)) {
+                            runs.clear();
+                            runs.push(0..count);
+                        }
                         if runs.is_empty() {
                             continue;
                         }
@@ -813,7 +816,7 @@ impl Renderer {
                             bound = true;
                         }
                         render_pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
-                        for run in runs {
+                        for run in &runs {
                             render_pass.draw_indexed(run.start.min(count)..run.end.min(count), 0, 0..1);
                         }
                     }

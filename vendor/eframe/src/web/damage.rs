@@ -112,27 +112,28 @@ impl Damage {
         Some(disjoint(merge(rects)).into_iter().map(|[x0, y0, x1, y1]| [x0, y0, x1 - x0, y1 - y0]).collect())
     }
 
-    /// The ranges of the indices of this frame's mesh job `job` (as given
-    /// to the last [`Damage::regions`]) whose triangles may draw inside
-    /// `region` (`[x, y, width, height]` in pixels), in draw order: the
-    /// chunks of [`CHUNK_TRIANGLES`] triangles whose rect meets it, adjacent
-    /// ones joined; `None`: all of them (the job is not known here).
+    /// Sets `runs` to the ranges of the indices of this frame's mesh job
+    /// `job` (as given to the last [`Damage::regions`]) whose triangles may
+    /// draw inside `region` (`[x, y, width, height]` in pixels), in draw
+    /// order: the chunks of [`CHUNK_TRIANGLES`] triangles whose rect meets
+    /// it, adjacent ones joined; `false` (`runs` left empty): all of them
+    /// (the job is not known here). `runs` is the caller's, kept between
+    /// calls: this runs for every mesh in every region, every frame.
     ///
     /// A triangle draws only inside its rect, so a redraw of `region` that
     /// draws only these ranges (in order, with the region as the scissor)
     /// gives its pixels as a draw of the whole mesh does; a software
     /// rasteriser no longer shades and sets up every vertex and triangle of
     /// a window-wide mesh (a panel's text, the timeline) for a few pixels.
-    pub fn index_runs(&self, job: usize, region: [u32; 4]) -> Option<Vec<std::ops::Range<u32>>> {
-        let drawn = self.drawn.get(job)?;
-        if drawn.chunks.is_empty() {
-            return None;
-        }
+    pub fn index_runs(&self, job: usize, region: [u32; 4], runs: &mut Vec<std::ops::Range<u32>>) -> bool {
+        runs.clear();
+        let Some(drawn) = self.drawn.get(job).filter(|d| !d.chunks.is_empty()) else {
+            return false;
+        };
         let [x, y, w, h] = region;
         let region: PxRect = [x, y, x.saturating_add(w), y.saturating_add(h)];
         let meets = |r: &PxRect| r[0] < region[2] && region[0] < r[2] && r[1] < region[3] && region[1] < r[3];
         let triangles = drawn.triangles.len();
-        let mut runs: Vec<std::ops::Range<u32>> = Vec::new();
         for (i, (_, rect)) in drawn.chunks.iter().enumerate() {
             if !meets(rect) {
                 continue;
@@ -145,7 +146,7 @@ impl Damage {
                 _ => runs.push(start..end),
             }
         }
-        Some(runs)
+        true
     }
 }
 
@@ -210,6 +211,18 @@ fn disjoint(rects: Vec<PxRect>) -> Vec<PxRect> {
         apart.extend(left);
     }
     apart
+}
+
+/// `region` less `holes` (both `[x, y, width, height]`), as a few rects in
+/// that form: what of a redrawn region no copy or covering callback writes
+/// (the web painter draws the background there).
+pub(crate) fn uncovered(region: [u32; 4], holes: &[[u32; 4]]) -> Vec<[u32; 4]> {
+    let corners = |[x, y, w, h]: [u32; 4]| [x, y, x + w, y + h];
+    let mut left = vec![corners(region)];
+    for &hole in holes {
+        left = left.into_iter().flat_map(|r| subtract(r, corners(hole))).collect();
+    }
+    left.into_iter().map(|[x0, y0, x1, y1]| [x0, y0, x1 - x0, y1 - y0]).collect()
 }
 
 /// `a` less `b`: up to four bands (above, below, left, right of `b`).
@@ -647,18 +660,24 @@ mod tests {
         assert!(damage.regions(&[job(40)], size, 1.0, |_| egui_wgpu::CopyChange::All).is_none());
         let regions = damage.regions(&[job(41)], size, 1.0, |_| egui_wgpu::CopyChange::All).unwrap();
         assert_eq!(regions.len(), 1, "{regions:?}");
+        // The runs, or `None` for all of them (a buffer with runs of an
+        // earlier call is cleared).
+        let runs = |job, region| {
+            let mut buffer = vec![0..1];
+            damage.index_runs(job, region, &mut buffer).then_some(buffer)
+        };
         // Quads 40 and 41 are triangles 80..84: the chunk of triangles 64..96.
-        assert_eq!(damage.index_runs(0, regions[0]), Some(vec![64 * 3..96 * 3]));
+        assert_eq!(runs(0, regions[0]), Some(vec![64 * 3..96 * 3]));
         // A region across two chunks gets one run; one reaching none, none.
-        assert_eq!(damage.index_runs(0, [300, 0, 40, 30]), Some(vec![32 * 3..96 * 3]));
-        assert_eq!(damage.index_runs(0, [0, 50, 1000, 30]), Some(Vec::new()));
+        assert_eq!(runs(0, [300, 0, 40, 30]), Some(vec![32 * 3..96 * 3]));
+        assert_eq!(runs(0, [0, 50, 1000, 30]), Some(Vec::new()));
         // The first chunk alone; all of them as one run.
-        assert_eq!(damage.index_runs(0, [0, 0, 5, 30]), Some(vec![0..32 * 3]));
-        assert_eq!(damage.index_runs(0, [0, 0, 1000, 30]), Some(vec![0..200 * 3]));
+        assert_eq!(runs(0, [0, 0, 5, 30]), Some(vec![0..32 * 3]));
+        assert_eq!(runs(0, [0, 0, 1000, 30]), Some(vec![0..200 * 3]));
         // The last chunk ends at the last triangle.
-        assert_eq!(damage.index_runs(0, [990, 0, 10, 30]), Some(vec![192 * 3..200 * 3]));
+        assert_eq!(runs(0, [990, 0, 10, 30]), Some(vec![192 * 3..200 * 3]));
         // A job this frame does not have: all of it.
-        assert_eq!(damage.index_runs(1, regions[0]), None);
+        assert_eq!(runs(1, regions[0]), None);
     }
 
     #[test]
@@ -680,5 +699,20 @@ mod tests {
         assert_eq!(disjoint(vec![[0, 0, 10, 10], [20, 0, 30, 10]]), vec![[0, 0, 10, 10], [20, 0, 30, 10]]);
         // A rect across the middle of another: its two ends.
         assert_eq!(disjoint(vec![[10, 0, 20, 100], [0, 40, 30, 50]]), vec![[10, 0, 20, 100], [0, 40, 10, 50], [20, 40, 30, 50]]);
+    }
+
+    #[test]
+    fn the_background_goes_where_nothing_covers_a_region() {
+        // A region with a copy across its middle and one beside it.
+        let bands = uncovered([0, 0, 100, 50], &[[20, 10, 30, 20], [200, 0, 10, 10]]);
+        let area: u32 = bands.iter().map(|b| b[2] * b[3]).sum();
+        assert_eq!(area, 100 * 50 - 30 * 20, "{bands:?}");
+        let inside = |x: u32, y: u32, [bx, by, bw, bh]: [u32; 4]| bx <= x && x < bx + bw && by <= y && y < by + bh;
+        for (x, y) in [(0, 0), (19, 15), (50, 15), (25, 30), (99, 49)] {
+            assert_eq!(bands.iter().filter(|&&b| inside(x, y, b)).count(), 1, "({x}, {y}) in {bands:?}");
+        }
+        assert!(!bands.iter().any(|&b| inside(25, 15, b)), "{bands:?}");
+        // Nothing covered: the region itself.
+        assert_eq!(uncovered([5, 5, 10, 10], &[]), vec![[5, 5, 10, 10]]);
     }
 }

@@ -705,7 +705,7 @@ fn redraw_regions(
     if regions.is_empty() {
         return;
     }
-    let index_runs = |job, region| damage.index_runs(job, region);
+    let index_runs = |job, region, runs: &mut Vec<std::ops::Range<u32>>| damage.index_runs(job, region, runs);
     // A pass before each copy, then one after the last; the first draws the
     // background where nothing covers the regions.
     let mut start = 0;
@@ -713,7 +713,7 @@ fn redraw_regions(
         let end = copy.map_or(jobs.len(), |c| c.primitive);
         let mut pass = begin_pass(encoder, view, wgpu::LoadOp::Load, None).forget_lifetime();
         if index == 0 {
-            let bands: Vec<[u32; 4]> = regions.iter().flat_map(|&region| uncovered(region, covered)).collect();
+            let bands: Vec<[u32; 4]> = regions.iter().flat_map(|&region| super::damage::uncovered(region, covered)).collect();
             renderer.render_fill(&mut pass, fill, screen, &bands);
         }
         renderer.render_range_within(&mut pass, jobs, start..end, screen, Some(regions), &index_runs);
@@ -753,34 +753,6 @@ fn copy_within(encoder: &mut wgpu::CommandEncoder, copy: &Copy<'_>, texture: &wg
         },
         wgpu::Extent3d { width: x1 - x0, height: y1 - y0, depth_or_array_layers: 1 },
     );
-}
-
-/// Vendored change: `region` (`[x, y, width, height]`) less the rects
-/// `covered` (the same form), as a few rects (what the background has to be
-/// drawn over).
-fn uncovered(region: [u32; 4], covered: &[[u32; 4]]) -> Vec<[u32; 4]> {
-    let mut left = vec![region];
-    for &[cx0, cy0, cw, ch] in covered {
-        let (cx1, cy1) = (cx0 + cw, cy0 + ch);
-        left = left
-            .into_iter()
-            .flat_map(|[x, y, w, h]| {
-                let (x1, y1) = (x + w, y + h);
-                if cx1 <= x || x1 <= cx0 || cy1 <= y || y1 <= cy0 {
-                    return vec![[x, y, w, h]];
-                }
-                let (mx0, mx1) = (x.max(cx0), x1.min(cx1));
-                let bands = [
-                    [x, y, w, cy0.saturating_sub(y)],
-                    [x, cy1.min(y1), w, y1.saturating_sub(cy1)],
-                    [x, y.max(cy0), mx0 - x, y1.min(cy1) - y.max(cy0)],
-                    [mx1, y.max(cy0), x1 - mx1, y1.min(cy1) - y.max(cy0)],
-                ];
-                bands.into_iter().filter(|b| b[2] > 0 && b[3] > 0).collect()
-            })
-            .collect();
-    }
-    left
 }
 
 /// The clear of the window to `color`.
