@@ -49,8 +49,9 @@ try {
     check(s.error === null, `no error (${s.error})`);
     check(s.clips.length === 1 && s.clips[0].name === base(acclaim.amc), `one character named after the motion (${s.clips.map((c) => c.name)})`);
     check(s.clips[0].frames === acclaim.frames, `${s.clips[0].frames} frames, the core says ${acclaim.frames}`);
-    await page.evaluate(() => { window.mocapViewer.pause(); window.mocapViewer.seek(0); });
-    await waitFrames(page, 2);
+    // A paused page draws only what changed: wait for the frame after the seek (read
+    // in the same task as the seek, so a quick repaint cannot be missed), not for two more.
+    await changeAndRender(page, (v) => { v.pause(); v.seek(0); });
     const p = await page.evaluate(([j]) => window.mocapViewer.jointPosition(0, j), [acclaim.joint]);
     const d = p ? Math.hypot(p[0] - acclaim.position[0], p[1] - acclaim.position[1], p[2] - acclaim.position[2]) : Infinity;
     check(d < 1e-4, `${acclaim.joint} at frame 0 is at [${p}], the core says [${acclaim.position}]`);
@@ -70,6 +71,7 @@ try {
     await dropFiles(page, [{ name: 'walk.bva', bytes: read(bva) }]);
     const s = await waitDropped(page, 'walk.bva');
     check(s.error === null && s.clips[0].frames === 67, `walk.bva: ${s.clips[0].frames} frames (${s.error})`);
+    await changeAndRender(page, (v) => v.play());
     await waitFrames(page, 2);
     await view3d(page, shot('bva'));
   });
