@@ -37,6 +37,11 @@ pub(crate) struct Pipelines {
     pub(crate) shadow: wgpu::RenderPipeline,
     pub(crate) floor: wgpu::RenderPipeline,
     pub(crate) floor_shadow: wgpu::RenderPipeline,
+    /// The fast look's floor shadows without a map (only in the fast look's
+    /// sets without shadow lookups, which such frames draw with): the capsule
+    /// casters' footprints mark the floor's depth, then the quad over the
+    /// shadow's rect darkens what they marked.
+    pub(crate) footprints: Option<Footprints>,
     pub(crate) capsules: wgpu::RenderPipeline,
     /// Made with the others ahead of use ([`crate::SceneRenderer::prepare_pipelines`]),
     /// else when a frame first has spheres, lines or a copied floor: a page's
@@ -46,6 +51,14 @@ pub(crate) struct Pipelines {
     /// else when a frame first has meshes: a page's first frame without any
     /// does not wait for their shaders.
     pub(crate) meshes: Option<MeshPipelines>,
+}
+
+/// The fast look's floor shadows without a map (capsule.wgsl's `vs_footprint`).
+pub(crate) struct Footprints {
+    /// The casters' footprints into the floor's depth, pulled towards the eye.
+    pub(crate) mark: wgpu::RenderPipeline,
+    /// The shadow's quad, drawn where the depth was marked.
+    pub(crate) darken: wgpu::RenderPipeline,
 }
 
 /// The pipelines of spheres, lines and the floor's depth.
@@ -180,6 +193,38 @@ impl Pipelines {
                 ..base
             },
         );
+        let footprints = (key.fast_look && !key.shadows).then(|| Footprints {
+            mark: pipeline::build(
+                device,
+                &lit_layout,
+                &PipelineSpec {
+                    label: "mocap shadow footprints",
+                    vertex_entry: "vs_footprint",
+                    fragment_entry: "fs_footprint",
+                    color_writes: wgpu::ColorWrites::empty(),
+                    depth_compare: wgpu::CompareFunction::Always,
+                    cull_back: false,
+                    ..base
+                },
+            ),
+            // Passes only where the depth is farther than its own: marked.
+            darken: pipeline::build(
+                device,
+                &lit_layout,
+                &PipelineSpec {
+                    label: "mocap marked floor shadow",
+                    shader: &floor_shader,
+                    vertex_entry: "vs_shadow",
+                    fragment_entry: "fs_marked",
+                    buffers: &[],
+                    color: Some((format, MULTIPLY)),
+                    depth_write: false,
+                    depth_compare: wgpu::CompareFunction::Less,
+                    cull_back: false,
+                    ..base
+                },
+            ),
+        });
         // Impostors: triangles of either winding; alpha is the outline's coverage
         // (samples on a multisampled target, blended on one sample at full
         // quality) and the target keeps its alpha.
@@ -198,6 +243,7 @@ impl Pipelines {
             shadow,
             floor,
             floor_shadow,
+            footprints,
             capsules,
             extras: extras.then(|| ExtraPipelines::new(device, layouts, format, key)),
             meshes: meshes.then(|| MeshPipelines::new(device, layouts, format, key)),

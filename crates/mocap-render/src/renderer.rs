@@ -24,6 +24,9 @@ use crate::spheres::SphereInstance;
 use crate::uniforms::FrameUniforms;
 use crate::{Camera, RenderTarget, Scene, SkinnedDraw};
 use glam::Vec3;
+use overlays::sort_farthest_first;
+
+mod overlays;
 
 /// Draws [`Scene`]s with one device and colour format, into targets of any
 /// sample count. Pipelines are made per sample count and look when first drawn
@@ -74,6 +77,10 @@ pub struct SceneRenderer {
     /// Whether this frame's bodies cast their shadows as their bones' capsules
     /// (the fast look, with [`Scene::body_casters`]) rather than as meshes.
     bodies_cast_as_capsules: bool,
+    /// Whether this frame's shadow falls on the floor as the casters'
+    /// footprints, without a map (the fast look where capsules are all
+    /// that cast: [`SceneRenderer::fast_look`]).
+    footprints: bool,
     /// The floor of a still camera, drawn once (floor_cache.rs).
     floor_cache: FloorCache,
     /// Whether the last frame's floor was copied from the cache.
@@ -101,8 +108,10 @@ pub struct SceneRenderer {
     /// from a map of texels twice as large (a quarter of the texels to clear and
     /// fill each frame; unless screen pixels, which no texel is smaller than,
     /// are larger still) with one lookup per pixel instead of four (harder
-    /// edges), capsules spanning under two pixels left out (with their
-    /// shadows), bodies casting their shadows as their bones' capsules
+    /// edges) or, where capsules are all that cast (bodies as below), no map
+    /// at all: the floor's shadow drawn as their footprints and none on the
+    /// figures themselves; capsules spanning under two pixels left out (with
+    /// their shadows), bodies casting their shadows as their bones' capsules
     /// ([`Scene::body_casters`]), and bodies spanning under
     /// [`crate::COARSE_BODY_SPAN_PX`] drawn with their coarse meshes
     /// ([`SkinnedDraw::coarse`]). Off by default.
@@ -199,6 +208,7 @@ impl SceneRenderer {
             meshes,
             skinned,
             bodies_cast_as_capsules: false,
+            footprints: false,
             floor_cache: FloorCache::new(copies),
             floor_copied: false,
             last_frame: None,
@@ -274,7 +284,13 @@ impl SceneRenderer {
     /// ([`SceneRenderer::encode`] does on first use; doing it ahead moves the
     /// shader compilation, slow on some platforms, to a chosen moment).
     pub fn prepare_pipelines(&mut self, device: &wgpu::Device, sample_count: u32, fast_look: bool, shadows: bool) {
-        self.make_pipelines(device, PipelineKey { samples: sample_count, fast_look, shadows }, true, true);
+        let key = |shadows| PipelineKey { samples: sample_count, fast_look, shadows };
+        self.make_pipelines(device, key(shadows && !fast_look), true, true);
+        // The fast look's shadows are capsules' footprints (no lookups), or
+        // from the map where meshes cast.
+        if fast_look && shadows {
+            self.make_pipelines(device, key(true), true, true);
+        }
     }
 
     /// Makes the pipelines for `key` if they are not made yet, the extras
@@ -304,9 +320,9 @@ impl SceneRenderer {
     }
 
     /// The pipelines a frame into a target of `samples` samples draws with,
-    /// with shadows or not.
+    /// with shadows or not (not looked up where they are footprints).
     fn key_for(&self, samples: u32, shadows: bool) -> PipelineKey {
-        PipelineKey { samples, fast_look: self.fast_look, shadows }
+        PipelineKey { samples, fast_look: self.fast_look, shadows: shadows && !self.footprints }
     }
 
     /// Records the draw of `scene` into `encoder`, targeting `target` (of any
@@ -371,7 +387,7 @@ impl SceneRenderer {
         // its rasteriser first, so a copy behind the shadow pass kept the
         // thread from setting up the scene's triangles while the map was
         // drawn (about 0.5 ms of a 64-character frame).
-        if shadows {
+        if shadows && !self.footprints {
             self.encode_shadow_pass(encoder, key);
         }
         let depth_copied = copy.as_ref().is_some_and(|c| c.copy_depth);
@@ -403,9 +419,13 @@ impl SceneRenderer {
                 self.draw_calls += 1;
             }
             // The floor's shadow only where it falls (see damage::shadow_area).
+            let footprints = pipelines.footprints.as_ref().filter(|_| self.footprints);
+            if let Some(footprints) = footprints.filter(|_| shadows) {
+                self.draw_calls += self.capsules.draw(&mut pass, &footprints.mark, self.caster_indices);
+            }
             if let Some([x0, y0, x1, y1]) = damage::shadow_area(shadows, figures, scissor) {
                 pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
-                pass.set_pipeline(&pipelines.floor_shadow);
+                pass.set_pipeline(footprints.map_or(&pipelines.floor_shadow, |f| &f.darken));
                 pass.draw(0..6, 0..1);
                 self.draw_calls += 1;
                 pass.set_scissor_rect(scissor[0], scissor[1], scissor[2] - scissor[0], scissor[3] - scissor[1]);
@@ -596,7 +616,10 @@ impl SceneRenderer {
             (Some(map), true) => map,
             _ => &mut self.shadow,
         };
-        if let Some(view) = &view {
+        // Capsules all that cast in the fast look: their footprints, no map.
+        let mesh_casters = self.meshes.has_draws() || (self.skinned.has_draws() && !self.bodies_cast_as_capsules);
+        self.footprints = self.fast_look && view.is_some() && scene.grid.is_some() && !mesh_casters;
+        if let Some(view) = view.as_ref().filter(|_| !self.footprints) {
             map.fit(device, view.texels, &self.shadow_layout);
         }
         let light = view.map(|v| v.on_map(map.size));
@@ -644,45 +667,9 @@ impl SceneRenderer {
     }
 }
 
-impl SceneRenderer {
-    /// Uploads the scene's lines, overlay lines and spheres, the lines and
-    /// spheres farthest first where `look` blends their outlines.
-    fn upload_lines_and_spheres(
-        &mut self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        scene: &Scene,
-        camera: &Camera,
-        look: PipelineKey,
-    ) {
-        let ppp = self.pixels_per_point;
-        let z_row = camera.view.row(2);
-        let view_z = |p: Vec3| z_row.dot(p.extend(1.0));
-        self.line_scratch.clear();
-        self.line_scratch.extend(scene.overlay_lines.iter().map(|l| LineInstance::new(l, ppp)));
-        self.overlay_lines.upload_quads(device, queue, &self.line_scratch);
-        self.line_scratch.clear();
-        self.line_scratch.extend(scene.lines.iter().map(|l| LineInstance::new(l, ppp)));
-        self.sphere_scratch.clear();
-        self.sphere_scratch.extend(scene.spheres.iter().map(SphereInstance::new));
-        if look.blends_outlines() {
-            sort_farthest_first(&mut self.line_scratch, |l| view_z((Vec3::from(l.a) + Vec3::from(l.b)) * 0.5));
-            sort_farthest_first(&mut self.sphere_scratch, |s| view_z(Vec3::from(s.center)));
-        }
-        self.lines.upload_quads(device, queue, &self.line_scratch);
-        self.spheres.upload_quads(device, queue, &self.sphere_scratch);
-    }
-}
-
 /// A rect as `[x, y, width, height]` from min x, min y, max x, max y.
 fn size_form([x0, y0, x1, y1]: damage::PxRect) -> [u32; 4] {
     [x0, y0, x1.saturating_sub(x0), y1.saturating_sub(y0)]
-}
-
-/// Orders `items` farthest first by their view-space depth `z` (more negative
-/// is farther): blended outlines need what lies behind them drawn first.
-fn sort_farthest_first<T>(items: &mut [T], z: impl Fn(&T) -> f32) {
-    items.sort_unstable_by(|p, q| z(p).total_cmp(&z(q)));
 }
 
 /// Keeps what an attachment holds (`load`), or else clears it to `clear`.

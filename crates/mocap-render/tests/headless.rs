@@ -164,6 +164,51 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
 }
 
 #[test]
+fn the_fast_look_darkens_the_floor_once_under_crossing_casters_where_the_map_does() {
+    let Some((device, queue, mut renderer, target)) = setup(1) else { return };
+    let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
+    let mut scene =
+        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let bare = read_pixels(&device, &queue, &target);
+    // Two bars crossing above the floor (their shadows overlap) and a pole.
+    let bar = |a: Vec3, b: Vec3, radius: f32| Capsule { a, b, radius, color: [200, 60, 60, 255] };
+    scene.capsules.push(bar(Vec3::new(-1.2, 1.0, -0.6), Vec3::new(1.2, 1.0, 0.6), 0.2));
+    scene.capsules.push(bar(Vec3::new(-1.2, 1.2, 0.6), Vec3::new(1.2, 1.2, -0.6), 0.2));
+    scene.capsules.push(bar(Vec3::new(0.8, 0.0, 0.8), Vec3::new(0.8, 1.5, 0.8), 0.15));
+    let luma = |p: &[u8]| p[0] as f32 + p[1] as f32 + p[2] as f32;
+    // Floor pixels darkened (not the red capsules), as a ratio to the bare floor.
+    let shadowed = |pixels: &[u8]| -> Vec<Option<f32>> {
+        bare.chunks(4)
+            .zip(pixels.chunks(4))
+            .map(|(b, l)| (l[0] <= l[1] + 10 && luma(l) + 12.0 < luma(b)).then(|| luma(l) / luma(b).max(1.0)))
+            .collect()
+    };
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let map = shadowed(&read_pixels(&device, &queue, &target));
+    renderer.fast_look = true;
+    renderer.render(&device, &queue, &target, &scene, &camera);
+    let fast = shadowed(&read_pixels(&device, &queue, &target));
+    let (in_map, in_fast) = (map.iter().flatten().count(), fast.iter().flatten().count());
+    assert!(in_map > 500, "the casters shadow the floor: {in_map} pixels");
+    // The footprints fall where the map's shadow does, edges aside (the full
+    // quality's soft edge reaches a little farther than the hard one).
+    let only_fast = map.iter().zip(&fast).filter(|(m, f)| m.is_none() && f.is_some()).count();
+    let only_map = map.iter().zip(&fast).filter(|(m, f)| m.is_some() && f.is_none()).count();
+    assert!(
+        only_fast * 8 < in_map && only_map * 4 < in_map,
+        "the same shadow: {in_fast} pixels against the map's {in_map}; {only_fast} only in the fast look, {only_map} only with the map"
+    );
+    // One darkness, where one caster's shadow falls and where two overlap.
+    let mut ratios: Vec<f32> = fast.iter().flatten().copied().collect();
+    ratios.sort_by(f32::total_cmp);
+    let (darkest, middle) = (ratios[0], ratios[ratios.len() / 2]);
+    assert!(middle - darkest < 0.06, "darkened once: the darkest {darkest}, the median {middle}");
+    let full_strength = map.iter().flatten().copied().fold(f32::MAX, f32::min);
+    assert!((middle - full_strength).abs() < 0.06, "as dark as the map's full shadow: {middle} against {full_strength}");
+}
+
+#[test]
 fn a_shadow_falls_where_the_key_light_projects_its_caster() {
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
     let camera = Camera::look_at(Vec3::new(0.0, 8.0, 0.01), Vec3::ZERO, 0.8, 1.0);

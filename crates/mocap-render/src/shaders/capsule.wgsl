@@ -417,3 +417,65 @@ fn fs_shadow(in: ShadowOut) {
         discard;
     }
 }
+
+// The fast look's floor shadows without a shadow map: each caster's footprint
+// on the floor marks the depth there (the floor's, a little farther: MARK_DEPTH;
+// no colour), then one quad over the shadow's rect darkens the marked pixels
+// (floor.wgsl's `fs_marked`), each once however many footprints overlap. A floor point is in shadow where the key light's ray from it
+// meets the capsule: where, in the plane across the light, it lies within the
+// radius of the axis (the outline the shadow map's pass draws, without its
+// texels).
+
+struct FootprintOut {
+    @builtin(position) position: vec4<f32>,
+    // The floor point in the plane across the light (world units).
+    @location(0) xy: vec2<f32>,
+    // The axis's ends in that plane, and the radius.
+    @location(1) @interpolate(flat) ends: vec4<f32>,
+    @location(2) @interpolate(flat) radius: f32,
+    @location(3) world: vec3<f32>,
+};
+
+// A unit vector across the key light (`l`); `cross(l, it)` is the other.
+fn across_light(l: vec3<f32>) -> vec3<f32> {
+    let other = select(vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(1.0, 0.0, 0.0), abs(l.z) > 0.9);
+    return normalize(cross(l, other));
+}
+
+@vertex
+fn vs_footprint(v: CapsuleIn) -> FootprintOut {
+    let l = frame.light_dir.xyz;
+    let u = across_light(l);
+    let w = cross(l, u);
+    let a = vec2<f32>(dot(v.a, u), dot(v.a, w));
+    let b = vec2<f32>(dot(v.b, u), dot(v.b, w));
+    let r = abs(v.radius);
+    // The outline's rectangle (or its triangle where the CPU forced one: it
+    // holds the outline too), in the plane across the light.
+    let q = capsule_corner(v.corner, axis_of(a, b), a, r, b, r, 0.0, 0.0);
+    // The floor point seen there along the light: its coordinates across the
+    // light are q's, and its height the floor's (the light comes from above).
+    let floor_y = frame.floor_center.y;
+    let t = (floor_y - q.x * u.y - q.y * w.y) / max(l.y, 1e-6);
+    let p = q.x * u + q.y * w + t * l;
+    var out: FootprintOut;
+    out.position = frame.projection * frame.view * vec4<f32>(p, 1.0);
+    out.position.z += MARK_DEPTH * out.position.w;
+    out.xy = q;
+    out.ends = vec4<f32>(a, b);
+    out.radius = r;
+    out.world = p;
+    return out;
+}
+
+// Depth only (the pipeline writes no colour).
+@fragment
+fn fs_footprint(in: FootprintOut) -> @location(0) vec4<f32> {
+    let a = in.ends.xy;
+    let ab = in.ends.zw - a;
+    let s = clamp(dot(in.xy - a, ab) / max(dot(ab, ab), 1e-30), 0.0, 1.0);
+    if (distance(in.xy, a + ab * s) > in.radius) {
+        discard;
+    }
+    return vec4<f32>(0.0);
+}

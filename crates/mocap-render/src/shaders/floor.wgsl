@@ -60,12 +60,6 @@ fn fs_depth() -> @location(0) vec4<f32> {
     return vec4<f32>(0.0);
 }
 
-// Opacity of the floor at `p`: 1 near the centre, fading out towards the edge.
-fn floor_alpha(p: vec3<f32>) -> f32 {
-    let r = length(p.xz - frame.floor_center.xz) / max(frame.floor_center.w, 1e-6);
-    return 1.0 - smoothstep(0.45, 1.0, r);
-}
-
 @vertex
 fn vs_shadow(@builtin(vertex_index) vertex: u32) -> Out {
     var xs = array<f32, 6>(0.0, 1.0, 0.0, 0.0, 1.0, 1.0);
@@ -75,14 +69,25 @@ fn vs_shadow(@builtin(vertex_index) vertex: u32) -> Out {
     let p = vec3<f32>(mix(r.x, r.z, xs[i]), frame.floor_center.y, mix(r.y, r.w, zs[i]));
     var out: Out;
     out.position = frame.projection * frame.view * vec4<f32>(p, 1.0);
+    // Between the floor and the marks of `fs_marked` (the map's shadow quad
+    // draws whatever the depth).
+    out.position.z += 0.5 * MARK_DEPTH * out.position.w;
     out.world = p;
     return out;
+}
+
+// The fast look's shadow where the casters' footprints marked the floor's
+// depth (capsule.wgsl's `vs_footprint`; the pipeline's depth test passes there
+// only): the factor of the floor in full shadow.
+@fragment
+fn fs_marked(in: Out) -> @location(0) vec4<f32> {
+    let k = floor_shadow_factor(in.world, 1.0 - frame.viewport.w);
+    return vec4<f32>(k, k, k, 1.0);
 }
 
 // A factor the colour below is multiplied by: 1 in light, darker in shadow.
 @fragment
 fn fs_shadow(in: Out) -> @location(0) vec4<f32> {
-    let lit = key_visibility(in.world, vec3<f32>(0.0, 1.0, 0.0));
-    let k = 1.0 - (1.0 - lit) * 0.55 * floor_alpha(in.world) * frame.floor_color.a;
+    let k = floor_shadow_factor(in.world, key_visibility(in.world, vec3<f32>(0.0, 1.0, 0.0)));
     return vec4<f32>(k, k, k, 1.0);
 }

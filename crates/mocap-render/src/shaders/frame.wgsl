@@ -69,3 +69,22 @@ fn to_target(c: vec4<f32>) -> vec4<f32> {
     let hi = 1.055 * pow(max(c.rgb, vec3<f32>(0.0)), vec3<f32>(1.0 / 2.4)) - 0.055;
     return vec4<f32>(select(hi, lo, c.rgb <= vec3<f32>(0.0031308)), c.a);
 }
+
+// How far behind the floor the fast look's shadow footprints mark its depth, in
+// normalized depth (capsule.wgsl's `vs_footprint`); the quad that darkens the
+// marked pixels lies half as far behind, so its depth test tells them from the
+// floor by far more than the rounding between triangles of one plane, and the
+// figures drawn after them are not hidden by the marks.
+const MARK_DEPTH: f32 = 4e-6;
+
+// Opacity of the floor at `p`: 1 near the centre, fading out towards the edge.
+fn floor_alpha(p: vec3<f32>) -> f32 {
+    let r = length(p.xz - frame.floor_center.xz) / max(frame.floor_center.w, 1e-6);
+    return 1.0 - smoothstep(0.45, 1.0, r);
+}
+
+// How much a floor shadow at `p` darkens the floor: the factor the colour
+// below is multiplied by where the key light is `lit` (0 in full shadow).
+fn floor_shadow_factor(p: vec3<f32>, lit: f32) -> f32 {
+    return 1.0 - (1.0 - lit) * 0.55 * floor_alpha(p) * frame.floor_color.a;
+}
