@@ -406,6 +406,16 @@ struct GlState {
     viewport: Option<([i32; 4], [u32; 2])>,
     /// The scissor rect, where known.
     scissor: Option<[i32; 4]>,
+    /// The buffer bound to `ARRAY_BUFFER`, where known: only from one vertex
+    /// attribute to the next (any other command forgets it).
+    array_buffer: Option<Option<glow::Buffer>>,
+    /// The depth test's function and write mask, where known.
+    depth: Option<(u32, bool)>,
+    /// The last stencil function (face, function, reference, read mask) and
+    /// write mask and operations (face, mask, fail, depth fail, pass), where
+    /// known.
+    stencil_func: Option<(u32, u32, u32, u32)>,
+    stencil_ops: Option<(u32, u32, [u32; 3])>,
 }
 
 /// Vendored change: on/off flags of which some are known.

@@ -255,6 +255,11 @@ impl super::Queue {
         #[cfg_attr(target_arch = "wasm32", allow(unused))] data_bytes: &[u8],
         queries: &[glow::Query],
     ) {
+        // Vendored change: the `ARRAY_BUFFER` binding is known only from one
+        // vertex attribute to the next (`GlState::array_buffer`).
+        if !matches!(*command, C::SetVertexAttribute { .. }) {
+            self.gl_state.lock().array_buffer = None;
+        }
         match *command {
             C::Draw {
                 topology,
@@ -1250,6 +1255,11 @@ impl super::Queue {
                 unsafe { gl.color_mask(true, true, true, true) };
                 unsafe { gl.depth_mask(true) };
                 unsafe { gl.stencil_mask(!0) };
+                // Vendored change: the masks are no longer what was recorded.
+                let mut state = self.gl_state.lock();
+                state.depth = None;
+                state.stencil_ops = None;
+                drop(state);
                 self.set_cap(gl, glow::DEPTH_TEST, false);
                 self.set_cap(gl, glow::STENCIL_TEST, false);
                 self.set_cap(gl, glow::SCISSOR_TEST, false);
@@ -1476,22 +1486,33 @@ impl super::Queue {
                 reference,
                 read_mask,
             } => {
-                unsafe { gl.stencil_func_separate(face, function, reference as i32, read_mask) };
+                // Vendored change: set only where it changed (`GlState`).
+                let now = (face, function, reference, read_mask);
+                if self.gl_state.lock().stencil_func.replace(now) != Some(now) {
+                    unsafe { gl.stencil_func_separate(face, function, reference as i32, read_mask) };
+                }
             }
             C::SetStencilOps {
                 face,
                 write_mask,
                 ref ops,
             } => {
-                unsafe { gl.stencil_mask_separate(face, write_mask) };
-                unsafe { gl.stencil_op_separate(face, ops.fail, ops.depth_fail, ops.pass) };
+                // Vendored change: set only where it changed (`GlState`).
+                let now = (face, write_mask, [ops.fail, ops.depth_fail, ops.pass]);
+                if self.gl_state.lock().stencil_ops.replace(now) != Some(now) {
+                    unsafe { gl.stencil_mask_separate(face, write_mask) };
+                    unsafe { gl.stencil_op_separate(face, ops.fail, ops.depth_fail, ops.pass) };
+                }
             }
             C::SetVertexAttribute {
                 buffer,
                 ref buffer_desc,
                 attribute_desc: ref vat,
             } => {
-                unsafe { gl.bind_buffer(glow::ARRAY_BUFFER, buffer) };
+                // Vendored change: bound only where it changed (`GlState`).
+                if self.gl_state.lock().array_buffer.replace(buffer) != Some(buffer) {
+                    unsafe { gl.bind_buffer(glow::ARRAY_BUFFER, buffer) };
+                }
                 self.set_attrib_array(gl, vat.location, true);
 
                 if buffer.is_none() {
@@ -1562,8 +1583,14 @@ impl super::Queue {
                 };
             }
             C::SetDepth(ref depth) => {
-                unsafe { gl.depth_func(depth.function) };
-                unsafe { gl.depth_mask(depth.mask) };
+                // Vendored change: set only where it changed (`GlState`).
+                let known = self.gl_state.lock().depth.replace((depth.function, depth.mask));
+                if known.map(|k| k.0) != Some(depth.function) {
+                    unsafe { gl.depth_func(depth.function) };
+                }
+                if known.map(|k| k.1) != Some(depth.mask) {
+                    unsafe { gl.depth_mask(depth.mask) };
+                }
             }
             C::SetDepthBias(bias) => {
                 if bias.is_enabled() {
