@@ -113,6 +113,8 @@ impl Instance {
             .expect("Cannot create context options");
         js_sys::Reflect::set(&context_options, &"preserveDrawingBuffer".into(), &JsValue::TRUE)
             .expect("Cannot create context options");
+        js_sys::Reflect::set(&context_options, &"alpha".into(), &JsValue::FALSE)
+            .expect("Cannot create context options");
         context_options
     }
 }
