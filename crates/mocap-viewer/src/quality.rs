@@ -1,8 +1,10 @@
 //! How the 3D view trades looks for speed: full quality (multisampled edges),
 //! a fast look (the 3D view drawn at half the display's resolution per axis
 //! and stretched over its rect, one sample per pixel, and the renderer's
-//! `SceneRenderer::fast_look`: a smaller shadow map read once per pixel,
-//! capsules spanning under two pixels left out), or the automatic rule between
+//! `SceneRenderer::fast_look`: the floor's shadow drawn from the casters'
+//! footprints where capsules are all that cast, else a smaller shadow map read
+//! once per pixel; capsules spanning under two pixels left out), or the
+//! automatic rule between
 //! them. The panels, tree, inspector and timeline around the view are never
 //! touched by it: they are drawn at the display's resolution in every look,
 //! and their text stays sharp while the view moves.
