@@ -403,8 +403,7 @@ impl SceneRenderer {
         );
         let whole = [0, 0, target.size()[0], target.size()[1]];
         let scissor = redraw.unwrap_or(whole);
-        let [x0, y0, x1, y1] = scissor;
-        pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
+        scissor_to(&mut pass, scissor);
         // Made by `prepare_pipelines` above.
         let Some(pipelines) = pipelines_for(&self.pipelines, key) else { return };
         if scene.grid.is_some() {
@@ -418,17 +417,18 @@ impl SceneRenderer {
                 pass.draw(0..6, 0..1);
                 self.draw_calls += 1;
             }
-            // The floor's shadow only where it falls (see damage::shadow_area).
+            // The floor's shadow only where it falls (see damage::shadow_area);
+            // footprint frames have shadows (`upload`).
             let footprints = pipelines.footprints.as_ref().filter(|_| self.footprints);
-            if let Some(footprints) = footprints.filter(|_| shadows) {
+            if let Some(footprints) = footprints {
                 self.draw_calls += self.capsules.draw(&mut pass, &footprints.mark, self.caster_indices);
             }
-            if let Some([x0, y0, x1, y1]) = damage::shadow_area(shadows, figures, scissor) {
-                pass.set_scissor_rect(x0, y0, x1 - x0, y1 - y0);
+            if let Some(area) = damage::shadow_area(shadows, figures, scissor) {
+                scissor_to(&mut pass, area);
                 pass.set_pipeline(footprints.map_or(&pipelines.floor_shadow, |f| &f.darken));
                 pass.draw(0..6, 0..1);
                 self.draw_calls += 1;
-                pass.set_scissor_rect(scissor[0], scissor[1], scissor[2] - scissor[0], scissor[3] - scissor[1]);
+                scissor_to(&mut pass, scissor);
             }
         }
         self.draw_calls += self.capsules.draw(&mut pass, &pipelines.capsules, self.lit_indices);
@@ -670,6 +670,12 @@ impl SceneRenderer {
 /// A rect as `[x, y, width, height]` from min x, min y, max x, max y.
 fn size_form([x0, y0, x1, y1]: damage::PxRect) -> [u32; 4] {
     [x0, y0, x1.saturating_sub(x0), y1.saturating_sub(y0)]
+}
+
+/// Draws only within `rect` (min x, min y, max x, max y) from here on.
+fn scissor_to(pass: &mut wgpu::RenderPass<'_>, rect: damage::PxRect) {
+    let [x, y, w, h] = size_form(rect);
+    pass.set_scissor_rect(x, y, w, h);
 }
 
 /// Keeps what an attachment holds (`load`), or else clears it to `clear`.

@@ -100,13 +100,19 @@ fn draws_lines_spheres_and_grid_offscreen() {
     assert!(green_rows.iter().all(|&r| r < SIZE as usize / 2), "sphere above the centre: rows {green_rows:?}");
 }
 
+/// A camera looking straight down from `height` at a 4 m floor around the
+/// origin, and a scene with that floor alone.
+fn floor_from(height: f32) -> (Camera, Scene) {
+    let camera = Camera::look_at(Vec3::new(0.0, height, 0.01), Vec3::ZERO, 0.8, 1.0);
+    let scene = Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    (camera, scene)
+}
+
 #[test]
 fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
     let Some((device, queue, mut renderer, target)) = setup(4) else { return };
     // Looking straight down at a floor with a pole standing at its centre.
-    let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
-    let mut scene =
-        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    let (camera, mut scene) = floor_from(6.0);
     renderer.render(&device, &queue, &target, &scene, &camera);
     let bare = read_pixels(&device, &queue, &target);
     scene.capsules.push(Capsule {
@@ -166,9 +172,7 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
 #[test]
 fn the_fast_look_darkens_the_floor_once_under_crossing_casters_where_the_map_does() {
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
-    let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
-    let mut scene =
-        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    let (camera, mut scene) = floor_from(6.0);
     renderer.render(&device, &queue, &target, &scene, &camera);
     let bare = read_pixels(&device, &queue, &target);
     // Two bars crossing above the floor (their shadows overlap) and a pole.
@@ -211,9 +215,7 @@ fn the_fast_look_darkens_the_floor_once_under_crossing_casters_where_the_map_doe
 #[test]
 fn a_shadow_falls_where_the_key_light_projects_its_caster() {
     let Some((device, queue, mut renderer, target)) = setup(1) else { return };
-    let camera = Camera::look_at(Vec3::new(0.0, 8.0, 0.01), Vec3::ZERO, 0.8, 1.0);
-    let mut scene =
-        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    let (camera, mut scene) = floor_from(8.0);
     // A ball in the air, and a small one off to a side so that the fitted shadow
     // map is not symmetric about the ball (a mirrored lookup would then miss it).
     let ball = Vec3::new(0.0, 1.5, 0.0);
@@ -506,9 +508,7 @@ fn gpu_skinning_matches_the_cpu_blend() {
 fn a_multisampled_renderer_also_draws_into_a_single_sample_target_and_blit_copies_it() {
     let Some((device, queue, mut renderer, target)) = setup(4) else { return };
     let single = RenderTarget::new(&device, FORMAT, 1, [SIZE, SIZE]);
-    let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
-    let mut scene =
-        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    let (camera, mut scene) = floor_from(6.0);
     scene.capsules.push(Capsule { a: Vec3::ZERO, b: Vec3::new(0.0, 2.5, 0.0), radius: 0.3, color: [200, 60, 60, 255] });
     // The same scene into both: the images differ only along edges.
     renderer.render(&device, &queue, &target, &scene, &camera);
@@ -1284,9 +1284,7 @@ fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
         weights_view: false,
         shape: None,
     };
-    let camera = Camera::look_at(Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO, 0.8, 1.0);
-    let mut scene =
-        Scene { grid: Some(Grid::floor(Vec3::new(-2.0, 0.0, -2.0), Vec3::splat(2.0), 1.0, 10.0)), ..Scene::default() };
+    let (camera, mut scene) = floor_from(6.0);
     renderer.render(&device, &queue, &target, &scene, &camera);
     let bare = read_pixels(&device, &queue, &target);
     let luma = |p: &[u8]| p[0] as u32 + p[1] as u32 + p[2] as u32;

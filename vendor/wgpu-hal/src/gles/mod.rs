@@ -389,7 +389,8 @@ pub struct Queue {
 /// every pass again), the vertex attribute arrays of the bound vertex array
 /// (every draw enables its attributes and gives them their divisors again),
 /// the viewport with its depth range and the scissor rect (egui sets them for
-/// every paint job).
+/// every paint job), the depth and stencil state (every pipeline sets it) and
+/// the `ARRAY_BUFFER` binding between a draw's vertex attributes.
 /// Forgotten at the start of each submission (the context may have been used
 /// between them, e.g. to present). On WebGL each call crosses into JavaScript
 /// and on to the GPU process.
