@@ -12,6 +12,7 @@ const status = document.getElementById('status');
 const input = document.getElementById('file-input');
 
 function showStatus(text, isError = false) {
+  status.classList.remove('starting');
   status.textContent = text;
   status.classList.toggle('error', isError);
   status.hidden = false;
@@ -29,7 +30,7 @@ let source = { kind: 'default', urls: [], name: 'walk.bvh' };
 function showProgress(name, received, total) {
   const mb = (n) => (n / 1048576).toFixed(1);
   status.replaceChildren();
-  status.classList.remove('error');
+  status.classList.remove('error', 'starting');
   const text = document.createElement('div');
   text.textContent = total ? `Loading ${name}: ${mb(received)} / ${mb(total)} MB` : `Loading ${name}: ${mb(received)} MB`;
   const bar = document.createElement('progress');

@@ -62,6 +62,39 @@ try {
     check(await page.evaluate(() => window.mocapViewer.warmUp()), 'warmUp() runs again on demand');
   });
 
+  await step('the start message shows only when the start takes over a second', async () => {
+    // The WebAssembly held back 3 s: the page is blank at first, then says
+    // it is loading, then the viewer replaces the message. A fresh browser: the
+    // first's offline copy (sw.js) would answer without the hold.
+    const { page, close } = await launch(chromiumPath, mode);
+    await page.route('**/pkg/mocap_web_bg.wasm', async (route) => {
+      await new Promise((r) => setTimeout(r, 3000));
+      await route.continue();
+    });
+    try {
+      await page.goto(url, { waitUntil: 'commit' });
+      await page.waitForSelector('#status', { state: 'attached' });
+      const early = await page.evaluate(() => {
+        const st = document.getElementById('status');
+        const delays = st.getAnimations().map((a) => a.effect.getTiming().delay);
+        return { t: performance.now(), visibility: getComputedStyle(st).visibility, delays };
+      });
+      check(early.delays.length === 1 && early.delays[0] === 1000, `the message waits 1 s before it shows (${JSON.stringify(early)})`);
+      if (early.t < 900) check(early.visibility === 'hidden', `blank before then (${early.visibility} at ${early.t.toFixed(0)} ms)`);
+      // The delay counts from the message's first style (the page's first frame).
+      await page.waitForFunction(() => getComputedStyle(document.getElementById('status')).visibility === 'visible', null, { polling: 50, timeout: 2500 }).catch(() => null);
+      const late = await page.evaluate(() => {
+        const st = document.getElementById('status');
+        return { visibility: getComputedStyle(st).visibility, hidden: st.hidden, text: st.textContent, started: !!window.mocapViewer };
+      });
+      check(!late.started && late.visibility === 'visible' && !late.hidden && late.text === 'Loading viewer\u2026', `after 1 s, still loading, it says so (${JSON.stringify(late)})`);
+      const s = await waitState(page, (s) => s.clips.length === 1 && s.framesRendered > 0);
+      check(s.clips[0].name === 'walk.bvh' && await page.evaluate(() => document.getElementById('status').hidden), 'once the viewer draws, the message is gone');
+    } finally {
+      await close();
+    }
+  });
+
   await step('clicking a joint in the hierarchy selects it', async () => {
     await slowClick(page, 62, 130); // "Spine", second joint row of the default clip's tree (under the character and offset rows)
     const s = await waitState(page, (s) => s.selectedJoint !== null, null, 20000);
