@@ -108,17 +108,7 @@ const QUAD: [u32; 6] = [0, 1, 2, 2, 1, 3];
 /// capsule's size).
 const TRIANGLE_CORNER: f32 = 4.0;
 
-/// Capsules narrower than this many pixels (texels in the shadow map) are
-/// drawn as one triangle (by capsule.wgsl, which gets it from
-/// [`shader_source`]).
-const ONE_TRIANGLE_BELOW: f32 = 16.0;
-
-/// capsule.wgsl (without the lit prelude) with [`ONE_TRIANGLE_BELOW`]
-/// declared ahead of it: one value for the shader's shapes and the CPU's
-/// [`is_one_triangle`].
-pub(crate) fn shader_source() -> String {
-    format!("const ONE_TRIANGLE_BELOW: f32 = {ONE_TRIANGLE_BELOW:?};\n{}", include_str!("shaders/capsule.wgsl"))
-}
+use crate::shader_text::ONE_TRIANGLE_BELOW;
 
 /// Whether a capsule of `radius` is surely drawn as one triangle in every
 /// pass: its bounding sphere spans under [`ONE_TRIANGLE_BELOW`] pixels

@@ -44,6 +44,7 @@ mod readback;
 mod renderer;
 mod scene;
 mod shader_source;
+mod shader_text;
 mod shadow;
 mod skinned;
 mod spheres;

@@ -106,8 +106,7 @@ pub(crate) const KEEP: wgpu::BlendComponent = wgpu::BlendComponent {
     operation: wgpu::BlendOperation::Add,
 };
 
-/// WGSL sources: the shared uniform and lighting code prepended to each shader.
-pub(crate) const LIT_PRELUDE: &str = concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/lighting.wgsl"));
+use crate::shader_text::{capsule_source, floor_source, lit_source};
 
 /// The pipelines made for `key` among `made`, if they are.
 pub(crate) fn pipelines_for(made: &[(PipelineKey, Pipelines)], key: PipelineKey) -> Option<&Pipelines> {
@@ -146,7 +145,7 @@ impl Pipelines {
             bind_group_layouts: &[Some(frame_layout)],
             immediate_size: 0,
         });
-        let capsule_shader = crate::shader_source::module(device, "mocap capsules", lit_source(&capsule::shader_source()));
+        let capsule_shader = crate::shader_source::module(device, "mocap capsules", capsule_source());
         let floor_shader = crate::shader_source::module(device, "mocap floor", floor_source());
         let capsule_buffers = [Some(wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
@@ -396,16 +395,6 @@ impl MeshPipelines {
         );
         MeshPipelines { morph, morph_shadow, skinned, skinned_shadow }
     }
-}
-
-/// `body` after the shared uniform and lighting code.
-pub(crate) fn lit_source(body: &str) -> String {
-    format!("{LIT_PRELUDE}{body}")
-}
-
-/// The floor's module source.
-pub(crate) fn floor_source() -> String {
-    lit_source(include_str!("shaders/floor.wgsl"))
 }
 
 /// A shader module of `body` after the shared uniform and lighting code.

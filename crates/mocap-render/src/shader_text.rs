@@ -1,0 +1,41 @@
+//! The WGSL text of the renderer's lit modules: the shared prelude, the
+//! capsules' and the floor's modules. Plain `std` code with no other crate
+//! paths, so that `build.rs` compiles this same file (`#[path]`) to make the
+//! first frame's modules into naga IR at build time from exactly the text the
+//! renderer uses (see `shader_source.rs`).
+
+/// The shared uniform and lighting code prepended to each lit shader.
+pub(crate) const LIT_PRELUDE: &str = concat!(include_str!("shaders/frame.wgsl"), include_str!("shaders/lighting.wgsl"));
+
+/// Capsules narrower than this many pixels (texels in the shadow map) are
+/// drawn as one triangle (by capsule.wgsl, which gets it from
+/// [`capsule_body`]).
+pub(crate) const ONE_TRIANGLE_BELOW: f32 = 16.0;
+
+/// A lit module's source: [`LIT_PRELUDE`], then `body`.
+pub(crate) fn lit_source(body: &str) -> String {
+    format!("{LIT_PRELUDE}{body}")
+}
+
+/// capsule.wgsl (without the lit prelude) with [`ONE_TRIANGLE_BELOW`]
+/// declared ahead of it: one value for the shader's shapes and the CPU's
+/// `capsule::is_one_triangle`.
+pub(crate) fn capsule_body() -> String {
+    format!("const ONE_TRIANGLE_BELOW: f32 = {ONE_TRIANGLE_BELOW:?};\n{}", include_str!("shaders/capsule.wgsl"))
+}
+
+/// The capsules' module source.
+pub(crate) fn capsule_source() -> String {
+    lit_source(&capsule_body())
+}
+
+/// The floor's module source.
+pub(crate) fn floor_source() -> String {
+    lit_source(include_str!("shaders/floor.wgsl"))
+}
+
+/// The sources of the modules a first frame of capsules over the floor is
+/// drawn with, in the order `build.rs` writes their IR.
+pub(crate) fn first_frame_sources() -> [String; 2] {
+    [capsule_source(), floor_source()]
+}
