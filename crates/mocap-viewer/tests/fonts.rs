@@ -112,3 +112,38 @@ fn the_whole_ui_draws_without_a_missing_glyph() {
     frame(&ctx, Some(&mut v), 0.4);
     assert!(v.snapshot().error.is_some(), "the error banner was drawn");
 }
+
+/// Each glyph's pixels in the font atlas for the last of `runs` (text, size in
+/// points), laid out one after the other in a new context (hinting on, as
+/// the viewer draws).
+fn last_glyphs(runs: &[(&str, f32)]) -> Vec<Vec<egui::Color32>> {
+    let ctx = context();
+    ctx.fonts_mut(|fonts| {
+        let mut last = None;
+        for &(text, size) in runs {
+            last = Some(fonts.layout_no_wrap(text.to_owned(), egui::FontId::proportional(size), egui::Color32::WHITE));
+        }
+        let image = fonts.image();
+        let galley = last.expect("at least one run");
+        let glyphs = galley.rows.iter().flat_map(|row| row.glyphs.iter());
+        glyphs
+            .map(|g| {
+                let ([x0, y0], [x1, y1]) = (g.uv_rect.min, g.uv_rect.max);
+                (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x as usize, y as usize))).map(|at| image[at]).collect()
+            })
+            .collect()
+    })
+}
+
+/// Vendored epaint keeps a font's hinting instances per size (`hinting.rs`):
+/// a glyph must come out the same whatever sizes the font drew before it,
+/// including a size it drew, left, and comes back to.
+#[test]
+fn a_glyph_is_drawn_the_same_whatever_sizes_the_font_drew_before() {
+    let alone = last_glyphs(&[("Hamburgefonstiv 0123", 20.0)]);
+    assert!(alone.iter().filter(|g| !g.is_empty()).count() > 10, "glyphs drawn");
+    let after_others = last_glyphs(&[("Hamburgefonstiv 0123", 11.0), ("Hamburgefonstiv", 14.0), ("Hamburgefonstiv 0123", 20.0)]);
+    assert_eq!(after_others, alone);
+    let back = last_glyphs(&[("xyz", 20.0), ("Hamburgefonstiv 0123", 14.0), ("Hamburgefonstiv 0123", 20.0)]);
+    assert_eq!(back, alone);
+}
