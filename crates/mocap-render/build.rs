@@ -5,7 +5,6 @@
 //! in the page's start (see `src/shader_source.rs`). A module that does not
 //! parse fails the build with naga's message.
 
-#[allow(dead_code)]
 #[path = "src/shader_text.rs"]
 mod shader_text;
 

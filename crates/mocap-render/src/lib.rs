@@ -67,7 +67,7 @@ pub use renderer::SceneRenderer;
 #[cfg(feature = "test-support")]
 pub use renderer::TestPaths;
 pub use scene::{Capsule, Line, Scene, Sphere};
-pub use shader_source::parse_shaders_ahead;
+pub use shader_source::read_shaders_ahead;
 pub use shadow::key_light_direction;
 pub use skinned::{COARSE_BODY_SPAN_PX, SkinnedDraw, SkinnedMeshData, SkinnedTexture, SkinnedVertex};
 pub use target::RenderTarget;

@@ -8,7 +8,7 @@
 //! page's start and made the browser recompile naga's parser with its
 //! optimising tier on the same two cores. `build.rs` parses them at build time
 //! into naga IR (postcard bytes, from the same text: `shader_text.rs`);
-//! [`parse_shaders_ahead`] reads that IR back before the device exists (the web
+//! [`read_shaders_ahead`] reads that IR back before the device exists (the web
 //! viewer calls it while it waits for one; a few milliseconds), and [`module`]
 //! hands wgpu the module on the GL back end (`ShaderSource::Naga`, validated
 //! by wgpu as WGSL is). Elsewhere (WebGPU, whose browser takes WGSL; Vulkan)
@@ -22,7 +22,7 @@ use crate::shader_text::first_frame_sources;
 
 thread_local! {
     /// Modules read ahead, by their WGSL.
-    static PARSED: RefCell<HashMap<String, wgpu::naga::Module>> = RefCell::new(HashMap::new());
+    static READ_AHEAD: RefCell<HashMap<String, wgpu::naga::Module>> = RefCell::new(HashMap::new());
 }
 
 /// The first frame's modules as naga IR in postcard bytes, written by
@@ -35,24 +35,24 @@ const FIRST_FRAME_IR: [&[u8]; 2] = [
 /// Reads the first frame's modules for [`module`] from the IR made at build
 /// time, if not yet read. IR that does not read (it cannot, being made from
 /// the same text by the same naga) is left out: wgpu then parses the WGSL.
-pub fn parse_shaders_ahead() {
+pub fn read_shaders_ahead() {
     for (wgsl, ir) in first_frame_sources().into_iter().zip(FIRST_FRAME_IR) {
-        if PARSED.with(|p| p.borrow().contains_key(&wgsl)) {
+        if READ_AHEAD.with(|p| p.borrow().contains_key(&wgsl)) {
             continue;
         }
         if let Ok(module) = postcard::from_bytes::<wgpu::naga::Module>(ir) {
-            PARSED.with(|p| p.borrow_mut().insert(wgsl, module));
+            READ_AHEAD.with(|p| p.borrow_mut().insert(wgsl, module));
         }
     }
 }
 
 /// A shader module of `wgsl` named `label` on `device`: from its module
-/// parsed by [`parse_shaders_ahead`] on the GL back end, else from the WGSL.
+/// read by [`read_shaders_ahead`] on the GL back end, else from the WGSL.
 pub(crate) fn module(device: &wgpu::Device, label: &str, wgsl: String) -> wgpu::ShaderModule {
     let gl = device.adapter_info().backend == wgpu::Backend::Gl;
-    let parsed = if gl { PARSED.with(|p| p.borrow().get(&wgsl).cloned()) } else { None };
-    let source = match parsed {
-        Some(parsed) => wgpu::ShaderSource::Naga(Cow::Owned(parsed)),
+    let read = if gl { READ_AHEAD.with(|p| p.borrow().get(&wgsl).cloned()) } else { None };
+    let source = match read {
+        Some(module) => wgpu::ShaderSource::Naga(Cow::Owned(module)),
         None => wgpu::ShaderSource::Wgsl(wgsl.into()),
     };
     device.create_shader_module(wgpu::ShaderModuleDescriptor { label: Some(label), source })
@@ -64,12 +64,12 @@ mod tests {
 
     #[test]
     fn the_first_frames_modules_are_read_ahead() {
-        parse_shaders_ahead();
-        let read = PARSED.with(|p| p.borrow().len());
+        read_shaders_ahead();
+        let read = READ_AHEAD.with(|p| p.borrow().len());
         assert_eq!(read, first_frame_sources().len());
         // Twice is once.
-        parse_shaders_ahead();
-        assert_eq!(PARSED.with(|p| p.borrow().len()), read);
+        read_shaders_ahead();
+        assert_eq!(READ_AHEAD.with(|p| p.borrow().len()), read);
     }
 
     #[test]

@@ -108,6 +108,21 @@ fn floor_from(height: f32) -> (Camera, Scene) {
     (camera, scene)
 }
 
+/// For each pixel of `pixels`: where it is floor (grey, not a red caster)
+/// darker than in `bare`, the ratio of its brightness to the bare floor's.
+fn floor_shadow(bare: &[u8], pixels: &[u8]) -> Vec<Option<f32>> {
+    let luma = |p: &[u8]| p[0] as f32 + p[1] as f32 + p[2] as f32;
+    bare.chunks(4)
+        .zip(pixels.chunks(4))
+        .map(|(b, l)| (l[0] <= l[1] + 10 && luma(l) + 12.0 < luma(b)).then(|| luma(l) / luma(b).max(1.0)))
+        .collect()
+}
+
+/// How many pixels of `pixels` are floor darker than in `bare` ([`floor_shadow`]).
+fn shadowed_count(bare: &[u8], pixels: &[u8]) -> usize {
+    floor_shadow(bare, pixels).iter().flatten().count()
+}
+
 #[test]
 fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
     let Some((device, queue, mut renderer, target)) = setup(4) else { return };
@@ -124,12 +139,11 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
     renderer.render(&device, &queue, &target, &scene, &camera);
     assert_eq!(renderer.draw_calls(), 4, "shadow map, floor, floor shadow, capsules");
     let lit = read_pixels(&device, &queue, &target);
-    let luma = |p: &[u8]| p[0] as u32 + p[1] as u32 + p[2] as u32;
     let red = lit.chunks(4).filter(|p| p[0] > 100 && p[0] as u32 > 2 * p[1] as u32).count();
     assert!(red > 20, "the capsule is drawn: {red} red pixels");
     // The light is not straight overhead, so the pole's shadow is a streak on the
     // floor beside it (the pole itself covers only a disc from above).
-    let darker = bare.chunks(4).zip(lit.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
+    let darker = shadowed_count(&bare, &lit);
     assert!(darker > 20, "a shadow darkens the floor: {darker} pixels");
     // The fast look: the same capsule and its shadow.
     renderer.fast_look = true;
@@ -141,14 +155,12 @@ fn capsules_are_lit_and_cast_a_shadow_on_the_floor() {
         fast_red.abs_diff(red) * 10 <= red,
         "fast look: the capsule covers about the same pixels ({fast_red} against {red})"
     );
-    let fast_darker =
-        bare.chunks(4).zip(fast.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
+    let fast_darker = shadowed_count(&bare, &fast);
     assert!(fast_darker > 20, "fast look: a shadow darkens the floor: {fast_darker} pixels");
     scene.shadows = false;
     renderer.render(&device, &queue, &target, &scene, &camera);
     let unshadowed = read_pixels(&device, &queue, &target);
-    let darker =
-        bare.chunks(4).zip(unshadowed.chunks(4)).filter(|(b, l)| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b)).count();
+    let darker = shadowed_count(&bare, &unshadowed);
     assert_eq!(darker, 0, "no shadow when shadows are off");
     // Shadows on again (their own pipelines, made before): the first picture.
     scene.shadows = true;
@@ -180,14 +192,8 @@ fn the_fast_look_darkens_the_floor_once_under_crossing_casters_where_the_map_doe
     scene.capsules.push(bar(Vec3::new(-1.2, 1.0, -0.6), Vec3::new(1.2, 1.0, 0.6), 0.2));
     scene.capsules.push(bar(Vec3::new(-1.2, 1.2, 0.6), Vec3::new(1.2, 1.2, -0.6), 0.2));
     scene.capsules.push(bar(Vec3::new(0.8, 0.0, 0.8), Vec3::new(0.8, 1.5, 0.8), 0.15));
-    let luma = |p: &[u8]| p[0] as f32 + p[1] as f32 + p[2] as f32;
     // Floor pixels darkened (not the red capsules), as a ratio to the bare floor.
-    let shadowed = |pixels: &[u8]| -> Vec<Option<f32>> {
-        bare.chunks(4)
-            .zip(pixels.chunks(4))
-            .map(|(b, l)| (l[0] <= l[1] + 10 && luma(l) + 12.0 < luma(b)).then(|| luma(l) / luma(b).max(1.0)))
-            .collect()
-    };
+    let shadowed = |pixels: &[u8]| floor_shadow(&bare, pixels);
     renderer.render(&device, &queue, &target, &scene, &camera);
     let map = shadowed(&read_pixels(&device, &queue, &target));
     renderer.fast_look = true;
@@ -1287,15 +1293,9 @@ fn in_the_fast_look_a_body_casts_its_shadow_from_its_bones_capsules() {
     let (camera, mut scene) = floor_from(6.0);
     renderer.render(&device, &queue, &target, &scene, &camera);
     let bare = read_pixels(&device, &queue, &target);
-    let luma = |p: &[u8]| p[0] as u32 + p[1] as u32 + p[2] as u32;
     // The floor pixels (grey, not the red pillar) darker than the bare floor.
     let shadowed = |pixels: &[u8]| -> Vec<usize> {
-        bare.chunks(4)
-            .zip(pixels.chunks(4))
-            .enumerate()
-            .filter(|(_, (b, l))| l[0] <= l[1] + 10 && luma(l) + 12 < luma(b))
-            .map(|(i, _)| i)
-            .collect()
+        floor_shadow(&bare, pixels).iter().enumerate().filter(|(_, r)| r.is_some()).map(|(i, _)| i).collect()
     };
     let shared = |a: &[usize], b: &[usize]| a.iter().filter(|i| b.contains(i)).count();
     let frame = |renderer: &mut SceneRenderer, scene: &Scene| {

@@ -95,8 +95,8 @@ async fn start_on(
         video: Rc::default(),
         webgpu_adapter,
     };
-    // Done while the page waits for a graphics device (see mocap_render::parse_shaders_ahead).
-    mocap_render::parse_shaders_ahead();
+    // Done while the page waits for a graphics device (see mocap_render::read_shaders_ahead).
+    mocap_render::read_shaders_ahead();
     run_on(canvas, &shared).await?;
     Ok(MocapViewer { viewer: shared.viewer.clone(), saved: shared.saved.clone(), ctx: shared.ctx.clone(), shared })
 }
