@@ -36,6 +36,10 @@ mod floor_cache;
 mod grid;
 mod lines;
 mod mesh;
+#[cfg(test)]
+mod first_frame_glsl;
+#[cfg(test)]
+mod glsl_ahead;
 mod pipeline;
 mod pipeline_set;
 mod placed;
@@ -67,7 +71,6 @@ pub use renderer::SceneRenderer;
 #[cfg(feature = "test-support")]
 pub use renderer::TestPaths;
 pub use scene::{Capsule, Line, Scene, Sphere};
-pub use shader_source::read_shaders_ahead;
 pub use shadow::key_light_direction;
 pub use skinned::{COARSE_BODY_SPAN_PX, SkinnedDraw, SkinnedMeshData, SkinnedTexture, SkinnedVertex};
 pub use target::RenderTarget;

@@ -1,9 +1,11 @@
 //! Shared pipeline construction.
 
+use crate::shader_text::OVERRIDES;
+
 /// What differs between the pipelines.
 pub(crate) struct PipelineSpec<'a> {
     pub label: &'static str,
-    pub shader: &'a wgpu::ShaderModule,
+    pub shader: &'a crate::shader_source::Shader,
     pub vertex_entry: &'static str,
     pub fragment_entry: &'static str,
     /// Vertex buffers: per-vertex and/or per-instance layouts.
@@ -51,14 +53,23 @@ pub(crate) fn quad_corners<'a>(
 pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: &PipelineSpec) -> wgpu::RenderPipeline {
     // frame.wgsl and lighting.wgsl: the shaders encode sRGB for plain unorm targets.
     let encode_srgb = spec.color.is_some_and(|(format, _)| !format.is_srgb());
-    let flag = |on: bool| if on { 1.0 } else { 0.0 };
-    let constants = [
-        ("FAST_LOOK", flag(spec.fast_look)),
-        ("SHADOWS", flag(spec.shadows)),
-        ("ENCODE_SRGB", flag(encode_srgb)),
-        ("BLEND_OUTLINES", flag(spec.blend_outlines)),
-    ];
+    let values = [spec.fast_look, spec.shadows, encode_srgb, spec.blend_outlines];
+    let constants: [(&str, f64); 4] = std::array::from_fn(|i| (OVERRIDES[i], if values[i] { 1.0 } else { 0.0 }));
     let options = || wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
+    let has_fragment = spec.color.is_some() || spec.depth_fragment;
+    // On WebGL2 the GLSL written at build time, where it was.
+    let written = crate::shader_source::written_modules(
+        device,
+        spec.shader,
+        spec.vertex_entry,
+        has_fragment.then_some(spec.fragment_entry),
+        values,
+    );
+    let vertex_module = written.as_ref().map_or_else(|| spec.shader.module(), |(v, _)| v);
+    let fragment_module = match &written {
+        Some((_, Some(f))) => f,
+        _ => spec.shader.module(),
+    };
     let targets = [spec.color.map(|(format, blend)| wgpu::ColorTargetState {
         format,
         blend: Some(blend),
@@ -68,7 +79,7 @@ pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: 
         label: Some(spec.label),
         layout: Some(layout),
         vertex: wgpu::VertexState {
-            module: spec.shader,
+            module: vertex_module,
             entry_point: Some(spec.vertex_entry),
             compilation_options: options(),
             buffers: spec.buffers,
@@ -90,8 +101,8 @@ pub(crate) fn build(device: &wgpu::Device, layout: &wgpu::PipelineLayout, spec: 
             alpha_to_coverage_enabled: spec.alpha_to_coverage && spec.sample_count > 1,
             ..Default::default()
         },
-        fragment: (spec.color.is_some() || spec.depth_fragment).then(|| wgpu::FragmentState {
-            module: spec.shader,
+        fragment: has_fragment.then(|| wgpu::FragmentState {
+            module: fragment_module,
             entry_point: Some(spec.fragment_entry),
             compilation_options: options(),
             targets: if spec.color.is_some() { &targets } else { &[] },

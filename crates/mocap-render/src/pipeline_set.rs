@@ -398,7 +398,7 @@ impl MeshPipelines {
 }
 
 /// A shader module of `body` after the shared uniform and lighting code.
-fn lit_module(device: &wgpu::Device, label: &str, body: &str) -> wgpu::ShaderModule {
+fn lit_module(device: &wgpu::Device, label: &str, body: &str) -> crate::shader_source::Shader {
     crate::shader_source::module(device, label, lit_source(body))
 }
 
@@ -407,7 +407,7 @@ fn lit_module(device: &wgpu::Device, label: &str, body: &str) -> wgpu::ShaderMod
 /// back faces culled.
 fn base_spec<'a>(
     label: &'static str,
-    shader: &'a wgpu::ShaderModule,
+    shader: &'a crate::shader_source::Shader,
     buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     format: wgpu::TextureFormat,
     key: PipelineKey,

@@ -95,8 +95,6 @@ async fn start_on(
         video: Rc::default(),
         webgpu_adapter,
     };
-    // Done while the page waits for a graphics device (see mocap_render::read_shaders_ahead).
-    mocap_render::read_shaders_ahead();
     run_on(canvas, &shared).await?;
     Ok(MocapViewer { viewer: shared.viewer.clone(), saved: shared.saved.clone(), ctx: shared.ctx.clone(), shared })
 }
@@ -174,7 +172,11 @@ pub(crate) async fn run_on(canvas: web_sys::HtmlCanvasElement, shared: &Shared) 
     runner
         .start(
             canvas,
-            eframe::WebOptions { webgpu_probe: shared.webgpu_adapter.clone(), ..Default::default() },
+            eframe::WebOptions {
+                webgpu_probe: shared.webgpu_adapter.clone(),
+                wgpu_options: wgpu_options(),
+                ..Default::default()
+            },
             // The app is made before the graphics device is ready (eframe lays
             // its first pass out meanwhile; see vendor/eframe/VENDORED.md): the
             // device is watched once `start` has it.
@@ -207,6 +209,23 @@ pub(crate) async fn run_on(canvas: web_sys::HtmlCanvasElement, shared: &Shared) 
 /// with the reason as `detail`), unless a newer runner has started since; and
 /// keeps wgpu's errors from aborting the page (wgpu's default handler panics:
 /// after a loss every call may fail until the page starts again on a new device).
+/// eframe's wgpu set-up, with pass-through shaders asked for where the
+/// adapter has them (wgpu's GL back end, WebGL2 here): the renderer makes a
+/// first frame's pipelines from GLSL written at build time
+/// (`mocap_render`'s `shader_source::written_modules`).
+fn wgpu_options() -> eframe::egui_wgpu::WgpuConfiguration {
+    use eframe::egui_wgpu::{WgpuConfiguration, WgpuSetup, WgpuSetupCreateNew};
+    use eframe::wgpu::Features;
+    let mut setup = WgpuSetupCreateNew::without_display_handle();
+    let device_descriptor = setup.device_descriptor.clone();
+    setup.device_descriptor = std::sync::Arc::new(move |adapter| {
+        let mut descriptor = device_descriptor(adapter);
+        descriptor.required_features |= adapter.features() & Features::PASSTHROUGH_SHADERS;
+        descriptor
+    });
+    WgpuConfiguration { wgpu_setup: WgpuSetup::CreateNew(setup), ..Default::default() }
+}
+
 fn watch_device(device: &eframe::wgpu::Device, generation: u32) {
     device.set_device_lost_callback(move |reason, message| {
         if GENERATION.load(Ordering::Relaxed) == generation {

@@ -389,29 +389,36 @@ pub struct Renderer {
     pub callback_resources: CallbackResources,
 }
 
-thread_local! {
-    /// Vendored change: `egui.wgsl` parsed by [`Renderer::parse_shader_ahead`].
-    static PARSED_SHADER: std::cell::RefCell<Option<wgpu::naga::Module>> =
-        const { std::cell::RefCell::new(None) };
+// Vendored change: `EGUI_GLSL`, egui's stages' GLSL for WebGL2 (see `build.rs`).
+include!(concat!(env!("OUT_DIR"), "/egui_glsl.rs"));
+
+/// Vendored change: a pass-through module of the GLSL `build.rs` wrote for
+/// egui's stage `entry`, on WebGL2 (wgpu's GL back end in a browser, GLSL ES
+/// 3.00) where the device takes pass-through shaders; else `None`, and the
+/// pipeline is made from `egui.wgsl`.
+#[expect(unsafe_code, reason = "wgpu's pass-through shaders are unsafe to make")]
+fn written_module(device: &wgpu::Device, entry: &str) -> Option<wgpu::ShaderModule> {
+    let webgl = cfg!(target_arch = "wasm32") && device.adapter_info().backend == wgpu::Backend::Gl;
+    if !webgl || !device.features().contains(wgpu::Features::PASSTHROUGH_SHADERS) {
+        return None;
+    }
+    let &(_, glsl) = EGUI_GLSL.iter().find(|(e, _)| *e == entry)?;
+    let desc = wgpu::ShaderModuleDescriptorPassthrough {
+        label: Some("egui"),
+        entry_points: Cow::Owned(vec![wgpu::PassthroughShaderEntryPoint {
+            name: Cow::Owned(entry.to_owned()),
+            workgroup_size: (0, 0, 0),
+        }]),
+        glsl: Some(Cow::Borrowed(glsl)),
+        ..Default::default()
+    };
+    // SAFETY: the GLSL is what naga writes for this stage of `egui.wgsl`
+    // (validated at build time) with the GL back end's WebGL2 options, as the
+    // back end itself would write it.
+    Some(unsafe { device.create_shader_module_passthrough(desc) })
 }
 
 impl Renderer {
-    /// Vendored change: parses egui's shader now, for [`Renderer::new`] to
-    /// hand wgpu the parsed module on its GL back end (WebGL2), where wgpu
-    /// would parse the WGSL itself when the renderer is made. A web page's
-    /// start waits for the graphics device; parsed while it waits, the parse
-    /// (about a third of making the renderer there, in a browser's first,
-    /// unoptimised tier of WebAssembly) is off the way to the first frame.
-    /// Elsewhere the WGSL is used as upstream.
-    pub fn parse_shader_ahead() {
-        if PARSED_SHADER.with(|p| p.borrow().is_some()) {
-            return;
-        }
-        if let Ok(parsed) = wgpu::naga::front::wgsl::parse_str(include_str!("egui.wgsl")) {
-            PARSED_SHADER.with(|p| *p.borrow_mut() = Some(parsed));
-        }
-    }
-
     /// Creates a renderer for a egui UI.
     ///
     /// `output_color_format` should preferably be [`wgpu::TextureFormat::Rgba8Unorm`] or
@@ -423,21 +430,24 @@ impl Renderer {
     ) -> Self {
         profiling::function_scope!();
 
-        // Vendored change: the module parsed ahead on the GL back end (see
-        // `Renderer::parse_shader_ahead`).
-        let gl = device.adapter_info().backend == wgpu::Backend::Gl;
-        let source = match PARSED_SHADER.with(|p| p.borrow().clone()).filter(|_| gl) {
-            Some(parsed) => wgpu::ShaderSource::Naga(Cow::Owned(parsed)),
-            None => wgpu::ShaderSource::Wgsl(Cow::Borrowed(include_str!("egui.wgsl"))),
+        // Vendored change: on WebGL2 the stages' GLSL written at build time,
+        // else `egui.wgsl`.
+        let fragment_entry = if output_color_format.is_srgb() {
+            log::warn!("Detected a linear (sRGBA aware) framebuffer {output_color_format:?}. egui prefers Rgba8Unorm or Bgra8Unorm");
+            "fs_main_linear_framebuffer"
+        } else {
+            "fs_main_gamma_framebuffer" // this is what we prefer
         };
-        let shader = wgpu::ShaderModuleDescriptor {
-            label: Some("egui"),
-            source,
-        };
-        let module = {
+        let written = written_module(device, "vs_main").zip(written_module(device, fragment_entry));
+        let (vertex_module, fragment_module) = written.unwrap_or_else(|| {
+            let shader = wgpu::ShaderModuleDescriptor {
+                label: Some("egui"),
+                source: wgpu::ShaderSource::Wgsl(Cow::Borrowed(include_str!("egui.wgsl"))),
+            };
             profiling::scope!("create_shader_module");
-            device.create_shader_module(shader)
-        };
+            let module = device.create_shader_module(shader);
+            (module.clone(), module)
+        });
 
         let uniform_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("egui_uniform_buffer"),
@@ -556,7 +566,7 @@ impl Renderer {
                 layout: Some(&pipeline_layout),
                 vertex: wgpu::VertexState {
                     entry_point: Some("vs_main"),
-                    module: &module,
+                    module: &vertex_module,
                     buffers: &[Some(wgpu::VertexBufferLayout {
                         array_stride: 5 * 4,
                         step_mode: wgpu::VertexStepMode::Vertex,
@@ -584,13 +594,8 @@ impl Renderer {
                 },
 
                 fragment: Some(wgpu::FragmentState {
-                    module: &module,
-                    entry_point: Some(if output_color_format.is_srgb() {
-                        log::warn!("Detected a linear (sRGBA aware) framebuffer {output_color_format:?}. egui prefers Rgba8Unorm or Bgra8Unorm");
-                        "fs_main_linear_framebuffer"
-                    } else {
-                        "fs_main_gamma_framebuffer" // this is what we prefer
-                    }),
+                    module: &fragment_module,
+                    entry_point: Some(fragment_entry),
                     targets: &[Some(wgpu::ColorTargetState {
                         format: output_color_format,
                         blend: Some(wgpu::BlendState {

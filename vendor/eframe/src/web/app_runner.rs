@@ -119,8 +119,6 @@ impl AppRunner {
             wgpu_render_state: None,
         };
         let textures_delta = Self::first_pass_early(&egui_ctx, &canvas, &mut *app, &mut frame);
-        #[cfg(feature = "wgpu_no_default_features")]
-        egui_wgpu::Renderer::parse_shader_ahead();
 
         let made = make_painter(egui_ctx.clone(), canvas, &web_options).await?;
         let Made {

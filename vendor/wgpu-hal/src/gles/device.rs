@@ -122,6 +122,99 @@ impl CompilationContext<'_> {
     }
 }
 
+impl CompilationContext<'_> {
+    /// Vendored change: the bindings of GLSL written ahead of time (a
+    /// pass-through module, for instance by `mocap-render`'s `build.rs`),
+    /// read from the `//!wgpu` lines ahead of its `#version`, bound as
+    /// [`Self::consume_reflection`] binds what naga's reflection names when
+    /// wgpu writes the GLSL itself; returns the GLSL from its `#version` on.
+    ///
+    /// One line per item, names and numbers apart by spaces:
+    /// `//!wgpu uniform NAME GROUP BINDING` (a uniform block),
+    /// `//!wgpu texture NAME GROUP BINDING [SAMPLER_GROUP SAMPLER_BINDING]`
+    /// (a sampled texture and the sampler it is combined with),
+    /// `//!wgpu varying NAME LOCATION` (a vertex input or fragment output
+    /// bound by name). GLSL without such lines binds nothing, as upstream's
+    /// pass-through did; a line that does not read, or names a binding the
+    /// pipeline's layout lacks, is skipped with a warning (the program then
+    /// fails to bind as GLSL with a wrong binding would).
+    fn consume_written_ahead<'s>(
+        mut self,
+        gl: &glow::Context,
+        source: &'s str,
+        naga_stage: naga::ShaderStage,
+        program: glow::Program,
+    ) -> &'s str {
+        let mut body = source;
+        while let Some(line) = body.strip_prefix("//!wgpu ") {
+            let end = line.find('\n').map_or(line.len(), |i| i + 1);
+            let item = line[..end].trim_end();
+            body = &line[end..];
+            if !self.bind_written_ahead(gl, item, naga_stage, program) {
+                log::warn!("GLSL written ahead: skipped `{item}`");
+            }
+        }
+        body
+    }
+
+    /// Vendored change: binds one `//!wgpu` line's item (without its
+    /// prefix); false where it does not read or the layout lacks it.
+    fn bind_written_ahead(
+        &mut self,
+        gl: &glow::Context,
+        item: &str,
+        naga_stage: naga::ShaderStage,
+        program: glow::Program,
+    ) -> bool {
+        let mut words = item.split(' ');
+        let (Some(kind), Some(name)) = (words.next(), words.next()) else {
+            return false;
+        };
+        let mut numbers = ArrayVec::<u32, 4>::new();
+        for word in words {
+            match word.parse() {
+                Ok(n) if !numbers.is_full() => numbers.push(n),
+                _ => return false,
+            }
+        }
+        let layout = self.layout;
+        let slot = |group: u32, binding: u32| {
+            let info = layout.group_infos.get(group as usize)?.as_ref()?;
+            info.binding_to_slot.get(binding as usize).copied().filter(|&s| s != !0)
+        };
+        match (kind, numbers.as_slice()) {
+            ("uniform", &[group, binding]) => {
+                let Some(slot) = slot(group, binding) else { return false };
+                self.name_binding_map
+                    .insert(name.to_owned(), (super::BindingRegister::UniformBuffers, slot));
+            }
+            ("texture", &[group, binding]) | ("texture", &[group, binding, _, _]) => {
+                let Some(texture) = slot(group, binding) else { return false };
+                let sampler = match numbers.as_slice() {
+                    &[_, _, sampler_group, sampler_binding] => {
+                        let Some(s) = slot(sampler_group, sampler_binding) else { return false };
+                        Some(s)
+                    }
+                    _ => None,
+                };
+                let Some(entry) = self.sampler_map.get_mut(texture as usize) else { return false };
+                if sampler.is_some() {
+                    *entry = sampler;
+                }
+                self.name_binding_map
+                    .insert(name.to_owned(), (super::BindingRegister::Textures, texture));
+            }
+            ("varying", &[location]) => match naga_stage {
+                naga::ShaderStage::Vertex => unsafe { gl.bind_attrib_location(program, location, name) },
+                naga::ShaderStage::Fragment => unsafe { gl.bind_frag_data_location(program, location, name) },
+                _ => return false,
+            },
+            _ => return false,
+        }
+        true
+    }
+}
+
 impl super::Device {
     /// # Safety
     ///
@@ -362,7 +455,9 @@ impl super::Device {
             let naga = match stage.module.source {
                 super::ShaderModuleSource::Naga(ref naga) => naga,
                 super::ShaderModuleSource::Passthrough { ref source } => {
-                    break 'outer Cow::Borrowed(source);
+                    // Vendored change: GLSL written ahead may name what its
+                    // resources bind to, as naga's reflection would have.
+                    break 'outer Cow::Borrowed(context.consume_written_ahead(gl, source, naga_stage, program));
                 }
             };
 
