@@ -147,3 +147,40 @@ fn a_glyph_is_drawn_the_same_whatever_sizes_the_font_drew_before() {
     let back = last_glyphs(&[("xyz", 20.0), ("Hamburgefonstiv 0123", 14.0), ("Hamburgefonstiv 0123", 20.0)]);
     assert_eq!(back, alone);
 }
+
+/// Each glyph's place, advance and size in the atlas in the last of `texts`,
+/// laid out one after the other at 14 points in a new context.
+fn last_layout(texts: &[&str]) -> Vec<String> {
+    let ctx = context();
+    ctx.fonts_mut(|fonts| {
+        let mut last = None;
+        for text in texts {
+            last = Some(fonts.layout_no_wrap((*text).to_owned(), egui::FontId::proportional(14.0), egui::Color32::WHITE));
+        }
+        let galley = last.expect("at least one text");
+        let glyphs = galley.rows.iter().flat_map(|row| row.glyphs.iter());
+        glyphs
+            .map(|g| {
+                let size = [g.uv_rect.max[0] - g.uv_rect.min[0], g.uv_rect.max[1] - g.uv_rect.min[1]];
+                format!("{} {:?} {} {size:?}", g.chr, g.pos, g.advance_width)
+            })
+            .collect()
+    })
+}
+
+/// Vendored epaint keeps a face's shape plans by the run's direction, script
+/// and language (`shape_plans.rs`): a text must be shaped the same whatever
+/// texts of other scripts, or of no script, were shaped before it (a plan
+/// kept for the wrong script fails harfrust's own check, or shapes otherwise).
+#[test]
+fn a_text_is_shaped_the_same_whatever_was_shaped_before() {
+    let text = "AVATAR fi Tä Wo, 12.5 → ok";
+    let alone = last_layout(&[text]);
+    assert!(alone.len() > 20, "glyphs laid out: {alone:?}");
+    for before in [&["Ωμέγα"][..], &["Привет", "0123"], &["12:34", "Ωμέγα Привет", "ŠŽČ ñ"]] {
+        let texts: Vec<&str> = before.iter().copied().chain([text]).collect();
+        assert_eq!(last_layout(&texts), alone, "after {before:?}");
+    }
+    // And a text of another script the same, alone or after Latin.
+    assert_eq!(last_layout(&[text, "Ωμέγα"]), last_layout(&["Ωμέγα"]));
+}

@@ -327,6 +327,9 @@ pub struct FontFace {
     /// `ShaperData` is `Copy` — lives outside the `self_cell`.
     shaper_data: harfrust::ShaperData,
 
+    /// Vendored change: the shape plans made for the face without variations.
+    shape_plans: super::shape_plans::ShapePlans,
+
     /// Location-independent: `char → GlyphId | Invisible`.
     ///
     /// Only depends on the font's charmap + `FontTweak`. A miss means the char
@@ -400,6 +403,7 @@ impl FontFace {
             tweak,
             subpixel_binning,
             shaper_data,
+            shape_plans: Default::default(),
             glyph_id_cache: Default::default(),
             advance_width_cache: Default::default(),
         })
@@ -610,6 +614,11 @@ impl FontFace {
 
     pub(crate) fn shaper_data(&self) -> &harfrust::ShaperData {
         &self.shaper_data
+    }
+
+    /// Vendored change: the face's shape plans (for the face without variations).
+    pub(crate) fn shape_plans(&self) -> &super::shape_plans::ShapePlans {
+        &self.shape_plans
     }
 
     /// Whether to render this face at up to four sub-pixel offsets.

@@ -15,6 +15,7 @@ mod glyph_atlas;
 mod glyph_rasterizer;
 mod hinting;
 mod index;
+mod shape_plans;
 mod styled_metrics;
 mod text_layout;
 mod text_layout_types;

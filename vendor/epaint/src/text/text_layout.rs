@@ -1602,6 +1602,13 @@ fn shape_text(
     buffer.push_str(text);
     buffer.guess_segment_properties();
 
+    // Vendored change: the face's plan for the run's direction, script and
+    // language, made once (see `shape_plans.rs`); with variations, a plan
+    // per run as upstream.
+    if instance.is_none() {
+        let plan = font_face.shape_plans().plan(&shaper, &buffer);
+        return shaper.shape(buffer, harfrust::ShapeOptions::new().plan(Some(&plan)));
+    }
     shaper.shape(buffer, harfrust::ShapeOptions::new())
 }
 
