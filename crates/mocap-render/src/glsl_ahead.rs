@@ -8,8 +8,9 @@
 use naga::back::glsl;
 
 /// `module` validated as wgpu validates a module on WebGL2.
-pub(crate) fn validate(module: &naga::Module) -> Result<naga::valid::ModuleInfo, naga::WithSpan<naga::valid::ValidationError>> {
-    naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty()).validate(module)
+pub(crate) fn validate(module: &naga::Module) -> Result<naga::valid::ModuleInfo, Box<naga::WithSpan<naga::valid::ValidationError>>> {
+    let mut validator = naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty());
+    validator.validate(module).map_err(Box::new)
 }
 
 /// The GLSL ES 3.00 wgpu's GL back end writes on WebGL2 for the stage `entry`
