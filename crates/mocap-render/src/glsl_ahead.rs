@@ -56,10 +56,13 @@ pub(crate) fn stage_glsl(module: &naga::Module, info: &naga::valid::ModuleInfo, 
     };
     let mut lines = Vec::new();
     for (handle, var) in module.global_variables.iter() {
-        if used[handle].is_empty() || var.space != naga::AddressSpace::Uniform {
+        if used[handle].is_empty() {
             continue;
         }
         assert!(!matches!(var.space, naga::AddressSpace::Storage { .. }), "{entry}: storage buffers");
+        if var.space != naga::AddressSpace::Uniform {
+            continue;
+        }
         if let Some(name) = reflection.uniforms.get(&handle) {
             lines.push(format!("//!wgpu uniform {name} {}", binding(handle)));
         }
