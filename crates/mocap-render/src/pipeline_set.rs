@@ -106,7 +106,8 @@ pub(crate) const KEEP: wgpu::BlendComponent = wgpu::BlendComponent {
     operation: wgpu::BlendOperation::Add,
 };
 
-use crate::shader_text::{capsule_source, floor_source, lit_source};
+use crate::shader_source::first_frame_module;
+use crate::shader_text::{CAPSULES, FLOOR, lit_source};
 
 /// The pipelines made for `key` among `made`, if they are.
 pub(crate) fn pipelines_for(made: &[(PipelineKey, Pipelines)], key: PipelineKey) -> Option<&Pipelines> {
@@ -145,8 +146,8 @@ impl Pipelines {
             bind_group_layouts: &[Some(frame_layout)],
             immediate_size: 0,
         });
-        let capsule_shader = crate::shader_source::module(device, "mocap capsules", capsule_source());
-        let floor_shader = crate::shader_source::module(device, "mocap floor", floor_source());
+        let capsule_shader = first_frame_module(device, "mocap capsules", CAPSULES);
+        let floor_shader = first_frame_module(device, "mocap floor", FLOOR);
         let capsule_buffers = [Some(wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<CapsuleVertex>() as u64,
             step_mode: wgpu::VertexStepMode::Vertex,
@@ -259,7 +260,7 @@ impl ExtraPipelines {
             immediate_size: 0,
         });
         let module = |label: &str, body: &str| lit_module(device, label, body);
-        let floor_shader = crate::shader_source::module(device, "mocap floor", floor_source());
+        let floor_shader = first_frame_module(device, "mocap floor", FLOOR);
         let sphere_shader = module("mocap spheres", include_str!("shaders/spheres.wgsl"));
         let line_shader = module("mocap lines", include_str!("shaders/lines.wgsl"));
         let spheres = [quad_corners(&SPHERE_ATTRIBUTES, std::mem::size_of::<SphereInstance>())];

@@ -74,8 +74,15 @@ fn read_ir(index: usize) -> Option<wgpu::naga::Module> {
 /// The shader of `wgsl` named `label` on `device` (its module made when
 /// first needed: [`Shader::module`]).
 pub(crate) fn module(device: &wgpu::Device, label: &str, wgsl: String) -> Shader {
-    let first_frame = first_frame_sources().iter().position(|s| *s == wgsl);
-    Shader { device: device.clone(), label: label.to_owned(), wgsl, first_frame, module: std::cell::OnceCell::new() }
+    Shader { device: device.clone(), label: label.to_owned(), wgsl, first_frame: None, module: std::cell::OnceCell::new() }
+}
+
+/// The shader of the first-frame module `index` (in [`first_frame_sources`]:
+/// `shader_text::CAPSULES` or `FLOOR`) named `label` on `device`: its stages'
+/// GLSL written ahead, its IR made at build time.
+pub(crate) fn first_frame_module(device: &wgpu::Device, label: &str, index: usize) -> Shader {
+    let wgsl = first_frame_sources().into_iter().nth(index).unwrap_or_default();
+    Shader { first_frame: Some(index), ..module(device, label, wgsl) }
 }
 
 /// The GLSL `build.rs` wrote for stage `entry` (the vertex stage or not) of

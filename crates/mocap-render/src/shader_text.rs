@@ -35,8 +35,14 @@ pub(crate) fn floor_source() -> String {
     lit_source(include_str!("shaders/floor.wgsl"))
 }
 
+/// The index of the capsules' module in [`first_frame_sources`].
+pub(crate) const CAPSULES: usize = 0;
+/// The index of the floor's module in [`first_frame_sources`].
+pub(crate) const FLOOR: usize = 1;
+
 /// The sources of the modules a first frame of capsules over the floor is
-/// drawn with, in the order `build.rs` writes their IR.
+/// drawn with ([`CAPSULES`], [`FLOOR`]), in the order `build.rs` writes their
+/// IR.
 pub(crate) fn first_frame_sources() -> [String; 2] {
     [capsule_source(), floor_source()]
 }
@@ -52,14 +58,14 @@ pub(crate) const OVERRIDES: [&str; 4] = ["FAST_LOOK", "SHADOWS", "ENCODE_SRGB", 
 /// sRGB).
 #[cfg_attr(not(test), allow(dead_code, reason = "read by build.rs and the tests only"))]
 pub(crate) const FIRST_FRAME_STAGES: [(usize, bool, &str, bool); 8] = [
-    (0, true, "vs_shadow", false),
-    (0, false, "fs_shadow", false),
-    (0, true, "vs_main", true),
-    (0, false, "fs_main", true),
-    (1, true, "vs_main", true),
-    (1, false, "fs_main", true),
-    (1, true, "vs_shadow", true),
-    (1, false, "fs_shadow", true),
+    (CAPSULES, true, "vs_shadow", false),
+    (CAPSULES, false, "fs_shadow", false),
+    (CAPSULES, true, "vs_main", true),
+    (CAPSULES, false, "fs_main", true),
+    (FLOOR, true, "vs_main", true),
+    (FLOOR, false, "fs_main", true),
+    (FLOOR, true, "vs_shadow", true),
+    (FLOOR, false, "fs_shadow", true),
 ];
 
 /// The values of [`OVERRIDES`] a first frame's stage in [`FIRST_FRAME_STAGES`]
